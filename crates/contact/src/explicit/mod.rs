@@ -1,0 +1,1 @@
+//! Explicit asperity-by-asperity solver (in progress).

@@ -1,0 +1,13 @@
+//! stiction-contact: the contact mechanics of a rough MEMS sidewall.
+//!
+//! * [`single`]: single-asperity laws (Hertz eq. 3, DMT eq. 4, JKR, Maugis-Dugdale) and the Tabor parameter.
+//! * [`gw`]: Greenwood-Williamson statistics (eq. 5-9), with and without DMT adhesion.
+//! * [`limits`]: elastic limits (section 3.3, eq. 11).
+//! * [`discrete`]: the discrete N-contact model (eq. 12).
+//! * [`explicit`]: the explicit asperity-by-asperity solver with a rigid, tilting shoe.
+
+pub mod discrete;
+pub mod explicit;
+pub mod gw;
+pub mod limits;
+pub mod single;

@@ -1,0 +1,1 @@
+//! stiction-meter
