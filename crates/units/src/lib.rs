@@ -1,1 +1,220 @@
-//! stiction-units
+//! Quantities at the edge of stiction.
+//!
+//! # Internal unit system
+//!
+//! Everything inside stiction is SI, stored as `f64`: metres, newtons, pascals, joules per square
+//! metre, volts, seconds, radians. Users may write quantities with units: scenario files and
+//! command-line flags accept a bare number (taken as SI) or a string such as `"0.5 um"`, `"0.5um"`,
+//! `"1.4 GPa"`, `"3 uN"`, `"0.1 J/m^2"`, `"9.1e-12 1/Pa"`, `"4e12 m^-2"`, `"100 um^2"`,
+//! `"1.4e-8 N/V^2"` or `"35 %"`. [`parse_quantity`] converts such a string once, at the edge, to
+//! SI, and checks that its unit has the dimension the field expects.
+//!
+//! Units are products and quotients of symbols (`m g s A N Pa J V W C F Hz rad deg %`) with SI
+//! prefixes (`f p n u µ m c k M G T`) and integer powers (`m^2`, `m^-2`, `m2`). A `/` divides by
+//! everything after it up to the next `/`; `*`, `.` or a space multiply.
+//!
+//! Scenario fields take such values through the serde helpers in [`de`], which also accept an
+//! uncertain-parameter object (`{"value": "0.5 um", "sd": "0.3 um", "distribution": "normal"}`),
+//! see [`UncertainInput`]: a nominal run takes its `value`; Monte Carlo studies sample it.
+
+use std::fmt;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+mod parse;
+pub use parse::{format_quantity, parse_quantity, parse_quantity_checked};
+
+pub mod de;
+mod uncertain;
+pub use uncertain::{Distribution, ScalarInput, UncertainInput, nominal_from_json};
+
+/// Exponents of the base dimensions (metre, kilogram, second, ampere) of a unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct DimensionVector(pub [i8; 4]);
+
+impl DimensionVector {
+    fn mul(self, other: Self, power: i8) -> Self {
+        let mut out = self.0;
+        for (o, b) in out.iter_mut().zip(other.0) {
+            *o += b * power;
+        }
+        DimensionVector(out)
+    }
+}
+
+/// The physical dimension a field expects.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dimension {
+    /// Length, m.
+    Length,
+    /// Area, m^2.
+    Area,
+    /// Force, N.
+    Force,
+    /// Pressure, stress, Young's modulus, hardness, shear strength: Pa.
+    Pressure,
+    /// Work of adhesion, surface energy: J/m^2 (equal in dimension to N/m).
+    SurfaceEnergy,
+    /// Compliance (the paper's D), 1/Pa.
+    Compliance,
+    /// Number per area (summit density eta), m^-2.
+    ArealDensity,
+    /// Actuator conversion factor F / V^2, N/V^2.
+    ForcePerVoltageSquared,
+    /// Electric potential, V.
+    Voltage,
+    /// Spring stiffness, N/m (equal in dimension to J/m^2).
+    Stiffness,
+    /// A pure number; `%` is accepted (35 % = 0.35).
+    Dimensionless,
+    /// Plane angle in radians; `rad` and `deg` are accepted.
+    Angle,
+    /// Time, s.
+    Time,
+}
+
+impl Dimension {
+    /// The base-dimension exponents (m, kg, s, A) of this dimension.
+    pub fn vector(self) -> DimensionVector {
+        DimensionVector(match self {
+            Dimension::Length => [1, 0, 0, 0],
+            Dimension::Area => [2, 0, 0, 0],
+            Dimension::Force => [1, 1, -2, 0],
+            Dimension::Pressure => [-1, 1, -2, 0],
+            Dimension::SurfaceEnergy | Dimension::Stiffness => [0, 1, -2, 0],
+            Dimension::Compliance => [1, -1, 2, 0],
+            Dimension::ArealDensity => [-2, 0, 0, 0],
+            Dimension::ForcePerVoltageSquared => [-3, -1, 4, 2],
+            Dimension::Voltage => [2, 1, -3, -1],
+            Dimension::Dimensionless | Dimension::Angle => [0, 0, 0, 0],
+            Dimension::Time => [0, 0, 1, 0],
+        })
+    }
+
+    /// A name for messages: "a length".
+    pub fn description(self) -> &'static str {
+        match self {
+            Dimension::Length => "a length",
+            Dimension::Area => "an area",
+            Dimension::Force => "a force",
+            Dimension::Pressure => "a pressure",
+            Dimension::SurfaceEnergy => "a work of adhesion (energy per area)",
+            Dimension::Compliance => "a compliance (1/pressure)",
+            Dimension::ArealDensity => "a number per area",
+            Dimension::ForcePerVoltageSquared => "a force per voltage squared",
+            Dimension::Voltage => "a voltage",
+            Dimension::Stiffness => "a stiffness (force per length)",
+            Dimension::Dimensionless => "a pure number",
+            Dimension::Angle => "an angle",
+            Dimension::Time => "a time",
+        }
+    }
+
+    /// The SI unit symbol the bare number is taken in.
+    pub fn si_unit(self) -> &'static str {
+        match self {
+            Dimension::Length => "m",
+            Dimension::Area => "m^2",
+            Dimension::Force => "N",
+            Dimension::Pressure => "Pa",
+            Dimension::SurfaceEnergy => "J/m^2",
+            Dimension::Compliance => "1/Pa",
+            Dimension::ArealDensity => "m^-2",
+            Dimension::ForcePerVoltageSquared => "N/V^2",
+            Dimension::Voltage => "V",
+            Dimension::Stiffness => "N/m",
+            Dimension::Dimensionless => "",
+            Dimension::Angle => "rad",
+            Dimension::Time => "s",
+        }
+    }
+
+    /// An example a user could type.
+    pub fn example(self) -> &'static str {
+        match self {
+            Dimension::Length => "\"0.5 um\"",
+            Dimension::Area => "\"100 um^2\"",
+            Dimension::Force => "\"3 uN\"",
+            Dimension::Pressure => "\"1.4 GPa\"",
+            Dimension::SurfaceEnergy => "\"0.1 J/m^2\"",
+            Dimension::Compliance => "\"9.1e-12 1/Pa\"",
+            Dimension::ArealDensity => "\"4e12 m^-2\"",
+            Dimension::ForcePerVoltageSquared => "\"1.4e-8 N/V^2\"",
+            Dimension::Voltage => "\"20 V\"",
+            Dimension::Stiffness => "\"2.5 N/m\"",
+            Dimension::Dimensionless => "\"0.35\" or \"35 %\"",
+            Dimension::Angle => "\"1 mrad\" or \"0.1 deg\"",
+            Dimension::Time => "\"10 ms\"",
+        }
+    }
+}
+
+/// The sign a field requires.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Constraint {
+    /// Any finite value.
+    Finite,
+    /// Finite and strictly positive.
+    Positive,
+    /// Finite and not negative.
+    NonNegative,
+}
+
+/// Why a quantity was rejected. Its `Display` names the value and what was expected; the caller
+/// (a scenario path, a flag) adds the field.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{value:?}: {problem}; expected {expected}")]
+pub struct QuantityError {
+    /// The text (or number) as given.
+    pub value: String,
+    /// What is wrong with it.
+    pub problem: String,
+    /// What was expected: the dimension, an example and the SI unit of a bare number.
+    pub expected: String,
+}
+
+impl QuantityError {
+    pub(crate) fn new(
+        value: impl Into<String>,
+        problem: impl Into<String>,
+        dim: Dimension,
+        constraint: Constraint,
+    ) -> Self {
+        let sign = match constraint {
+            Constraint::Finite => "",
+            Constraint::Positive => "positive ",
+            Constraint::NonNegative => "non-negative ",
+        };
+        let si = dim.si_unit();
+        let bare = if si.is_empty() { "a number".to_string() } else { format!("a number in {si}") };
+        QuantityError {
+            value: value.into(),
+            problem: problem.into(),
+            expected: format!("{sign}{} such as {} (or {bare})", dim.description(), dim.example()),
+        }
+    }
+}
+
+/// The JSON Schema of a quantity field: a number (SI), a string with a unit, or an uncertain
+/// parameter object. Use it with `#[schemars(with = "stiction_units::QuantityInput")]`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum QuantityInput {
+    /// A number in SI units.
+    Number(f64),
+    /// A number with a unit, such as "0.5 um" or "1.4 GPa".
+    Text(String),
+    /// A value with an uncertainty and a distribution.
+    Uncertain(UncertainInput),
+}
+
+impl fmt::Display for QuantityInput {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            QuantityInput::Number(x) => write!(f, "{x}"),
+            QuantityInput::Text(t) => write!(f, "{t}"),
+            QuantityInput::Uncertain(u) => write!(f, "{u:?}"),
+        }
+    }
+}
