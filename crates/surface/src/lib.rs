@@ -1,1 +1,31 @@
-//! stiction-surface
+//! stiction-surface: the rough sidewall as a list of spherical summits.
+//!
+//! The Greenwood-Williamson picture of the paper (section 3.1): a rough face is a set of summits,
+//! each a sphere cap of radius R with its top at a height above the reference plane, over the
+//! apparent contact area A_a. This crate
+//!
+//! * stores such a list memory-lean as a struct of arrays ([`Surface`], 16-24 bytes per summit),
+//! * generates it from the statistical parameters with a portable seeded generator ([`generate`]:
+//!   Poisson or jittered-grid positions of density eta, Gaussian or exponential heights of SD sigma,
+//!   fixed or lognormal radii), for two faces as the paper's composite ([`generate_composite`]) or
+//!   explicitly, shoe summits meeting wall summits ([`generate_two_face`]),
+//! * reports sample statistics to compare with the requested parameters ([`Surface::stats`]),
+//! * writes and reads CSV (`x_m,y_m,height_m,radius_m`, SI) so measured summit lists can be used,
+//! * and describes all of this for scenario files ([`SurfaceSpec`]).
+//!
+//! All quantities are SI (metres, m^-2).
+
+mod csv_io;
+mod error;
+mod generate;
+mod spec;
+mod surface;
+
+pub use csv_io::CSV_HEADER;
+pub use error::SurfaceError;
+pub use generate::{
+    FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution, generate, generate_composite,
+    generate_two_face,
+};
+pub use spec::{FaceSpec, SurfaceSource, SurfaceSpec, TwoFaceMode};
+pub use surface::{Radii, Surface, SurfaceStats};

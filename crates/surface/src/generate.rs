@@ -1,0 +1,415 @@
+//! Seeded generators of rough faces: one face, the paper's composite of two faces, and an explicit
+//! pairing of shoe summits with wall summits.
+//!
+//! # Random streams
+//!
+//! All randomness comes from [`ChaCha8Rng`] seeded with [`SeedableRng::seed_from_u64`]`(seed)`,
+//! a portable generator: the same seed gives the same surface, bit for bit, on every machine.
+//! Independent quantities use independent ChaCha streams ([`ChaCha8Rng::set_stream`]):
+//! stream 0 positions (and the Poisson count), 1 heights, 2 radii of the wall (or only) face,
+//! 3, 4, 5 the same for the second face. So changing the placement does not change the heights.
+//!
+//! # Summit order
+//!
+//! The generators return summits in descending height. Positions and radii are drawn independently
+//! of the heights (jittered-grid positions are shuffled first), so this order carries no
+//! information and the surface is the same random field as in any other order; the contact solver
+//! uses it as its search structure (a shoe can only touch a prefix of the list).
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Exp1, LogNormal, Poisson, StandardNormal};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::surface::{check_nonnegative, check_positive};
+use crate::{Radii, Surface, SurfaceError};
+
+/// Largest number of summits a surface may hold (indices are stored as u32 by the solver).
+pub const MAX_SUMMITS: usize = u32::MAX as usize;
+
+/// How summit positions are placed over the apparent area.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Placement {
+    /// Homogeneous Poisson point process of density eta: the count is Poisson(eta A_a) and the
+    /// positions are independent and uniform (the GW assumption). Default.
+    #[default]
+    Poisson,
+    /// One summit per cell of a grid of round(eta A_a) nearly square cells, uniformly placed in
+    /// its cell: the count is fixed and the summits never cluster.
+    JitteredGrid,
+}
+
+/// Distribution of the summit heights.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum HeightDistribution {
+    /// Gaussian with mean 0 and SD sigma (the paper's section 3.1). Default.
+    #[default]
+    Gaussian,
+    /// Shifted exponential sigma (E - 1), E ~ Exp(1): mean 0, SD sigma, upper tail exp(-x/sigma)
+    /// (GW's exponential comparison case).
+    Exponential,
+}
+
+/// Distribution of the summit radii.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum RadiusDistribution {
+    /// Every summit has the mean radius (radius SD must be 0). Default.
+    #[default]
+    Fixed,
+    /// Lognormal with the given mean and SD: ln R ~ N(mu, s^2) with s^2 = ln(1 + (SD/mean)^2),
+    /// mu = ln(mean) - s^2 / 2.
+    Lognormal,
+}
+
+/// Statistical description of one rough face (GW parameters, paper section 3.1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceParams {
+    /// Summit density eta \[m^-2\].
+    pub summit_density_per_m2: f64,
+    /// Standard deviation of the summit heights sigma \[m\].
+    pub summit_sd_m: f64,
+    /// Height distribution.
+    pub height_distribution: HeightDistribution,
+    /// Mean summit radius R \[m\].
+    pub summit_radius_m: f64,
+    /// Standard deviation of the summit radius \[m\] (0 for fixed radii).
+    pub radius_sd_m: f64,
+    /// Radius distribution.
+    pub radius_distribution: RadiusDistribution,
+}
+
+impl FaceParams {
+    /// A face with Gaussian heights and one fixed radius (the paper's model).
+    pub fn gaussian_fixed(summit_density_per_m2: f64, summit_sd_m: f64, summit_radius_m: f64) -> Self {
+        Self {
+            summit_density_per_m2,
+            summit_sd_m,
+            height_distribution: HeightDistribution::Gaussian,
+            summit_radius_m,
+            radius_sd_m: 0.0,
+            radius_distribution: RadiusDistribution::Fixed,
+        }
+    }
+
+    /// The paper's composite of two faces (section 3.1): eta = eta1 + eta2,
+    /// sigma^2 = sigma1^2 + sigma2^2, 1/R = 1/R1 + 1/R2 (mean radii; the radius SD of the result is
+    /// not defined by the paper and is set to 0, use [`generate_composite`] to sample it).
+    pub fn composite(&self, other: &FaceParams) -> FaceParams {
+        FaceParams {
+            summit_density_per_m2: self.summit_density_per_m2 + other.summit_density_per_m2,
+            summit_sd_m: self.summit_sd_m.hypot(other.summit_sd_m),
+            height_distribution: if self.height_distribution == other.height_distribution {
+                self.height_distribution
+            } else {
+                HeightDistribution::Gaussian
+            },
+            summit_radius_m: 1.0 / (1.0 / self.summit_radius_m + 1.0 / other.summit_radius_m),
+            radius_sd_m: 0.0,
+            radius_distribution: RadiusDistribution::Fixed,
+        }
+    }
+
+    fn validate(&self, prefix: &str) -> Result<(), SurfaceError> {
+        check_positive(&format!("{prefix}summit_density"), self.summit_density_per_m2, "m^-2")?;
+        check_nonnegative(&format!("{prefix}summit_sd"), self.summit_sd_m, "m")?;
+        check_positive(&format!("{prefix}summit_radius"), self.summit_radius_m, "m")?;
+        check_nonnegative(&format!("{prefix}radius_sd"), self.radius_sd_m, "m")?;
+        match self.radius_distribution {
+            RadiusDistribution::Fixed if self.radius_sd_m != 0.0 => Err(SurfaceError::InvalidParameter {
+                field: format!("{prefix}radius_sd"),
+                value: self.radius_sd_m.to_string(),
+                expected: "0 for radius_distribution = fixed (use \"lognormal\" for a spread)".into(),
+            }),
+            RadiusDistribution::Lognormal if self.radius_sd_m <= 0.0 => Err(SurfaceError::InvalidParameter {
+                field: format!("{prefix}radius_sd"),
+                value: self.radius_sd_m.to_string(),
+                expected: "a value > 0 m for radius_distribution = lognormal".into(),
+            }),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Apparent contact area and random settings shared by all generators.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Layout {
+    /// Length of the apparent area along x \[m\] (the paper's shoe: 20 um).
+    pub apparent_length_m: f64,
+    /// Width of the apparent area along y \[m\] (the paper's shoe: 5 um).
+    pub apparent_width_m: f64,
+    /// Placement of the summits.
+    pub placement: Placement,
+    /// Seed of the ChaCha8 generator.
+    pub seed: u64,
+}
+
+impl Layout {
+    fn validate(&self) -> Result<(), SurfaceError> {
+        check_positive("apparent_length", self.apparent_length_m, "m")?;
+        check_positive("apparent_width", self.apparent_width_m, "m")
+    }
+    fn area(&self) -> f64 {
+        self.apparent_length_m * self.apparent_width_m
+    }
+}
+
+fn rng(seed: u64, stream: u64) -> ChaCha8Rng {
+    let mut r = ChaCha8Rng::seed_from_u64(seed);
+    r.set_stream(stream);
+    r
+}
+
+/// Draws positions (count and coordinates) on the given stream.
+fn positions(layout: &Layout, density: f64, stream: u64, field: &str) -> Result<(Vec<f32>, Vec<f32>), SurfaceError> {
+    let mean = density * layout.area();
+    if mean.is_nan() || mean > MAX_SUMMITS as f64 / 2.0 {
+        return Err(SurfaceError::InvalidParameter {
+            field: field.to_string(),
+            value: density.to_string(),
+            expected: format!(
+                "a density giving at most {} summits over the apparent area (got a mean of {mean:.3e})",
+                MAX_SUMMITS / 2
+            ),
+        });
+    }
+    let mut r = rng(layout.seed, stream);
+    let (l, w) = (layout.apparent_length_m, layout.apparent_width_m);
+    match layout.placement {
+        Placement::Poisson => {
+            let n = if mean > 0.0 {
+                let p = Poisson::new(mean).map_err(|e| SurfaceError::InvalidParameter {
+                    field: field.to_string(),
+                    value: density.to_string(),
+                    expected: format!("a density usable as a Poisson mean ({e})"),
+                })?;
+                p.sample(&mut r) as usize
+            } else {
+                0
+            };
+            let mut xs = Vec::with_capacity(n);
+            let mut ys = Vec::with_capacity(n);
+            for _ in 0..n {
+                xs.push(clamp_f32(r.random::<f64>() * l, l));
+                ys.push(clamp_f32(r.random::<f64>() * w, w));
+            }
+            Ok((xs, ys))
+        }
+        Placement::JitteredGrid => {
+            let target = mean.round().max(1.0);
+            let nx = ((target * l / w).sqrt().round() as usize).max(1);
+            let ny = ((target / nx as f64).round() as usize).max(1);
+            let (cx, cy) = (l / nx as f64, w / ny as f64);
+            let n = nx * ny;
+            let mut xs = Vec::with_capacity(n);
+            let mut ys = Vec::with_capacity(n);
+            for j in 0..ny {
+                for i in 0..nx {
+                    xs.push(clamp_f32((i as f64 + r.random::<f64>()) * cx, l));
+                    ys.push(clamp_f32((j as f64 + r.random::<f64>()) * cy, w));
+                }
+            }
+            // Fisher-Yates shuffle so that the summit order carries no spatial information.
+            for k in (1..n).rev() {
+                let m = r.random_range(0..=k);
+                xs.swap(k, m);
+                ys.swap(k, m);
+            }
+            Ok((xs, ys))
+        }
+    }
+}
+
+/// Rounds to f32, keeping the value inside [0, lim] (rounding up could leave the area).
+fn clamp_f32(v: f64, lim: f64) -> f32 {
+    let mut f = v as f32;
+    while f64::from(f) > lim {
+        f = f.next_down();
+    }
+    f
+}
+
+fn draw_height(r: &mut ChaCha8Rng, face: &FaceParams) -> f64 {
+    match face.height_distribution {
+        HeightDistribution::Gaussian => {
+            let g: f64 = StandardNormal.sample(r);
+            face.summit_sd_m * g
+        }
+        HeightDistribution::Exponential => {
+            let e: f64 = Exp1.sample(r);
+            face.summit_sd_m * (e - 1.0)
+        }
+    }
+}
+
+fn radius_sampler(face: &FaceParams) -> Option<LogNormal<f64>> {
+    match face.radius_distribution {
+        RadiusDistribution::Fixed => None,
+        RadiusDistribution::Lognormal => {
+            let cv = face.radius_sd_m / face.summit_radius_m;
+            let s2 = (1.0 + cv * cv).ln();
+            let mu = face.summit_radius_m.ln() - 0.5 * s2;
+            LogNormal::new(mu, s2.sqrt()).ok()
+        }
+    }
+}
+
+fn draw_radii(seed: u64, stream: u64, n: usize, face: &FaceParams) -> Option<Vec<f64>> {
+    let ln = radius_sampler(face)?;
+    let mut r = rng(seed, stream);
+    Some((0..n).map(|_| ln.sample(&mut r)).collect())
+}
+
+fn sort_desc(h: &mut [f64]) {
+    h.sort_unstable_by(|a, b| b.total_cmp(a));
+}
+
+/// Generates one rough face (or an already composite one, as in the paper's Table 1).
+///
+/// Count and positions follow `layout.placement` at density eta; heights follow
+/// `face.height_distribution` with SD sigma; radii are fixed or lognormal. Summits are returned in
+/// descending height. Errors name the invalid parameter.
+pub fn generate(layout: &Layout, face: &FaceParams) -> Result<Surface, SurfaceError> {
+    layout.validate()?;
+    face.validate("")?;
+    let (xs, ys) = positions(layout, face.summit_density_per_m2, 0, "summit_density")?;
+    let n = xs.len();
+    let mut hr = rng(layout.seed, 1);
+    let mut heights: Vec<f64> = (0..n).map(|_| draw_height(&mut hr, face)).collect();
+    sort_desc(&mut heights);
+    let radii = match draw_radii(layout.seed, 2, n, face) {
+        Some(r) => Radii::PerSummit(r),
+        None => Radii::Uniform(face.summit_radius_m),
+    };
+    Surface::new(layout.apparent_length_m, layout.apparent_width_m, xs, ys, heights, radii)
+}
+
+/// Generates the paper's composite surface of two rough faces (section 3.1) summit by summit:
+/// eta = eta1 + eta2, each summit height is the sum of one draw from each face's height
+/// distribution (so sigma^2 = sigma1^2 + sigma2^2, and Gaussian + Gaussian is Gaussian), and each
+/// radius is the harmonic combination 1/R = 1/R1 + 1/R2 of one draw from each face's radius
+/// distribution (uniform when both are fixed).
+pub fn generate_composite(layout: &Layout, wall: &FaceParams, shoe: &FaceParams) -> Result<Surface, SurfaceError> {
+    layout.validate()?;
+    wall.validate("")?;
+    shoe.validate("counter_face.")?;
+    let density = wall.summit_density_per_m2 + shoe.summit_density_per_m2;
+    let (xs, ys) = positions(layout, density, 0, "summit_density")?;
+    let n = xs.len();
+    let mut hw = rng(layout.seed, 1);
+    let mut hs = rng(layout.seed, 4);
+    let mut heights: Vec<f64> = (0..n).map(|_| draw_height(&mut hw, wall) + draw_height(&mut hs, shoe)).collect();
+    sort_desc(&mut heights);
+    let rw = draw_radii(layout.seed, 2, n, wall);
+    let rs = draw_radii(layout.seed, 5, n, shoe);
+    let radii = match (rw, rs) {
+        (None, None) => Radii::Uniform(1.0 / (1.0 / wall.summit_radius_m + 1.0 / shoe.summit_radius_m)),
+        (a, b) => {
+            let a = a.unwrap_or_else(|| vec![wall.summit_radius_m; n]);
+            let b = b.unwrap_or_else(|| vec![shoe.summit_radius_m; n]);
+            Radii::PerSummit(a.iter().zip(&b).map(|(x, y)| x * y / (x + y)).collect())
+        }
+    };
+    Surface::new(layout.apparent_length_m, layout.apparent_width_m, xs, ys, heights, radii)
+}
+
+/// Generates both rough faces explicitly and pairs shoe summits with wall summits.
+///
+/// The wall face (streams 0-2) has summit `i` at `p_i` with height `h_i` and radius `R_i` above the
+/// wall's mean summit plane; the shoe face (streams 3-5) has summit `j` at `p_j` pointing down, its
+/// height `g_j` measured downwards from the shoe's mean summit plane. With the shoe plane at
+/// separation d, the two parabolic caps at lateral offset `r = |p_i - p_j|` first touch at the point
+/// `p = p_i + (p_j - p_i) R_i / (R_i + R_j)` and their interference is
+/// `z = h_i + g_j - r^2 / (2 (R_i + R_j)) - d`. Such a pair acts like one summit of composite radius
+/// `R = R_i R_j / (R_i + R_j)` and effective height `h_i + g_j - r^2 / (2 (R_i + R_j))` against a flat
+/// (the Hertz contact of two spheres); the returned surface holds one such effective summit per pair
+/// with `r^2 / (2 (R_i + R_j)) <= pair_reach_m`, i.e. the lateral offset costs at most `pair_reach_m`
+/// of height. Pairs are independent (a summit touching two partners is counted twice, with no
+/// interaction between its two contacts). A solver that treats the returned surface against a flat
+/// shoe is then the explicit two-face contact. Summits return in descending effective height.
+pub fn generate_two_face(
+    layout: &Layout,
+    wall: &FaceParams,
+    shoe: &FaceParams,
+    pair_reach_m: f64,
+) -> Result<Surface, SurfaceError> {
+    layout.validate()?;
+    wall.validate("")?;
+    shoe.validate("counter_face.")?;
+    check_positive("pair_reach", pair_reach_m, "m")?;
+    let (wx, wy) = positions(layout, wall.summit_density_per_m2, 0, "summit_density")?;
+    let (sx, sy) = positions(layout, shoe.summit_density_per_m2, 3, "counter_face.summit_density")?;
+    let mut hr = rng(layout.seed, 1);
+    let wh: Vec<f64> = (0..wx.len()).map(|_| draw_height(&mut hr, wall)).collect();
+    let mut hr = rng(layout.seed, 4);
+    let sh: Vec<f64> = (0..sx.len()).map(|_| draw_height(&mut hr, shoe)).collect();
+    let wr = draw_radii(layout.seed, 2, wx.len(), wall);
+    let sr = draw_radii(layout.seed, 5, sx.len(), shoe);
+    let wrad = |i: usize| wr.as_ref().map_or(wall.summit_radius_m, |v| v[i]);
+    let srad = |j: usize| sr.as_ref().map_or(shoe.summit_radius_m, |v| v[j]);
+    let wmax = wr.as_ref().map_or(wall.summit_radius_m, |v| v.iter().copied().fold(0.0, f64::max));
+    let smax = sr.as_ref().map_or(shoe.summit_radius_m, |v| v.iter().copied().fold(0.0, f64::max));
+    let reach_xy = (2.0 * (wmax + smax) * pair_reach_m).sqrt();
+
+    // Bucket the shoe summits on a grid of cell size reach_xy (counting sort, CSR layout).
+    let (l, w) = (layout.apparent_length_m, layout.apparent_width_m);
+    let nx = ((l / reach_xy).ceil() as usize).clamp(1, 1 << 15);
+    let ny = ((w / reach_xy).ceil() as usize).clamp(1, 1 << 15);
+    let cell = |x: f32, y: f32| -> (usize, usize) {
+        let cx = ((f64::from(x) / l * nx as f64) as usize).min(nx - 1);
+        let cy = ((f64::from(y) / w * ny as f64) as usize).min(ny - 1);
+        (cx, cy)
+    };
+    let mut start = vec![0u32; nx * ny + 1];
+    for j in 0..sx.len() {
+        let (cx, cy) = cell(sx[j], sy[j]);
+        start[cy * nx + cx + 1] += 1;
+    }
+    for k in 0..nx * ny {
+        start[k + 1] += start[k];
+    }
+    let mut fill = start.clone();
+    let mut members = vec![0u32; sx.len()];
+    for j in 0..sx.len() {
+        let (cx, cy) = cell(sx[j], sy[j]);
+        let k = cy * nx + cx;
+        members[fill[k] as usize] = j as u32;
+        fill[k] += 1;
+    }
+
+    let (mut px, mut py, mut ph, mut pr) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for i in 0..wx.len() {
+        let (cx, cy) = cell(wx[i], wy[i]);
+        let (xi, yi, ri) = (f64::from(wx[i]), f64::from(wy[i]), wrad(i));
+        for gy in cy.saturating_sub(1)..=(cy + 1).min(ny - 1) {
+            for gx in cx.saturating_sub(1)..=(cx + 1).min(nx - 1) {
+                let k = gy * nx + gx;
+                for &j in &members[start[k] as usize..start[k + 1] as usize] {
+                    let j = j as usize;
+                    let (dx, dy) = (f64::from(sx[j]) - xi, f64::from(sy[j]) - yi);
+                    let rj = srad(j);
+                    let drop = (dx * dx + dy * dy) / (2.0 * (ri + rj));
+                    if drop <= pair_reach_m {
+                        let t = ri / (ri + rj);
+                        px.push(clamp_f32(xi + t * dx, l));
+                        py.push(clamp_f32(yi + t * dy, w));
+                        ph.push(wh[i] + sh[j] - drop);
+                        pr.push(ri * rj / (ri + rj));
+                    }
+                }
+            }
+        }
+    }
+    let uniform = wr.is_none() && sr.is_none();
+    let radii = if uniform {
+        Radii::Uniform(wall.summit_radius_m * shoe.summit_radius_m / (wall.summit_radius_m + shoe.summit_radius_m))
+    } else {
+        Radii::PerSummit(pr)
+    };
+    let mut s = Surface::new(l, w, px, py, ph, radii)?;
+    s.sort_by_height_descending();
+    Ok(s)
+}

@@ -1,0 +1,236 @@
+//! The `surface` section of a scenario file.
+//!
+//! ```json
+//! "surface": {
+//!   "apparent_length": "20 um", "apparent_width": "5 um",
+//!   "summit_density": "4e12 m^-2", "summit_sd": "0.04 um", "summit_radius": "0.5 um",
+//!   "seed": 1
+//! }
+//! ```
+//!
+//! Quantities accept a JSON number (SI), a string with a unit ("0.5 um") or an uncertain-parameter
+//! object (its nominal value is used). Unknown fields are rejected.
+
+use std::path::{Path, PathBuf};
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::{
+    FaceParams, HeightDistribution, Layout, Placement, RadiusDistribution, Surface, SurfaceError, generate,
+    generate_composite, generate_two_face,
+};
+
+/// Where the summits come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SurfaceSource {
+    /// Generated from the statistical parameters (default).
+    #[default]
+    Generated,
+    /// Read from the CSV file `csv_path` (columns x_m, y_m, height_m, radius_m).
+    Csv,
+}
+
+/// How a second rough face (`counter_face`) is combined with the first.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TwoFaceMode {
+    /// The paper's composite surface (section 3.1): eta = eta1 + eta2, sigma^2 = sigma1^2 + sigma2^2,
+    /// 1/R = 1/R1 + 1/R2, against a flat shoe (default).
+    #[default]
+    Composite,
+    /// Both faces generated; shoe summits meet wall summits pair by pair (see
+    /// [`crate::generate_two_face`]).
+    Explicit,
+}
+
+/// Statistical parameters of the second rough face (the shoe's face).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FaceSpec {
+    /// Summit density eta \[m^-2\], e.g. "2e12 m^-2".
+    #[serde(deserialize_with = "stiction_units::de::areal_density_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub summit_density: f64,
+    /// Summit height standard deviation sigma \[m\], e.g. "0.03 um".
+    #[serde(deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub summit_sd: f64,
+    /// Height distribution: "gaussian" (default) or "exponential".
+    #[serde(default)]
+    pub height_distribution: HeightDistribution,
+    /// Mean summit radius R \[m\], e.g. "1 um".
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub summit_radius: f64,
+    /// Summit radius SD \[m\]; default 0 (required > 0 with `radius_distribution` = "lognormal").
+    #[serde(default, deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub radius_sd: f64,
+    /// Radius distribution: "fixed" (default) or "lognormal".
+    #[serde(default)]
+    pub radius_distribution: RadiusDistribution,
+}
+
+impl FaceSpec {
+    /// The generator parameters of this face.
+    pub fn params(&self) -> FaceParams {
+        FaceParams {
+            summit_density_per_m2: self.summit_density,
+            summit_sd_m: self.summit_sd,
+            height_distribution: self.height_distribution,
+            summit_radius_m: self.summit_radius,
+            radius_sd_m: self.radius_sd,
+            radius_distribution: self.radius_distribution,
+        }
+    }
+}
+
+/// The rough sidewall as a scenario file describes it.
+///
+/// With `source` = "generated" (default) the fields `summit_density`, `summit_sd` and
+/// `summit_radius` are required; they describe the wall face, or, without a `counter_face`, the
+/// composite of both faces as in the paper's Table 1. With `source` = "csv", `csv_path` is required
+/// and the statistical fields must be absent.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceSpec {
+    /// Length of the apparent contact area along x \[m\] (the paper's shoe: "20 um").
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub apparent_length: f64,
+    /// Width of the apparent contact area along y \[m\] (the paper's shoe: "5 um").
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub apparent_width: f64,
+    /// "generated" (default) or "csv".
+    #[serde(default)]
+    pub source: SurfaceSource,
+    /// CSV file with columns x_m, y_m, height_m, radius_m (SI); relative paths are resolved
+    /// against the scenario file's folder. Only with `source` = "csv".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub csv_path: Option<PathBuf>,
+    /// "poisson" (default) or "jittered_grid".
+    #[serde(default)]
+    pub placement: Placement,
+    /// Summit density eta \[m^-2\] (Table 1: "4e12 m^-2").
+    #[serde(default, deserialize_with = "stiction_units::de::opt_areal_density_positive")]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub summit_density: Option<f64>,
+    /// Summit height SD sigma \[m\] (Table 1: "0.04 um").
+    #[serde(default, deserialize_with = "stiction_units::de::opt_length_nonnegative")]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub summit_sd: Option<f64>,
+    /// "gaussian" (default) or "exponential".
+    #[serde(default)]
+    pub height_distribution: HeightDistribution,
+    /// Mean summit radius R \[m\] (Table 1: "0.5 um").
+    #[serde(default, deserialize_with = "stiction_units::de::opt_length_positive")]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub summit_radius: Option<f64>,
+    /// Summit radius SD \[m\]; default 0 (Table 1 quotes "0.3 um" as R's uncertainty).
+    #[serde(default, deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub radius_sd: f64,
+    /// "fixed" (default) or "lognormal".
+    #[serde(default)]
+    pub radius_distribution: RadiusDistribution,
+    /// Seed of the ChaCha8 generator; default 0.
+    #[serde(default)]
+    pub seed: u64,
+    /// The shoe's rough face, when both faces are described separately.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub counter_face: Option<FaceSpec>,
+    /// How `counter_face` is combined: "composite" (default) or "explicit".
+    #[serde(default)]
+    pub two_face: TwoFaceMode,
+    /// Explicit two-face mode: largest height a summit pair may lose to its lateral offset,
+    /// r^2 / (2 (R1 + R2)) \[m\]; default 4 sqrt(sigma1^2 + sigma2^2).
+    #[serde(default, deserialize_with = "stiction_units::de::opt_length_positive")]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub pair_reach: Option<f64>,
+}
+
+impl SurfaceSpec {
+    /// The wall face's (or only face's) parameters; errors name a missing field.
+    pub fn face_params(&self) -> Result<FaceParams, SurfaceError> {
+        let need = |v: Option<f64>, name: &str| {
+            v.ok_or_else(|| SurfaceError::Spec(format!("`{name}` is required when `source` is \"generated\"")))
+        };
+        Ok(FaceParams {
+            summit_density_per_m2: need(self.summit_density, "summit_density")?,
+            summit_sd_m: need(self.summit_sd, "summit_sd")?,
+            height_distribution: self.height_distribution,
+            summit_radius_m: need(self.summit_radius, "summit_radius")?,
+            radius_sd_m: self.radius_sd,
+            radius_distribution: self.radius_distribution,
+        })
+    }
+
+    /// The apparent area, placement and seed.
+    pub fn layout(&self) -> Layout {
+        Layout {
+            apparent_length_m: self.apparent_length,
+            apparent_width_m: self.apparent_width,
+            placement: self.placement,
+            seed: self.seed,
+        }
+    }
+
+    /// Builds the surface: generates it or reads the CSV file (relative `csv_path` resolved
+    /// against `base_dir`, normally the scenario file's folder).
+    pub fn build(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
+        match self.source {
+            SurfaceSource::Csv => {
+                let path = self
+                    .csv_path
+                    .as_ref()
+                    .ok_or_else(|| SurfaceError::Spec("`csv_path` is required when `source` is \"csv\"".into()))?;
+                for (name, present) in [
+                    ("summit_density", self.summit_density.is_some()),
+                    ("summit_sd", self.summit_sd.is_some()),
+                    ("summit_radius", self.summit_radius.is_some()),
+                    ("counter_face", self.counter_face.is_some()),
+                ] {
+                    if present {
+                        return Err(SurfaceError::Spec(format!(
+                            "`{name}` must be absent when `source` is \"csv\" (the file gives the summits)"
+                        )));
+                    }
+                }
+                let full = if path.is_absolute() { path.clone() } else { base_dir.join(path) };
+                Surface::read_csv_file(&full, self.apparent_length, self.apparent_width)
+            }
+            SurfaceSource::Generated => {
+                if self.csv_path.is_some() {
+                    return Err(SurfaceError::Spec("`csv_path` is only allowed when `source` is \"csv\"".into()));
+                }
+                let wall = self.face_params()?;
+                let layout = self.layout();
+                match (&self.counter_face, self.two_face) {
+                    (None, TwoFaceMode::Explicit) => {
+                        Err(SurfaceError::Spec("`two_face` = \"explicit\" needs a `counter_face`".into()))
+                    }
+                    (None, TwoFaceMode::Composite) => {
+                        if self.pair_reach.is_some() {
+                            return Err(SurfaceError::Spec("`pair_reach` needs `two_face` = \"explicit\"".into()));
+                        }
+                        generate(&layout, &wall)
+                    }
+                    (Some(shoe), TwoFaceMode::Composite) => {
+                        if self.pair_reach.is_some() {
+                            return Err(SurfaceError::Spec("`pair_reach` needs `two_face` = \"explicit\"".into()));
+                        }
+                        generate_composite(&layout, &wall, &shoe.params())
+                    }
+                    (Some(shoe), TwoFaceMode::Explicit) => {
+                        let shoe = shoe.params();
+                        let reach = self.pair_reach.unwrap_or(4.0 * wall.summit_sd_m.hypot(shoe.summit_sd_m));
+                        generate_two_face(&layout, &wall, &shoe, reach)
+                    }
+                }
+            }
+        }
+    }
+}
