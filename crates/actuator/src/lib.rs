@@ -1,1 +1,24 @@
-//! stiction-actuator
+//! stiction-actuator: electrostatic gap-closing actuator arrays with suspension springs.
+//!
+//! * [`plates`]: capacitance and force of a plate array (parallel plate or Palmer fringing,
+//!   optional back gap), force from the co-energy.
+//! * [`spring`]: suspension stiffness from a value or from beams.
+//! * [`bending`]: optional finger bending.
+//! * [`actuator`]: quasi-static equilibrium, pull-in, release, hysteresis, sweeps.
+//!
+//! SI units and `f64` everywhere.
+
+pub mod actuator;
+pub mod bending;
+pub mod conversion;
+pub mod error;
+pub mod plates;
+pub mod spec;
+pub mod spring;
+
+pub use actuator::{Equilibrium, GapClosingActuator, Hysteresis, PullIn, Sweep, SweepPoint};
+pub use bending::FingerBending;
+pub use error::ActuatorError;
+pub use plates::{BackElectrode, BackPotential, Fringing, PlateArray, VACUUM_PERMITTIVITY};
+pub use spec::{ArraySpec, BeamsSpec, FingerBendingSpec, SpringSpec, StopSpec};
+pub use spring::{BeamKind, BeamSuspension, Suspension};

@@ -1,0 +1,190 @@
+//! Electrostatics of a gap-closing plate (finger) array.
+//!
+//! Geometry: `n` movable plates (fingers), each facing a fixed *front* electrode across the front
+//! gap `g_f` and, optionally, a fixed *back* (anti-gap) electrode across the back gap `g_b`. The
+//! plates overlap the electrodes over the length `l` (m) and the full structural thickness `t` (m).
+//! A travel `x` (m, positive towards the front electrode) closes the front gap to `g_f - x` and
+//! opens the back gap to `g_b + x`.
+//!
+//! The force is always taken from the co-energy (voltage-driven):
+//!
+//! `W*(x, V) = 1/2 V^2 [C(g_f - x) + s_b C(g_b + x)]`, `F = dW*/dx = 1/2 V^2 [-C'(g_f - x) + s_b C'(g_b + x)]`
+//!
+//! per plate, with `C'(g) = dC/dg < 0` and `s_b = 1` when the back electrode is at the front
+//! electrode's potential (it pulls the other way) and `s_b = 0` when it is at the plate's
+//! potential (grounded with the moving structure: no field, no force).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{ActuatorError, nonnegative, positive};
+
+/// Vacuum permittivity eps0 (F/m), CODATA 2018.
+pub const VACUUM_PERMITTIVITY: f64 = 8.854_187_8128e-12;
+
+/// How the capacitance of one plate pair is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Fringing {
+    /// Ideal parallel plate: `C = eps l t / g`.
+    Off,
+    /// Palmer's formula (H. B. Palmer, Trans. AIEE 56, 363, 1937), applied to both edges of both
+    /// plate dimensions:
+    /// `C = eps l t / g * p(g, t) * p(g, l)`, `p(g, d) = 1 + g/(pi d) (1 + ln(2 pi d / g))`.
+    /// The force follows from `dC/dg` of this expression (not from a scaled parallel-plate force):
+    /// for one dimension `d(l t p/g)/dg` gives the factor `1 + g/(pi d)` on the parallel-plate
+    /// force.
+    Palmer,
+}
+
+/// Potential of the back (anti-gap) electrode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BackPotential {
+    /// Same potential as the front electrode: the back gap sees the full voltage and pulls the
+    /// plates away from the front electrode.
+    SameAsFront,
+    /// At the potential of the moving plates (grounded with them): no force.
+    Grounded,
+}
+
+/// The back (anti-gap) electrode of every plate.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BackElectrode {
+    /// Back gap at zero travel, `g_b` (m).
+    pub gap_m: f64,
+    /// Its potential.
+    pub potential: BackPotential,
+}
+
+/// A gap-closing array of identical plates (rigid plates; finger bending lives in
+/// [`crate::bending`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PlateArray {
+    /// Number of movable plates (fingers), `n`.
+    pub plate_count: u32,
+    /// Overlap length of a plate with its electrode, `l` (m).
+    pub overlap_length_m: f64,
+    /// Plate (structural layer) thickness, `t` (m).
+    pub thickness_m: f64,
+    /// Front gap at zero travel, `g_f` (m).
+    pub front_gap_m: f64,
+    /// Optional back (anti-gap) electrode.
+    pub back: Option<BackElectrode>,
+    /// Capacitance model.
+    pub fringing: Fringing,
+    /// Relative permittivity of the gap medium (1 for vacuum; 1.0006 for air).
+    pub relative_permittivity: f64,
+}
+
+/// Palmer's edge factor `p(g, d) = 1 + g/(pi d) (1 + ln(2 pi d/g))` and its first two
+/// derivatives with respect to `g`: `p' = ln(2 pi d/g)/(pi d)`, `p'' = -1/(pi d g)`.
+fn palmer_factor(gap_m: f64, dimension_m: f64) -> (f64, f64, f64) {
+    let pd = std::f64::consts::PI * dimension_m;
+    let ln = (2.0 * std::f64::consts::PI * dimension_m / gap_m).ln();
+    (1.0 + gap_m / pd * (1.0 + ln), ln / pd, -1.0 / (pd * gap_m))
+}
+
+impl PlateArray {
+    /// Checks every field; the error names the field.
+    pub fn validate(&self) -> Result<(), ActuatorError> {
+        if self.plate_count == 0 {
+            return Err(ActuatorError::InvalidField {
+                field: "plate_count".into(),
+                value: 0.0,
+                expected: "at least 1 plate".into(),
+            });
+        }
+        positive("overlap_length", self.overlap_length_m)?;
+        positive("thickness", self.thickness_m)?;
+        positive("front_gap", self.front_gap_m)?;
+        positive("relative_permittivity", self.relative_permittivity)?;
+        if let Some(b) = self.back {
+            positive("back_gap", b.gap_m)?;
+        }
+        Ok(())
+    }
+
+    /// Permittivity of the gap, `eps = eps_r eps0` (F/m).
+    pub fn permittivity(&self) -> f64 {
+        self.relative_permittivity * VACUUM_PERMITTIVITY
+    }
+
+    /// Capacitance of one plate pair at gap `g` and its derivatives `(C, dC/dg, d2C/dg2)`
+    /// (F, F/m, F/m^2). Parallel plate: `C = eps l t/g`; Palmer: see [`Fringing::Palmer`].
+    pub fn pair_capacitance(&self, gap_m: f64) -> (f64, f64, f64) {
+        let e = self.permittivity() * self.overlap_length_m * self.thickness_m;
+        let g = gap_m;
+        match self.fringing {
+            Fringing::Off => (e / g, -e / (g * g), 2.0 * e / (g * g * g)),
+            Fringing::Palmer => {
+                let (pt, pt1, pt2) = palmer_factor(g, self.thickness_m);
+                let (pl, pl1, pl2) = palmer_factor(g, self.overlap_length_m);
+                let p = pt * pl;
+                let p1 = pt1 * pl + pt * pl1;
+                let p2 = pt2 * pl + 2.0 * pt1 * pl1 + pt * pl2;
+                // u = p/g, u' = p'/g - p/g^2, u'' = p''/g - 2p'/g^2 + 2p/g^3
+                (e * p / g, e * (p1 / g - p / (g * g)), e * (p2 / g - 2.0 * p1 / (g * g) + 2.0 * p / (g * g * g)))
+            }
+        }
+    }
+
+    /// Total capacitance of the array between plates and front (and, if at the same potential,
+    /// back) electrodes at travel `x` (F): `n [C(g_f - x) + s_b C(g_b + x)]`.
+    pub fn capacitance_f(&self, travel_m: f64) -> f64 {
+        let n = f64::from(self.plate_count);
+        let mut c = self.pair_capacitance(self.front_gap_m - travel_m).0;
+        if let Some(b) = self.back
+            && b.potential == BackPotential::SameAsFront
+        {
+            c += self.pair_capacitance(b.gap_m + travel_m).0;
+        }
+        n * c
+    }
+
+    /// Co-energy `W* = 1/2 C(x) V^2` (J) at travel `x` (m) and voltage `V` (V).
+    pub fn coenergy_j(&self, travel_m: f64, voltage_v: f64) -> f64 {
+        0.5 * self.capacitance_f(travel_m) * voltage_v * voltage_v
+    }
+
+    /// Electrostatic force per volt squared at travel `x`, `f(x) = F/V^2 = dC/dx / 2` (N/V^2):
+    /// `f = n/2 [-C'(g_f - x) + s_b C'(g_b + x)]`. This is the conversion factor `a` of the
+    /// paper (section 5, `F = a V^2`) at the operating travel `x`.
+    pub fn force_per_volt2(&self, travel_m: f64) -> f64 {
+        self.force_per_volt2_and_slope(travel_m).0
+    }
+
+    /// `f(x)` (N/V^2) and `df/dx` (N/(V^2 m)): `df/dx = n/2 [C''(g_f - x) + s_b C''(g_b + x)]`.
+    pub fn force_per_volt2_and_slope(&self, travel_m: f64) -> (f64, f64) {
+        let n = f64::from(self.plate_count);
+        let (_, c1f, c2f) = self.pair_capacitance(self.front_gap_m - travel_m);
+        let mut f = -c1f;
+        let mut df = c2f;
+        if let Some(b) = self.back
+            && b.potential == BackPotential::SameAsFront
+        {
+            let (_, c1b, c2b) = self.pair_capacitance(b.gap_m + travel_m);
+            f += c1b;
+            df += c2b;
+        }
+        (0.5 * n * f, 0.5 * n * df)
+    }
+
+    /// Electrostatic force (N) at travel `x` (m) and voltage `V` (V): `F = f(x) V^2`.
+    pub fn force_n(&self, travel_m: f64, voltage_v: f64) -> f64 {
+        self.force_per_volt2(travel_m) * voltage_v * voltage_v
+    }
+
+    /// Applies a process undercut `u` (m per edge): gaps grow by `2u`, the overlap shortens by
+    /// `u` (the plate tip recedes by `u`). Thickness is unchanged (vertical etch).
+    pub fn with_undercut(&self, undercut_m: f64) -> Result<Self, ActuatorError> {
+        nonnegative("undercut", undercut_m)?;
+        let mut out = *self;
+        out.front_gap_m += 2.0 * undercut_m;
+        out.overlap_length_m -= undercut_m;
+        if let Some(b) = out.back.as_mut() {
+            b.gap_m += 2.0 * undercut_m;
+        }
+        out.validate()?;
+        Ok(out)
+    }
+}

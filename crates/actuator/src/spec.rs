@@ -1,0 +1,355 @@
+//! Scenario-file description of an actuator array ([`ArraySpec`]) and its conversion to a
+//! [`GapClosingActuator`].
+//!
+//! Quantities accept a JSON number (SI), a string with a unit (`"4.83 um"`, `"169 GPa"`,
+//! `"1.4e-8 N/V^2"`) or an uncertain-parameter object (nominal value taken), through
+//! `stiction_units::de`.
+//!
+//! Drawn dimensions and the process undercut `u` (m per edge) are separate inputs. The undercut
+//! is applied once, in [`ArraySpec::to_model`]:
+//!
+//! | dimension | as built |
+//! |---|---|
+//! | front gap, back gap | drawn + 2u |
+//! | stop travel | drawn + 2u (the stop gap is a trench too) |
+//! | plate overlap length | drawn - u (the tip recedes by u) |
+//! | beam widths, finger width (bending) | drawn - 2u |
+//! | thickness, beam length, given stiffness | unchanged |
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::actuator::GapClosingActuator;
+use crate::bending::FingerBending;
+use crate::error::{ActuatorError, nonnegative, positive};
+use crate::plates::{BackElectrode, BackPotential, Fringing, PlateArray};
+use crate::spring::{BeamKind, BeamSuspension, Suspension};
+
+fn default_fringing() -> Fringing {
+    Fringing::Palmer
+}
+fn default_back_potential() -> BackPotential {
+    BackPotential::SameAsFront
+}
+fn one() -> f64 {
+    1.0
+}
+fn default_beam_kind() -> BeamKind {
+    BeamKind::ClampedGuided
+}
+
+/// A gap-closing plate array with its suspension, as written in a scenario file.
+///
+/// Either `front_gap` (geometry) or `conversion_factor` (the paper's `a = F/V^2`, section 5, at
+/// `operating_travel`) defines the electrostatics; from a conversion factor the front gap that the
+/// plate geometry implies is inferred ([`crate::conversion::infer_front_gap_m`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct ArraySpec {
+    /// Free text.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Number of movable plates (fingers) `n`.
+    pub plate_count: u32,
+    /// Drawn overlap length of a plate with its electrode `l` (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub overlap_length: f64,
+    /// Plate (structural layer) thickness `t` (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub thickness: f64,
+    /// Drawn front gap `g_f` at zero travel (m). Give this or `conversion_factor`.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_length_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub front_gap: Option<f64>,
+    /// Conversion factor `a = F/V^2` at `operating_travel` (N/V^2), paper section 5. Give this
+    /// or `front_gap`.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_force_per_voltage_squared_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub conversion_factor: Option<f64>,
+    /// Travel at which the conversion factor is defined/evaluated (m), default 0 (initial gap).
+    /// For the meter's clamp array: the travel at which the shoe touches the wall.
+    #[serde(default, deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub operating_travel: f64,
+    /// Drawn back (anti-gap) electrode gap `g_b` (m); absent: no back electrode.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_length_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub back_gap: Option<f64>,
+    /// Potential of the back electrode, default `same_as_front` (pulls the other way).
+    #[serde(default = "default_back_potential")]
+    pub back_potential: BackPotential,
+    /// Capacitance model, default `palmer`.
+    #[serde(default = "default_fringing")]
+    pub fringing: Fringing,
+    /// Relative permittivity of the gap medium, default 1.
+    #[serde(default = "one", deserialize_with = "stiction_units::de::dimensionless_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub relative_permittivity: f64,
+    /// Process undercut per edge `u` (m), default 0; see the module table.
+    #[serde(default, deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub undercut: f64,
+    /// The suspension.
+    pub spring: SpringSpec,
+    /// Optional gap stop.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stop: Option<StopSpec>,
+    /// Optional finger bending (absent: rigid plates).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub finger_bending: Option<FingerBendingSpec>,
+}
+
+/// Suspension: exactly one of `stiffness` and `beams`, plus optional extra stiffness.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct SpringSpec {
+    /// Given main stiffness (N/m).
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_stiffness_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub stiffness: Option<f64>,
+    /// Main stiffness from beam geometry.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beams: Option<BeamsSpec>,
+    /// Extra stiffness in parallel (N/m), default 0 (e.g. the paper's pull connection beam).
+    #[serde(default, deserialize_with = "stiction_units::de::stiffness_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub parallel_stiffness: f64,
+    /// Extra stiffness in series (N/m), default none (rigid link).
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_stiffness_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub series_stiffness: Option<f64>,
+}
+
+/// Suspension beams (drawn dimensions; the array's undercut narrows the width by `2u`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct BeamsSpec {
+    /// `clamped_guided` (default) or `folded`.
+    #[serde(default = "default_beam_kind")]
+    pub kind: BeamKind,
+    /// Number of beams (clamped-guided) or folds (folded) in parallel.
+    pub count: u32,
+    /// Beam length (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub length: f64,
+    /// Drawn in-plane beam width (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub width: f64,
+    /// Beam thickness (m), default: the array's `thickness`.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_length_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub thickness: Option<f64>,
+    /// Young's modulus (Pa).
+    #[serde(deserialize_with = "stiction_units::de::pressure_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub youngs_modulus: f64,
+    /// Poisson's ratio; when given the plane-strain modulus `E/(1-nu^2)` is used.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_dimensionless",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub poisson_ratio: Option<f64>,
+}
+
+/// Gap stop.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct StopSpec {
+    /// Drawn travel to the stop (m); the undercut adds `2u`.
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub travel: f64,
+    /// Contact standoff at the stop (m), default 0: the stop faces touch this much before the
+    /// nominal (mean-plane) stop travel, through sidewall roughness, etch taper or debris, so the
+    /// plates stop at `travel + 2u - contact_standoff` and keep a gap larger by the standoff.
+    #[serde(default, deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub contact_standoff: f64,
+}
+
+/// Finger bending inputs (drawn width; the undercut narrows it by `2u`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct FingerBendingSpec {
+    /// Whether bending is modelled, default true (false keeps the inputs but rigid fingers).
+    #[serde(default = "yes")]
+    pub enabled: bool,
+    /// Non-overlapping length at the finger root (m).
+    #[serde(deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub root_length: f64,
+    /// Drawn in-plane finger width (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub width: f64,
+    /// Young's modulus (Pa).
+    #[serde(deserialize_with = "stiction_units::de::pressure_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub youngs_modulus: f64,
+}
+
+fn yes() -> bool {
+    true
+}
+
+impl ArraySpec {
+    /// The as-built plate array (undercut applied, front gap inferred from the conversion factor
+    /// when that is what the spec gives). Errors name the field.
+    pub fn plates(&self) -> Result<PlateArray, ActuatorError> {
+        let u = nonnegative("undercut", self.undercut)?;
+        nonnegative("operating_travel", self.operating_travel)?;
+        if self.plate_count == 0 {
+            return Err(ActuatorError::InvalidField {
+                field: "plate_count".into(),
+                value: 0.0,
+                expected: "at least 1 plate".into(),
+            });
+        }
+        let mut plates = PlateArray {
+            plate_count: self.plate_count,
+            overlap_length_m: positive("overlap_length", self.overlap_length)? - u,
+            thickness_m: positive("thickness", self.thickness)?,
+            front_gap_m: 1.0, // set below
+            back: match self.back_gap {
+                Some(g) => {
+                    Some(BackElectrode { gap_m: positive("back_gap", g)? + 2.0 * u, potential: self.back_potential })
+                }
+                None => None,
+            },
+            fringing: self.fringing,
+            relative_permittivity: positive("relative_permittivity", self.relative_permittivity)?,
+        };
+        if plates.overlap_length_m <= 0.0 {
+            return Err(ActuatorError::Inconsistent(format!(
+                "undercut = {u:e} m consumes the whole overlap_length = {:e} m",
+                self.overlap_length
+            )));
+        }
+        plates.front_gap_m = match (self.front_gap, self.conversion_factor) {
+            (Some(g), None) => positive("front_gap", g)? + 2.0 * u,
+            (None, Some(a)) => {
+                crate::conversion::infer_front_gap_m(&plates, self.operating_travel, positive("conversion_factor", a)?)?
+            }
+            (Some(_), Some(_)) => {
+                return Err(ActuatorError::Inconsistent(
+                    "give either `front_gap` or `conversion_factor`, not both".into(),
+                ));
+            }
+            (None, None) => {
+                return Err(ActuatorError::Inconsistent("one of `front_gap` or `conversion_factor` is required".into()));
+            }
+        };
+        if self.operating_travel >= plates.front_gap_m {
+            return Err(ActuatorError::InvalidField {
+                field: "operating_travel".into(),
+                value: self.operating_travel,
+                expected: format!("less than the as-built front gap {:e} m", plates.front_gap_m),
+            });
+        }
+        plates.validate()?;
+        Ok(plates)
+    }
+
+    /// The as-built suspension.
+    pub fn suspension(&self) -> Result<Suspension, ActuatorError> {
+        let s = &self.spring;
+        let main = match (s.stiffness, &s.beams) {
+            (Some(k), None) => positive("spring.stiffness", k)?,
+            (None, Some(b)) => {
+                let beams = BeamSuspension {
+                    kind: b.kind,
+                    count: b.count,
+                    length_m: b.length,
+                    width_m: b.width,
+                    thickness_m: b.thickness.unwrap_or(self.thickness),
+                    youngs_modulus_pa: b.youngs_modulus,
+                    plane_strain_poisson: b.poisson_ratio,
+                };
+                beams.validate()?;
+                let built = beams.with_undercut(self.undercut).map_err(|_| {
+                    ActuatorError::Inconsistent(format!(
+                        "undercut = {:e} m leaves no beam: spring.beams.width = {:e} m",
+                        self.undercut, b.width
+                    ))
+                })?;
+                built.stiffness_n_per_m()
+            }
+            (Some(_), Some(_)) => {
+                return Err(ActuatorError::Inconsistent("spring: give either `stiffness` or `beams`, not both".into()));
+            }
+            (None, None) => {
+                return Err(ActuatorError::Inconsistent("spring: one of `stiffness` or `beams` is required".into()));
+            }
+        };
+        let out = Suspension {
+            main_stiffness_n_per_m: main,
+            parallel_stiffness_n_per_m: s.parallel_stiffness,
+            series_stiffness_n_per_m: s.series_stiffness,
+        };
+        out.validate()?;
+        Ok(out)
+    }
+
+    /// The as-built stop travel `x_s = travel + 2u - contact_standoff` (m), if any.
+    pub fn stop_travel_m(&self) -> Result<Option<f64>, ActuatorError> {
+        match &self.stop {
+            None => Ok(None),
+            Some(s) => {
+                positive("stop.travel", s.travel)?;
+                nonnegative("stop.contact_standoff", s.contact_standoff)?;
+                let x = s.travel + 2.0 * self.undercut - s.contact_standoff;
+                positive("stop.travel (after undercut and contact_standoff)", x).map(Some)
+            }
+        }
+    }
+
+    /// Converts to the model (SI, as built). Errors name the field, its value and what was
+    /// expected.
+    pub fn to_model(&self) -> Result<GapClosingActuator, ActuatorError> {
+        let plates = self.plates()?;
+        let suspension = self.suspension()?;
+        let stop = self.stop_travel_m()?;
+        let bending = match &self.finger_bending {
+            Some(b) if b.enabled => {
+                let w = b.width - 2.0 * self.undercut;
+                Some(FingerBending {
+                    root_length_m: nonnegative("finger_bending.root_length", b.root_length)?,
+                    width_m: positive("finger_bending.width (after undercut)", w)?,
+                    youngs_modulus_pa: positive("finger_bending.youngs_modulus", b.youngs_modulus)?,
+                })
+            }
+            _ => None,
+        };
+        GapClosingActuator::new(plates, suspension, stop, bending)
+    }
+}
