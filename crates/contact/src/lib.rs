@@ -4,10 +4,14 @@
 //! * [`gw`]: Greenwood-Williamson statistics (eq. 5-9), with and without DMT adhesion.
 //! * [`limits`]: elastic limits (section 3.3, eq. 11).
 //! * [`discrete`]: the discrete N-contact model (eq. 12).
+//! * [`error`]: the error type [`ContactError`] of the analytic models.
 //! * [`explicit`]: the explicit asperity-by-asperity solver with a rigid, tilting shoe.
 
 pub mod discrete;
+pub mod error;
 pub mod explicit;
 pub mod gw;
 pub mod limits;
 pub mod single;
+
+pub use error::ContactError;

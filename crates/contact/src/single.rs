@@ -1,1 +1,1070 @@
-//! (in progress)
+//! Single-asperity contact laws: Hertz (eq. 3), DMT as the paper uses it (eq. 4), JKR and
+//! Maugis-Dugdale, the Tabor and Maugis parameters, and an interference-controlled response for
+//! the explicit solver ([`summit_response`], [`SummitModel`]).
+//!
+//! # Conventions
+//! * A sphere of radius `R` (m) against a flat, composite compliance `D = 3/4 sum (1 - nu^2)/E`
+//!   (1/Pa, the paper's eq. 3), so the effective modulus is `E* = 3/(4 D)` and Johnson's
+//!   `K = 4 E*/3 = 1/D`. Work of adhesion `dgamma` (J/m^2).
+//! * Load `P` (N) is compressive positive; adhesive (tensile) loads are negative.
+//! * Interference `delta` (m), the paper's indentation `z`: the overlap of the undeformed sphere
+//!   and the flat, positive when they overlap.
+//! * Contact radius `a` (m).
+//!
+//! # Normalised (Maugis) variables, used for JKR and Maugis-Dugdale
+//! `A = a / (pi dgamma R^2 D)^(1/3)`, `P_bar = P / (pi dgamma R)`,
+//! `Delta = delta / (pi^2 dgamma^2 R D^2)^(1/3)`, and the Maugis parameter
+//! `lambda = 2 sigma0 (R D^2 / (pi dgamma))^(1/3)` with the Dugdale stress
+//! `sigma0 = 16 dgamma / (9 sqrt(3) z0)` (the peak stress of the Lennard-Jones 9-3 law with
+//! equilibrium spacing `z0`), so that `lambda = 1.1570 mu` with Tabor's
+//! `mu = (R dgamma^2 / (E*^2 z0^3))^(1/3)`.
+//!
+//! In these variables (Maugis 1992; Johnson & Greenwood 1997), with `m = c/a` the ratio of the
+//! outer radius of the Dugdale zone to the contact radius and `s = sqrt(m^2 - 1)`:
+//! ```text
+//! (lambda A^2/2) [s + (s^2 - 1) atan s] + (4 lambda^2 A / 3) [s atan s - m + 1] = 1   (MD-1)
+//! P_bar = A^3 - lambda A^2 [s + m^2 atan s]                                         (MD-2)
+//! Delta = A^2 - (4/3) lambda A s                                                    (MD-3)
+//! ```
+//! JKR is the limit `lambda -> inf`: `P_bar = A^3 - sqrt(6 A^3)`, `Delta = A^2 - sqrt(8 A / 3)`;
+//! DMT the limit `lambda -> 0`: `P_bar = A^3 - 2`, `Delta = A^2` (the paper's eq. 4).
+//!
+//! # Branches and hysteresis (JKR, Maugis-Dugdale)
+//! Under *load control* the stable branch is `dP/da > 0`; it ends at the pull-off load
+//! ([`pull_off_force`]). Under *displacement control* (interference prescribed, as in
+//! [`summit_response`]) the stable branch is `d delta/da > 0`; it ends at the displacement-controlled
+//! pull-off interference `delta_c` (the minimum of `delta(a)`). Out of contact the laws carry no
+//! force (the attraction of separated surfaces is neglected, as in the paper's DMT).
+//! * [`Branch::Loading`]: the summit is out of contact until the interference reaches the jump-in
+//!   value `delta_in`, where the contact radius jumps from 0 to the stable branch: `delta_in = 0`
+//!   for Hertz, DMT and JKR; for Maugis-Dugdale `delta_in = Delta(A -> 0) = -(4/3) lambda c0 < 0`
+//!   (the interference where the MD solution reaches zero contact radius; `c0` from MD-1 at `A -> 0`).
+//! * [`Branch::Unloading`]: the contact persists down to `delta_c <= delta_in` (JKR:
+//!   `Delta_c = 6^(-2/3) - sqrt(8/3) 6^(-1/6) = -0.9086`, where `P = -5/6 pi dgamma R`). For Hertz and DMT
+//!   `delta_c = delta_in = 0` (no hysteresis).
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+use crate::error::{ContactError, check_finite, check_nonnegative, check_positive};
+
+/// Default equilibrium spacing `z0` of the Lennard-Jones law used for the Tabor and Maugis
+/// parameters: 0.3 nm (m).
+pub const DEFAULT_EQUILIBRIUM_SPACING_M: f64 = 0.3e-9;
+
+/// Ratio `lambda / mu` of the Maugis parameter to the Tabor parameter for the Dugdale stress
+/// `sigma0 = 16 dgamma / (9 sqrt 3 z0)`: `2 * 16/(9 sqrt 3) * (9/(16 pi))^(1/3) = 1.1570`.
+pub fn maugis_over_tabor() -> f64 {
+    2.0 * 16.0 / (9.0 * 3f64.sqrt()) * (9.0 / (16.0 * PI)).cbrt()
+}
+
+/// Geometry, elasticity and adhesion of one spherical summit against a flat.
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Debug, PartialEq)]
+pub struct AsperityParams {
+    /// Summit (composite) radius of curvature `R`, m.
+    pub radius_m: f64,
+    /// Composite compliance `D = 3/4 sum (1 - nu_i^2)/E_i` of eq. 3, 1/Pa (`E* = 3/(4D)`).
+    pub compliance_per_pa: f64,
+    /// Work of adhesion `dgamma`, J/m^2 (0 for no adhesion).
+    pub work_of_adhesion_j_per_m2: f64,
+    /// Equilibrium spacing `z0` of the Lennard-Jones law for the Tabor/Maugis parameters, m
+    /// (default [`DEFAULT_EQUILIBRIUM_SPACING_M`] = 0.3 nm).
+    pub equilibrium_spacing_m: f64,
+}
+
+/// The single-asperity law.
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum AdhesionLaw {
+    /// Hertz, no adhesion (eq. 3).
+    Hertz,
+    /// DMT as the paper uses it (eq. 4): Hertz deformation, adhesion `2 pi dgamma R` added to the
+    /// load of every summit in contact. The paper's default.
+    #[default]
+    Dmt,
+    /// Johnson-Kendall-Roberts (the `lambda -> inf` limit of Maugis-Dugdale).
+    Jkr,
+    /// Maugis-Dugdale (any Maugis parameter `lambda`, from [`AsperityParams::maugis_parameter`]).
+    MaugisDugdale,
+}
+
+/// Which branch of a hysteretic (JKR, Maugis-Dugdale) law under displacement control.
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[serde(rename_all = "kebab-case")]
+pub enum Branch {
+    /// Approaching: contact forms at the jump-in interference.
+    Loading,
+    /// Receding: contact persists down to the displacement-controlled pull-off interference.
+    Unloading,
+}
+
+/// Response of one summit at a prescribed interference ([`summit_response`]).
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+pub struct SummitResponse {
+    /// Whether the summit is in contact (contact radius > 0 or on the contact branch).
+    pub in_contact: bool,
+    /// Normal load on the summit, N: compressive positive, adhesive negative; 0 out of contact.
+    pub load_n: f64,
+    /// Contact radius `a`, m (0 out of contact).
+    pub contact_radius_m: f64,
+    /// Contact stiffness `dP/d delta`, N/m (0 out of contact). For JKR/MD it diverges at the end of
+    /// the unloading branch (`d delta/da = 0`).
+    pub stiffness_n_per_m: f64,
+    /// Peak Hertzian pressure for the contact radius, Pa: `q0 = 3 a / (2 pi D R)`, i.e. eq. 11 with
+    /// the Hertzian indentation `z = a^2/R` (for Hertz/DMT exactly eq. 11 with the interference).
+    /// For JKR/MD the adhesive tension at the contact edge is not included.
+    pub max_pressure_pa: f64,
+}
+
+impl SummitResponse {
+    /// The response of a summit out of contact.
+    pub const NO_CONTACT: SummitResponse = SummitResponse {
+        in_contact: false,
+        load_n: 0.0,
+        contact_radius_m: 0.0,
+        stiffness_n_per_m: 0.0,
+        max_pressure_pa: 0.0,
+    };
+}
+
+/// Which law the Maugis parameter recommends (adhesion map of Johnson & Greenwood 1997).
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Debug, PartialEq)]
+pub struct LawRecommendation {
+    /// Tabor parameter `mu = (R dgamma^2 / (E*^2 z0^3))^(1/3)`.
+    pub tabor_parameter: f64,
+    /// Maugis parameter `lambda = 1.157 mu`.
+    pub maugis_parameter: f64,
+    /// Recommended law: DMT for `lambda < 0.1`, JKR for `lambda > 5`, Maugis-Dugdale between
+    /// (Hertz when `dgamma = 0`).
+    pub law: AdhesionLaw,
+}
+
+impl AsperityParams {
+    /// Parameters with the default equilibrium spacing (0.3 nm), validated.
+    pub fn new(radius_m: f64, compliance_per_pa: f64, work_of_adhesion_j_per_m2: f64) -> Result<Self, ContactError> {
+        let p = AsperityParams {
+            radius_m,
+            compliance_per_pa,
+            work_of_adhesion_j_per_m2,
+            equilibrium_spacing_m: DEFAULT_EQUILIBRIUM_SPACING_M,
+        };
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// The paper's Table 1 summit: R = 0.5 um, D = 9.1e-12 1/Pa, dgamma = 0.1 J/m^2, z0 = 0.3 nm.
+    pub fn table1() -> Self {
+        AsperityParams {
+            radius_m: 0.5e-6,
+            compliance_per_pa: 9.1e-12,
+            work_of_adhesion_j_per_m2: 0.1,
+            equilibrium_spacing_m: DEFAULT_EQUILIBRIUM_SPACING_M,
+        }
+    }
+
+    /// Check every field: radius, compliance and spacing finite and > 0, work of adhesion finite
+    /// and >= 0.
+    pub fn validate(&self) -> Result<(), ContactError> {
+        check_positive("radius_m", self.radius_m, "a finite radius > 0 (m)")?;
+        check_positive("compliance_per_pa", self.compliance_per_pa, "a finite compliance D > 0 (1/Pa)")?;
+        check_nonnegative(
+            "work_of_adhesion_j_per_m2",
+            self.work_of_adhesion_j_per_m2,
+            "a finite work of adhesion >= 0 (J/m^2)",
+        )?;
+        check_positive("equilibrium_spacing_m", self.equilibrium_spacing_m, "a finite equilibrium spacing z0 > 0 (m)")?;
+        Ok(())
+    }
+
+    /// Effective modulus `E* = 3/(4 D)`, Pa.
+    pub fn effective_modulus_pa(&self) -> f64 {
+        0.75 / self.compliance_per_pa
+    }
+
+    /// Tabor parameter `mu = (R dgamma^2 / (E*^2 z0^3))^(1/3)` (dimensionless).
+    pub fn tabor_parameter(&self) -> f64 {
+        let e = self.effective_modulus_pa();
+        (self.radius_m * self.work_of_adhesion_j_per_m2.powi(2) / (e * e * self.equilibrium_spacing_m.powi(3))).cbrt()
+    }
+
+    /// Maugis parameter `lambda = 2 sigma0 (R D^2/(pi dgamma))^(1/3)` with
+    /// `sigma0 = 16 dgamma/(9 sqrt 3 z0)`; equals [`maugis_over_tabor`]` * mu` = 1.157 mu.
+    pub fn maugis_parameter(&self) -> f64 {
+        maugis_over_tabor() * self.tabor_parameter()
+    }
+
+    /// The recommended law (see [`LawRecommendation`]).
+    pub fn recommendation(&self) -> LawRecommendation {
+        let mu = self.tabor_parameter();
+        let lambda = self.maugis_parameter();
+        let law = if self.work_of_adhesion_j_per_m2 == 0.0 {
+            AdhesionLaw::Hertz
+        } else if lambda < 0.1 {
+            AdhesionLaw::Dmt
+        } else if lambda > 5.0 {
+            AdhesionLaw::Jkr
+        } else {
+            AdhesionLaw::MaugisDugdale
+        };
+        LawRecommendation { tabor_parameter: mu, maugis_parameter: lambda, law }
+    }
+
+    /// Length scale of the contact radius `(pi dgamma R^2 D)^(1/3)`, m.
+    pub fn radius_scale_m(&self) -> f64 {
+        (PI * self.work_of_adhesion_j_per_m2 * self.radius_m.powi(2) * self.compliance_per_pa).cbrt()
+    }
+
+    /// Load scale `pi dgamma R`, N.
+    pub fn load_scale_n(&self) -> f64 {
+        PI * self.work_of_adhesion_j_per_m2 * self.radius_m
+    }
+
+    /// Interference scale `(pi^2 dgamma^2 R D^2)^(1/3) = a_scale^2 / R`, m.
+    pub fn interference_scale_m(&self) -> f64 {
+        self.radius_scale_m().powi(2) / self.radius_m
+    }
+
+    /// DMT adhesive load of one summit `2 pi dgamma R` (eq. 4), N.
+    pub fn dmt_adhesion_n(&self) -> f64 {
+        2.0 * PI * self.work_of_adhesion_j_per_m2 * self.radius_m
+    }
+
+    /// Hertzian peak pressure for contact radius `a`: `q0 = 3 a/(2 pi D R)` (eq. 11 with `z = a^2/R`), Pa.
+    pub fn hertz_peak_pressure_pa(&self, contact_radius_m: f64) -> f64 {
+        1.5 * contact_radius_m / (PI * self.compliance_per_pa * self.radius_m)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Maugis-Dugdale in normalised variables
+// ---------------------------------------------------------------------------------------------
+
+/// State of the Maugis-Dugdale solution at one normalised contact radius (equations MD-1..3 of
+/// the module docs, solved in the form regular at `A = 0`, see [`maugis_state`]).
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+pub struct MaugisState {
+    /// Normalised contact radius `A = a/(pi dgamma R^2 D)^(1/3)`.
+    pub a_hat: f64,
+    /// Normalised outer radius of the Dugdale zone `C = m A`.
+    pub c_hat: f64,
+    /// `Q = sqrt(C^2 - A^2) = A s` (the unknown of MD-1).
+    pub q_hat: f64,
+    /// Normalised load `P/(pi dgamma R)` (MD-2).
+    pub p_bar: f64,
+    /// Normalised interference `delta/(pi^2 dgamma^2 R D^2)^(1/3)` (MD-3).
+    pub delta_bar: f64,
+    /// `dP_bar/dA`.
+    pub dp_bar_da: f64,
+    /// `dDelta/dA`.
+    pub ddelta_bar_da: f64,
+}
+
+/// `s - atan s`, accurate also for small `s`.
+fn s_minus_atan(s: f64) -> f64 {
+    if s < 0.5 {
+        // s^3/3 - s^5/5 + s^7/7 - ...
+        let s2 = s * s;
+        let mut term = s * s2;
+        let mut sum = 0.0;
+        let mut k = 3.0;
+        let mut sign = 1.0;
+        while term > 1e-18 * s * s2 {
+            sum += sign * term / k;
+            term *= s2;
+            k += 2.0;
+            sign = -sign;
+        }
+        sum
+    } else {
+        s - s.atan()
+    }
+}
+
+/// MD-1 in the variables `A`, `Q = sqrt(C^2 - A^2)`, `theta = atan2(Q, A)`:
+/// `F = (lambda/2) T1 + (4 lambda^2/3) T2 - 1` with `T1 = A Q + (Q^2 - A^2) theta`,
+/// `T2 = Q theta - (C - A)`. Returns `(F, dF/dQ, dF/dA)`.
+#[inline]
+fn md_residual(lambda: f64, a: f64, q: f64) -> (f64, f64, f64) {
+    let theta = q.atan2(a);
+    let c2 = a * a + q * q;
+    let c = c2.sqrt();
+    let c_minus_a = if a > 0.0 { q * q / (c + a) } else { c };
+    // T1 = A^2 (s - atan s) + Q^2 theta, s = Q/A (no cancellation for Q << A)
+    let t1 = if a > 2.0 * q { a * a * s_minus_atan(q / a) + q * q * theta } else { a * q + (q * q - a * a) * theta };
+    let t2 = q * theta - c_minus_a;
+    let (t1_q, t1_a, t2_q, t2_a) = if c2 > 0.0 {
+        (
+            2.0 * a * q * q / c2 + 2.0 * q * theta,
+            2.0 * a * a * q / c2 - 2.0 * a * theta,
+            theta - q * c_minus_a / c2,
+            -a * q * q / (c2 * (c + a)),
+        )
+    } else {
+        (0.0, 0.0, 0.0, 0.0)
+    };
+    let k1 = 0.5 * lambda;
+    let k2 = 4.0 / 3.0 * lambda * lambda;
+    (k1 * t1 + k2 * t2 - 1.0, k1 * t1_q + k2 * t2_q, k1 * t1_a + k2 * t2_a)
+}
+
+/// Solve MD-1 for `Q >= 0` at given `lambda > 0`, `A >= 0`. `guess <= 0` means none.
+fn maugis_q(lambda: f64, a_hat: f64, guess: f64) -> f64 {
+    let mut q = if guess > 0.0 && guess.is_finite() {
+        guess
+    } else {
+        // Q >> A (exact at A = 0): (pi lambda/4) Q^2 + (4 lambda^2/3)(pi/2 - 1) Q = 1;
+        // Q << A: (2 lambda/(3A)) Q^3 + (2 lambda^2/(3A)) Q^2 = 1.
+        let qa = PI * lambda / 4.0;
+        let qb = 4.0 * lambda * lambda / 3.0 * (PI / 2.0 - 1.0);
+        let q_large = 2.0 / (qb + (qb * qb + 4.0 * qa).sqrt());
+        if a_hat > 0.0 {
+            let q_small = (1.5 * a_hat / lambda).cbrt().min((1.5 * a_hat / (lambda * lambda)).sqrt());
+            q_large.min(q_small)
+        } else {
+            q_large
+        }
+    };
+    let mut lo = 0.0;
+    let mut hi = f64::INFINITY;
+    for _ in 0..300 {
+        let (f, df, _) = md_residual(lambda, a_hat, q);
+        if f == 0.0 {
+            return q;
+        }
+        if f < 0.0 {
+            lo = q;
+        } else {
+            hi = q;
+        }
+        let mut next = q - f / df;
+        if !(next > lo && next < hi && next.is_finite()) {
+            next = if hi.is_finite() { 0.5 * (lo + hi) } else { 2.0 * q.max(1e-300) };
+        }
+        if (next - q).abs() <= 4.0 * f64::EPSILON * q {
+            return next;
+        }
+        q = next;
+    }
+    q
+}
+
+/// Maugis-Dugdale state at normalised contact radius `a_hat >= 0` for Maugis parameter
+/// `lambda > 0`. MD-1..3 are solved with the unknown `Q = sqrt(C^2 - A^2)` (`C` the normalised
+/// outer radius of the Dugdale zone), in which they are regular down to `A = 0`:
+/// `P_bar = A^3 - lambda (A Q + C^2 theta)`, `Delta = A^2 - (4/3) lambda Q`,
+/// `theta = atan2(Q, A)`. At `A = 0`: `(pi lambda/4) C^2 + (4 lambda^2/3)(pi/2 - 1) C = 1`,
+/// `P_bar = -(pi/2) lambda C^2`, `Delta = -(4/3) lambda C`. `q_guess` (<= 0 for none) speeds up
+/// the solve of MD-1 (Newton's method safeguarded by bisection, to machine precision).
+pub fn maugis_state(lambda: f64, a_hat: f64, q_guess: f64) -> MaugisState {
+    let a = a_hat.max(0.0);
+    let q = maugis_q(lambda, a, q_guess);
+    let (_, f_q, f_a) = md_residual(lambda, a, q);
+    let dq_da = -f_a / f_q;
+    let theta = q.atan2(a);
+    let c2 = a * a + q * q;
+    let p_bar = a * a * a - lambda * (a * q + c2 * theta);
+    let dp = 3.0 * a * a - lambda * (2.0 * a * theta + (2.0 * a + 2.0 * q * theta) * dq_da);
+    let delta_bar = a * a - 4.0 / 3.0 * lambda * q;
+    let dd = 2.0 * a - 4.0 / 3.0 * lambda * dq_da;
+    MaugisState { a_hat: a, c_hat: c2.sqrt(), q_hat: q, p_bar, delta_bar, dp_bar_da: dp, ddelta_bar_da: dd }
+}
+
+/// Solve `value(x) = target` for an increasing function on `[lo, hi]` with
+/// `value(lo) <= target <= value(hi)` by Newton's method safeguarded with bisection.
+/// `eval(x, hint)` returns `(value, derivative, hint)`; the hint (e.g. the MD `Q`) is passed to the
+/// next evaluation.
+fn solve_increasing(
+    target: f64,
+    mut lo: f64,
+    mut hi: f64,
+    mut x: f64,
+    mut hint: f64,
+    mut eval: impl FnMut(f64, f64) -> (f64, f64, f64),
+    what: &'static str,
+) -> Result<(f64, f64), ContactError> {
+    if !(x > lo && x < hi) {
+        x = 0.5 * (lo + hi);
+    }
+    for _ in 0..300 {
+        let (v, dv, h) = eval(x, hint);
+        hint = h;
+        let r = v - target;
+        if r == 0.0 {
+            return Ok((x, hint));
+        }
+        if r < 0.0 {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let mut next = x - r / dv;
+        if !(next > lo && next < hi && next.is_finite()) {
+            next = 0.5 * (lo + hi);
+        }
+        if (next - x).abs() <= 2.0 * f64::EPSILON * x.abs() || hi - lo <= 2.0 * f64::EPSILON * hi {
+            return Ok((next, hint));
+        }
+        x = next;
+    }
+    Err(ContactError::NoConvergence { what, iterations: 300 })
+}
+
+/// Minimum over `A >= 0` of `value(state)` (whose derivative is `deriv(state)`): the curve is
+/// sampled on a grid (A = 0, 1e-6..1e-2 logarithmically, 0..6 in steps of 0.01), the lowest sample
+/// is refined by bisection on the sign of the derivative (or kept at `A = 0`).
+fn maugis_min(lambda: f64, value: impl Fn(&MaugisState) -> f64, deriv: impl Fn(&MaugisState) -> f64) -> MaugisState {
+    let mut grid: Vec<f64> = vec![0.0];
+    grid.extend((0..=16).map(|i| 1e-6 * 10f64.powf(i as f64 / 4.0)));
+    grid.extend((2..=600).map(|i| i as f64 * 0.01));
+    let mut best = maugis_state(lambda, 0.0, 0.0);
+    let mut best_i = 0;
+    let mut q = best.q_hat;
+    for (i, &a) in grid.iter().enumerate().skip(1) {
+        let st = maugis_state(lambda, a, q);
+        q = st.q_hat;
+        if value(&st) < value(&best) {
+            best = st;
+            best_i = i;
+        }
+    }
+    if best_i == 0 {
+        return best;
+    }
+    let mut lo = grid[best_i - 1];
+    let mut hi = grid[(best_i + 1).min(grid.len() - 1)];
+    let mut q = best.q_hat;
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let st = maugis_state(lambda, mid, q);
+        q = st.q_hat;
+        if deriv(&st) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    maugis_state(lambda, 0.5 * (lo + hi), q)
+}
+
+/// The characteristic points of the Maugis-Dugdale curve for one `lambda`, and its solves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaugisCurve {
+    /// Maugis parameter `lambda`.
+    pub lambda: f64,
+    /// State at `A = 0` (jump-in on loading under displacement control: `delta_in = Delta(0)`).
+    pub zero_radius: MaugisState,
+    /// Minimum of `P_bar(A)`: load-controlled pull-off (`P_bar` from -2 at `lambda -> 0` to -1.5
+    /// at `lambda -> inf`).
+    pub load_minimum: MaugisState,
+    /// Minimum of `Delta(A)`: displacement-controlled pull-off (end of the unloading branch).
+    pub interference_minimum: MaugisState,
+}
+
+impl MaugisCurve {
+    /// Characteristic points for Maugis parameter `lambda` (finite, > 0).
+    pub fn new(lambda: f64) -> Result<Self, ContactError> {
+        check_positive("lambda", lambda, "a finite Maugis parameter > 0")?;
+        Ok(MaugisCurve {
+            lambda,
+            zero_radius: maugis_state(lambda, 0.0, 0.0),
+            load_minimum: maugis_min(lambda, |s| s.p_bar, |s| s.dp_bar_da),
+            interference_minimum: maugis_min(lambda, |s| s.delta_bar, |s| s.ddelta_bar_da),
+        })
+    }
+
+    /// State at normalised contact radius `a_hat >= 0`.
+    pub fn state(&self, a_hat: f64) -> MaugisState {
+        maugis_state(self.lambda, a_hat, 0.0)
+    }
+
+    fn upper_bracket(&self, start: MaugisState, target: f64, f: fn(&MaugisState) -> f64) -> MaugisState {
+        let mut st = start;
+        let mut a = start.a_hat.max(1.0);
+        loop {
+            a *= 2.0;
+            st = maugis_state(self.lambda, a, st.q_hat);
+            if f(&st) >= target || a > 1e150 {
+                return st;
+            }
+        }
+    }
+
+    /// State on the load-controlled stable branch (`dP/dA > 0`) at normalised load `p_bar`;
+    /// `Err(NoEquilibrium)` below the pull-off load.
+    pub fn state_at_load(&self, p_bar: f64) -> Result<MaugisState, ContactError> {
+        check_finite("p_bar", p_bar, "a finite normalised load")?;
+        let low = self.load_minimum;
+        if p_bar < low.p_bar {
+            return Err(ContactError::NoEquilibrium {
+                quantity: "p_bar",
+                value: p_bar,
+                pull_off: format!("{}", low.p_bar),
+            });
+        }
+        if p_bar == low.p_bar {
+            return Ok(low);
+        }
+        let hi = self.upper_bracket(low, p_bar, |s| s.p_bar);
+        let guess = (p_bar.max(0.0) + 2.0).cbrt().clamp(low.a_hat, hi.a_hat);
+        let lambda = self.lambda;
+        let (a, s) = solve_increasing(
+            p_bar,
+            low.a_hat,
+            hi.a_hat,
+            guess,
+            0.0,
+            |a, h| {
+                let st = maugis_state(lambda, a, h);
+                (st.p_bar, st.dp_bar_da, st.q_hat)
+            },
+            "Maugis-Dugdale contact radius from load",
+        )?;
+        Ok(maugis_state(lambda, a, s))
+    }
+
+    /// State on the displacement-controlled stable branch (`dDelta/dA > 0`) at normalised
+    /// interference `delta_bar`; `None` below the end of the branch
+    /// (`interference_minimum.delta_bar`).
+    pub fn state_at_interference(&self, delta_bar: f64) -> Option<MaugisState> {
+        let low = self.interference_minimum;
+        if delta_bar.is_nan() || delta_bar < low.delta_bar {
+            return None;
+        }
+        if delta_bar == low.delta_bar {
+            return Some(low);
+        }
+        let hi = self.upper_bracket(low, delta_bar, |s| s.delta_bar);
+        let guess = delta_bar.max(0.0).sqrt().clamp(low.a_hat, hi.a_hat);
+        let lambda = self.lambda;
+        solve_increasing(
+            delta_bar,
+            low.a_hat,
+            hi.a_hat,
+            guess,
+            0.0,
+            |a, h| {
+                let st = maugis_state(lambda, a, h);
+                (st.delta_bar, st.ddelta_bar_da, st.q_hat)
+            },
+            "Maugis-Dugdale contact radius from interference",
+        )
+        .ok()
+        .map(|(a, s)| maugis_state(lambda, a, s))
+    }
+}
+
+/// A precomputed Maugis-Dugdale table for fast interference-controlled solves: the stable
+/// (displacement-controlled) branch sampled at 257 radii from the end of the branch to `A = 40`
+/// (quadratically spaced). A solve brackets the root in the table and refines it with a few
+/// safeguarded Newton steps on the exact equations MD-1..3, so results are as exact as
+/// [`MaugisCurve::state_at_interference`] (relative ~1e-15 in `A`), in a few microseconds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaugisTable {
+    /// The curve's characteristic points.
+    pub curve: MaugisCurve,
+    a_hat: Vec<f64>,
+    q: Vec<f64>,
+    delta_bar: Vec<f64>,
+}
+
+impl MaugisTable {
+    /// Build the table for Maugis parameter `lambda` (finite, > 0).
+    pub fn new(lambda: f64) -> Result<Self, ContactError> {
+        let curve = MaugisCurve::new(lambda)?;
+        let n = 256;
+        let a0 = curve.interference_minimum.a_hat;
+        let a_max = 40.0_f64.max(2.0 * a0);
+        let mut a_hat = Vec::with_capacity(n + 1);
+        let mut q = Vec::with_capacity(n + 1);
+        let mut delta_bar = Vec::with_capacity(n + 1);
+        let mut guess = curve.interference_minimum.q_hat;
+        for i in 0..=n {
+            let t = i as f64 / n as f64;
+            let a = a0 + (a_max - a0) * t * t;
+            let st = if i == 0 { curve.interference_minimum } else { maugis_state(lambda, a, guess) };
+            guess = st.q_hat;
+            a_hat.push(st.a_hat);
+            q.push(st.q_hat);
+            delta_bar.push(st.delta_bar);
+        }
+        Ok(MaugisTable { curve, a_hat, q, delta_bar })
+    }
+
+    /// Same as [`MaugisCurve::state_at_interference`], faster.
+    pub fn state_at_interference(&self, delta_bar: f64) -> Option<MaugisState> {
+        let lambda = self.curve.lambda;
+        let low = self.curve.interference_minimum;
+        if delta_bar.is_nan() || delta_bar < low.delta_bar {
+            return None;
+        }
+        if delta_bar == low.delta_bar {
+            return Some(low);
+        }
+        let i = self.delta_bar.partition_point(|&d| d < delta_bar);
+        let (lo, hi, guess, s_guess) = if i >= self.delta_bar.len() {
+            let last = self.a_hat.len() - 1;
+            let mut hi = self.a_hat[last];
+            loop {
+                hi *= 2.0;
+                let st = maugis_state(lambda, hi, 0.0);
+                if st.delta_bar >= delta_bar || hi > 1e150 {
+                    break;
+                }
+            }
+            let g = delta_bar.sqrt().clamp(self.a_hat[last], hi);
+            (self.a_hat[last], hi, g, self.q[last])
+        } else {
+            let i = i.max(1);
+            let (d0, d1) = (self.delta_bar[i - 1], self.delta_bar[i]);
+            let t = ((delta_bar - d0) / (d1 - d0)).clamp(0.0, 1.0);
+            let g = self.a_hat[i - 1] + t * (self.a_hat[i] - self.a_hat[i - 1]);
+            let sg = self.q[i - 1] + t * (self.q[i] - self.q[i - 1]);
+            (self.a_hat[i - 1], self.a_hat[i], g, sg)
+        };
+        solve_increasing(
+            delta_bar,
+            lo,
+            hi,
+            guess,
+            s_guess,
+            |a, h| {
+                let st = maugis_state(lambda, a, h);
+                (st.delta_bar, st.ddelta_bar_da, st.q_hat)
+            },
+            "Maugis-Dugdale table solve",
+        )
+        .ok()
+        .map(|(a, s)| maugis_state(lambda, a, s))
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// JKR in normalised variables
+// ---------------------------------------------------------------------------------------------
+
+/// JKR (normalised): `P_bar = A^3 - sqrt(6 A^3)`, `Delta = A^2 - sqrt(8A/3)` and derivatives.
+pub fn jkr_state(a_hat: f64) -> MaugisState {
+    let k = (8.0_f64 / 3.0).sqrt();
+    let sq = a_hat.sqrt();
+    let a2 = a_hat * a_hat;
+    MaugisState {
+        a_hat,
+        c_hat: a_hat,
+        q_hat: 0.0,
+        p_bar: a2 * a_hat - 6f64.sqrt() * a_hat * sq,
+        delta_bar: a2 - k * sq,
+        dp_bar_da: 3.0 * a2 - 1.5 * 6f64.sqrt() * sq,
+        ddelta_bar_da: if a_hat > 0.0 { 2.0 * a_hat - 0.5 * k / sq } else { f64::NEG_INFINITY },
+    }
+}
+
+/// JKR end of the unloading branch under displacement control: `A_c = 6^(-1/3)`,
+/// `Delta_c = 6^(-2/3) - sqrt(8/3) 6^(-1/6) = -0.9086`, `P_bar = -5/6`.
+pub fn jkr_interference_minimum() -> MaugisState {
+    jkr_state(6f64.powf(-1.0 / 3.0))
+}
+
+/// JKR state on the displacement-controlled stable branch at `delta_bar >= Delta_c`.
+fn jkr_state_at_interference(delta_bar: f64) -> MaugisState {
+    // x = sqrt(A): f(x) = x^4 - k x - delta, convex; Newton from the right converges monotonically.
+    let k = (8.0_f64 / 3.0).sqrt();
+    let xc = (k / 4.0).cbrt();
+    let mut x = (2.0 * k).cbrt().max((2.0 * delta_bar.max(0.0)).sqrt().sqrt());
+    for _ in 0..100 {
+        let x3 = x * x * x;
+        let f = x3 * x - k * x - delta_bar;
+        let df = 4.0 * x3 - k;
+        let next = (x - f / df).max(xc);
+        if (next - x).abs() <= 2.0 * f64::EPSILON * x {
+            x = next;
+            break;
+        }
+        x = next;
+    }
+    jkr_state(x * x)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Dimensional laws
+// ---------------------------------------------------------------------------------------------
+
+/// Characteristic points of a law for given parameters (dimensional).
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+pub struct BranchLimits {
+    /// Jump-in interference on loading, m (0 for Hertz, DMT, JKR; `< 0` for Maugis-Dugdale).
+    pub jump_in_interference_m: f64,
+    /// Load right after jump-in, N (DMT: `-2 pi dgamma R`, JKR: `-4/3 pi dgamma R`).
+    pub jump_in_load_n: f64,
+    /// End of the unloading branch under displacement control, m (JKR: `-0.9086 delta_scale`).
+    pub pull_off_interference_m: f64,
+    /// Load at the end of the unloading branch (displacement control), N (JKR: `-5/6 pi dgamma R`).
+    pub pull_off_interference_load_n: f64,
+    /// Minimum load of the load-controlled stable branch (minus the pull-off force), N.
+    pub pull_off_load_n: f64,
+    /// Contact radius at the load-controlled pull-off, m.
+    pub pull_off_contact_radius_m: f64,
+}
+
+fn effective_law(law: AdhesionLaw, p: &AsperityParams) -> AdhesionLaw {
+    if p.work_of_adhesion_j_per_m2 == 0.0 { AdhesionLaw::Hertz } else { law }
+}
+
+/// Characteristic points (jump-in, pull-off under displacement and load control) of `law`.
+/// Without adhesion (`dgamma = 0`) every law is Hertz.
+pub fn branch_limits(law: AdhesionLaw, p: &AsperityParams) -> Result<BranchLimits, ContactError> {
+    p.validate()?;
+    let (ls, ds, rs) = (p.load_scale_n(), p.interference_scale_m(), p.radius_scale_m());
+    Ok(match effective_law(law, p) {
+        AdhesionLaw::Hertz => BranchLimits {
+            jump_in_interference_m: 0.0,
+            jump_in_load_n: 0.0,
+            pull_off_interference_m: 0.0,
+            pull_off_interference_load_n: 0.0,
+            pull_off_load_n: 0.0,
+            pull_off_contact_radius_m: 0.0,
+        },
+        AdhesionLaw::Dmt => BranchLimits {
+            jump_in_interference_m: 0.0,
+            jump_in_load_n: -p.dmt_adhesion_n(),
+            pull_off_interference_m: 0.0,
+            pull_off_interference_load_n: -p.dmt_adhesion_n(),
+            pull_off_load_n: -p.dmt_adhesion_n(),
+            pull_off_contact_radius_m: 0.0,
+        },
+        AdhesionLaw::Jkr => {
+            let c = jkr_interference_minimum();
+            let jump = jkr_state((8.0_f64 / 3.0).cbrt());
+            BranchLimits {
+                jump_in_interference_m: 0.0,
+                jump_in_load_n: jump.p_bar * ls,
+                pull_off_interference_m: c.delta_bar * ds,
+                pull_off_interference_load_n: c.p_bar * ls,
+                pull_off_load_n: -1.5 * ls,
+                pull_off_contact_radius_m: 1.5f64.cbrt() * rs,
+            }
+        }
+        AdhesionLaw::MaugisDugdale => {
+            let curve = MaugisCurve::new(p.maugis_parameter())?;
+            let jump = curve.state_at_interference(curve.zero_radius.delta_bar).unwrap_or(curve.zero_radius);
+            BranchLimits {
+                jump_in_interference_m: curve.zero_radius.delta_bar * ds,
+                jump_in_load_n: jump.p_bar * ls,
+                pull_off_interference_m: curve.interference_minimum.delta_bar * ds,
+                pull_off_interference_load_n: curve.interference_minimum.p_bar * ls,
+                pull_off_load_n: curve.load_minimum.p_bar * ls,
+                pull_off_contact_radius_m: curve.load_minimum.a_hat * rs,
+            }
+        }
+    })
+}
+
+/// Pull-off force under load control (magnitude, N): 0 (Hertz), `2 pi dgamma R` (DMT, eq. 4),
+/// `1.5 pi dgamma R` (JKR), between the two for Maugis-Dugdale.
+pub fn pull_off_force(law: AdhesionLaw, p: &AsperityParams) -> Result<f64, ContactError> {
+    Ok(-branch_limits(law, p)?.pull_off_load_n)
+}
+
+fn check_radius(a: f64) -> Result<f64, ContactError> {
+    check_nonnegative("contact_radius_m", a, "a finite contact radius >= 0 (m)")
+}
+
+/// Load `P` (N) at contact radius `a` (m): Hertz `a^3/(R D)` (eq. 3b), DMT `a^3/(R D) - 2 pi dgamma R`
+/// (eq. 4b), JKR `a^3/(RD) - sqrt(6 pi dgamma a^3 / D)`, Maugis-Dugdale MD-2.
+pub fn load_from_contact_radius(
+    law: AdhesionLaw,
+    p: &AsperityParams,
+    contact_radius_m: f64,
+) -> Result<f64, ContactError> {
+    p.validate()?;
+    let a = check_radius(contact_radius_m)?;
+    let hertz = a.powi(3) / (p.radius_m * p.compliance_per_pa);
+    Ok(match effective_law(law, p) {
+        AdhesionLaw::Hertz => hertz,
+        AdhesionLaw::Dmt => hertz - p.dmt_adhesion_n(),
+        AdhesionLaw::Jkr => jkr_state(a / p.radius_scale_m()).p_bar * p.load_scale_n(),
+        AdhesionLaw::MaugisDugdale => {
+            maugis_state(p.maugis_parameter(), a / p.radius_scale_m(), 0.0).p_bar * p.load_scale_n()
+        }
+    })
+}
+
+/// Interference `delta` (m) at contact radius `a` (m): Hertz and DMT `a^2/R` (eq. 3a, 4a),
+/// JKR `a^2/R - sqrt(8 pi dgamma a D/3)`, Maugis-Dugdale MD-3.
+pub fn interference_from_contact_radius(
+    law: AdhesionLaw,
+    p: &AsperityParams,
+    contact_radius_m: f64,
+) -> Result<f64, ContactError> {
+    p.validate()?;
+    let a = check_radius(contact_radius_m)?;
+    Ok(match effective_law(law, p) {
+        AdhesionLaw::Hertz | AdhesionLaw::Dmt => a * a / p.radius_m,
+        AdhesionLaw::Jkr => jkr_state(a / p.radius_scale_m()).delta_bar * p.interference_scale_m(),
+        AdhesionLaw::MaugisDugdale => {
+            maugis_state(p.maugis_parameter(), a / p.radius_scale_m(), 0.0).delta_bar * p.interference_scale_m()
+        }
+    })
+}
+
+/// Contact state on the load-controlled stable branch.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+pub struct LoadState {
+    /// Contact radius `a`, m.
+    pub contact_radius_m: f64,
+    /// Interference `delta`, m.
+    pub interference_m: f64,
+    /// `da/dP`, m/N (used for the slope of the discrete model, eq. 12).
+    pub dradius_dload_m_per_n: f64,
+    /// Hertzian peak pressure `3a/(2 pi D R)`, Pa (eq. 11 with `z = a^2/R`).
+    pub max_pressure_pa: f64,
+}
+
+/// Contact radius, interference and `da/dP` at load `P` (N) on the load-controlled stable
+/// branch (the one with the larger contact). Hertz: `a = (R D P)^(1/3)`; DMT:
+/// `a = (R D (P + 2 pi dgamma R))^(1/3)` (eq. 4b); JKR: `A^(3/2) = (sqrt 6 + sqrt(6 + 4 P_bar))/2`;
+/// Maugis-Dugdale: MD-1..3 solved numerically. Below the pull-off load: `Err(NoEquilibrium)`.
+pub fn load_state(law: AdhesionLaw, p: &AsperityParams, load_n: f64) -> Result<LoadState, ContactError> {
+    p.validate()?;
+    check_finite("load_n", load_n, "a finite load (N)")?;
+    let rd = p.radius_m * p.compliance_per_pa;
+    let below =
+        |min: f64| ContactError::NoEquilibrium { quantity: "load_n", value: load_n, pull_off: format!("{min:e} N") };
+    let (a, delta, da_dp) = match effective_law(law, p) {
+        l @ (AdhesionLaw::Hertz | AdhesionLaw::Dmt) => {
+            let adh = if l == AdhesionLaw::Dmt { p.dmt_adhesion_n() } else { 0.0 };
+            let elastic = load_n + adh;
+            if elastic < 0.0 {
+                return Err(below(-adh));
+            }
+            let a = (rd * elastic).cbrt();
+            let da = if a > 0.0 { rd / (3.0 * a * a) } else { f64::INFINITY };
+            (a, a * a / p.radius_m, da)
+        }
+        AdhesionLaw::Jkr => {
+            let pb = load_n / p.load_scale_n();
+            let disc = 6.0 + 4.0 * pb;
+            if disc < 0.0 {
+                return Err(below(-1.5 * p.load_scale_n()));
+            }
+            let y = 0.5 * (6f64.sqrt() + disc.sqrt());
+            let st = jkr_state(y.powf(2.0 / 3.0));
+            (
+                st.a_hat * p.radius_scale_m(),
+                st.delta_bar * p.interference_scale_m(),
+                p.radius_scale_m() / (st.dp_bar_da * p.load_scale_n()),
+            )
+        }
+        AdhesionLaw::MaugisDugdale => {
+            let curve = MaugisCurve::new(p.maugis_parameter())?;
+            let st = curve
+                .state_at_load(load_n / p.load_scale_n())
+                .map_err(|_| below(curve.load_minimum.p_bar * p.load_scale_n()))?;
+            (
+                st.a_hat * p.radius_scale_m(),
+                st.delta_bar * p.interference_scale_m(),
+                p.radius_scale_m() / (st.dp_bar_da * p.load_scale_n()),
+            )
+        }
+    };
+    Ok(LoadState {
+        contact_radius_m: a,
+        interference_m: delta,
+        dradius_dload_m_per_n: da_dp,
+        max_pressure_pa: p.hertz_peak_pressure_pa(a),
+    })
+}
+
+/// Contact radius (m) at load `P` (N) on the load-controlled stable branch; see [`load_state`].
+pub fn contact_radius_from_load(law: AdhesionLaw, p: &AsperityParams, load_n: f64) -> Result<f64, ContactError> {
+    Ok(load_state(law, p, load_n)?.contact_radius_m)
+}
+
+/// Interference-controlled response of one summit, the building block of the explicit solver.
+///
+/// `interference_m > 0` means overlap. Hertz: contact iff `delta > 0`, `a = sqrt(R delta)`,
+/// `P = R^(1/2) delta^(3/2)/D` (eq. 3). DMT: the same with `P -= 2 pi dgamma R` (eq. 4; the load
+/// jumps to `-2 pi dgamma R` at touch-down). JKR and Maugis-Dugdale: see the module docs for the
+/// branches (Loading: contact iff `delta >= delta_in`; Unloading: iff `delta >= delta_c`), the
+/// state is the displacement-controlled stable branch. Out of contact everything is 0.
+/// Stiffness `dP/d delta`: `3a/(2D)` for Hertz/DMT.
+///
+/// Cost: Hertz/DMT a few ns (no validation: `p` must satisfy [`AsperityParams::validate`]);
+/// JKR ~0.1 us; Maugis-Dugdale builds its curve on each call (tens of microseconds): for repeated
+/// calls use [`SummitModel`], which precomputes a [`MaugisTable`].
+pub fn summit_response(law: AdhesionLaw, p: &AsperityParams, interference_m: f64, branch: Branch) -> SummitResponse {
+    match effective_law(law, p) {
+        AdhesionLaw::Hertz => hertz_dmt_response(p, interference_m, 0.0),
+        AdhesionLaw::Dmt => hertz_dmt_response(p, interference_m, p.dmt_adhesion_n()),
+        AdhesionLaw::Jkr => jkr_response(p, &Scales::new(p), interference_m, branch),
+        AdhesionLaw::MaugisDugdale => match MaugisCurve::new(p.maugis_parameter()) {
+            Ok(curve) => {
+                md_response(p, &Scales::new(p), &curve, |d| curve.state_at_interference(d), interference_m, branch)
+            }
+            Err(_) => SummitResponse::NO_CONTACT,
+        },
+    }
+}
+
+#[inline]
+fn hertz_dmt_response(p: &AsperityParams, delta: f64, adhesion_n: f64) -> SummitResponse {
+    if delta > 0.0 {
+        let a = (p.radius_m * delta).sqrt();
+        let inv_d = 1.0 / p.compliance_per_pa;
+        SummitResponse {
+            in_contact: true,
+            load_n: a * delta * inv_d - adhesion_n,
+            contact_radius_m: a,
+            stiffness_n_per_m: 1.5 * a * inv_d,
+            max_pressure_pa: 1.5 * a * inv_d / (PI * p.radius_m),
+        }
+    } else {
+        SummitResponse::NO_CONTACT
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Scales {
+    load: f64,
+    radius: f64,
+    interference: f64,
+}
+
+impl Scales {
+    fn new(p: &AsperityParams) -> Self {
+        Scales { load: p.load_scale_n(), radius: p.radius_scale_m(), interference: p.interference_scale_m() }
+    }
+}
+
+fn normalized_response(p: &AsperityParams, sc: &Scales, st: &MaugisState) -> SummitResponse {
+    let a = st.a_hat * sc.radius;
+    SummitResponse {
+        in_contact: true,
+        load_n: st.p_bar * sc.load,
+        contact_radius_m: a,
+        stiffness_n_per_m: st.dp_bar_da / st.ddelta_bar_da * sc.load / sc.interference,
+        max_pressure_pa: p.hertz_peak_pressure_pa(a),
+    }
+}
+
+fn jkr_response(p: &AsperityParams, sc: &Scales, delta: f64, branch: Branch) -> SummitResponse {
+    let d = delta / sc.interference;
+    let start = match branch {
+        Branch::Loading => 0.0,
+        Branch::Unloading => jkr_interference_minimum().delta_bar,
+    };
+    if d.is_nan() || d < start {
+        return SummitResponse::NO_CONTACT;
+    }
+    normalized_response(p, sc, &jkr_state_at_interference(d))
+}
+
+fn md_response(
+    p: &AsperityParams,
+    sc: &Scales,
+    curve: &MaugisCurve,
+    solve: impl Fn(f64) -> Option<MaugisState>,
+    delta: f64,
+    branch: Branch,
+) -> SummitResponse {
+    let d = delta / sc.interference;
+    let start = match branch {
+        Branch::Loading => curve.zero_radius.delta_bar,
+        Branch::Unloading => curve.interference_minimum.delta_bar,
+    };
+    if d.is_nan() || d < start {
+        return SummitResponse::NO_CONTACT;
+    }
+    match solve(d) {
+        Some(st) => normalized_response(p, sc, &st),
+        None => SummitResponse::NO_CONTACT,
+    }
+}
+
+/// A summit law with everything precomputed for repeated [`SummitModel::response`] calls (for
+/// Maugis-Dugdale a [`MaugisTable`], about 1 ms to build).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SummitModel {
+    law: AdhesionLaw,
+    params: AsperityParams,
+    scales: Scales,
+    table: Option<Box<MaugisTable>>,
+}
+
+impl SummitModel {
+    /// Validate `params` and precompute.
+    pub fn new(law: AdhesionLaw, params: AsperityParams) -> Result<Self, ContactError> {
+        params.validate()?;
+        let law = effective_law(law, &params);
+        let table = if law == AdhesionLaw::MaugisDugdale {
+            Some(Box::new(MaugisTable::new(params.maugis_parameter())?))
+        } else {
+            None
+        };
+        Ok(SummitModel { law, params, scales: Scales::new(&params), table })
+    }
+
+    /// The law in use (Hertz if the work of adhesion is 0).
+    pub fn law(&self) -> AdhesionLaw {
+        self.law
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &AsperityParams {
+        &self.params
+    }
+
+    /// Same as [`summit_response`] with this model's law and parameters.
+    #[inline]
+    pub fn response(&self, interference_m: f64, branch: Branch) -> SummitResponse {
+        match self.law {
+            AdhesionLaw::Hertz => hertz_dmt_response(&self.params, interference_m, 0.0),
+            AdhesionLaw::Dmt => hertz_dmt_response(&self.params, interference_m, self.params.dmt_adhesion_n()),
+            AdhesionLaw::Jkr => jkr_response(&self.params, &self.scales, interference_m, branch),
+            AdhesionLaw::MaugisDugdale => match &self.table {
+                Some(t) => md_response(
+                    &self.params,
+                    &self.scales,
+                    &t.curve,
+                    |d| t.state_at_interference(d),
+                    interference_m,
+                    branch,
+                ),
+                None => SummitResponse::NO_CONTACT,
+            },
+        }
+    }
+
+    /// Interference at which contact starts on `branch` (m): `delta_in` for Loading, `delta_c`
+    /// for Unloading (both 0 for Hertz and DMT).
+    pub fn contact_start_interference_m(&self, branch: Branch) -> f64 {
+        let d = match (self.law, branch) {
+            (AdhesionLaw::Hertz | AdhesionLaw::Dmt, _) | (AdhesionLaw::Jkr, Branch::Loading) => 0.0,
+            (AdhesionLaw::Jkr, Branch::Unloading) => jkr_interference_minimum().delta_bar,
+            (AdhesionLaw::MaugisDugdale, b) => match &self.table {
+                Some(t) => match b {
+                    Branch::Loading => t.curve.zero_radius.delta_bar,
+                    Branch::Unloading => t.curve.interference_minimum.delta_bar,
+                },
+                None => 0.0,
+            },
+        };
+        d * self.scales.interference
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn md_small_s_series_matches_direct() {
+        // s - atan s: series vs direct at s = 0.49 (no cancellation problem there), rel 1e-14
+        let s: f64 = 0.49;
+        let direct = s - s.atan();
+        assert!((s_minus_atan(s) - direct).abs() <= 1e-14 * direct);
+    }
+}
