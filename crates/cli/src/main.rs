@@ -1,1 +1,60 @@
-fn main() {}
+//! `stiction`: a virtual MEMS friction meter.
+//!
+//! The binary only parses arguments, calls the libraries and prints. Every quantity flag accepts a
+//! bare number in SI or a number with a unit ("0.5 um", "1.4 GPa", "3 uN").
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+mod cmd;
+mod output;
+
+/// stiction: a virtual MEMS friction meter (static friction in elastic adhesive MEMS contacts).
+///
+/// Quantities accept a bare number (SI) or a number with a unit: "0.5 um", "1.4 GPa", "3 uN",
+/// "0.1 J/m^2", "9.1e-12 1/Pa". Add --json for machine-readable output.
+#[derive(Parser, Debug)]
+#[command(name = "stiction", version, about, long_about = None, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Greenwood-Williamson with DMT adhesion (eq. 5-9): separation h, N*, A* at a normalized load L*.
+    Gw(cmd::gw::Args),
+    /// The discrete N-contact model (eq. 12): friction, its slope and the apparent adhesion force at a load.
+    Discrete(cmd::discrete::Args),
+    /// The explicit asperity-by-asperity solver on a scenario's surface at a load or over a sweep.
+    Contact(cmd::contact::Args),
+    /// A gap-closing actuator array of a scenario: pull-in, release, conversion factor, sweeps, validation.
+    Actuator(cmd::actuator::Args),
+    /// Run the friction meter experiment of a scenario (the paper's Fig. 5), with plots and tables.
+    Run(cmd::run::Args),
+    /// Recompute a figure of the paper (fig2, fig3, fig7) or the actuator hysteresis, as SVG or PNG.
+    Plot(cmd::plot::Args),
+    /// Check a scenario file (and --set overrides) and print it in SI units, or print the format's JSON Schema.
+    Scenario(cmd::scenario::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Gw(a) => cmd::gw::run(a),
+        Command::Discrete(a) => cmd::discrete::run(a),
+        Command::Contact(a) => cmd::contact::run(a),
+        Command::Actuator(a) => cmd::actuator::run(a),
+        Command::Run(a) => cmd::run::run(a),
+        Command::Plot(a) => cmd::plot::run(a),
+        Command::Scenario(a) => cmd::scenario::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

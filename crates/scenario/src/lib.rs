@@ -1,1 +1,202 @@
-//! stiction-scenario
+//! stiction-scenario: the scenario file format.
+//!
+//! A scenario is one JSON file that describes a whole experiment: the rough surfaces, the
+//! materials, the contact law and solver model, the actuator arrays with their springs, the
+//! voltage protocol and the outputs. Loading goes
+//!
+//! ```text
+//! file --read--> serde_json::Value --`--set PATH=VALUE` overrides--> Value
+//!      --typed parse (serde, path-tracking)--> Scenario --validate--> ready to run
+//! ```
+//!
+//! Every quantity field accepts a number (SI), a string with a unit ("0.5 um") or an uncertain
+//! parameter object (`{"value": "0.5 um", "sd": "0.3 um", "distribution": "lognormal"}`); see
+//! [`stiction_units`]. Unknown fields are rejected with the list of known ones. Every error names
+//! the JSON path, the value and what was expected.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+mod overrides;
+mod spec;
+pub use overrides::{apply_set, parse_set};
+pub use spec::*;
+
+/// The format version this build reads.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// A whole experiment, as written in a scenario file (SI units after parsing).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Scenario {
+    /// Version of the scenario format; this build reads 1.
+    pub format_version: u32,
+    /// What the scenario is for; printed in reports.
+    #[serde(default)]
+    pub description: String,
+    /// The rough sidewall and shoe face.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub surface: Option<stiction_surface::SurfaceSpec>,
+    /// Material properties of the contact.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<MaterialSpec>,
+    /// Contact law and solver model.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<ContactSpec>,
+    /// Electrostatic actuator arrays by name; the friction meter uses `clamp` and `pull`.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub actuators: BTreeMap<String, stiction_actuator::ArraySpec>,
+    /// The meter: spring force, voltage protocol, slip criterion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub meter: Option<MeterSpec>,
+    /// Measured data to compare with, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measured: Option<MeasuredSpec>,
+}
+
+/// A scenario loading error: where (file and JSON path), what was given and what was expected.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The file could not be read.
+    #[error("cannot read scenario {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// The file is not JSON.
+    #[error("{path}: not valid JSON at line {line}, column {column}: {message}")]
+    Syntax {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// Parser message.
+        message: String,
+    },
+    /// A field has a wrong value, type or name.
+    #[error("{path}: at `{json_path}`: {message}")]
+    Field {
+        /// The file.
+        path: PathBuf,
+        /// The JSON path of the offending field, such as `surface.summit_sd`.
+        json_path: String,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+    /// A `--set PATH=VALUE` override is malformed or names no field.
+    #[error("--set {set}: {message}")]
+    Set {
+        /// The override as given.
+        set: String,
+        /// What is wrong, with the near names where the path is wrong.
+        message: String,
+    },
+}
+
+impl Scenario {
+    /// Reads, overrides (`--set`), parses and validates a scenario file.
+    pub fn load(path: &Path, sets: &[String]) -> Result<Scenario, ScenarioError> {
+        let text =
+            std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.to_path_buf(), source })?;
+        Scenario::from_str_with_sets(&text, path, sets)
+    }
+
+    /// Parses scenario text; `origin` names it in errors.
+    pub fn from_str_with_sets(text: &str, origin: &Path, sets: &[String]) -> Result<Scenario, ScenarioError> {
+        let mut value: Value = serde_json::from_str(text).map_err(|e| ScenarioError::Syntax {
+            path: origin.to_path_buf(),
+            line: e.line(),
+            column: e.column(),
+            message: e.to_string(),
+        })?;
+        for set in sets {
+            apply_set(&mut value, set)?;
+        }
+        Scenario::from_value(value, origin)
+    }
+
+    /// Parses and validates a JSON value; `origin` names it in errors.
+    pub fn from_value(value: Value, origin: &Path) -> Result<Scenario, ScenarioError> {
+        let field = |json_path: String, message: String| ScenarioError::Field {
+            path: origin.to_path_buf(),
+            json_path,
+            message,
+        };
+        // Check the version first: a newer file should say so rather than fail on a new field.
+        match value.get("format_version") {
+            Some(Value::Number(n)) if n.as_u64() == Some(FORMAT_VERSION as u64) => {}
+            Some(other) => {
+                return Err(field(
+                    "format_version".into(),
+                    format!("{other} is not supported; expected {FORMAT_VERSION}"),
+                ));
+            }
+            None => return Err(field("format_version".into(), format!("missing; expected {FORMAT_VERSION}"))),
+        }
+        let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
+            let p = e.path().to_string();
+            field(if p == "." { "(top level)".into() } else { p }, e.into_inner().to_string())
+        })?;
+        scenario.validate().map_err(|(p, m)| field(p, m))?;
+        Ok(scenario)
+    }
+
+    /// Cross-field checks that serde cannot express. Returns (JSON path, message).
+    fn validate(&self) -> Result<(), (String, String)> {
+        if let Some(m) = &self.material {
+            m.validate().map_err(|(p, msg)| (format!("material.{p}"), msg))?;
+        }
+        if let Some(c) = &self.contact {
+            c.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+        }
+        if let Some(m) = &self.meter {
+            m.validate().map_err(|(p, msg)| (format!("meter.{p}"), msg))?;
+            for name in ["clamp", "pull"] {
+                if !self.actuators.contains_key(name) {
+                    return Err((
+                        format!("actuators.{name}"),
+                        format!(
+                            "missing: a scenario with a `meter` needs actuator arrays named `clamp` and `pull`; found {:?}",
+                            self.actuators.keys().collect::<Vec<_>>()
+                        ),
+                    ));
+                }
+            }
+            if self.surface.is_none() {
+                return Err(("surface".into(), "missing: a scenario with a `meter` needs a surface".into()));
+            }
+            if self.material.is_none() {
+                return Err(("material".into(), "missing: a scenario with a `meter` needs a material".into()));
+            }
+        }
+        Ok(())
+    }
+
+    /// The surface, or an error naming the missing section.
+    pub fn require_surface(&self) -> Result<&stiction_surface::SurfaceSpec, String> {
+        self.surface.as_ref().ok_or_else(|| "the scenario has no `surface` section".to_string())
+    }
+
+    /// The material, or an error naming the missing section.
+    pub fn require_material(&self) -> Result<&MaterialSpec, String> {
+        self.material.as_ref().ok_or_else(|| "the scenario has no `material` section".to_string())
+    }
+
+    /// The contact section, or the paper's default (explicit solver, DMT, tilt free).
+    pub fn contact_or_default(&self) -> ContactSpec {
+        self.contact.clone().unwrap_or_default()
+    }
+
+    /// The JSON Schema of the format (draft 2020-12), as shipped in docs/scenario.schema.json.
+    pub fn json_schema() -> Value {
+        serde_json::to_value(schemars::schema_for!(Scenario)).unwrap_or(Value::Null)
+    }
+}

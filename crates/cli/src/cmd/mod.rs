@@ -1,0 +1,9 @@
+//! One module per subcommand.
+
+pub mod actuator;
+pub mod contact;
+pub mod discrete;
+pub mod gw;
+pub mod plot;
+pub mod run;
+pub mod scenario;

@@ -1,0 +1,183 @@
+//! `--set PATH=VALUE`: change one field of a scenario without editing the file.
+//!
+//! PATH is a dotted JSON path (`surface.summit_sd`, `actuators.clamp.plates`); it is checked
+//! against the format's JSON Schema, so a misspelt name is an error that lists the near names.
+//! VALUE is read as JSON when it parses as JSON (`3`, `true`, `"x"`, `[1,2]`, `{"value": ...}`)
+//! and as a string otherwise (`40 nm`).
+
+use serde_json::{Map, Value};
+
+use crate::{Scenario, ScenarioError};
+
+/// Splits `PATH=VALUE` into the path segments and the JSON value.
+pub fn parse_set(set: &str) -> Result<(Vec<String>, Value), ScenarioError> {
+    let err = |message: String| ScenarioError::Set { set: set.to_string(), message };
+    let (path, raw) =
+        set.split_once('=').ok_or_else(|| err("expected PATH=VALUE, like surface.summit_sd=\"40 nm\"".into()))?;
+    let path = path.trim();
+    if path.is_empty() {
+        return Err(err("the PATH before `=` is empty".into()));
+    }
+    let segments: Vec<String> = path.split('.').map(str::to_string).collect();
+    if segments.iter().any(String::is_empty) {
+        return Err(err(format!("`{path}` has an empty segment")));
+    }
+    let raw = raw.trim();
+    let value = serde_json::from_str(raw).unwrap_or_else(|_| Value::String(raw.to_string()));
+    Ok((segments, value))
+}
+
+/// Applies one `PATH=VALUE` override to a scenario's JSON, after checking PATH against the schema.
+pub fn apply_set(root: &mut Value, set: &str) -> Result<(), ScenarioError> {
+    let (segments, value) = parse_set(set)?;
+    let err = |message: String| ScenarioError::Set { set: set.to_string(), message };
+    check_path(&segments).map_err(err)?;
+    let mut node = root;
+    for (i, seg) in segments.iter().enumerate() {
+        let last = i + 1 == segments.len();
+        node = match node {
+            Value::Object(map) => {
+                if last {
+                    map.insert(seg.clone(), value);
+                    return Ok(());
+                }
+                map.entry(seg.clone()).or_insert_with(|| Value::Object(Map::new()))
+            }
+            Value::Array(items) => {
+                let index: usize = seg.parse().map_err(|_| err(format!("`{seg}` is not an index into a list")))?;
+                let len = items.len();
+                let slot = items
+                    .get_mut(index)
+                    .ok_or_else(|| err(format!("index {index} is past the end of a list of {len}")))?;
+                if last {
+                    *slot = value;
+                    return Ok(());
+                }
+                slot
+            }
+            other => {
+                return Err(err(format!("`{}` is {}, not an object", segments[..i].join("."), kind(other))));
+            }
+        };
+    }
+    Ok(())
+}
+
+fn kind(v: &Value) -> &'static str {
+    match v {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "a list",
+        Value::Object(_) => "an object",
+    }
+}
+
+/// Walks the JSON Schema of [`Scenario`] along `segments`; on a wrong name, lists the near ones.
+fn check_path(segments: &[String]) -> Result<(), String> {
+    let schema = Scenario::json_schema();
+    let defs = schema.get("$defs").cloned().unwrap_or(Value::Null);
+    let mut nodes = vec![schema.clone()];
+    for (i, seg) in segments.iter().enumerate() {
+        let mut next = Vec::new();
+        let mut names = Vec::new();
+        let mut any_key = false;
+        for node in expand(&nodes, &defs) {
+            if let Some(props) = node.get("properties").and_then(Value::as_object) {
+                names.extend(props.keys().cloned());
+                if let Some(s) = props.get(seg) {
+                    next.push(s.clone());
+                }
+            }
+            match node.get("additionalProperties") {
+                Some(Value::Object(s)) => {
+                    any_key = true;
+                    next.push(Value::Object(s.clone()));
+                }
+                Some(Value::Bool(true)) => any_key = true,
+                _ => {}
+            }
+            if let Some(items) = node.get("items").filter(|_| seg.parse::<usize>().is_ok()) {
+                next.push(items.clone());
+            }
+        }
+        if next.is_empty() && !any_key {
+            let at = if i == 0 { "the top level".to_string() } else { format!("`{}`", segments[..i].join(".")) };
+            names.sort();
+            names.dedup();
+            if names.is_empty() {
+                return Err(format!("{at} has no field `{seg}`: it is not an object"));
+            }
+            let mut near: Vec<&String> = names.iter().collect();
+            near.sort_by_key(|n| edit_distance(n, seg));
+            let near: Vec<String> = near.iter().take(4).map(|n| format!("`{n}`")).collect();
+            return Err(format!("{at} has no field `{seg}`; nearest: {}; all: {}", near.join(", "), names.join(", ")));
+        }
+        nodes = next;
+    }
+    Ok(())
+}
+
+/// Resolves `$ref`, `anyOf`, `oneOf` and `allOf` into the plain schema objects they stand for.
+fn expand(nodes: &[Value], defs: &Value) -> Vec<Value> {
+    let mut out = Vec::new();
+    let mut stack: Vec<Value> = nodes.to_vec();
+    let mut guard = 0;
+    while let Some(node) = stack.pop() {
+        guard += 1;
+        if guard > 10_000 {
+            break;
+        }
+        if let Some(r) = node.get("$ref").and_then(Value::as_str) {
+            if let Some(name) = r.strip_prefix("#/$defs/")
+                && let Some(def) = defs.get(name)
+            {
+                stack.push(def.clone());
+            }
+        }
+        for key in ["anyOf", "oneOf", "allOf"] {
+            if let Some(list) = node.get(key).and_then(Value::as_array) {
+                stack.extend(list.iter().cloned());
+            }
+        }
+        out.push(node);
+    }
+    out
+}
+
+/// Levenshtein distance, for suggesting near names.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, cb) in b.iter().enumerate() {
+            cur[j + 1] = (prev[j] + usize::from(ca != *cb)).min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_parse_as_json_or_as_strings() {
+        let (p, v) = parse_set("surface.summit_sd=40 nm").unwrap();
+        assert_eq!(p, vec!["surface", "summit_sd"]);
+        assert_eq!(v, Value::String("40 nm".into()));
+        let (_, v) = parse_set("contact.contacts=3").unwrap();
+        assert_eq!(v, Value::from(3));
+        assert!(parse_set("no-equals").is_err());
+        assert!(parse_set("a..b=1").is_err());
+    }
+
+    #[test]
+    fn edit_distance_is_levenshtein() {
+        assert_eq!(edit_distance("summit_sd", "sumit_sd"), 1);
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+    }
+}

@@ -1,0 +1,326 @@
+//! Scenario sections owned by this crate: material, contact model, meter protocol, measured data.
+
+use std::path::PathBuf;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Deserializer, Serialize};
+use serde_json::Value;
+use stiction_contact::single::AdhesionLaw;
+use stiction_units::{Constraint, Dimension, QuantityInput, nominal_from_json};
+
+/// Material properties of the contacting pair (the paper's Table 1 and section 5).
+///
+/// Give either the composite `compliance` D (eq. 3) or `youngs_modulus` and `poisson_ratio` of two
+/// identical bodies, for which D = (3/4) * 2 (1 - nu^2) / E.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Composite compliance D = (3/4) ((1 - nu1^2)/E1 + (1 - nu2^2)/E2), 1/Pa (Table 1: 9.1e-12 1/Pa).
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_compliance_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub compliance: Option<f64>,
+    /// Young's modulus of both bodies, Pa (used when `compliance` is not given).
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_pressure_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio of both bodies (used with `youngs_modulus`).
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_dimensionless",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub poisson_ratio: Option<f64>,
+    /// Work of adhesion dgamma, J/m^2 (Table 1: 0.1 J/m^2).
+    #[serde(deserialize_with = "stiction_units::de::surface_energy_nonnegative")]
+    #[schemars(with = "QuantityInput")]
+    pub work_of_adhesion: f64,
+    /// Interfacial shear strength s of eq. 1, Pa (the paper's fit: 1.4 GPa).
+    #[serde(deserialize_with = "stiction_units::de::pressure_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub shear_strength: f64,
+    /// Hardness H, Pa, for the elastic limit (section 3.3); default 9 GPa (polysilicon, section 5).
+    #[serde(default = "default_hardness", deserialize_with = "stiction_units::de::pressure_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub hardness: f64,
+    /// Equilibrium spacing z0 of the surface forces, m, for the Tabor and Maugis parameters; default 0.3 nm.
+    #[serde(default = "default_spacing", deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub equilibrium_spacing: f64,
+    /// Relative humidity (recorded; capillary adhesion is not modelled). The paper: 35 %.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_dimensionless_nonnegative",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub relative_humidity: Option<f64>,
+}
+
+fn default_hardness() -> f64 {
+    9e9
+}
+fn default_spacing() -> f64 {
+    0.3e-9
+}
+
+impl MaterialSpec {
+    /// The composite compliance D, 1/Pa (eq. 3).
+    pub fn compliance_per_pa(&self) -> f64 {
+        match (self.compliance, self.youngs_modulus, self.poisson_ratio) {
+            (Some(d), _, _) => d,
+            (None, Some(e), nu) => 0.75 * 2.0 * (1.0 - nu.unwrap_or(0.0).powi(2)) / e,
+            // validate() guarantees one of the two forms.
+            (None, None, _) => f64::NAN,
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), (String, String)> {
+        match (self.compliance, self.youngs_modulus, self.poisson_ratio) {
+            (Some(_), Some(_), _) | (Some(_), _, Some(_)) => Err((
+                "compliance".into(),
+                "give either `compliance` or `youngs_modulus` with `poisson_ratio`, not both".into(),
+            )),
+            (None, None, _) => Err((
+                "compliance".into(),
+                "missing: give `compliance` (like \"9.1e-12 1/Pa\") or `youngs_modulus` with `poisson_ratio`".into(),
+            )),
+            (None, Some(_), None) => Err(("poisson_ratio".into(), "missing: needed with `youngs_modulus`".into())),
+            (None, Some(_), Some(nu)) if !(-1.0..0.5).contains(&nu) => {
+                Err(("poisson_ratio".into(), format!("{nu} is outside the physical range [-1, 0.5)")))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Which contact model turns the load into real area.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContactModel {
+    /// The explicit asperity-by-asperity solver on the generated surface (default).
+    #[default]
+    Explicit,
+    /// Greenwood-Williamson statistics with DMT adhesion (eq. 5, 8).
+    Gw,
+    /// The discrete model with `contacts` equally loaded summits (eq. 12).
+    Discrete,
+}
+
+/// Degrees of freedom of the rigid shoe in the explicit solver.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShoeMode {
+    /// Approach and two tilts free (default).
+    #[default]
+    Tilt,
+    /// Approach only, no tilt (the GW situation).
+    Flat,
+    /// A fixed number of contacts (`contacts`), for comparison with eq. 12.
+    Fixed,
+}
+
+/// Contact law and model.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Single-asperity law: "dmt" (default, as in the paper), "hertz", "jkr", "maugis-dugdale".
+    #[serde(default = "default_law")]
+    pub law: AdhesionLaw,
+    /// "explicit" (default), "gw" or "discrete".
+    #[serde(default)]
+    pub model: ContactModel,
+    /// Shoe degrees of freedom for the explicit model: "tilt" (default), "flat", "fixed".
+    #[serde(default)]
+    pub mode: ShoeMode,
+    /// Number of contacts for the discrete model (1, 2 or 3; the paper uses 3) and for mode "fixed".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contacts: Option<usize>,
+}
+
+fn default_law() -> AdhesionLaw {
+    AdhesionLaw::Dmt
+}
+
+impl Default for ContactSpec {
+    fn default() -> Self {
+        ContactSpec { law: AdhesionLaw::Dmt, model: ContactModel::Explicit, mode: ShoeMode::Tilt, contacts: None }
+    }
+}
+
+impl ContactSpec {
+    pub(crate) fn validate(&self) -> Result<(), (String, String)> {
+        let needs_contacts = self.model == ContactModel::Discrete || self.mode == ShoeMode::Fixed;
+        match self.contacts {
+            None if needs_contacts => Err((
+                "contacts".into(),
+                "missing: the discrete model and mode \"fixed\" need a number of contacts (the paper: 3)".into(),
+            )),
+            Some(0) => Err(("contacts".into(), "0 is not a number of contacts; expected 1, 2 or 3".into())),
+            Some(n) if self.model == ContactModel::Discrete && n > 3 => {
+                Err(("contacts".into(), format!("{n}: the discrete model (eq. 12) takes 1, 2 or 3 contacts")))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Voltages as a list (`["10 V", "20 V"]`) or a ramp (`{"from": "10 V", "to": "40 V", "steps": 7}`).
+#[derive(Debug, Clone, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum VoltageSchedule {
+    /// Explicit voltages, V.
+    List(#[schemars(with = "Vec<QuantityInput>")] Vec<f64>),
+    /// `steps` evenly spaced voltages from `from` to `to` inclusive.
+    Ramp {
+        /// First voltage, V.
+        #[schemars(with = "QuantityInput")]
+        from: f64,
+        /// Last voltage, V.
+        #[schemars(with = "QuantityInput")]
+        to: f64,
+        /// Number of voltages (at least 2).
+        steps: usize,
+    },
+}
+
+impl VoltageSchedule {
+    /// The voltages, V.
+    pub fn voltages(&self) -> Vec<f64> {
+        match self {
+            VoltageSchedule::List(v) => v.clone(),
+            VoltageSchedule::Ramp { from, to, steps } => {
+                (0..*steps).map(|i| from + (to - from) * i as f64 / (*steps - 1).max(1) as f64).collect()
+            }
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for VoltageSchedule {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let v = Value::deserialize(d)?;
+        let volt = |x: &Value, what: &str| {
+            nominal_from_json(x, Dimension::Voltage, Constraint::NonNegative)
+                .map_err(|e| D::Error::custom(format!("{what}: {e}")))
+        };
+        match &v {
+            Value::Array(items) => {
+                if items.is_empty() {
+                    return Err(D::Error::custom(
+                        "an empty list of voltages; expected at least one, like [\"20 V\", \"30 V\"]",
+                    ));
+                }
+                items
+                    .iter()
+                    .enumerate()
+                    .map(|(i, x)| volt(x, &format!("[{i}]")))
+                    .collect::<Result<_, _>>()
+                    .map(VoltageSchedule::List)
+            }
+            Value::Object(map) => {
+                for key in map.keys() {
+                    if !["from", "to", "steps"].contains(&key.as_str()) {
+                        return Err(D::Error::custom(format!(
+                            "unknown field `{key}`, expected one of `from`, `to`, `steps`"
+                        )));
+                    }
+                }
+                let get = |k: &str| {
+                    map.get(k).ok_or_else(|| D::Error::custom(format!("missing field `{k}` of a voltage ramp")))
+                };
+                let from = volt(get("from")?, "from")?;
+                let to = volt(get("to")?, "to")?;
+                let steps = get("steps")?
+                    .as_u64()
+                    .filter(|s| *s >= 2)
+                    .ok_or_else(|| D::Error::custom(format!("steps: {} is not a whole number >= 2", map["steps"])))?;
+                Ok(VoltageSchedule::Ramp { from, to, steps: steps as usize })
+            }
+            other => Err(D::Error::custom(format!(
+                "{other}: expected a list of voltages or a ramp {{\"from\", \"to\", \"steps\"}}"
+            ))),
+        }
+    }
+}
+
+/// When the shoe slips.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema, PartialEq, Default)]
+#[serde(rename_all = "kebab-case", tag = "kind", deny_unknown_fields)]
+pub enum SlipCriterion {
+    /// F_pull >= s * A_r (eq. 1), the default.
+    #[default]
+    ShearArea,
+    /// F_pull >= (s / H) * L_total: the plastic limit of section 1.2 / 3.3.
+    Plastic,
+    /// F_pull >= sum over contacts of (s0 + alpha * p_mean,i) * A_i: a pressure-dependent shear strength.
+    PressureDependent {
+        /// The pressure coefficient alpha (dimensionless).
+        #[serde(deserialize_with = "stiction_units::de::dimensionless_nonnegative")]
+        #[schemars(with = "QuantityInput")]
+        alpha: f64,
+    },
+}
+
+/// The friction meter: protocol and the parts of the device not in the actuator arrays.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MeterSpec {
+    /// F_spring: suspension plus pull connection beam times the initial gap, N (paper: 7 +/- 2 uN).
+    /// When absent it is computed from the clamp array's spring and travel.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_force_nonnegative",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub spring_force: Option<f64>,
+    /// Clamp voltages to measure at.
+    pub clamp_voltages: VoltageSchedule,
+    /// Step of the pull-voltage ramp, V (default 0.05 V).
+    #[serde(default = "default_pull_step", deserialize_with = "stiction_units::de::voltage_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub pull_voltage_step: f64,
+    /// Highest pull voltage tried before giving up on slip, V (default 200 V).
+    #[serde(default = "default_pull_max", deserialize_with = "stiction_units::de::voltage_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub pull_voltage_max: f64,
+    /// Slip criterion (default shear strength times real area).
+    #[serde(default)]
+    pub slip: SlipCriterion,
+}
+
+fn default_pull_step() -> f64 {
+    0.05
+}
+fn default_pull_max() -> f64 {
+    200.0
+}
+
+impl MeterSpec {
+    pub(crate) fn validate(&self) -> Result<(), (String, String)> {
+        if self.pull_voltage_step >= self.pull_voltage_max {
+            return Err((
+                "pull_voltage_step".into(),
+                format!("{} V is not below pull_voltage_max = {} V", self.pull_voltage_step, self.pull_voltage_max),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Measured (V_clamp, V_pull) data to compare with: a CSV with columns `v_clamp_v,v_pull_v`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MeasuredSpec {
+    /// The CSV file, relative to the scenario file.
+    pub voltages_csv: PathBuf,
+}
