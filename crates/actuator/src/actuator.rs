@@ -205,8 +205,21 @@ impl GapClosingActuator {
         if self.bending.is_none() {
             return (spring / self.plates.force_per_volt2(travel_m)).sqrt();
         }
-        let rigid = (spring / self.plates.force_per_volt2(travel_m)).sqrt();
-        let mut hi = 1.5 * rigid + 1e-12;
+        // F_e is close to V^2 f(x): fixed point V <- V sqrt(k x / F_e(x, V)) converges in a few
+        // steps while bending is a small correction; bisection is the fallback.
+        let mut v = (spring / self.plates.force_per_volt2(travel_m)).sqrt();
+        for _ in 0..60 {
+            let f = self.electrostatic_force_n(travel_m, v);
+            if !f.is_finite() || f <= 0.0 {
+                break;
+            }
+            let next = v * (spring / f).sqrt();
+            if (next - v).abs() <= 1e-14 * v {
+                return next;
+            }
+            v = next;
+        }
+        let mut hi = v.max(1e-12);
         while self.electrostatic_force_n(travel_m, hi) < spring {
             hi *= 2.0;
         }
@@ -241,22 +254,31 @@ impl GapClosingActuator {
                 None => Err(ActuatorError::Solver("no pull-in found before the gap closes".into())),
             };
         }
-        // Generic path: maximise V_eq(x) on [0, limit].
+        // Generic path: maximise V_eq(x), bracketed around the rigid-plate pull-in travel.
+        let rigid = Self { bending: None, ..*self }.pull_in()?;
         let v = |x: f64| self.equilibrium_voltage_v(x);
-        let mut best = (0usize, 0.0);
-        for i in 1..=SCAN {
-            let vi = v(limit * i as f64 / SCAN as f64);
+        let (lo, hi) = (0.5 * rigid.travel_m, (1.5 * rigid.travel_m).min(limit));
+        const NB: usize = 24;
+        let at = |i: usize| lo + (hi - lo) * i as f64 / NB as f64;
+        let mut best = (0usize, f64::NEG_INFINITY);
+        for i in 0..=NB {
+            let vi = v(at(i));
             if vi.is_finite() && vi > best.1 {
                 best = (i, vi);
             }
         }
-        if best.0 == SCAN {
+        if best.0 == NB && hi >= limit {
             if let Some(s) = self.stop_travel_m {
                 return Ok(PullIn { travel_m: s, voltage_v: best.1, limited_by_stop: true });
             }
         }
-        let mut a = limit * (best.0.saturating_sub(1)) as f64 / SCAN as f64;
-        let mut b = limit * ((best.0 + 1).min(SCAN)) as f64 / SCAN as f64;
+        if best.0 == 0 {
+            return Err(ActuatorError::Solver(
+                "finger bending moved the pull-in travel below half the rigid value".into(),
+            ));
+        }
+        let mut a = at(best.0 - 1);
+        let mut b = at((best.0 + 1).min(NB));
         let r = 0.5 * (5f64.sqrt() - 1.0);
         for _ in 0..100 {
             let c = b - r * (b - a);
@@ -266,7 +288,7 @@ impl GapClosingActuator {
             } else {
                 a = c;
             }
-            if b - a < 1e-14 * limit {
+            if b - a < 1e-12 * limit {
                 break;
             }
         }

@@ -12,13 +12,20 @@ pub mod actuator;
 pub mod bending;
 pub mod conversion;
 pub mod error;
+pub mod meter;
 pub mod plates;
 pub mod spec;
 pub mod spring;
+pub mod validate;
 
 pub use actuator::{Equilibrium, GapClosingActuator, Hysteresis, PullIn, Sweep, SweepPoint};
 pub use bending::FingerBending;
 pub use error::ActuatorError;
+pub use meter::{ClampForce, SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
 pub use plates::{BackElectrode, BackPotential, Fringing, PlateArray, VACUUM_PERMITTIVITY};
 pub use spec::{ArraySpec, BeamsSpec, FingerBendingSpec, SpringSpec, StopSpec};
 pub use spring::{BeamKind, BeamSuspension, Suspension};
+pub use validate::{
+    MeasuredPoint, SwitchEffect, ValidationPoint, ValidationReport, fit_stop_contact_standoff, parse_measurements,
+    read_measurements, switch_effects, validate,
+};

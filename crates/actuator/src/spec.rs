@@ -266,7 +266,9 @@ impl ArraySpec {
                 ));
             }
             (None, None) => {
-                return Err(ActuatorError::Inconsistent("one of `front_gap` or `conversion_factor` is required".into()));
+                return Err(ActuatorError::Inconsistent(
+                    "one of `front_gap` or `conversion_factor` is required".into(),
+                ));
             }
         };
         if self.operating_travel >= plates.front_gap_m {
