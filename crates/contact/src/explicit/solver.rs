@@ -1,0 +1,951 @@
+//! The explicit solver: active-set Newton on the shoe's potential energy.
+
+use nalgebra::Matrix3;
+use stiction_surface::{Radii, Surface};
+
+use super::laws::{HertzDmt, JkrPerSummit, LawEval, Resp, Uniform};
+use super::types::*;
+use crate::single::{AdhesionLaw, AsperityParams, Branch, SummitModel};
+
+/// Summits sorted by descending height plus the rigid-body basis of the shoe.
+struct Geom {
+    xs: Vec<f32>,
+    ys: Vec<f32>,
+    hs: Vec<f64>,
+    radii: Radii,
+    /// Surface index of each sorted summit (None: the surface was already sorted).
+    original: Option<Vec<u32>>,
+    length: f64,
+    width: f64,
+    /// Basis functions phi_j(x, y) = b\[j\]\[0\] + b\[j\]\[1\] x + b\[j\]\[2\] y of the plane
+    /// w = sum_j q_j phi_j; unused rows are zero.
+    basis: [[f64; 3]; 3],
+    ndof: usize,
+    load_point: (f64, f64),
+    /// FixedContacts: number of supports (the first `n` sorted summits).
+    support: Option<usize>,
+}
+
+impl Geom {
+    #[inline(always)]
+    fn plane(&self, q: &[f64; 3]) -> (f64, f64, f64) {
+        let mut p = (0.0, 0.0, 0.0);
+        for (qj, b) in q.iter().zip(&self.basis) {
+            p.0 += qj * b[0];
+            p.1 += qj * b[1];
+            p.2 += qj * b[2];
+        }
+        p
+    }
+    fn phi_at(&self, x: f64, y: f64) -> [f64; 3] {
+        let b = &self.basis;
+        [b[0][0] + b[0][1] * x + b[0][2] * y, b[1][0] + b[1][1] * x + b[1][2] * y, b[2][0] + b[2][1] * x + b[2][2] * y]
+    }
+    /// Largest |change of the plane height| over the apparent area for a step `dq`.
+    fn movement(&self, dq: &[f64; 3]) -> f64 {
+        let (a, b, c) = self.plane(dq);
+        let mut m: f64 = 0.0;
+        for (x, y) in [(0.0, 0.0), (self.length, 0.0), (0.0, self.width), (self.length, self.width)] {
+            m = m.max((a + b * x + c * y).abs());
+        }
+        m
+    }
+    fn original_index(&self, i: usize) -> u32 {
+        match &self.original {
+            Some(o) => o[i],
+            None => i as u32,
+        }
+    }
+    fn radius(&self, i: usize) -> f64 {
+        match &self.radii {
+            Radii::Uniform(r) => *r,
+            Radii::PerSummit(v) => v[i],
+        }
+    }
+}
+
+/// Contact set and pose; cloned to back up during pull-off searches.
+#[derive(Clone, Debug)]
+struct State {
+    q: [f64; 3],
+    /// Bit set of the sorted summits in contact.
+    member: Vec<u64>,
+    /// All members have sorted index < bound.
+    bound: usize,
+    members: usize,
+    /// Trust radius: largest plane movement per step, m.
+    tau: f64,
+}
+
+impl State {
+    #[inline(always)]
+    fn is_member(&self, i: usize) -> bool {
+        (self.member[i >> 6] >> (i & 63)) & 1 == 1
+    }
+    fn set(&mut self, i: usize) {
+        if !self.is_member(i) {
+            self.member[i >> 6] |= 1 << (i & 63);
+            self.members += 1;
+            self.bound = self.bound.max(i + 1);
+        }
+    }
+    fn clear(&mut self, i: usize) {
+        if self.is_member(i) {
+            self.member[i >> 6] &= !(1 << (i & 63));
+            self.members -= 1;
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default)]
+struct Eval {
+    g: [f64; 3],
+    h: [[f64; 3]; 3],
+    force: f64,
+    force_abs: f64,
+    releases: usize,
+    contacts: usize,
+}
+
+enum LawImpl {
+    HertzDmt { inv_d: f64, two_pi_dgamma: f64 },
+    Uniform(Box<Uniform>),
+    JkrPerSummit,
+}
+
+/// The explicit asperity-by-asperity contact solver: a rigid flat shoe on a rough surface.
+///
+/// See the [module documentation](super) for the method. Holds the summits sorted by descending
+/// height (its search structure) and the current contact state, so successive calls of
+/// [`ExplicitSolver::solve`] follow the load path (hysteresis, jump-in, pull-off).
+pub struct ExplicitSolver {
+    geom: Geom,
+    law: AdhesionLaw,
+    params: AsperityParams,
+    imp: LawImpl,
+    config: SolverConfig,
+    state: State,
+    scratch: Vec<u32>,
+    /// One mean summit's adhesive pull-off (scale), N.
+    adhesion_ref: f64,
+    height_range: f64,
+}
+
+fn invalid(field: &'static str, value: impl ToString, expected: impl ToString) -> SolveError {
+    SolveError::InvalidInput { field, value: value.to_string(), expected: expected.to_string() }
+}
+
+impl ExplicitSolver {
+    /// Builds a solver for `surface` with the single-asperity `law` and the interface `params`
+    /// (compliance D, work of adhesion, equilibrium spacing; `params.radius_m` is not used: every
+    /// summit has its own radius from the surface).
+    ///
+    /// Takes the surface by value and reorders it by descending height in place (no copy; the
+    /// result's indices refer to the surface as given). Memory: 16 B per summit (uniform radius)
+    /// or 24 B (per-summit radii), plus 4 B for the index map when the surface was not already
+    /// sorted (generated surfaces are), plus 1 bit for the contact set.
+    ///
+    /// Errors: invalid parameters or configuration; Maugis-Dugdale with per-summit radii
+    /// (not supported yet).
+    pub fn new(
+        mut surface: Surface,
+        law: AdhesionLaw,
+        params: AsperityParams,
+        config: SolverConfig,
+    ) -> Result<Self, SolveError> {
+        let mean_r = surface.stats().radius_mean_m;
+        let check = AsperityParams { radius_m: if mean_r.is_finite() { mean_r } else { 1.0 }, ..params };
+        check.validate().map_err(|e| invalid("params", format!("{params:?}"), e.to_string()))?;
+        if !(config.shear_strength_pa.is_finite() && config.shear_strength_pa >= 0.0) {
+            return Err(invalid("shear_strength_pa", config.shear_strength_pa, "a finite value >= 0 Pa"));
+        }
+        if let Some(h) = config.hardness_pa
+            && !(h.is_finite() && h > 0.0)
+        {
+            return Err(invalid("hardness_pa", h, "a finite value > 0 Pa"));
+        }
+        if !(config.relative_tolerance > 0.0 && config.relative_tolerance <= 1e-3) {
+            return Err(invalid("relative_tolerance", config.relative_tolerance, "a value in (0, 1e-3]"));
+        }
+        if surface.is_empty() {
+            return Err(invalid("surface", "0 summits", "at least one summit"));
+        }
+        let original =
+            if surface.is_sorted_by_height_descending() { None } else { Some(surface.sort_by_height_descending()) };
+        let (length, width, xs, ys, hs, radii) = surface.into_parts();
+        let ell = 0.5 * length.hypot(width);
+        let n = hs.len();
+        let (load_point, basis, ndof, support) = match config.mode {
+            ShoeMode::TiltFree | ShoeMode::Flat => {
+                let lp = config.load_point_m.unwrap_or((0.5 * length, 0.5 * width));
+                if !(lp.0.is_finite() && lp.1.is_finite()) {
+                    return Err(invalid("load_point_m", format!("{lp:?}"), "finite coordinates in m"));
+                }
+                if config.mode == ShoeMode::Flat {
+                    (lp, [[1.0, 0.0, 0.0], [0.0; 3], [0.0; 3]], 1, None)
+                } else {
+                    (lp, tilt_basis(lp, ell), 3, None)
+                }
+            }
+            ShoeMode::FixedContacts { count } => {
+                if count == 0 || count > n {
+                    return Err(invalid("contacts", count, format!("1 ..= {n} (the number of summits)")));
+                }
+                let pts: Vec<(f64, f64)> = (0..count).map(|i| (f64::from(xs[i]), f64::from(ys[i]))).collect();
+                let c = pts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0 / count as f64, a.1 + p.1 / count as f64));
+                match count {
+                    1 => (c, [[1.0, 0.0, 0.0], [0.0; 3], [0.0; 3]], 1, Some(1)),
+                    2 => {
+                        let (dx, dy) = (pts[1].0 - pts[0].0, pts[1].1 - pts[0].1);
+                        let len = dx.hypot(dy);
+                        if len == 0.0 {
+                            (c, [[1.0, 0.0, 0.0], [0.0; 3], [0.0; 3]], 1, Some(2))
+                        } else {
+                            let (ex, ey) = (dx / len / ell, dy / len / ell);
+                            (c, [[1.0, 0.0, 0.0], [-(ex * c.0 + ey * c.1), ex, ey], [0.0; 3]], 2, Some(2))
+                        }
+                    }
+                    _ => (c, tilt_basis(c, ell), 3, Some(count)),
+                }
+            }
+        };
+        let imp = match (law, &radii) {
+            (_, _)
+                if params.work_of_adhesion_j_per_m2 == 0.0 || matches!(law, AdhesionLaw::Hertz | AdhesionLaw::Dmt) =>
+            {
+                let dg = if law == AdhesionLaw::Hertz { 0.0 } else { params.work_of_adhesion_j_per_m2 };
+                LawImpl::HertzDmt {
+                    inv_d: 1.0 / params.compliance_per_pa,
+                    two_pi_dgamma: 2.0 * std::f64::consts::PI * dg,
+                }
+            }
+            (_, Radii::Uniform(r)) => {
+                let model = SummitModel::new(law, AsperityParams { radius_m: *r, ..params })
+                    .map_err(|e| invalid("params", format!("{params:?}"), e.to_string()))?;
+                LawImpl::Uniform(Box::new(Uniform::new(model)))
+            }
+            (AdhesionLaw::Jkr, Radii::PerSummit(_)) => LawImpl::JkrPerSummit,
+            _ => {
+                return Err(SolveError::Unsupported(
+                    "Maugis-Dugdale with per-summit radii (use one radius, or JKR/DMT)".into(),
+                ));
+            }
+        };
+        let adhesion_ref = 2.0 * std::f64::consts::PI * params.work_of_adhesion_j_per_m2 * check.radius_m;
+        let height_range = (hs[0] - hs[n - 1]).max(1e-12);
+        let geom = Geom { xs, ys, hs, radii, original, length, width, basis, ndof, load_point, support };
+        let state = State { q: [0.0; 3], member: vec![0; n.div_ceil(64)], bound: 0, members: 0, tau: 0.0 };
+        let mut s = Self { geom, law, params, imp, config, state, scratch: Vec::new(), adhesion_ref, height_range };
+        s.reset();
+        Ok(s)
+    }
+
+    /// Returns to the initial state: no load history, the shoe flat and just touching the highest
+    /// summit (for `FixedContacts`: its lowest support), so the next solve is an approach.
+    pub fn reset(&mut self) {
+        let n = self.geom.hs.len();
+        self.state.member.iter_mut().for_each(|w| *w = 0);
+        self.state.members = 0;
+        self.state.bound = 0;
+        let z_in0 = self.with_law(|_, law| law.z_in(0));
+        let top = match self.geom.support {
+            Some(k) => {
+                for i in 0..k {
+                    self.state.set(i);
+                }
+                self.geom.hs[k - 1]
+            }
+            None => self.geom.hs[0] - z_in0,
+        };
+        // q with the plane flat at `top`: only the constant basis function has a constant term.
+        self.state.q = [top, 0.0, 0.0];
+        let _ = n;
+        self.state.tau = self.initial_tau(0.0);
+    }
+
+    fn initial_tau(&self, load: f64) -> f64 {
+        // Interference at which one mean summit would carry max(|L|, its adhesion) (Hertz, eq. 3b).
+        let r = self.geom.radius(0);
+        let f = load.abs().max(self.adhesion_ref).max(1e-15);
+        (f * self.params.compliance_per_pa / r.sqrt()).powf(2.0 / 3.0).max(1e-9 * self.height_range)
+    }
+
+    /// Number of summits.
+    pub fn len(&self) -> usize {
+        self.geom.hs.len()
+    }
+
+    /// True if the solver holds no summit (never: construction requires one).
+    pub fn is_empty(&self) -> bool {
+        self.geom.hs.is_empty()
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &SolverConfig {
+        &self.config
+    }
+
+    /// Changes the shear strength used for the friction capacity \[Pa\].
+    pub fn set_shear_strength(&mut self, shear_strength_pa: f64) -> Result<(), SolveError> {
+        if !(shear_strength_pa.is_finite() && shear_strength_pa >= 0.0) {
+            return Err(invalid("shear_strength_pa", shear_strength_pa, "a finite value >= 0 Pa"));
+        }
+        self.config.shear_strength_pa = shear_strength_pa;
+        Ok(())
+    }
+
+    /// Changes the per-summit detail of results.
+    pub fn set_detail(&mut self, detail: Detail) {
+        self.config.detail = detail;
+    }
+
+    /// Heap bytes per summit held by the solver: summit arrays, index map and contact bit set.
+    pub fn bytes_per_summit(&self) -> f64 {
+        let g = &self.geom;
+        let mut b = g.xs.capacity() * 4 + g.ys.capacity() * 4 + g.hs.capacity() * 8 + self.state.member.capacity() * 8;
+        if let Radii::PerSummit(r) = &g.radii {
+            b += r.capacity() * 8;
+        }
+        if let Some(o) = &g.original {
+            b += o.capacity() * 4;
+        }
+        b as f64 / g.hs.len() as f64
+    }
+
+    fn with_law<R>(&self, f: impl FnOnce(&Geom, &dyn LawEval) -> R) -> R {
+        match &self.imp {
+            LawImpl::HertzDmt { inv_d, two_pi_dgamma } => {
+                f(&self.geom, &HertzDmt { inv_d: *inv_d, two_pi_dgamma: *two_pi_dgamma, radii: &self.geom.radii })
+            }
+            LawImpl::Uniform(u) => f(&self.geom, u.as_ref()),
+            LawImpl::JkrPerSummit => match &self.geom.radii {
+                Radii::PerSummit(r) => f(&self.geom, &JkrPerSummit::new(self.params, r)),
+                Radii::Uniform(_) => unreachable!("JkrPerSummit is only built for per-summit radii"),
+            },
+        }
+    }
+
+    /// Solves for the equilibrium under the normal load `load_n` \[N\] (compressive positive),
+    /// starting from the current state: successive calls follow a quasi-static load path.
+    ///
+    /// Errors: [`SolveError::NoEquilibrium`] when the shoe comes off (load below the pull-off of
+    /// the current contact) or tips over, [`SolveError::ContactLost`] in `FixedContacts` mode,
+    /// [`SolveError::NotConverged`]. On error the state is restored to what it was before.
+    pub fn solve(&mut self, load_n: f64) -> Result<Equilibrium, SolveError> {
+        if !load_n.is_finite() {
+            return Err(invalid("load_n", load_n, "a finite load in N"));
+        }
+        let backup = self.state.clone();
+        let res = match &self.imp {
+            LawImpl::HertzDmt { inv_d, two_pi_dgamma } => {
+                let law = HertzDmt { inv_d: *inv_d, two_pi_dgamma: *two_pi_dgamma, radii: &self.geom.radii };
+                equilibrate(
+                    &self.geom,
+                    &law,
+                    &mut self.state,
+                    &mut self.scratch,
+                    load_n,
+                    &self.config,
+                    self.adhesion_ref,
+                    self.height_range,
+                )
+            }
+            LawImpl::Uniform(u) => equilibrate(
+                &self.geom,
+                u.as_ref(),
+                &mut self.state,
+                &mut self.scratch,
+                load_n,
+                &self.config,
+                self.adhesion_ref,
+                self.height_range,
+            ),
+            LawImpl::JkrPerSummit => {
+                let Radii::PerSummit(r) = &self.geom.radii else { unreachable!() };
+                let law = JkrPerSummit::new(self.params, r);
+                equilibrate(
+                    &self.geom,
+                    &law,
+                    &mut self.state,
+                    &mut self.scratch,
+                    load_n,
+                    &self.config,
+                    self.adhesion_ref,
+                    self.height_range,
+                )
+            }
+        };
+        match res {
+            Ok(iterations) => Ok(self.report(load_n, iterations)),
+            Err(e) => {
+                self.state = backup;
+                Err(e)
+            }
+        }
+    }
+
+    /// Solves a sequence of loads in order, each from the previous equilibrium.
+    ///
+    /// `direction` states the intent (`Loading`: loads must not decrease; `Unloading`: must not
+    /// increase); each summit follows its own hysteresis (JKR/MD) whatever the direction. Contact
+    /// changes are reported as [`SweepEvent::JumpIn`] / [`SweepEvent::Release`]; when the shoe comes
+    /// off, a [`SweepEvent::PullOff`] ends the sweep (the remaining loads are not solved).
+    pub fn sweep(&mut self, loads_n: &[f64], direction: Branch) -> Result<Sweep, SolveError> {
+        for w in loads_n.windows(2) {
+            let ok = match direction {
+                Branch::Loading => w[1] >= w[0],
+                Branch::Unloading => w[1] <= w[0],
+            };
+            if !ok {
+                return Err(invalid(
+                    "loads_n",
+                    format!("{} then {}", w[0], w[1]),
+                    format!(
+                        "{} loads for a {direction:?} sweep",
+                        if direction == Branch::Loading { "non-decreasing" } else { "non-increasing" }
+                    ),
+                ));
+            }
+        }
+        let mut points: Vec<Equilibrium> = Vec::with_capacity(loads_n.len());
+        let mut events = Vec::new();
+        let mut before = self.state.members;
+        for &l in loads_n {
+            match self.solve(l) {
+                Ok(eq) => {
+                    let after = eq.contacts;
+                    let point = points.len();
+                    if after > before {
+                        events.push(SweepEvent::JumpIn {
+                            point,
+                            load_n: l,
+                            contacts_before: before,
+                            contacts_after: after,
+                        });
+                    } else if after < before {
+                        events.push(SweepEvent::Release {
+                            point,
+                            load_n: l,
+                            contacts_before: before,
+                            contacts_after: after,
+                        });
+                    }
+                    before = after;
+                    points.push(eq);
+                }
+                Err(SolveError::NoEquilibrium { .. }) if direction == Branch::Unloading => {
+                    let last = points.last().map_or(f64::NAN, |p| p.load_n);
+                    events.push(SweepEvent::PullOff { load_n: l, last_stable_load_n: last });
+                    break;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(Sweep { points, events })
+    }
+
+    /// Unloads from the current equilibrium until the shoe comes off and returns the last
+    /// equilibrium: its load is the pull-off load of this contact history, found by bisection to
+    /// `relative_tolerance_load` of the adhesion scale (the state is left at that equilibrium).
+    /// The current state must be an equilibrium at `from_load_n` (call [`Self::solve`] first).
+    pub fn pull_off(&mut self, from_load_n: f64, relative_tolerance_load: f64) -> Result<Equilibrium, SolveError> {
+        let mut hi_eq = self.solve(from_load_n)?;
+        let scale = self.adhesion_ref.max(1e-3 * from_load_n.abs()).max(1e-15);
+        let mut step = scale;
+        // Bracket: walk down until no equilibrium.
+        let mut lo;
+        loop {
+            let trial = hi_eq.load_n - step;
+            match self.solve(trial) {
+                Ok(eq) => {
+                    hi_eq = eq;
+                    step *= 2.0;
+                }
+                Err(SolveError::NoEquilibrium { .. }) => {
+                    lo = trial;
+                    break;
+                }
+                Err(e) => return Err(e),
+            }
+            if step > 1e6 * scale * (self.len() as f64) {
+                return Err(SolveError::NoEquilibrium {
+                    load_n: trial,
+                    reason: "no pull-off found: contact never breaks".into(),
+                });
+            }
+        }
+        while hi_eq.load_n - lo > relative_tolerance_load * scale {
+            let mid = 0.5 * (lo + hi_eq.load_n);
+            match self.solve(mid) {
+                Ok(eq) => hi_eq = eq,
+                Err(SolveError::NoEquilibrium { .. }) => lo = mid,
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(hi_eq)
+    }
+
+    /// The loading curve the paper's experiments follow: from the initial state the shoe is
+    /// brought into contact at zero load, unloaded to its pull-off ([`Self::pull_off`]), then loaded
+    /// in `points` equal steps from the pull-off load to `max_load_n`.
+    pub fn loading_curve(&mut self, max_load_n: f64, points: usize) -> Result<Sweep, SolveError> {
+        if points < 2 {
+            return Err(invalid("points", points, "at least 2"));
+        }
+        self.reset();
+        let po = self.pull_off(0.0, 1e-6)?;
+        let l0 = po.load_n;
+        if max_load_n <= l0 {
+            return Err(invalid("max_load_n", max_load_n, format!("a load above the pull-off load {l0:e} N")));
+        }
+        let loads: Vec<f64> = (0..points).map(|k| l0 + (max_load_n - l0) * k as f64 / (points - 1) as f64).collect();
+        self.sweep(&loads, Branch::Loading)
+    }
+
+    /// Contact state for a prescribed pose, without equilibrium: every summit with interference
+    /// `z >= z_in` (the approach rule; Hertz/DMT: z > 0 counts, z = 0 carries no area) is in
+    /// contact. `load_n` of the result is the total contact force sum P_i (the load this pose
+    /// needs), the force residual is 0. Used to compare with GW's integrals at fixed separation.
+    pub fn evaluate_pose(&mut self, separation_m: f64, tilt_x_rad: f64, tilt_y_rad: f64) -> Equilibrium {
+        let saved = self.state.clone();
+        self.state.member.iter_mut().for_each(|w| *w = 0);
+        self.state.members = 0;
+        self.state.bound = 0;
+        // Pose -> q: solve the basis for the plane (A, B, C) with w(x0, y0) = separation.
+        let (x0, y0) = self.geom.load_point;
+        let a = separation_m - tilt_x_rad * x0 - tilt_y_rad * y0;
+        self.state.q = self.q_from_plane(a, tilt_x_rad, tilt_y_rad);
+        let mut touch = std::mem::take(&mut self.scratch);
+        self.with_law(|g, law| {
+            let _ = evaluate(g, law, &State { ..self.state.clone() }, &self.state.q, 0.0, true, &mut touch);
+        });
+        for &i in &touch {
+            self.state.set(i as usize);
+        }
+        self.scratch = touch;
+        let mut eq = self.report(0.0, 0);
+        eq.load_n -= eq.force_residual_n;
+        eq.force_residual_n = 0.0;
+        self.state = saved;
+        eq
+    }
+
+    fn q_from_plane(&self, a: f64, b: f64, c: f64) -> [f64; 3] {
+        // Least squares is not needed: the bases are invertible on their span.
+        let g = &self.geom;
+        match g.ndof {
+            1 => [a + b * g.load_point.0 + c * g.load_point.1, 0.0, 0.0],
+            _ => {
+                // Solve M q = (a, b, c) for the used columns (tilt basis: exact).
+                let m = Matrix3::new(
+                    g.basis[0][0],
+                    g.basis[1][0],
+                    g.basis[2][0],
+                    g.basis[0][1],
+                    g.basis[1][1],
+                    g.basis[2][1],
+                    g.basis[0][2],
+                    g.basis[1][2],
+                    g.basis[2][2],
+                );
+                let sol = m.pseudo_inverse(1e-30).map(|p| p * nalgebra::Vector3::new(a, b, c));
+                match sol {
+                    Ok(v) => [v[0], v[1], v[2]],
+                    Err(_) => [a, 0.0, 0.0],
+                }
+            }
+        }
+    }
+
+    /// Builds the result for the current state (members are the contacts).
+    fn report(&self, load_n: f64, iterations: usize) -> Equilibrium {
+        let q = self.state.q;
+        let g = &self.geom;
+        let (a, b, c) = g.plane(&q);
+        let (x0, y0) = g.load_point;
+        let detail = self.config.detail;
+        let hardness = self.config.hardness_pa;
+        let mut e = Equilibrium {
+            load_n,
+            separation_m: a + b * x0 + c * y0,
+            tilt_x_rad: b,
+            tilt_y_rad: c,
+            load_point_x_m: x0,
+            load_point_y_m: y0,
+            contacts: self.state.members,
+            contact_indices: Vec::new(),
+            real_area_m2: 0.0,
+            elastic_load_n: 0.0,
+            adhesive_load_n: 0.0,
+            friction_capacity_n: 0.0,
+            max_pressure_pa: 0.0,
+            summits_over_elastic_limit: 0,
+            force_residual_n: load_n,
+            moment_residual_x_n_m: 0.0,
+            moment_residual_y_n_m: 0.0,
+            iterations,
+            summits: Vec::new(),
+        };
+        let mut total = 0.0;
+        self.with_law(|g, law| {
+            for i in 0..self.state.bound {
+                if !self.state.is_member(i) {
+                    continue;
+                }
+                let (x, y) = (f64::from(g.xs[i]), f64::from(g.ys[i]));
+                let z = g.hs[i] - (a + b * x + c * y);
+                let r: Resp = law.contact(i, z);
+                total += r.load_n;
+                e.real_area_m2 += std::f64::consts::PI * r.radius * r.radius;
+                e.elastic_load_n += r.elastic_n;
+                e.moment_residual_x_n_m += r.load_n * (x - x0);
+                e.moment_residual_y_n_m += r.load_n * (y - y0);
+                e.max_pressure_pa = e.max_pressure_pa.max(r.q0);
+                let over = hardness.is_some_and(|h| r.q0 > h);
+                e.summits_over_elastic_limit += usize::from(over);
+                if detail != Detail::Summary {
+                    e.contact_indices.push(g.original_index(i));
+                }
+                if detail == Detail::Full {
+                    e.summits.push(SummitContact {
+                        index: g.original_index(i),
+                        x_m: x,
+                        y_m: y,
+                        height_m: g.hs[i],
+                        radius_m: g.radius(i),
+                        interference_m: z,
+                        load_n: r.load_n,
+                        contact_radius_m: r.radius,
+                        max_pressure_pa: r.q0,
+                        over_elastic_limit: over,
+                    });
+                }
+            }
+        });
+        e.contact_indices.sort_unstable();
+        e.summits.sort_unstable_by_key(|s| s.index);
+        e.force_residual_n = load_n - total;
+        e.adhesive_load_n = e.elastic_load_n - total;
+        e.friction_capacity_n = self.config.shear_strength_pa * e.real_area_m2;
+        e
+    }
+
+    /// The single-asperity law in use.
+    pub fn law(&self) -> AdhesionLaw {
+        self.law
+    }
+}
+
+fn tilt_basis(lp: (f64, f64), ell: f64) -> [[f64; 3]; 3] {
+    [[1.0, 0.0, 0.0], [-lp.0 / ell, 1.0 / ell, 0.0], [-lp.1 / ell, 0.0, 1.0 / ell]]
+}
+
+/// One pass over the summits that can touch the shoe at pose `q`: gradient and Hessian of the
+/// potential energy restricted to the members plus the summits touching at `q` (collected in
+/// `touch`), and the members below their release interference.
+#[inline(never)]
+fn evaluate<L: LawEval + ?Sized>(
+    g: &Geom,
+    law: &L,
+    st: &State,
+    q: &[f64; 3],
+    load: f64,
+    allow_touch: bool,
+    touch: &mut Vec<u32>,
+) -> Eval {
+    touch.clear();
+    let (a, b, c) = g.plane(q);
+    let phi0 = g.phi_at(g.load_point.0, g.load_point.1);
+    let mut ev = Eval { g: [load * phi0[0], load * phi0[1], load * phi0[2]], ..Default::default() };
+    let end = match g.support {
+        Some(k) => k,
+        None => {
+            // Lowest point of the plane over the apparent area, minus the longest reach of the law.
+            let wmin = a + (b * g.length).min(0.0) + (c * g.width).min(0.0);
+            let thr = wmin + law.z_min();
+            g.hs.partition_point(|&h| h >= thr).max(st.bound)
+        }
+    };
+    let bs = &g.basis;
+    let (mut h00, mut h01, mut h02, mut h11, mut h12, mut h22) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    let (mut g0, mut g1, mut g2) = (0.0, 0.0, 0.0);
+    for i in 0..end {
+        let (x, y) = (f64::from(g.xs[i]), f64::from(g.ys[i]));
+        let z = g.hs[i] - (a + b * x + c * y);
+        let member = st.is_member(i);
+        let (p, k) = if member {
+            if z < law.z_rel(i) {
+                ev.releases += 1;
+                (law.p_rel(i), 0.0)
+            } else {
+                let r = law.contact(i, z);
+                (r.load_n, r.stiffness)
+            }
+        } else if allow_touch && z >= law.z_in(i) && (z > 0.0 || law.z_in(i) < 0.0 || law.p_rel(i) != 0.0) {
+            touch.push(i as u32);
+            let r = law.contact(i, z);
+            (r.load_n, r.stiffness)
+        } else {
+            continue;
+        };
+        ev.contacts += 1;
+        ev.force += p;
+        ev.force_abs += p.abs();
+        let f0 = bs[0][0] + bs[0][1] * x + bs[0][2] * y;
+        let f1 = bs[1][0] + bs[1][1] * x + bs[1][2] * y;
+        let f2 = bs[2][0] + bs[2][1] * x + bs[2][2] * y;
+        g0 += p * f0;
+        g1 += p * f1;
+        g2 += p * f2;
+        h00 += k * f0 * f0;
+        h01 += k * f0 * f1;
+        h02 += k * f0 * f2;
+        h11 += k * f1 * f1;
+        h12 += k * f1 * f2;
+        h22 += k * f2 * f2;
+    }
+    ev.g[0] -= g0;
+    ev.g[1] -= g1;
+    ev.g[2] -= g2;
+    ev.h = [[h00, h01, h02], [h01, h11, h12], [h02, h12, h22]];
+    ev
+}
+
+/// Newton direction on the used degrees of freedom; directions of zero stiffness in which the
+/// energy still decreases get a long descent component (capped later by the trust radius).
+fn direction(ev: &Eval, ndof: usize, tol: f64, tau_scale: f64) -> [f64; 3] {
+    let mut m = Matrix3::zeros();
+    let mut diag_max: f64 = 0.0;
+    for j in 0..ndof {
+        for k in 0..ndof {
+            m[(j, k)] = ev.h[j][k];
+        }
+        diag_max = diag_max.max(ev.h[j][j]);
+    }
+    let pad = if diag_max > 0.0 { diag_max } else { 1.0 };
+    for j in ndof..3 {
+        m[(j, j)] = pad;
+    }
+    let eig = m.symmetric_eigen();
+    let lam_max = eig.eigenvalues.iter().fold(0.0f64, |a, &b| a.max(b));
+    let thr = 1e-12 * lam_max;
+    let gv = nalgebra::Vector3::new(ev.g[0], ev.g[1], ev.g[2]);
+    let mut d = nalgebra::Vector3::zeros();
+    for k in 0..3 {
+        let v = eig.eigenvectors.column(k);
+        let gk = v.dot(&gv);
+        let lam = eig.eigenvalues[k];
+        if lam > thr && lam_max > 0.0 {
+            d -= v * (gk / lam);
+        } else if gk.abs() > 0.1 * tol {
+            d -= v * (gk.signum() * 1e6 * tau_scale);
+        }
+    }
+    for j in ndof..3 {
+        d[j] = 0.0;
+    }
+    [d[0], d[1], d[2]]
+}
+
+#[allow(clippy::too_many_arguments)]
+fn equilibrate<L: LawEval + ?Sized>(
+    g: &Geom,
+    law: &L,
+    st: &mut State,
+    touch: &mut Vec<u32>,
+    load: f64,
+    cfg: &SolverConfig,
+    adhesion_ref: f64,
+    height_range: f64,
+) -> Result<usize, SolveError> {
+    let fixed = g.support.is_some();
+    let tau_min = 1e-15 * height_range.max(1e-9);
+    let tau_max = 1e3 * height_range + 1e-6;
+    st.tau = st.tau.max(tau_min);
+    let mut ev = evaluate(g, law, st, &st.q, load, !fixed, touch);
+    for &i in touch.iter() {
+        st.set(i as usize);
+    }
+    let mut it = 0;
+    loop {
+        let scale = load.abs().max(ev.force_abs).max(adhesion_ref).max(1e-300);
+        let tol = cfg.relative_tolerance * scale;
+        let resid = ev.g[..g.ndof].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if resid <= tol {
+            if ev.releases == 0 {
+                if st.members == 0 {
+                    return Err(SolveError::NoEquilibrium { load_n: load, reason: "no summit in contact".into() });
+                }
+                // A neutral equilibrium (a tilt no contact resists, e.g. one summit at zero load)
+                // is not stable: tip the shoe until the nearest summit touches, then go on.
+                if !fixed
+                    && g.ndof > 1
+                    && it < cfg.max_iterations
+                    && let Some(dq) = tip_to_next_contact(g, law, st, &ev)
+                {
+                    st.q = [st.q[0] + dq[0], st.q[1] + dq[1], st.q[2] + dq[2]];
+                    ev = evaluate(g, law, st, &st.q, load, true, touch);
+                    for &i in touch.iter() {
+                        st.set(i as usize);
+                    }
+                    it += 1;
+                    continue;
+                }
+                return Ok(it);
+            }
+            if fixed {
+                // Report the first support that left contact.
+                let (a, b, c) = g.plane(&st.q);
+                for i in 0..g.support.unwrap_or(0) {
+                    let z = g.hs[i] - (a + b * f64::from(g.xs[i]) + c * f64::from(g.ys[i]));
+                    if z < law.z_rel(i) {
+                        return Err(SolveError::ContactLost {
+                            load_n: load,
+                            index: g.original_index(i),
+                            interference_m: z,
+                        });
+                    }
+                }
+            }
+            // Release the members below their release interference (active-set update).
+            let (a, b, c) = g.plane(&st.q);
+            for i in 0..st.bound {
+                if st.is_member(i) {
+                    let z = g.hs[i] - (a + b * f64::from(g.xs[i]) + c * f64::from(g.ys[i]));
+                    if z < law.z_rel(i) {
+                        st.clear(i);
+                    }
+                }
+            }
+            if st.members == 0 && load <= 0.0 {
+                return Err(SolveError::NoEquilibrium {
+                    load_n: load,
+                    reason: "the shoe separates from the surface (load below pull-off)".into(),
+                });
+            }
+            ev = evaluate(g, law, st, &st.q, load, !fixed, touch);
+            for &i in touch.iter() {
+                st.set(i as usize);
+            }
+            it += 1;
+            if it >= cfg.max_iterations {
+                break;
+            }
+            continue;
+        }
+        if st.members == 0 && load < 0.0 {
+            return Err(SolveError::NoEquilibrium {
+                load_n: load,
+                reason: "the shoe separates from the surface (load below pull-off)".into(),
+            });
+        }
+        it += 1;
+        if it >= cfg.max_iterations {
+            break;
+        }
+        // Direction, capped by the trust radius.
+        let mut dq = direction(&ev, g.ndof, tol, st.tau);
+        let mv = g.movement(&dq);
+        let mut capped = false;
+        if mv > st.tau {
+            let s = st.tau / mv;
+            dq.iter_mut().for_each(|v| *v *= s);
+            capped = true;
+        }
+        let slope0: f64 = (0..3).map(|j| ev.g[j] * dq[j]).sum();
+        if slope0 >= 0.0 {
+            // No descent possible within rounding: accept the current point as converged only if
+            // the residual is small; otherwise report.
+            break;
+        }
+        let mut alpha = 1.0;
+        let mut accepted = None;
+        for _ in 0..60 {
+            let qt = [st.q[0] + alpha * dq[0], st.q[1] + alpha * dq[1], st.q[2] + alpha * dq[2]];
+            let evt = evaluate(g, law, st, &qt, load, !fixed, touch);
+            let slope: f64 = (0..3).map(|j| evt.g[j] * dq[j]).sum();
+            if slope <= 0.9 * slope0.abs() {
+                accepted = Some((qt, evt));
+                break;
+            }
+            let sec = slope0 / (slope0 - slope);
+            alpha *= sec.clamp(0.1, 0.5);
+        }
+        let Some((qt, evt)) = accepted else { break };
+        st.q = qt;
+        ev = evt;
+        for &i in touch.iter() {
+            st.set(i as usize);
+        }
+        if alpha == 1.0 && capped {
+            st.tau = (2.0 * st.tau).min(tau_max);
+            if st.tau >= tau_max && st.members < 3 && g.ndof == 3 && ev.contacts == 0 {
+                return Err(SolveError::NoEquilibrium {
+                    load_n: load,
+                    reason: "the shoe tips over: nothing supports the load point".into(),
+                });
+            }
+        } else if alpha < 1.0 {
+            st.tau = (alpha * mv.min(st.tau)).max(tau_min);
+        }
+        if st.tau >= tau_max {
+            return Err(SolveError::NoEquilibrium {
+                load_n: load,
+                reason: "the shoe moves without bound (tips over or separates)".into(),
+            });
+        }
+    }
+    let scale = load.abs().max(ev.force_abs).max(adhesion_ref);
+    let resid = ev.g[..g.ndof].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if resid <= cfg.relative_tolerance * scale && ev.releases == 0 && st.members > 0 {
+        return Ok(it);
+    }
+    Err(SolveError::NotConverged { load_n: load, iterations: it, residual_n: resid, contacts: st.members })
+}
+
+/// For a converged pose whose Hessian is singular on the used degrees of freedom, the smallest
+/// rotation along a zero-stiffness direction (either sense) that brings a non-member summit to its
+/// jump-in interference; None when the Hessian is regular or nothing can be reached.
+fn tip_to_next_contact<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &State, ev: &Eval) -> Option<[f64; 3]> {
+    let mut m = Matrix3::zeros();
+    for j in 0..g.ndof {
+        for k in 0..g.ndof {
+            m[(j, k)] = ev.h[j][k];
+        }
+    }
+    let eig = m.symmetric_eigen();
+    let lam_max = eig.eigenvalues.iter().fold(0.0f64, |a, &b| a.max(b));
+    let (a, b, c) = g.plane(&st.q);
+    let mut best: Option<(f64, [f64; 3])> = None;
+    for k in 0..3 {
+        if eig.eigenvalues[k] > 1e-12 * lam_max && lam_max > 0.0 {
+            continue;
+        }
+        let v = eig.eigenvectors.column(k);
+        let mut vq = [v[0], v[1], v[2]];
+        vq.iter_mut().skip(g.ndof).for_each(|v| *v = 0.0);
+        if vq.iter().all(|x| x.abs() < 1e-12) {
+            continue;
+        }
+        let (da, db, dc) = g.plane(&vq);
+        for i in 0..g.hs.len() {
+            if st.is_member(i) {
+                continue;
+            }
+            let (x, y) = (f64::from(g.xs[i]), f64::from(g.ys[i]));
+            let gap = law.z_in(i) - (g.hs[i] - (a + b * x + c * y));
+            let dw = da + db * x + dc * y;
+            if gap <= 0.0 || dw == 0.0 {
+                continue;
+            }
+            // Moving by alpha * (sign * v) lowers the plane at i by alpha * sign * (-dw).
+            let alpha = gap / dw.abs();
+            let sign = if dw < 0.0 { 1.0 } else { -1.0 };
+            if best.is_none_or(|(b0, _)| alpha < b0) {
+                let s = sign * alpha * (1.0 + 1e-9);
+                best = Some((alpha, [s * vq[0], s * vq[1], s * vq[2]]));
+            }
+        }
+    }
+    best.map(|(_, dq)| dq)
+}
