@@ -285,7 +285,11 @@ pub struct MeterSpec {
     pub spring_force: Option<f64>,
     /// Travel of the clamp array at which the shoe meets the wall, m; default: the clamp array's
     /// `operating_travel` (where its conversion factor is defined).
-    #[serde(default, deserialize_with = "stiction_units::de::opt_length_nonnegative", skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_length_nonnegative",
+        skip_serializing_if = "Option::is_none"
+    )]
     #[schemars(with = "Option<QuantityInput>")]
     pub contact_travel: Option<f64>,
     /// Clamp voltages to measure at.

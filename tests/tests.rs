@@ -1,0 +1,8 @@
+//! End-to-end tests: run the `stiction` binary on the shipped scenarios and on broken inputs, as a
+//! user would. One test binary with modules (as in ripgrep); data in tests/data/.
+
+mod util;
+
+mod bad_inputs;
+mod models;
+mod scenarios;
