@@ -1,6 +1,8 @@
 //! Criterion benchmarks of the pull-in and release solves (issue 4/6).
 //! Run: `cargo bench -p stiction-actuator --bench solve`.
 
+#![allow(missing_docs)] // criterion_group! generates an undocumented function
+
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use stiction_actuator::*;

@@ -267,10 +267,11 @@ impl GapClosingActuator {
                 best = (i, vi);
             }
         }
-        if best.0 == NB && hi >= limit {
-            if let Some(s) = self.stop_travel_m {
-                return Ok(PullIn { travel_m: s, voltage_v: best.1, limited_by_stop: true });
-            }
+        if best.0 == NB
+            && hi >= limit
+            && let Some(s) = self.stop_travel_m
+        {
+            return Ok(PullIn { travel_m: s, voltage_v: best.1, limited_by_stop: true });
         }
         if best.0 == 0 {
             return Err(ActuatorError::Solver(

@@ -19,7 +19,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{ActuatorError, nonnegative, positive};
 
 /// Vacuum permittivity eps0 (F/m), CODATA 2018.
-pub const VACUUM_PERMITTIVITY: f64 = 8.854_187_8128e-12;
+pub const VACUUM_PERMITTIVITY: f64 = 8.854_187_812_8e-12;
 
 /// How the capacitance of one plate pair is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
