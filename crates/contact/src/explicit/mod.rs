@@ -27,10 +27,10 @@
 //! * Every step is limited by a trust radius on the plane's movement over the apparent area and
 //!   accepted by a curvature (Wolfe) test on the directional derivative of the energy; summits
 //!   that the trial pose touches (z >= jump-in interference) join S at once.
-//! * When the residual with S fixed is below tolerance, members below their release
+//! * When the residual with S fixed is below 1e-4 of the load scale, members below their release
 //!   interference leave S (DMT: z < 0; JKR/MD: below the displacement-controlled pull-off
 //!   interference) and the iteration continues. It ends when the residuals are below
-//!   `relative_tolerance` (default 1e-10) of the load scale max(|L|, sum|P_i|, 2 pi dgamma R)
+//!   `relative_tolerance` (default 1e-9) of the load scale max(|L|, sum|P_i|, 2 pi dgamma R)
 //!   and S is consistent; otherwise [`SolveError::NotConverged`] is returned, never a silent result.
 //!
 //! Every accepted step lowers the energy, releases lower it further, so the result is a local

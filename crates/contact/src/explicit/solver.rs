@@ -22,6 +22,8 @@ struct Geom {
     basis: [[f64; 3]; 3],
     ndof: usize,
     load_point: (f64, f64),
+    /// Hardness for the elastic-limit count (infinite without one), Pa.
+    hardness: f64,
     /// FixedContacts: number of supports (the first `n` sorted summits).
     support: Option<usize>,
 }
@@ -75,6 +77,10 @@ struct State {
     members: usize,
     /// Trust radius: largest plane movement per step, m.
     tau: f64,
+    /// Incremented whenever the contact set changes.
+    generation: u64,
+    /// Last evaluation at `q` with the load term removed, valid for `generation`.
+    cache: Option<(u64, [f64; 3], Eval)>,
 }
 
 impl State {
@@ -86,6 +92,7 @@ impl State {
         if !self.is_member(i) {
             self.member[i >> 6] |= 1 << (i & 63);
             self.members += 1;
+            self.generation += 1;
             self.bound = self.bound.max(i + 1);
         }
     }
@@ -93,6 +100,7 @@ impl State {
         if self.is_member(i) {
             self.member[i >> 6] &= !(1 << (i & 63));
             self.members -= 1;
+            self.generation += 1;
         }
     }
 }
@@ -105,6 +113,13 @@ struct Eval {
     force_abs: f64,
     releases: usize,
     contacts: usize,
+    /// Totals over members and touchers on the contact branch (for the result without a second pass).
+    area: f64,
+    elastic: f64,
+    q0_max: f64,
+    over_limit: usize,
+    moment_x: f64,
+    moment_y: f64,
 }
 
 enum LawImpl {
@@ -233,8 +248,17 @@ impl ExplicitSolver {
         };
         let adhesion_ref = 2.0 * std::f64::consts::PI * params.work_of_adhesion_j_per_m2 * check.radius_m;
         let height_range = (hs[0] - hs[n - 1]).max(1e-12);
-        let geom = Geom { xs, ys, hs, radii, original, length, width, basis, ndof, load_point, support };
-        let state = State { q: [0.0; 3], member: vec![0; n.div_ceil(64)], bound: 0, members: 0, tau: 0.0 };
+        let hardness = config.hardness_pa.unwrap_or(f64::INFINITY);
+        let geom = Geom { xs, ys, hs, radii, original, length, width, basis, ndof, load_point, hardness, support };
+        let state = State {
+            q: [0.0; 3],
+            member: vec![0; n.div_ceil(64)],
+            bound: 0,
+            members: 0,
+            tau: 0.0,
+            generation: 0,
+            cache: None,
+        };
         let mut s = Self { geom, law, params, imp, config, state, scratch: Vec::new(), adhesion_ref, height_range };
         s.reset();
         Ok(s)
@@ -586,6 +610,23 @@ impl ExplicitSolver {
             iterations,
             summits: Vec::new(),
         };
+        if detail == Detail::Summary
+            && let Some((generation, cq, ev)) = &self.state.cache
+            && *generation == self.state.generation
+            && *cq == q
+        {
+            // The last evaluation of the solve holds every total: no second pass.
+            e.real_area_m2 = ev.area;
+            e.elastic_load_n = ev.elastic;
+            e.max_pressure_pa = ev.q0_max;
+            e.summits_over_elastic_limit = ev.over_limit;
+            e.moment_residual_x_n_m = ev.moment_x;
+            e.moment_residual_y_n_m = ev.moment_y;
+            e.force_residual_n = load_n - ev.force;
+            e.adhesive_load_n = e.elastic_load_n - ev.force;
+            e.friction_capacity_n = self.config.shear_strength_pa * e.real_area_m2;
+            return e;
+        }
         let mut total = 0.0;
         self.with_law(|g, law| {
             for i in 0..self.state.bound {
@@ -636,6 +677,9 @@ impl ExplicitSolver {
     }
 }
 
+/// Relative residual below which members past their release interference leave the contact set.
+const RELEASE_RESIDUAL: f64 = 1e-4;
+
 fn tilt_basis(lp: (f64, f64), ell: f64) -> [[f64; 3]; 3] {
     [[1.0, 0.0, 0.0], [-lp.0 / ell, 1.0 / ell, 0.0], [-lp.1 / ell, 0.0, 1.0 / ell]]
 }
@@ -669,25 +713,36 @@ fn evaluate<L: LawEval + ?Sized>(
     let bs = &g.basis;
     let (mut h00, mut h01, mut h02, mut h11, mut h12, mut h22) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     let (mut g0, mut g1, mut g2) = (0.0, 0.0, 0.0);
+    let (mut area, mut elastic, mut q0_max, mut over, mut mx, mut my) = (0.0, 0.0, 0.0f64, 0usize, 0.0, 0.0);
     for i in 0..end {
         let (x, y) = (f64::from(g.xs[i]), f64::from(g.ys[i]));
         let z = g.hs[i] - (a + b * x + c * y);
         let member = st.is_member(i);
-        let (p, k) = if member {
+        let on_branch = if member {
             if z < law.z_rel(i) {
                 ev.releases += 1;
-                (law.p_rel(i), 0.0)
+                false
             } else {
-                let r = law.contact(i, z);
-                (r.load_n, r.stiffness)
+                true
             }
         } else if allow_touch && z >= law.z_in(i) && (z > 0.0 || law.z_in(i) < 0.0 || law.p_rel(i) != 0.0) {
             touch.push(i as u32);
-            let r = law.contact(i, z);
-            (r.load_n, r.stiffness)
+            true
         } else {
             continue;
         };
+        let (p, k) = if on_branch {
+            let r = law.contact(i, z);
+            area += r.radius * r.radius;
+            elastic += r.elastic_n;
+            q0_max = q0_max.max(r.q0);
+            over += usize::from(r.q0 > g.hardness);
+            (r.load_n, r.stiffness)
+        } else {
+            (law.p_rel(i), 0.0)
+        };
+        mx += p * (x - g.load_point.0);
+        my += p * (y - g.load_point.1);
         ev.contacts += 1;
         ev.force += p;
         ev.force_abs += p.abs();
@@ -708,6 +763,12 @@ fn evaluate<L: LawEval + ?Sized>(
     ev.g[1] -= g1;
     ev.g[2] -= g2;
     ev.h = [[h00, h01, h02], [h01, h11, h12], [h02, h12, h22]];
+    ev.area = std::f64::consts::PI * area;
+    ev.elastic = elastic;
+    ev.q0_max = q0_max;
+    ev.over_limit = over;
+    ev.moment_x = mx;
+    ev.moment_y = my;
     ev
 }
 
@@ -760,17 +821,80 @@ fn equilibrate<L: LawEval + ?Sized>(
 ) -> Result<usize, SolveError> {
     let fixed = g.support.is_some();
     let tau_min = 1e-15 * height_range.max(1e-9);
-    let tau_max = 1e3 * height_range + 1e-6;
-    st.tau = st.tau.max(tau_min);
-    let mut ev = evaluate(g, law, st, &st.q, load, !fixed, touch);
+    st.tau = st.tau.max(tau_min).max(1e-3 * height_range);
+    let phi0 = g.phi_at(g.load_point.0, g.load_point.1);
+    let mut ev = match st.cache {
+        // The previous solve ended here: only the load term of the gradient changes.
+        Some((generation, q, mut cached)) if generation == st.generation && q == st.q => {
+            cached.g.iter_mut().zip(&phi0).for_each(|(gj, pj)| *gj += load * pj);
+            touch.clear();
+            cached
+        }
+        _ => evaluate(g, law, st, &st.q, load, !fixed, touch),
+    };
     for &i in touch.iter() {
         st.set(i as usize);
     }
+    let result = iterate(g, law, st, touch, load, cfg, adhesion_ref, height_range, &mut ev);
+    st.cache = match result {
+        Ok(_) => {
+            let mut e = ev;
+            e.g.iter_mut().zip(&phi0).for_each(|(gj, pj)| *gj -= load * pj);
+            Some((st.generation, st.q, e))
+        }
+        Err(_) => None,
+    };
+    result
+}
+
+#[allow(clippy::too_many_arguments)]
+fn iterate<L: LawEval + ?Sized>(
+    g: &Geom,
+    law: &L,
+    st: &mut State,
+    touch: &mut Vec<u32>,
+    load: f64,
+    cfg: &SolverConfig,
+    adhesion_ref: f64,
+    height_range: f64,
+    ev: &mut Eval,
+) -> Result<usize, SolveError> {
+    let fixed = g.support.is_some();
+    let tau_min = 1e-15 * height_range.max(1e-9);
+    let tau_max = 1e3 * height_range + 1e-6;
     let mut it = 0;
     loop {
         let scale = load.abs().max(ev.force_abs).max(adhesion_ref).max(1e-300);
         let tol = cfg.relative_tolerance * scale;
         let resid = ev.g[..g.ndof].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        // Active-set update once the Newton iteration has nearly converged on the current set
+        // (the last steps are small, so no member is released by an overshoot).
+        if resid <= tol.max(RELEASE_RESIDUAL * scale) && ev.releases > 0 && !fixed {
+            let (a, b, c) = g.plane(&st.q);
+            for i in 0..st.bound {
+                if st.is_member(i) {
+                    let z = g.hs[i] - (a + b * f64::from(g.xs[i]) + c * f64::from(g.ys[i]));
+                    if z < law.z_rel(i) {
+                        st.clear(i);
+                    }
+                }
+            }
+            if st.members == 0 && load <= 0.0 {
+                return Err(SolveError::NoEquilibrium {
+                    load_n: load,
+                    reason: "the shoe separates from the surface (load below pull-off)".into(),
+                });
+            }
+            *ev = evaluate(g, law, st, &st.q, load, true, touch);
+            for &i in touch.iter() {
+                st.set(i as usize);
+            }
+            it += 1;
+            if it >= cfg.max_iterations {
+                break;
+            }
+            continue;
+        }
         if resid <= tol {
             if ev.releases == 0 {
                 if st.members == 0 {
@@ -781,10 +905,10 @@ fn equilibrate<L: LawEval + ?Sized>(
                 if !fixed
                     && g.ndof > 1
                     && it < cfg.max_iterations
-                    && let Some(dq) = tip_to_next_contact(g, law, st, &ev)
+                    && let Some(dq) = tip_to_next_contact(g, law, st, ev)
                 {
                     st.q = [st.q[0] + dq[0], st.q[1] + dq[1], st.q[2] + dq[2]];
-                    ev = evaluate(g, law, st, &st.q, load, true, touch);
+                    *ev = evaluate(g, law, st, &st.q, load, true, touch);
                     for &i in touch.iter() {
                         st.set(i as usize);
                     }
@@ -823,7 +947,7 @@ fn equilibrate<L: LawEval + ?Sized>(
                     reason: "the shoe separates from the surface (load below pull-off)".into(),
                 });
             }
-            ev = evaluate(g, law, st, &st.q, load, !fixed, touch);
+            *ev = evaluate(g, law, st, &st.q, load, !fixed, touch);
             for &i in touch.iter() {
                 st.set(i as usize);
             }
@@ -844,7 +968,7 @@ fn equilibrate<L: LawEval + ?Sized>(
             break;
         }
         // Direction, capped by the trust radius.
-        let mut dq = direction(&ev, g.ndof, tol, st.tau);
+        let mut dq = direction(ev, g.ndof, tol, st.tau);
         let mv = g.movement(&dq);
         let mut capped = false;
         if mv > st.tau {
@@ -873,7 +997,7 @@ fn equilibrate<L: LawEval + ?Sized>(
         }
         let Some((qt, evt)) = accepted else { break };
         st.q = qt;
-        ev = evt;
+        *ev = evt;
         for &i in touch.iter() {
             st.set(i as usize);
         }

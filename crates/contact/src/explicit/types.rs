@@ -53,7 +53,7 @@ pub struct SolverConfig {
     pub hardness_pa: Option<f64>,
     /// Convergence: every force residual (and moment residual divided by the half-diagonal of the
     /// apparent area) below this fraction of the load scale max(|L|, sum |P_i|, one summit's
-    /// adhesion) \[1e-10, below the required 1e-9\].
+    /// adhesion 2 pi dgamma R) \[1e-9\].
     pub relative_tolerance: f64,
     /// Newton iterations allowed per solve before [`SolveError::NotConverged`] \[500\].
     pub max_iterations: usize,
@@ -68,7 +68,7 @@ impl Default for SolverConfig {
             load_point_m: None,
             shear_strength_pa: 1.4e9,
             hardness_pa: None,
-            relative_tolerance: 1e-10,
+            relative_tolerance: 1e-9,
             max_iterations: 500,
             detail: Detail::Full,
         }

@@ -1,0 +1,95 @@
+//! Criterion benchmarks of the explicit solver (one core, release).
+//!
+//! * `explicit/table1_loading_point`: the Table 1 surface (about 400 summits), tilt free, DMT:
+//!   one load step of a 0-10 uN loading curve from the previous equilibrium (floor 20 us).
+//! * `explicit/load_point/N`: one step of the loading curve from pull-off to L* = 0.1 for N summits.
+//! * `explicit/curve_1e6_tilt_free`: 1e6 summits, tilt free, DMT: pull-off search plus a 100-point
+//!   loading curve from pull-off to L* = 0.1 (floor 0.5 s in all).
+//!
+//! `cargo bench -p stiction-contact --bench explicit`
+
+use std::hint::black_box;
+
+use criterion::{Criterion, criterion_main};
+use stiction_contact::explicit::{Detail, ExplicitSolver, SolverConfig};
+use stiction_contact::single::{AdhesionLaw, AsperityParams, Branch};
+use stiction_surface::{FaceParams, Layout, Placement, Surface, generate};
+
+fn surface(summits: f64, seed: u64) -> Surface {
+    let (eta, sigma, r) = (4e12, 0.04e-6, 0.5e-6);
+    let width = (summits / eta / 4.0).sqrt();
+    let layout =
+        Layout { apparent_length_m: 4.0 * width, apparent_width_m: width, placement: Placement::Poisson, seed };
+    generate(&layout, &FaceParams::gaussian_fixed(eta, sigma, r)).expect("surface")
+}
+
+/// Load at L* = 0.1 (eq. 5c) for `m` summits of the Table 1 statistics \[N\].
+fn load_star_01(m: usize) -> f64 {
+    0.1 * m as f64 * 0.5e-6f64.sqrt() * 0.04e-6f64.powf(1.5) / 9.1e-12
+}
+
+fn solver(s: Surface, detail: Detail) -> ExplicitSolver {
+    let cfg = SolverConfig { detail, ..Default::default() };
+    ExplicitSolver::new(s, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver")
+}
+
+fn loads(from: f64, to: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|k| from + (to - from) * k as f64 / (n - 1) as f64).collect()
+}
+
+pub(crate) fn bench(c: &mut Criterion) {
+    let mut g = c.benchmark_group("explicit");
+    let layout = Layout { apparent_length_m: 20e-6, apparent_width_m: 5e-6, placement: Placement::Poisson, seed: 1 };
+    let t1 = generate(&layout, &FaceParams::gaussian_fixed(4e12, 0.04e-6, 0.5e-6)).expect("surface");
+    let mut s1 = solver(t1, Detail::Full);
+    let steps = loads(0.0, 10e-6, 100);
+    let mut k = 0usize;
+    g.bench_function("table1_loading_point", |b| {
+        b.iter(|| {
+            if k == 0 {
+                s1.reset();
+            }
+            let e = s1.solve(black_box(steps[k])).expect("solve");
+            k = (k + 1) % steps.len();
+            e
+        })
+    });
+    for &n in &[1e4, 1e5, 1e6] {
+        let mut s = solver(surface(n, 1), Detail::Summary);
+        let m = s.len();
+        let po = s.pull_off(0.0, 1e-6).expect("pull-off").load_n;
+        let curve = loads(po, load_star_01(m), 100);
+        let mut k = 0usize;
+        g.bench_function(format!("load_point/{n:.0e}"), |b| {
+            b.iter(|| {
+                if k == 0 {
+                    s.reset();
+                    s.pull_off(0.0, 1e-6).expect("pull-off");
+                }
+                let e = s.solve(black_box(curve[k])).expect("solve");
+                k = (k + 1) % curve.len();
+                e
+            })
+        });
+    }
+    g.sample_size(10);
+    let s6 = surface(1e6, 1);
+    let m6 = s6.len();
+    let mut big = solver(s6, Detail::Summary);
+    g.bench_function("curve_1e6_tilt_free", |b| {
+        b.iter(|| {
+            big.reset();
+            let po = big.pull_off(0.0, 1e-6).expect("pull-off").load_n;
+            big.sweep(&loads(po, load_star_01(m6), 100), Branch::Loading).expect("sweep")
+        })
+    });
+    g.finish();
+}
+
+// criterion_group! expands to an undocumented function.
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::bench);
+}
+use group::benches;
+criterion_main!(benches);

@@ -1,0 +1,59 @@
+//! Scaling of the explicit solver: summits 1e4 .. 1e8 (Table 1 statistics, square-ish area),
+//! time per load point of a tilt-free loading curve from pull-off to L* = 0.1 and bytes per summit.
+//!
+//! `cargo run --release -p stiction-contact --example explicit_scaling -- 1e4 1e5 1e6 1e7 1e8`
+//! (one line per size: summits, generation s, pull-off s, loading points, s per point, bytes per
+//! summit of the solver, peak RSS in MB from /proc/self/status when available).
+
+use std::time::Instant;
+
+use stiction_contact::explicit::{Detail, ExplicitSolver, SolverConfig};
+use stiction_contact::single::{AdhesionLaw, AsperityParams, Branch};
+use stiction_surface::{FaceParams, Layout, Placement, generate};
+
+fn peak_rss_mb() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
+}
+
+fn main() {
+    let sizes: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
+    let sizes = if sizes.is_empty() { vec![1e4, 1e5, 1e6] } else { sizes };
+    let points = 100;
+    println!(
+        "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb"
+    );
+    for n in sizes {
+        let (eta, sigma, r, d) = (4e12, 0.04e-6, 0.5e-6f64, 9.1e-12);
+        let area = n / eta;
+        let width = (area / 4.0).sqrt();
+        let layout =
+            Layout { apparent_length_m: 4.0 * width, apparent_width_m: width, placement: Placement::Poisson, seed: 1 };
+        let t = Instant::now();
+        let surface = generate(&layout, &FaceParams::gaussian_fixed(eta, sigma, r)).expect("surface");
+        let gen_s = t.elapsed().as_secs_f64();
+        let m = surface.len() as f64;
+        // L* = D L / (eta A_a R^1/2 sigma^3/2) = 0.1 (eq. 5c).
+        let l_max = 0.1 * m * r.sqrt() * sigma.powf(1.5) / d;
+        let cfg = SolverConfig { detail: Detail::Summary, ..Default::default() };
+        let mut solver = ExplicitSolver::new(surface, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver");
+        let t = Instant::now();
+        let po = solver.pull_off(0.0, 1e-6).expect("pull-off");
+        let po_s = t.elapsed().as_secs_f64();
+        let loads: Vec<f64> =
+            (0..points).map(|k| po.load_n + (l_max - po.load_n) * k as f64 / (points - 1) as f64).collect();
+        let t = Instant::now();
+        let sweep = solver.sweep(&loads, Branch::Loading).expect("sweep");
+        let its: usize = sweep.points.iter().map(|p| p.iterations).sum();
+        let its = its as f64 / points as f64;
+        let per = t.elapsed().as_secs_f64() / points as f64;
+        let last = sweep.points.last().map_or(0, |e| e.contacts);
+        println!(
+            "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{}",
+            solver.bytes_per_summit(),
+            peak_rss_mb().map_or("n/a".into(), |v| format!("{v:.0}"))
+        );
+    }
+}
