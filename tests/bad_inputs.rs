@@ -12,7 +12,8 @@ fn every_bad_scenario_gives_its_error() {
     entries.sort();
     for path in entries.iter().filter(|p| p.extension().is_some_and(|e| e == "json")) {
         let expect_path = path.with_extension("expect");
-        let expected = std::fs::read_to_string(&expect_path).unwrap_or_else(|_| panic!("{} has no .expect file", path.display()));
+        let expected =
+            std::fs::read_to_string(&expect_path).unwrap_or_else(|_| panic!("{} has no .expect file", path.display()));
         let out = stiction(&["scenario", path.to_str().unwrap()]);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{}: expected exit 2, stderr: {stderr}", path.display());
@@ -28,8 +29,42 @@ fn every_bad_scenario_gives_its_error() {
 #[test]
 fn bad_flags_name_the_flag_value_and_expectation() {
     let cases: &[(&[&str], &[&str])] = &[
-        (&["discrete", "--contacts", "3", "--radius", "0.5 N", "--work-of-adhesion", "0.1", "--compliance", "9.1e-12", "--shear-strength", "1.4 GPa", "--load", "3 uN"], &["--radius", "0.5 N", "is a force", "expected positive a length"]),
-        (&["discrete", "--contacts", "3", "--radius", "0.5 um", "--work-of-adhesion", "0.1", "--compliance", "9.1e-12", "--shear-strength", "1.4 GPa", "--load", "NaN"], &["--load", "NaN"]),
+        (
+            &[
+                "discrete",
+                "--contacts",
+                "3",
+                "--radius",
+                "0.5 N",
+                "--work-of-adhesion",
+                "0.1",
+                "--compliance",
+                "9.1e-12",
+                "--shear-strength",
+                "1.4 GPa",
+                "--load",
+                "3 uN",
+            ],
+            &["--radius", "0.5 N", "is a force", "expected positive a length"],
+        ),
+        (
+            &[
+                "discrete",
+                "--contacts",
+                "3",
+                "--radius",
+                "0.5 um",
+                "--work-of-adhesion",
+                "0.1",
+                "--compliance",
+                "9.1e-12",
+                "--shear-strength",
+                "1.4 GPa",
+                "--load",
+                "NaN",
+            ],
+            &["--load", "NaN"],
+        ),
         (&["gw", "--theta", "-3", "--load-star", "0"], &["--theta", "expected a positive adhesion parameter"]),
         (&["contact", "scenarios/tas2000.json", "--sweep", "0uN:1um:5"], &["--sweep TO", "1um", "expected a force"]),
         (&["run", "scenarios/tas2000.json", "--set", "surface.sumit_sd=40 nm"], &["sumit_sd", "nearest: `summit_sd`"]),

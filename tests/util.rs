@@ -17,7 +17,9 @@ pub fn stiction(args: &[&str]) -> Output {
 pub fn stiction_json(args: &[&str]) -> serde_json::Value {
     let out = stiction(args);
     assert!(out.status.success(), "stiction {args:?} failed:\n{}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("stiction {args:?}: stdout is not JSON ({e}):\n{}", String::from_utf8_lossy(&out.stdout)))
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!("stiction {args:?}: stdout is not JSON ({e}):\n{}", String::from_utf8_lossy(&out.stdout))
+    })
 }
 
 /// A fresh temporary folder under target/.

@@ -35,6 +35,8 @@ enum Command {
     Run(cmd::run::Args),
     /// Recompute a figure of the paper (fig2, fig3, fig7) or the actuator hysteresis, as SVG or PNG.
     Plot(cmd::plot::Args),
+    /// Monte Carlo over a scenario's uncertain parameters and surface realisations: the spread of mu_e,a and F_a0.
+    Study(cmd::study::Args),
     /// Check a scenario file (and --set overrides) and print it in SI units, or print the format's JSON Schema.
     Scenario(cmd::scenario::Args),
 }
@@ -49,6 +51,7 @@ fn main() -> ExitCode {
         Command::Run(a) => cmd::run::run(a),
         Command::Plot(a) => cmd::plot::run(a),
         Command::Scenario(a) => cmd::scenario::run(a),
+        Command::Study(a) => cmd::study::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,1 +1,297 @@
-//! stiction-meter
+//! stiction-meter: the virtual MEMS friction meter of the paper's section 5.
+//!
+//! A clamp array presses the shoe against the rough sidewall with `L = F_elec - F_spring`; the
+//! pull array's voltage then ramps in steps until its force exceeds the static friction (by default
+//! `s A_r(L)`, eq. 1, with `A_r` from the contact model at the load). The meter records what the
+//! lab records (the pull voltage at slip, for each clamp voltage: Fig. 5) and reduces it the way
+//! the paper does: forces from the nominal conversion factors, `F_f = a_pull V_pull^2`,
+//! `L = a_clamp V_clamp^2 - F_spring`, and a straight line `F_f = mu_e,a (F_a0 + L)` over `L > 0`
+//! (eq. 10). Beside that it reports what the lab cannot see: real area, contacts, adhesive load,
+//! tilt, peak pressure.
+
+use std::path::Path;
+
+use serde::Serialize;
+use stiction_actuator::GapClosingActuator;
+use stiction_actuator::meter::{SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
+use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, MeterSpec, Scenario, ShoeMode, SlipCriterion};
+
+mod contact_model;
+pub mod fit;
+pub use contact_model::{ContactModel, ContactState};
+use stiction_contact::explicit;
+use stiction_contact::gw::GwSurface;
+use stiction_contact::single::AsperityParams;
+
+/// Why the meter cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum MeterError {
+    /// The scenario lacks something the meter needs.
+    #[error("scenario: {0}")]
+    Scenario(String),
+    /// An actuator could not be built or solved.
+    #[error("actuator `{array}`: {message}")]
+    Actuator {
+        /// `clamp` or `pull`.
+        array: String,
+        /// The actuator crate's message.
+        message: String,
+    },
+    /// The surface could not be built.
+    #[error("surface: {0}")]
+    Surface(String),
+    /// The contact model failed.
+    #[error("contact: {0}")]
+    Contact(String),
+}
+
+/// One clamp voltage of the experiment.
+#[derive(Debug, Clone, Serialize)]
+pub struct MeterPoint {
+    /// Clamp voltage, V.
+    pub v_clamp: f64,
+    /// Clamp voltage squared, V^2 (Fig. 5 abscissa).
+    pub v_clamp_sq: f64,
+    /// Whether the shoe touches the wall at this clamp voltage.
+    pub in_contact: bool,
+    /// Clamp load L = F_elec - F_spring, N (with the scenario's actuator model).
+    pub load_n: f64,
+    /// Pull voltage at slip, V (None: no slip up to the maximum pull voltage, or no contact).
+    pub v_pull: Option<f64>,
+    /// Pull voltage squared at slip, V^2 (Fig. 5 ordinate).
+    pub v_pull_sq: Option<f64>,
+    /// Friction as the lab reduces it: the pull force at slip a_pull V_pull^2, N.
+    pub friction_n: Option<f64>,
+    /// The static friction capacity of the contact by the slip criterion, N.
+    pub friction_capacity_n: f64,
+    /// Whether the pull array ran away (pulled in) at once when the shoe slipped.
+    pub pull_in_at_slip: Option<bool>,
+    /// Real contact area A_r, m^2.
+    pub real_area_m2: f64,
+    /// Summits in contact.
+    pub contacts: f64,
+    /// Adhesive load, N.
+    pub adhesive_load_n: f64,
+    /// Shoe tilt along x, rad.
+    pub tilt_x_rad: f64,
+    /// Shoe tilt along y, rad.
+    pub tilt_y_rad: f64,
+    /// Largest peak Hertz pressure (eq. 11), Pa.
+    pub max_pressure_pa: f64,
+    /// Whether that pressure exceeds the hardness (plastic deformation would start).
+    pub over_elastic_limit: bool,
+}
+
+/// The experiment's outcome.
+#[derive(Debug, Clone, Serialize)]
+pub struct MeterResult {
+    /// The contact model used.
+    pub contact_model: String,
+    /// The points, one per clamp voltage.
+    pub points: Vec<MeterPoint>,
+    /// Apparent friction coefficient mu_e,a: slope of F_f against L over L > 0 (eq. 10).
+    pub mu_apparent: Option<f64>,
+    /// Apparent zero-load adhesion force F_a0 = F_f(L = 0) / mu_e,a, N (eq. 10).
+    pub apparent_adhesion_force_n: Option<f64>,
+    /// The straight-line fit behind the two numbers.
+    pub fit: Option<fit::LineFit>,
+    /// F_spring used, N.
+    pub spring_force_n: f64,
+    /// Pull-in voltage of the pull array with the shoe free, V.
+    pub pull_array_pull_in_v: Option<f64>,
+}
+
+/// The assembled device.
+pub struct Meter {
+    clamp: GapClosingActuator,
+    pull: GapClosingActuator,
+    contact_travel_m: f64,
+    spring_force_n: Option<f64>,
+    material: MaterialSpec,
+    protocol: MeterSpec,
+    contact: ContactModel,
+}
+
+impl Meter {
+    /// Assembles the meter from a loaded scenario; `base_dir` resolves relative file paths.
+    pub fn from_scenario(s: &Scenario, base_dir: &Path) -> Result<Meter, MeterError> {
+        let protocol = s.meter.clone().ok_or_else(|| MeterError::Scenario("no `meter` section".into()))?;
+        let material = s.require_material().map_err(MeterError::Scenario)?.clone();
+        let build = |name: &str| -> Result<GapClosingActuator, MeterError> {
+            let spec = s.actuators.get(name).ok_or_else(|| MeterError::Scenario(format!("no actuator `{name}`")))?;
+            spec.to_model().map_err(|e| MeterError::Actuator { array: name.into(), message: e.to_string() })
+        };
+        let clamp = build("clamp")?;
+        let pull = build("pull")?;
+        let contact_travel_m = protocol.contact_travel.unwrap_or(s.actuators["clamp"].operating_travel);
+        let contact = build_contact_model(s, &material, base_dir)?;
+        Ok(Meter { clamp, pull, contact_travel_m, spring_force_n: protocol.spring_force, material, protocol, contact })
+    }
+
+    /// The contact model in use (for reports and extra curves).
+    pub fn contact_model(&mut self) -> &mut ContactModel {
+        &mut self.contact
+    }
+
+    /// Runs the protocol: for each clamp voltage, clamp, then ramp the pull voltage until slip.
+    /// `progress(done, total)` is called after each clamp voltage.
+    pub fn run(&mut self, progress: &mut dyn FnMut(usize, usize)) -> Result<MeterResult, MeterError> {
+        let voltages = self.protocol.clamp_voltages.voltages();
+        let a_pull = self.pull.conversion_factor_n_per_v2(0.0);
+        let actuator_err = |array: &str, e: stiction_actuator::ActuatorError| MeterError::Actuator {
+            array: array.into(),
+            message: e.to_string(),
+        };
+        let pull_in_v = self.pull.pull_in().ok().map(|p| p.voltage_v);
+        let mut points = Vec::with_capacity(voltages.len());
+        let mut spring_force_used = f64::NAN;
+        for (k, &v_clamp) in voltages.iter().enumerate() {
+            let clamp =
+                clamp_force(&self.clamp, self.contact_travel_m, v_clamp).map_err(|e| actuator_err("clamp", e))?;
+            let spring = self.spring_force_n.unwrap_or(clamp.spring_force_n);
+            spring_force_used = spring;
+            let load_n = clamp.electrostatic_force_n - spring;
+            let in_contact = clamp.in_contact && load_n > 0.0;
+            let mut point = MeterPoint {
+                v_clamp,
+                v_clamp_sq: v_clamp * v_clamp,
+                in_contact,
+                load_n,
+                v_pull: None,
+                v_pull_sq: None,
+                friction_n: None,
+                friction_capacity_n: 0.0,
+                pull_in_at_slip: None,
+                real_area_m2: 0.0,
+                contacts: 0.0,
+                adhesive_load_n: 0.0,
+                tilt_x_rad: 0.0,
+                tilt_y_rad: 0.0,
+                max_pressure_pa: 0.0,
+                over_elastic_limit: false,
+            };
+            if in_contact {
+                let state = self.contact.state_at_load(load_n)?;
+                let capacity = self.slip_threshold_n(&state);
+                point.friction_capacity_n = capacity;
+                point.real_area_m2 = state.real_area_m2;
+                point.contacts = state.contacts;
+                point.adhesive_load_n = state.adhesive_load_n;
+                point.tilt_x_rad = state.tilt_x_rad;
+                point.tilt_y_rad = state.tilt_y_rad;
+                point.max_pressure_pa = state.max_pressure_pa;
+                point.over_elastic_limit = state.max_pressure_pa > self.material.hardness;
+                // The pull ramp: V_n = n * step. While the shoe sticks the pull gap is fixed, so
+                // F_pull(V) = a_pull V^2 rises monotonically: slip happens at the first step with
+                // a_pull V^2 >= capacity, found directly and then confirmed by the force itself.
+                let step = self.protocol.pull_voltage_step;
+                let mut n = ((capacity / a_pull).sqrt() / step).ceil().max(1.0);
+                let force = |n: f64| pull_force_stuck_n(&self.pull, n * step);
+                while n > 1.0 && force(n - 1.0).map_err(|e| actuator_err("pull", e))? >= capacity {
+                    n -= 1.0;
+                }
+                while force(n).map_err(|e| actuator_err("pull", e))? < capacity {
+                    n += 1.0;
+                }
+                let v_pull = n * step;
+                if v_pull <= self.protocol.pull_voltage_max {
+                    point.v_pull = Some(v_pull);
+                    point.v_pull_sq = Some(v_pull * v_pull);
+                    point.friction_n = Some(force(n).map_err(|e| actuator_err("pull", e))?);
+                    // Once it slips, only kinetic friction (not modelled: taken as zero) holds the
+                    // shuttle; does the pull array run away to its stop?
+                    let response = slip_response(&self.pull, v_pull, 0.0).map_err(|e| actuator_err("pull", e))?;
+                    point.pull_in_at_slip = Some(matches!(response, SlipResponse::RunsAway { .. }));
+                }
+            }
+            points.push(point);
+            progress(k + 1, voltages.len());
+        }
+        let pairs: Vec<(f64, f64)> =
+            points.iter().filter(|p| p.load_n > 0.0).filter_map(|p| p.friction_n.map(|f| (p.load_n, f))).collect();
+        let line = fit::LineFit::least_squares(&pairs);
+        let (mu, fa0) = match &line {
+            Some(l) if l.slope > 0.0 => (Some(l.slope), Some(l.intercept / l.slope)),
+            _ => (None, None),
+        };
+        Ok(MeterResult {
+            contact_model: self.contact.name(),
+            points,
+            mu_apparent: mu,
+            apparent_adhesion_force_n: fa0,
+            fit: line,
+            spring_force_n: spring_force_used,
+            pull_array_pull_in_v: pull_in_v,
+        })
+    }
+
+    /// The pull force at which the shoe slips, by the scenario's criterion, N.
+    pub fn slip_threshold_n(&self, state: &ContactState) -> f64 {
+        let s = self.material.shear_strength;
+        match self.protocol.slip {
+            // Eq. 1: F_f = s A_r.
+            SlipCriterion::ShearArea => s * state.real_area_m2,
+            // Plastic limit mu_p = s / H on the total (external plus adhesive) load.
+            SlipCriterion::Plastic => s / self.material.hardness * state.elastic_load_n(),
+            // sum_i (s0 + alpha p_i) A_i = s0 A_r + alpha sum_i P_i (P_i the elastic load of contact i).
+            SlipCriterion::PressureDependent { alpha } => s * state.real_area_m2 + alpha * state.elastic_load_n(),
+        }
+    }
+}
+
+/// The summit parameters of a scenario's material and surface (mean radius).
+pub fn asperity_params(material: &MaterialSpec, radius_m: f64) -> AsperityParams {
+    AsperityParams {
+        radius_m,
+        compliance_per_pa: material.compliance_per_pa(),
+        work_of_adhesion_j_per_m2: material.work_of_adhesion,
+        equilibrium_spacing_m: material.equilibrium_spacing,
+    }
+}
+
+/// Builds the contact model a scenario asks for.
+pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Result<ContactModel, MeterError> {
+    let c = s.contact_or_default();
+    let surface_spec = s.require_surface().map_err(MeterError::Scenario)?;
+    match c.model {
+        ModelKind::Explicit => {
+            let surface = surface_spec.build(base_dir).map_err(|e| MeterError::Surface(e.to_string()))?;
+            let mode = match c.mode {
+                ShoeMode::Tilt => explicit::ShoeMode::TiltFree,
+                ShoeMode::Flat => explicit::ShoeMode::Flat,
+                ShoeMode::Fixed => explicit::ShoeMode::FixedContacts { count: c.contacts.unwrap_or(3) },
+            };
+            let config = explicit::SolverConfig {
+                mode,
+                shear_strength_pa: material.shear_strength,
+                hardness_pa: Some(material.hardness),
+                detail: explicit::Detail::Summary,
+                ..Default::default()
+            };
+            let params = asperity_params(material, surface_spec.summit_radius.unwrap_or(0.5e-6));
+            let solver = explicit::ExplicitSolver::new(surface, c.law, params, config)
+                .map_err(|e| MeterError::Contact(e.to_string()))?;
+            Ok(ContactModel::Explicit(Box::new(solver)))
+        }
+        ModelKind::Gw => {
+            let face = surface_spec.face_params().map_err(|e| MeterError::Surface(e.to_string()))?;
+            let gw = GwSurface {
+                summit_density_per_m2: face.summit_density_per_m2,
+                summit_radius_m: face.summit_radius_m,
+                summit_sd_m: face.summit_sd_m,
+                compliance_per_pa: material.compliance_per_pa(),
+                work_of_adhesion_j_per_m2: material.work_of_adhesion,
+                apparent_area_m2: surface_spec.apparent_length * surface_spec.apparent_width,
+            };
+            Ok(ContactModel::Gw(gw))
+        }
+        ModelKind::Discrete => {
+            let radius = surface_spec.summit_radius.unwrap_or(0.5e-6);
+            Ok(ContactModel::Discrete {
+                contacts: c.contacts.unwrap_or(3),
+                law: c.law,
+                params: asperity_params(material, radius),
+            })
+        }
+    }
+}

@@ -129,12 +129,11 @@ fn expand(nodes: &[Value], defs: &Value) -> Vec<Value> {
         if guard > 10_000 {
             break;
         }
-        if let Some(r) = node.get("$ref").and_then(Value::as_str) {
-            if let Some(name) = r.strip_prefix("#/$defs/")
-                && let Some(def) = defs.get(name)
-            {
-                stack.push(def.clone());
-            }
+        if let Some(r) = node.get("$ref").and_then(Value::as_str)
+            && let Some(name) = r.strip_prefix("#/$defs/")
+            && let Some(def) = defs.get(name)
+        {
+            stack.push(def.clone());
         }
         for key in ["anyOf", "oneOf", "allOf"] {
             if let Some(list) = node.get(key).and_then(Value::as_array) {

@@ -23,7 +23,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 mod parse;
-pub use parse::{format_quantity, parse_quantity, parse_quantity_checked};
+pub use parse::{format_quantity, parse_any, parse_quantity, parse_quantity_checked};
 
 pub mod de;
 mod uncertain;

@@ -81,6 +81,21 @@ pub fn parse_quantity_checked(text: &str, dim: Dimension, constraint: Constraint
     check_value(value, text, dim, constraint)
 }
 
+/// Parses `text` with whatever unit it carries and returns its SI value and dimension, without
+/// checking against a field (used to sample uncertain parameters before the typed parse).
+pub fn parse_any(text: &str) -> Result<(f64, DimensionVector), String> {
+    let trimmed = text.trim();
+    let (number_text, unit_text) = split_number(trimmed);
+    let number: f64 = number_text.parse().map_err(|_| format!("{text:?}: `{number_text}` is not a number"))?;
+    let unit_text = unit_text.trim();
+    let (factor, dims) = if unit_text.is_empty() {
+        (1.0, DimensionVector::default())
+    } else {
+        parse_unit(unit_text).map_err(|e| format!("{text:?}: {e}"))?
+    };
+    Ok((number * factor, dims))
+}
+
 /// Checks a parsed SI value against the constraint (finite, sign).
 pub(crate) fn check_value(
     value: f64,

@@ -1,12 +1,268 @@
-//! `stiction actuator` (being written).
+//! `stiction actuator`: one gap-closing actuator array of a scenario.
 
-use crate::output::CliResult;
+use std::path::{Path, PathBuf};
 
-/// Arguments.
+use serde::Serialize;
+use stiction_actuator::{ArraySpec, GapClosingActuator, Sweep, read_measurements, switch_effects, validate};
+use stiction_plot::{Chart, Series};
+use stiction_scenario::Scenario;
+use stiction_units::{Constraint, Dimension};
+
+use crate::output::{CliResult, ensure_dir, print_json, print_table, q, quantity};
+
+/// Pull-in, release, conversion factor and stiffness of an actuator array; sweeps; validation against measurements.
 #[derive(clap::Args, Debug)]
-pub struct Args {}
+pub struct Args {
+    /// The scenario JSON file.
+    pub scenario: PathBuf,
+    /// Which array of the scenario's `actuators` (default: the only one; `clamp` and `pull` in the meter).
+    #[arg(long)]
+    pub array: Option<String>,
+    /// Also sweep the voltage up and back down: travel x(V) and force F(V) on loading and unloading.
+    #[arg(long)]
+    pub sweep: bool,
+    /// Highest sweep voltage (default 1.3 x the pull-in voltage).
+    #[arg(long, value_parser = quantity(Dimension::Voltage, Constraint::Positive))]
+    pub sweep_max: Option<f64>,
+    /// Number of voltage steps of each sweep direction.
+    #[arg(long, default_value_t = 200)]
+    pub sweep_steps: usize,
+    /// Compare predicted pull-in and release with a measured CSV
+    /// (finger_length_drawn_um, pull_in_v_1.., release_v), one prediction per finger length.
+    #[arg(long, value_name = "MEASURED.csv")]
+    pub validate: Option<PathBuf>,
+    /// With --validate: also report the error with each physics switch toggled.
+    #[arg(long)]
+    pub switches: bool,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Write results.json and plots (SVG and PNG) to this folder.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Override a scenario field (repeatable): --set actuators.gca.undercut="0.3 um".
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct Summary {
+    array: String,
+    pull_in_voltage_v: f64,
+    pull_in_travel_m: f64,
+    pull_in_limited_by_stop: bool,
+    release_voltage_v: Option<f64>,
+    hysteresis_v: Option<f64>,
+    conversion_factor_n_per_v2: f64,
+    conversion_factor_travel_m: f64,
+    spring_stiffness_n_per_m: f64,
+    front_gap_m: f64,
+    stop_travel_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sweep: Option<Sweep>,
+    /// With --validate: `points`, `pull_in_mean_abs_rel_error`, `release_mean_abs_rel_error` at the top level.
+    #[serde(flatten)]
+    validation: Option<stiction_actuator::ValidationReport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    switches: Option<Vec<stiction_actuator::SwitchEffect>>,
+}
+
+/// Loads a scenario and picks the named array (or the only one).
+pub fn pick_array(
+    path: &Path,
+    name: Option<&str>,
+    sets: &[String],
+) -> Result<(String, ArraySpec), Box<dyn std::error::Error>> {
+    let scenario = Scenario::load(path, sets)?;
+    let names: Vec<&String> = scenario.actuators.keys().collect();
+    let name = match name {
+        Some(n) => n.to_string(),
+        None if names.len() == 1 => names[0].clone(),
+        None => return Err(format!("{}: choose an array with --array, one of {names:?}", path.display()).into()),
+    };
+    let spec = scenario
+        .actuators
+        .get(&name)
+        .cloned()
+        .ok_or_else(|| format!("{}: no actuator array `{name}`; the scenario has {names:?}", path.display()))?;
+    Ok((name, spec))
+}
 
 /// Runs the subcommand.
-pub fn run(_args: Args) -> CliResult {
-    Err("not yet available".into())
+pub fn run(args: Args) -> CliResult {
+    let (name, spec) = pick_array(&args.scenario, args.array.as_deref(), &args.sets)?;
+    let model = spec.to_model().map_err(|e| format!("actuator `{name}`: {e}"))?;
+    let pull_in = model.pull_in()?;
+    let release =
+        if model.stop_travel_m.is_some() && !pull_in.limited_by_stop { Some(model.release_voltage_v()?) } else { None };
+    let mut summary = Summary {
+        array: name.clone(),
+        pull_in_voltage_v: pull_in.voltage_v,
+        pull_in_travel_m: pull_in.travel_m,
+        pull_in_limited_by_stop: pull_in.limited_by_stop,
+        release_voltage_v: release,
+        hysteresis_v: release.map(|r| pull_in.voltage_v - r),
+        conversion_factor_n_per_v2: model.conversion_factor_n_per_v2(spec.operating_travel),
+        conversion_factor_travel_m: spec.operating_travel,
+        spring_stiffness_n_per_m: model.stiffness_n_per_m(),
+        front_gap_m: model.plates.front_gap_m,
+        stop_travel_m: model.stop_travel_m,
+        sweep: None,
+        validation: None,
+        switches: None,
+    };
+    if args.sweep || args.out.is_some() {
+        let vmax = args.sweep_max.unwrap_or(1.3 * pull_in.voltage_v);
+        summary.sweep = Some(model.sweep(vmax, args.sweep_steps.max(2))?);
+    }
+    if let Some(csv) = &args.validate {
+        let data = read_measurements(csv)?;
+        summary.validation = Some(validate(&spec, &data)?);
+        if args.switches {
+            summary.switches = Some(switch_effects(&spec, &data)?);
+        }
+    }
+    if let Some(dir) = &args.out {
+        ensure_dir(dir)?;
+        std::fs::write(dir.join("results.json"), serde_json::to_string_pretty(&summary)?)?;
+        if let Some(sweep) = &summary.sweep {
+            let chart = sweep_chart(&name, sweep, &model);
+            crate::cmd::plot::write_chart(&chart, &dir.join("hysteresis.svg"))?;
+            crate::cmd::plot::write_chart(&chart, &dir.join("hysteresis.png"))?;
+        }
+        if let Some(report) = &summary.validation {
+            let chart = validation_chart(report);
+            crate::cmd::plot::write_chart(&chart, &dir.join("validation.svg"))?;
+            crate::cmd::plot::write_chart(&chart, &dir.join("validation.png"))?;
+        }
+        eprintln!("wrote {}", dir.display());
+    }
+    if args.json {
+        return print_json(&summary);
+    }
+    print_table(
+        &format!("Gap-closing actuator array `{name}`"),
+        &[
+            ("pull-in voltage", q(summary.pull_in_voltage_v, Dimension::Voltage)),
+            (
+                "pull-in travel",
+                format!(
+                    "{}{}",
+                    q(summary.pull_in_travel_m, Dimension::Length),
+                    if pull_in.limited_by_stop { " (stop reached first)" } else { "" }
+                ),
+            ),
+            ("release voltage", summary.release_voltage_v.map_or("- (no stop)".into(), |v| q(v, Dimension::Voltage))),
+            (
+                "conversion factor a = F/V^2",
+                format!(
+                    "{:.4e} N/V^2 at travel {}",
+                    summary.conversion_factor_n_per_v2,
+                    q(spec.operating_travel, Dimension::Length)
+                ),
+            ),
+            ("spring stiffness", format!("{:.4} N/m", summary.spring_stiffness_n_per_m)),
+            ("front gap (as built)", q(summary.front_gap_m, Dimension::Length)),
+        ],
+    );
+    if let Some(r) = &summary.validation {
+        println!(
+            "\nValidation against {} ({} finger lengths)",
+            args.validate.as_ref().map_or(String::new(), |p| p.display().to_string()),
+            r.points.len()
+        );
+        println!(
+            "  {:>10}  {:>9} {:>9} {:>8}   {:>9} {:>9} {:>8}",
+            "L_f (um)", "V_pi meas", "V_pi mod", "err", "V_r meas", "V_r mod", "err"
+        );
+        for p in &r.points {
+            println!(
+                "  {:>10.2}  {:>9.2} {:>9.2} {:>7.1}%   {:>9.2} {:>9.2} {:>7.1}%",
+                p.finger_length_m * 1e6,
+                p.pull_in_v_measured,
+                p.pull_in_v_model,
+                100.0 * p.pull_in_rel_error,
+                p.release_v_measured,
+                p.release_v_model,
+                100.0 * p.release_rel_error
+            );
+        }
+        println!(
+            "  mean |relative error|: pull-in {:.1} %, release {:.1} %",
+            100.0 * r.pull_in_mean_abs_rel_error,
+            100.0 * r.release_mean_abs_rel_error
+        );
+    }
+    if let Some(sw) = &summary.switches {
+        println!("\nPhysics switches (mean |rel. error| pull-in, release; mean signed)");
+        for s in sw {
+            println!(
+                "  {:<36} {:>6.1} % {:>6.1} %   ({:+.1} %, {:+.1} %)",
+                s.switch,
+                100.0 * s.pull_in_mean_abs_rel_error,
+                100.0 * s.release_mean_abs_rel_error,
+                100.0 * s.pull_in_mean_rel_error,
+                100.0 * s.release_mean_rel_error
+            );
+        }
+    }
+    Ok(())
+}
+
+fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
+    let up: Vec<(f64, f64)> =
+        sweep.loading.iter().filter(|p| p.travel_m.is_finite()).map(|p| (p.voltage_v, p.travel_m * 1e6)).collect();
+    let down: Vec<(f64, f64)> =
+        sweep.unloading.iter().filter(|p| p.travel_m.is_finite()).map(|p| (p.voltage_v, p.travel_m * 1e6)).collect();
+    let mut chart = Chart::new(
+        format!("Actuator `{name}`: travel against voltage (pull-in and release)"),
+        "voltage V (V)",
+        "travel x (um)",
+    )
+    .with(Series::line("loading (increasing V)", up))
+    .with(Series::dashed("unloading (decreasing V)", down));
+    let top = model.stop_travel_m.unwrap_or(model.plates.front_gap_m) * 1e6 * 1.05;
+    chart.y_range = Some((0.0, top));
+    chart
+}
+
+/// Measured pull-in and release (mean, with the spread of repeats) against finger length, with the model lines.
+pub fn validation_chart(r: &stiction_actuator::ValidationReport) -> Chart {
+    let um = |p: &stiction_actuator::ValidationPoint| p.finger_length_m * 1e6;
+    Chart::new(
+        format!(
+            "GCA pull-in and release: model vs measured (mean |err| {:.1} % / {:.1} %)",
+            100.0 * r.pull_in_mean_abs_rel_error,
+            100.0 * r.release_mean_abs_rel_error
+        ),
+        "drawn finger length (um)",
+        "voltage (V)",
+    )
+    .with(
+        Series::markers(
+            "pull-in, measured (mean, SD of 3)",
+            r.points.iter().map(|p| (um(p), p.pull_in_v_measured)).collect(),
+        )
+        .with_y_err(r.points.iter().map(|p| p.pull_in_v_spread).collect()),
+    )
+    .with(Series::line("pull-in, model", r.points.iter().map(|p| (um(p), p.pull_in_v_model)).collect()))
+    .with(Series::markers("release, measured", r.points.iter().map(|p| (um(p), p.release_v_measured)).collect()))
+    .with(Series::dashed("release, model", r.points.iter().map(|p| (um(p), p.release_v_model)).collect()))
+}
+
+/// The hysteresis chart of `stiction plot actuator`.
+pub fn hysteresis_chart(
+    path: &Path,
+    array: Option<&str>,
+    sets: &[String],
+) -> Result<Chart, Box<dyn std::error::Error>> {
+    let name = array.map(str::to_string);
+    let (name, spec) = match pick_array(path, name.as_deref(), sets) {
+        Ok(x) => x,
+        Err(_) if name.is_none() => pick_array(path, Some("clamp"), sets)?,
+        Err(e) => return Err(e),
+    };
+    let model = spec.to_model()?;
+    let vmax = 1.3 * model.pull_in()?.voltage_v;
+    Ok(sweep_chart(&name, &model.sweep(vmax, 300)?, &model))
 }

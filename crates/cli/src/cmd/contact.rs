@@ -1,12 +1,169 @@
-//! `stiction contact` (being written).
+//! `stiction contact`: the explicit asperity-by-asperity solver on a scenario's surface.
 
-use crate::output::CliResult;
+use std::path::PathBuf;
 
-/// Arguments.
+use stiction_contact::explicit::{Detail, Equilibrium};
+use stiction_contact::single::Branch;
+use stiction_meter::{ContactModel, build_contact_model};
+use stiction_scenario::{ContactModel as ModelKind, Scenario};
+use stiction_units::{Constraint, Dimension, parse_quantity_checked};
+
+use crate::output::{CliResult, print_json, print_table, q, quantity};
+
+/// Shoe degrees of freedom.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum Mode {
+    /// Approach and two tilts free.
+    Tilt,
+    /// Approach only (the GW situation).
+    Flat,
+    /// Only the --contacts highest summits carry the shoe (eq. 12).
+    Fixed,
+}
+
+/// Equilibrium of a rigid shoe on the scenario's rough surface under a normal load (or a sweep of loads).
 #[derive(clap::Args, Debug)]
-pub struct Args {}
+pub struct Args {
+    /// The scenario JSON file (surface, material, contact law).
+    pub scenario: PathBuf,
+    /// Normal load, compressive positive ("3 uN"; negative = adhesive pull, down to pull-off).
+    #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Force, Constraint::Finite), required_unless_present = "sweep")]
+    pub load: Option<f64>,
+    /// Shoe degrees of freedom (default: the scenario's, else tilt).
+    #[arg(long, value_enum)]
+    pub mode: Option<Mode>,
+    /// Number of contacts for --mode fixed.
+    #[arg(long)]
+    pub contacts: Option<usize>,
+    /// A load sweep FROM:TO:STEPS, like "0uN:10uN:21" (loads in order; each from the previous equilibrium).
+    #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEPS")]
+    pub sweep: Option<String>,
+    /// Also list every summit in contact (interference, load, contact radius, peak pressure).
+    #[arg(long)]
+    pub summits: bool,
+    /// Print JSON (one object, or an array for a sweep) instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Override a scenario field (repeatable).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+}
+
+/// Parses FROM:TO:STEPS into the loads, N.
+pub fn parse_sweep(text: &str) -> Result<Vec<f64>, String> {
+    let parts: Vec<&str> = text.split(':').collect();
+    if parts.len() != 3 {
+        return Err(format!("--sweep {text:?}: expected FROM:TO:STEPS, like \"0uN:10uN:21\""));
+    }
+    let f = |s: &str, what: &str| {
+        parse_quantity_checked(s, Dimension::Force, Constraint::Finite).map_err(|e| format!("--sweep {what}: {e}"))
+    };
+    let (from, to) = (f(parts[0], "FROM")?, f(parts[1], "TO")?);
+    let steps: usize = parts[2]
+        .trim()
+        .parse()
+        .ok()
+        .filter(|n| *n >= 2)
+        .ok_or_else(|| format!("--sweep STEPS {:?}: expected a whole number >= 2", parts[2]))?;
+    Ok((0..steps).map(|i| from + (to - from) * i as f64 / (steps - 1) as f64).collect())
+}
 
 /// Runs the subcommand.
-pub fn run(_args: Args) -> CliResult {
-    Err("not yet available".into())
+pub fn run(args: Args) -> CliResult {
+    let mut sets = args.sets.clone();
+    sets.push("contact.model=\"explicit\"".into());
+    match args.mode {
+        Some(Mode::Tilt) => sets.push("contact.mode=\"tilt\"".into()),
+        Some(Mode::Flat) => sets.push("contact.mode=\"flat\"".into()),
+        Some(Mode::Fixed) => sets.push("contact.mode=\"fixed\"".into()),
+        None => {}
+    }
+    if let Some(n) = args.contacts {
+        sets.push(format!("contact.contacts={n}"));
+    }
+    let scenario = Scenario::load(&args.scenario, &sets)?;
+    let material = scenario.require_material()?.clone();
+    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    let c = scenario.contact_or_default();
+    debug_assert_eq!(c.model, ModelKind::Explicit);
+    let ContactModel::Explicit(mut solver) = build_contact_model(&scenario, &material, &base)? else {
+        return Err("the explicit solver could not be built".into());
+    };
+    solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });
+    if let Some(sweep) = &args.sweep {
+        let loads = parse_sweep(sweep)?;
+        let increasing = loads.last() >= loads.first();
+        let result = solver.sweep(&loads, if increasing { Branch::Loading } else { Branch::Unloading })?;
+        if args.json {
+            return print_json(&result);
+        }
+        println!("Load sweep on {} summits, mode {:?}, law {:?}", solver.len(), c.mode, c.law);
+        println!(
+            "  {:>10} {:>12} {:>10} {:>10} {:>8} {:>12} {:>11} {:>11}",
+            "L (uN)", "d (nm)", "tilt_x", "tilt_y", "N", "A_r (um^2)", "F_cap (uN)", "q0 (GPa)"
+        );
+        for e in &result.points {
+            println!(
+                "  {:>10.4} {:>12.4} {:>10.2e} {:>10.2e} {:>8} {:>12.5e} {:>11.4} {:>11.3}",
+                e.load_n * 1e6,
+                e.separation_m * 1e9,
+                e.tilt_x_rad,
+                e.tilt_y_rad,
+                e.contacts,
+                e.real_area_m2 * 1e12,
+                e.friction_capacity_n * 1e6,
+                e.max_pressure_pa * 1e-9
+            );
+        }
+        for ev in &result.events {
+            println!("  event: {}", serde_json::to_string(ev)?);
+        }
+        return Ok(());
+    }
+    let load = args.load.ok_or("give --load or --sweep")?;
+    let eq = solver.solve(load)?;
+    if args.json {
+        return print_json(&eq);
+    }
+    print_table(
+        &format!("Explicit contact on {} summits ({:?}, {:?})", solver.len(), c.mode, c.law),
+        &rows(&eq, material.hardness),
+    );
+    if args.summits {
+        println!(
+            "\n  {:>8} {:>10} {:>10} {:>12} {:>11} {:>10} {:>9}",
+            "index", "x (um)", "y (um)", "z (nm)", "P (uN)", "a (nm)", "q0 (GPa)"
+        );
+        for s in &eq.summits {
+            println!(
+                "  {:>8} {:>10.4} {:>10.4} {:>12.5} {:>11.5} {:>10.3} {:>9.3}",
+                s.index,
+                s.x_m * 1e6,
+                s.y_m * 1e6,
+                s.interference_m * 1e9,
+                s.load_n * 1e6,
+                s.contact_radius_m * 1e9,
+                s.max_pressure_pa * 1e-9
+            );
+        }
+    }
+    Ok(())
+}
+
+fn rows(eq: &Equilibrium, hardness: f64) -> Vec<(&'static str, String)> {
+    vec![
+        ("load L", q(eq.load_n, Dimension::Force)),
+        ("separation d", q(eq.separation_m, Dimension::Length)),
+        ("tilt x, y", format!("{:.3e} rad, {:.3e} rad", eq.tilt_x_rad, eq.tilt_y_rad)),
+        ("contacts", format!("{}", eq.contacts)),
+        ("real area A_r", format!("{:.5e} m^2", eq.real_area_m2)),
+        ("adhesive load", q(eq.adhesive_load_n, Dimension::Force)),
+        ("friction capacity s A_r", q(eq.friction_capacity_n, Dimension::Force)),
+        (
+            "max Hertz pressure q0",
+            format!("{}  (hardness {})", q(eq.max_pressure_pa, Dimension::Pressure), q(hardness, Dimension::Pressure)),
+        ),
+        ("force residual", format!("{:.3e} N", eq.force_residual_n)),
+        ("moment residuals", format!("{:.3e} N m, {:.3e} N m", eq.moment_residual_x_n_m, eq.moment_residual_y_n_m)),
+    ]
 }

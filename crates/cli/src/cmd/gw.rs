@@ -1,12 +1,90 @@
-//! `stiction gw` (being written).
+//! `stiction gw`: Greenwood-Williamson with DMT adhesion in normalized form (eq. 5-9).
 
-use crate::output::CliResult;
+use serde::Serialize;
+use stiction_contact::gw::GwModel;
 
-/// Arguments.
+use crate::output::{CliResult, print_json, print_table};
+
+/// The stable-branch GW(+DMT) state at a normalized load L* = D L / (eta A_a R^1/2 sigma^3/2).
 #[derive(clap::Args, Debug)]
-pub struct Args {}
+pub struct Args {
+    /// Adhesion parameter theta = sigma^3/2 R^1/2 / (D dgamma R) (eq. 9); "inf" for plain GW (no adhesion).
+    #[arg(long, value_parser = parse_theta)]
+    pub theta: Option<f64>,
+    /// Normalized load L* (eq. 8); below the pull-off load there is no equilibrium.
+    #[arg(long = "load-star", allow_hyphen_values = true)]
+    pub load_star: f64,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Parses a finite theta > 0 or "inf" (None).
+fn parse_theta(s: &str) -> Result<Option<f64>, String> {
+    let t = s.trim();
+    if t.eq_ignore_ascii_case("inf") || t.eq_ignore_ascii_case("infinity") {
+        return Ok(None);
+    }
+    match t.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(Some(x)),
+        Ok(x) if x.is_infinite() && x > 0.0 => Ok(None),
+        _ => Err(format!("{s:?}: expected a positive adhesion parameter or \"inf\"")),
+    }
+}
+
+#[derive(Serialize)]
+struct Output {
+    theta: Option<f64>,
+    l_star: f64,
+    h: f64,
+    n_star: f64,
+    log10_n_star: f64,
+    a_star: f64,
+    log10_a_star: f64,
+    elastic_l_star: f64,
+    adhesive_l_star: f64,
+    elastic_pressure_star: f64,
+    pull_off_l_star: Option<f64>,
+    pull_off_h: Option<f64>,
+}
 
 /// Runs the subcommand.
-pub fn run(_args: Args) -> CliResult {
-    Err("not yet available".into())
+pub fn run(args: Args) -> CliResult {
+    if !args.load_star.is_finite() {
+        return Err(format!("--load-star {}: expected a finite normalized load", args.load_star).into());
+    }
+    let model = GwModel::new(args.theta)?;
+    let st = model.solve(args.load_star)?;
+    let out = Output {
+        theta: st.theta,
+        l_star: st.l_star,
+        h: st.h,
+        n_star: st.n_star,
+        log10_n_star: st.log10_n_star,
+        a_star: st.a_star,
+        log10_a_star: st.log10_a_star,
+        elastic_l_star: st.elastic_l_star,
+        adhesive_l_star: st.adhesive_l_star,
+        elastic_pressure_star: st.elastic_pressure_star,
+        pull_off_l_star: model.pull_off().map(|p| p.l_star),
+        pull_off_h: model.pull_off().map(|p| p.h),
+    };
+    if args.json {
+        return print_json(&out);
+    }
+    let theta = out.theta.map_or("inf (no adhesion)".to_string(), |t| format!("{t}"));
+    print_table(
+        "Greenwood-Williamson + DMT (eq. 5, 8), stable branch",
+        &[
+            ("adhesion parameter theta", theta),
+            ("normalized load L*", format!("{:.6e}", out.l_star)),
+            ("separation h = d/sigma", format!("{:.6}", out.h)),
+            ("summits in contact N*", format!("{:.6e}  (log10 {:.4})", out.n_star, out.log10_n_star)),
+            ("real area A*", format!("{:.6e}  (log10 {:.4})", out.a_star, out.log10_a_star)),
+            ("elastic load F_3/2(h)", format!("{:.6e}", out.elastic_l_star)),
+            ("adhesive load (2 pi/theta) F_0", format!("{:.6e}", out.adhesive_l_star)),
+            ("pull-off L*", out.pull_off_l_star.map_or("none (no adhesion)".into(), |l| format!("{l:.6e}"))),
+        ],
+    );
+    Ok(())
 }

@@ -7,3 +7,4 @@ pub mod gw;
 pub mod plot;
 pub mod run;
 pub mod scenario;
+pub mod study;

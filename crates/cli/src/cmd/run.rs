@@ -1,12 +1,213 @@
-//! `stiction run` (being written).
+//! `stiction run`: the friction-meter experiment of a scenario (the paper's section 5, Fig. 5).
 
-use crate::output::CliResult;
+use std::path::{Path, PathBuf};
 
-/// Arguments.
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+use stiction_meter::{ContactModel, Meter, MeterResult};
+use stiction_plot::{Chart, Series};
+use stiction_scenario::Scenario;
+
+use crate::output::{CliResult, ensure_dir, print_json};
+
+/// Run the friction meter: clamp at each clamp voltage, ramp the pull voltage until slip, fit eq. 10.
 #[derive(clap::Args, Debug)]
-pub struct Args {}
+pub struct Args {
+    /// The scenario JSON file (e.g. scenarios/tas2000.json).
+    pub scenario: PathBuf,
+    /// Write results.json, results.csv, fig5.svg/.png and fig7.svg/.png to this folder.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Override a scenario field (repeatable): --set surface.summit_sd="40 nm".
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+    /// Print one JSON object on stdout instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize)]
+struct RunOutput<'a> {
+    scenario: String,
+    description: &'a str,
+    #[serde(flatten)]
+    result: &'a MeterResult,
+}
 
 /// Runs the subcommand.
-pub fn run(_args: Args) -> CliResult {
-    Err("not yet available".into())
+pub fn run(args: Args) -> CliResult {
+    let scenario = Scenario::load(&args.scenario, &args.sets)?;
+    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    let mut meter = Meter::from_scenario(&scenario, &base)?;
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} clamp voltages {pos}/{len} [{bar:30}] {elapsed_precise}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let result = meter.run(&mut |done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    })?;
+    bar.finish_and_clear();
+    let output = RunOutput {
+        scenario: args.scenario.display().to_string(),
+        description: &scenario.description,
+        result: &result,
+    };
+    if let Some(dir) = &args.out {
+        write_outputs(dir, &output, &scenario, &mut meter)?;
+    }
+    if args.json {
+        return print_json(&output);
+    }
+    print_summary(&output);
+    if let Some(dir) = &args.out {
+        println!("\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig7.svg, fig7.png", dir.display());
+    }
+    Ok(())
+}
+
+fn print_summary(o: &RunOutput) {
+    let r = o.result;
+    println!("stiction run {}", o.scenario);
+    if !o.description.is_empty() {
+        println!("  {}", o.description);
+    }
+    println!("  contact model: {}, F_spring = {:.3} uN", r.contact_model, r.spring_force_n * 1e6);
+    println!(
+        "\n  {:>8} {:>10} {:>9} {:>9} {:>10} {:>11} {:>8} {:>11} {:>9}",
+        "V_clamp", "L (uN)", "V_pull", "V_pull^2", "F_f (uN)", "A_r (um^2)", "N", "F_adh (uN)", "q0 (GPa)"
+    );
+    for p in &r.points {
+        let opt =
+            |x: Option<f64>, scale: f64, prec: usize| x.map_or("-".to_string(), |v| format!("{:.prec$}", v * scale));
+        println!(
+            "  {:>8.2} {:>10.4} {:>9} {:>9} {:>10} {:>11.5} {:>8.0} {:>11.4} {:>9.3}{}",
+            p.v_clamp,
+            p.load_n * 1e6,
+            opt(p.v_pull, 1.0, 2),
+            opt(p.v_pull_sq, 1.0, 1),
+            opt(p.friction_n, 1e6, 4),
+            p.real_area_m2 * 1e12,
+            p.contacts,
+            p.adhesive_load_n * 1e6,
+            p.max_pressure_pa * 1e-9,
+            if !p.in_contact {
+                "  (no contact)"
+            } else if p.v_pull.is_none() {
+                "  (no slip)"
+            } else {
+                ""
+            }
+        );
+    }
+    println!();
+    match (r.mu_apparent, r.apparent_adhesion_force_n, &r.fit) {
+        (Some(mu), Some(fa0), Some(fit)) => {
+            println!(
+                "  apparent friction coefficient mu_e,a = {mu:.3} +/- {:.3}  (eq. 10; paper measured 0.7 +/- 0.3)",
+                fit.slope_se
+            );
+            println!("  apparent zero-load adhesion F_a0    = {:.3} uN  (paper measured 2.0 +/- 1.3 uN)", fa0 * 1e6);
+            println!("  fit over {} points with L > 0, R^2 = {:.4}", fit.points, fit.r_squared);
+        }
+        _ => println!("  too few slip points with L > 0 for the eq. 10 fit"),
+    }
+    if let Some(v) = r.pull_array_pull_in_v {
+        let all = r.points.iter().filter_map(|p| p.pull_in_at_slip).all(|b| b);
+        println!("  pull array pull-in voltage (free shoe) {v:.2} V; pulled in at every slip: {all}");
+    }
+}
+
+fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Meter) -> CliResult {
+    ensure_dir(dir)?;
+    std::fs::write(dir.join("results.json"), serde_json::to_string_pretty(o)? + "\n")?;
+    let mut w = csv::Writer::from_path(dir.join("results.csv"))?;
+    w.write_record([
+        "v_clamp_v",
+        "v_clamp_sq_v2",
+        "in_contact",
+        "load_n",
+        "v_pull_v",
+        "v_pull_sq_v2",
+        "friction_n",
+        "friction_capacity_n",
+        "pull_in_at_slip",
+        "real_area_m2",
+        "contacts",
+        "adhesive_load_n",
+        "tilt_x_rad",
+        "tilt_y_rad",
+        "max_pressure_pa",
+        "over_elastic_limit",
+    ])?;
+    let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
+    for p in &o.result.points {
+        w.write_record([
+            format!("{}", p.v_clamp),
+            format!("{}", p.v_clamp_sq),
+            format!("{}", p.in_contact),
+            format!("{:e}", p.load_n),
+            opt(p.v_pull),
+            opt(p.v_pull_sq),
+            opt(p.friction_n),
+            format!("{:e}", p.friction_capacity_n),
+            p.pull_in_at_slip.map_or(String::new(), |b| b.to_string()),
+            format!("{:e}", p.real_area_m2),
+            format!("{}", p.contacts),
+            format!("{:e}", p.adhesive_load_n),
+            format!("{:e}", p.tilt_x_rad),
+            format!("{:e}", p.tilt_y_rad),
+            format!("{:e}", p.max_pressure_pa),
+            format!("{}", p.over_elastic_limit),
+        ])?;
+    }
+    w.flush()?;
+    let fig5 = fig5_chart(o.result);
+    crate::cmd::plot::write_chart(&fig5, &dir.join("fig5.svg"))?;
+    crate::cmd::plot::write_chart(&fig5, &dir.join("fig5.png"))?;
+    let fig7 = fig7_chart(o.result, scenario, meter)?;
+    crate::cmd::plot::write_chart(&fig7, &dir.join("fig7.svg"))?;
+    crate::cmd::plot::write_chart(&fig7, &dir.join("fig7.png"))?;
+    Ok(())
+}
+
+/// Fig. 5: V_pull^2 at slip against V_clamp^2.
+fn fig5_chart(r: &MeterResult) -> Chart {
+    let pts: Vec<(f64, f64)> = r.points.iter().filter_map(|p| p.v_pull_sq.map(|v| (p.v_clamp_sq, v))).collect();
+    Chart::new(
+        format!("Fig. 5 (virtual): pull voltage at slip, {} contact model", r.contact_model),
+        "clamp voltage squared V_clamp^2 (V^2)",
+        "pull voltage squared at slip V_pull^2 (V^2)",
+    )
+    .with(Series::markers("virtual measurement", pts))
+}
+
+/// Fig. 7: friction against load: the meter's points, the contact model's curve from pull-off,
+/// the discrete N = 3 model (eq. 12) and the eq. 10 line.
+fn fig7_chart(r: &MeterResult, scenario: &Scenario, meter: &mut Meter) -> Result<Chart, Box<dyn std::error::Error>> {
+    let material = scenario.require_material()?;
+    let radius = scenario.require_surface()?.summit_radius.unwrap_or(0.5e-6);
+    let max_load = r.points.iter().map(|p| p.load_n).fold(0.0, f64::max).max(1e-6) * 1.1;
+    let meas: Vec<(f64, f64)> =
+        r.points.iter().filter_map(|p| p.friction_n.map(|f| (p.load_n * 1e6, f * 1e6))).collect();
+    let mut chart = Chart::new("Fig. 7: static friction against load", "clamp load L (uN)", "friction force F_f (uN)")
+        .with(Series::markers(format!("virtual meter ({})", r.contact_model), meas));
+    // The contact model's own curve s A_r(L), from its pull-off where it has one.
+    if let ContactModel::Explicit(solver) = meter.contact_model() {
+        solver.reset();
+        if let Ok(sweep) = solver.loading_curve(max_load, 120) {
+            let pts = sweep.points.iter().map(|e| (e.load_n * 1e6, e.friction_capacity_n * 1e6)).collect();
+            chart.series.push(Series::line("explicit solver, loading from pull-off", pts));
+        }
+    }
+    let discrete = crate::cmd::discrete::friction_curve_n3(material, radius, max_load)?;
+    chart.series.push(Series::dashed("discrete model N = 3 (eq. 12)", discrete));
+    if let (Some(fit), Some(fa0)) = (&r.fit, r.apparent_adhesion_force_n) {
+        let line = vec![(-fa0 * 1e6, 0.0), (max_load * 1e6, (fit.intercept + fit.slope * max_load) * 1e6)];
+        chart
+            .series
+            .push(Series::dashed(format!("eq. 10 fit: mu_e,a = {:.2}, F_a0 = {:.2} uN", fit.slope, fa0 * 1e6), line));
+    }
+    Ok(chart)
 }
