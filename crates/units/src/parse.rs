@@ -66,6 +66,11 @@ pub fn parse_quantity_checked(text: &str, dim: Dimension, constraint: Constraint
         return Err(err("no number at the start".into()));
     }
     let number: f64 = number_text.parse().map_err(|_| err(format!("`{number_text}` is not a number")))?;
+    // "9.1e-12.5 1/Pa", "1.2.3 um": the number runs on into digits or dots.
+    if unit_text.starts_with(|c: char| c == '.' || c.is_ascii_digit()) {
+        let word = trimmed.split_whitespace().next().unwrap_or(trimmed);
+        return Err(err(format!("`{word}` is not a number")));
+    }
     let unit_text = unit_text.trim();
     let (factor, dims) =
         if unit_text.is_empty() { (1.0, DimensionVector::default()) } else { parse_unit(unit_text).map_err(err)? };

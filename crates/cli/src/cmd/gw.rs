@@ -9,8 +9,8 @@ use crate::output::{CliResult, print_json, print_table};
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Adhesion parameter theta = sigma^3/2 R^1/2 / (D dgamma R) (eq. 9); "inf" for plain GW (no adhesion).
-    #[arg(long, value_parser = parse_theta)]
-    pub theta: Option<f64>,
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_theta)]
+    pub theta: Theta,
     /// Normalized load L* (eq. 8); below the pull-off load there is no equilibrium.
     #[arg(long = "load-star", allow_hyphen_values = true)]
     pub load_star: f64,
@@ -19,15 +19,19 @@ pub struct Args {
     pub json: bool,
 }
 
-/// Parses a finite theta > 0 or "inf" (None).
-fn parse_theta(s: &str) -> Result<Option<f64>, String> {
+/// An adhesion parameter: finite and positive, or infinite (`None`, no adhesion).
+#[derive(Clone, Copy, Debug)]
+pub struct Theta(pub Option<f64>);
+
+/// Parses a finite theta > 0 or "inf".
+fn parse_theta(s: &str) -> Result<Theta, String> {
     let t = s.trim();
     if t.eq_ignore_ascii_case("inf") || t.eq_ignore_ascii_case("infinity") {
-        return Ok(None);
+        return Ok(Theta(None));
     }
     match t.parse::<f64>() {
-        Ok(x) if x.is_finite() && x > 0.0 => Ok(Some(x)),
-        Ok(x) if x.is_infinite() && x > 0.0 => Ok(None),
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(Theta(Some(x))),
+        Ok(x) if x.is_infinite() && x > 0.0 => Ok(Theta(None)),
         _ => Err(format!("{s:?}: expected a positive adhesion parameter or \"inf\"")),
     }
 }
@@ -53,7 +57,7 @@ pub fn run(args: Args) -> CliResult {
     if !args.load_star.is_finite() {
         return Err(format!("--load-star {}: expected a finite normalized load", args.load_star).into());
     }
-    let model = GwModel::new(args.theta)?;
+    let model = GwModel::new(args.theta.0)?;
     let st = model.solve(args.load_star)?;
     let out = Output {
         theta: st.theta,
