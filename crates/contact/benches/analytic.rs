@@ -1,0 +1,55 @@
+//! Benchmarks of the analytic contact models: F_n evaluation, GW solves, summit responses.
+
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::hint::black_box;
+use stiction_contact::gw::{GwModel, ln_f_n};
+use stiction_contact::single::{AdhesionLaw, AsperityParams, Branch, SummitModel, summit_response};
+
+fn bench_f_n(c: &mut Criterion) {
+    for (name, n, h) in [
+        ("ln_f_n n=0 h=1.3", 0.0, 1.3),
+        ("ln_f_n n=1 h=1.3", 1.0, 1.3),
+        ("ln_f_n n=1.5 h=1.3", 1.5, 1.3),
+        ("ln_f_n n=1.5 h=-4", 1.5, -4.0),
+        ("ln_f_n n=1.5 h=190", 1.5, 190.0),
+    ] {
+        c.bench_function(name, |b| b.iter(|| ln_f_n(black_box(n), black_box(h)).unwrap()));
+    }
+}
+
+fn bench_gw(c: &mut Criterion) {
+    let plain = GwModel::new(None).unwrap();
+    c.bench_function("gw solve theta=inf L*=0.01", |b| b.iter(|| plain.solve(black_box(0.01)).unwrap()));
+    let adh = GwModel::new(Some(15.0)).unwrap();
+    c.bench_function("gw solve theta=15 L*=0.01", |b| b.iter(|| adh.solve(black_box(0.01)).unwrap()));
+    c.bench_function("gw model new theta=12432 (pull-off)", |b| {
+        b.iter(|| GwModel::new(Some(black_box(12432.0))).unwrap())
+    });
+}
+
+fn bench_summit(c: &mut Criterion) {
+    let p = AsperityParams::table1();
+    let z = 1.3e-9;
+    c.bench_function("summit_response dmt", |b| {
+        b.iter(|| summit_response(AdhesionLaw::Dmt, black_box(&p), black_box(z), Branch::Loading))
+    });
+    c.bench_function("summit_response jkr", |b| {
+        b.iter(|| summit_response(AdhesionLaw::Jkr, black_box(&p), black_box(z), Branch::Loading))
+    });
+    let md = SummitModel::new(AdhesionLaw::MaugisDugdale, p).unwrap();
+    c.bench_function("SummitModel::response maugis-dugdale (table)", |b| {
+        b.iter(|| md.response(black_box(z), Branch::Loading))
+    });
+    c.bench_function("summit_response maugis-dugdale (no table)", |b| {
+        b.iter(|| summit_response(AdhesionLaw::MaugisDugdale, black_box(&p), black_box(z), Branch::Loading))
+    });
+    c.bench_function("SummitModel::new maugis-dugdale", |b| {
+        b.iter(|| SummitModel::new(AdhesionLaw::MaugisDugdale, black_box(p)).unwrap())
+    });
+}
+
+criterion_group!(benches, bench_f_n, bench_gw, bench_summit);
+criterion_main!(benches);
