@@ -5,12 +5,14 @@
 //! * [`spring`]: suspension stiffness from a value or from beams.
 //! * [`bending`]: optional finger bending.
 //! * [`actuator`]: quasi-static equilibrium, pull-in, release, hysteresis, sweeps.
+//! * [`dynamics`]: the slip event in time (rapier rigid body), dynamic pull-in for a step voltage.
 //!
 //! SI units and `f64` everywhere.
 
 pub mod actuator;
 pub mod bending;
 pub mod conversion;
+pub mod dynamics;
 pub mod error;
 pub mod meter;
 pub mod plates;
@@ -20,6 +22,10 @@ pub mod validate;
 
 pub use actuator::{Equilibrium, GapClosingActuator, Hysteresis, PullIn, Sweep, SweepPoint};
 pub use bending::FingerBending;
+pub use dynamics::{
+    SimulationScale, SlipDynamics, SlipTrajectory, dynamic_pull_in_voltage, simulate_force_law, simulate_slip,
+    undamped_dynamic_pull_in_voltage_v,
+};
 pub use error::ActuatorError;
 pub use meter::{ClampForce, SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
 pub use plates::{BackElectrode, BackPotential, Fringing, PlateArray, VACUUM_PERMITTIVITY};
