@@ -45,6 +45,21 @@ pub enum MeterError {
     Contact(String),
 }
 
+/// How the lab turns voltages into forces (section 5): `F_elec = a_clamp V_clamp^2`,
+/// `L = F_elec - F_spring`, `F_f = a_pull V_pull^2`, with the *nominal* conversion factors and
+/// spring force. A virtual device may differ from its nominal values (a Monte Carlo sample); the
+/// reduction then keeps the nominal ones, exactly as the lab does, and the difference shows up as
+/// scatter in mu_e,a and F_a0.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Reduction {
+    /// Clamp conversion factor a_clamp, N/V^2.
+    pub a_clamp_n_per_v2: f64,
+    /// Pull conversion factor a_pull, N/V^2.
+    pub a_pull_n_per_v2: f64,
+    /// Spring force F_spring, N.
+    pub spring_force_n: f64,
+}
+
 /// One clamp voltage of the experiment.
 #[derive(Debug, Clone, Serialize)]
 pub struct MeterPoint {
@@ -54,14 +69,19 @@ pub struct MeterPoint {
     pub v_clamp_sq: f64,
     /// Whether the shoe touches the wall at this clamp voltage.
     pub in_contact: bool,
-    /// Clamp load L = F_elec - F_spring, N (with the scenario's actuator model).
+    /// Clamp load as the lab reports it, a_clamp V_clamp^2 - F_spring with the nominal values
+    /// ([`Reduction`]), N. Equal to `true_load_n` unless the device differs from its nominal values.
     pub load_n: f64,
+    /// The load the device really applies, F_elec(x_c, V) - F_spring, N.
+    pub true_load_n: f64,
     /// Pull voltage at slip, V (None: no slip up to the maximum pull voltage, or no contact).
     pub v_pull: Option<f64>,
     /// Pull voltage squared at slip, V^2 (Fig. 5 ordinate).
     pub v_pull_sq: Option<f64>,
-    /// Friction as the lab reduces it: the pull force at slip a_pull V_pull^2, N.
+    /// Friction as the lab reduces it: a_pull V_pull^2 at slip with the nominal a_pull, N.
     pub friction_n: Option<f64>,
+    /// The pull force the device really applied at slip, N.
+    pub true_friction_n: Option<f64>,
     /// The static friction capacity of the contact by the slip criterion, N.
     pub friction_capacity_n: f64,
     /// Whether the pull array ran away (pulled in) at once when the shoe slipped.
@@ -99,6 +119,8 @@ pub struct MeterResult {
     pub spring_force_n: f64,
     /// Pull-in voltage of the pull array with the shoe free, V.
     pub pull_array_pull_in_v: Option<f64>,
+    /// The conversion used to report forces.
+    pub reduction: Reduction,
 }
 
 /// The assembled device.
@@ -110,6 +132,7 @@ pub struct Meter {
     material: MaterialSpec,
     protocol: MeterSpec,
     contact: ContactModel,
+    reduction: Option<Reduction>,
 }
 
 impl Meter {
@@ -125,7 +148,39 @@ impl Meter {
         let pull = build("pull")?;
         let contact_travel_m = protocol.contact_travel.unwrap_or(s.actuators["clamp"].operating_travel);
         let contact = build_contact_model(s, &material, base_dir)?;
-        Ok(Meter { clamp, pull, contact_travel_m, spring_force_n: protocol.spring_force, material, protocol, contact })
+        Ok(Meter {
+            clamp,
+            pull,
+            contact_travel_m,
+            spring_force_n: protocol.spring_force,
+            material,
+            protocol,
+            contact,
+            reduction: None,
+        })
+    }
+
+    /// The device's own conversion: its conversion factors at the contact travel (clamp) and at
+    /// zero travel (pull, the gap is fixed while the shoe sticks) and its spring force.
+    pub fn device_reduction(&self) -> Result<Reduction, MeterError> {
+        let spring = match self.spring_force_n {
+            Some(f) => f,
+            None => {
+                clamp_force(&self.clamp, self.contact_travel_m, 0.0)
+                    .map_err(|e| MeterError::Actuator { array: "clamp".into(), message: e.to_string() })?
+                    .spring_force_n
+            }
+        };
+        Ok(Reduction {
+            a_clamp_n_per_v2: self.clamp.conversion_factor_n_per_v2(self.contact_travel_m),
+            a_pull_n_per_v2: self.pull.conversion_factor_n_per_v2(0.0),
+            spring_force_n: spring,
+        })
+    }
+
+    /// Reports forces with these (nominal) values instead of the device's own.
+    pub fn set_reduction(&mut self, reduction: Reduction) {
+        self.reduction = Some(reduction);
     }
 
     /// The contact model in use (for reports and extra curves).
@@ -143,6 +198,10 @@ impl Meter {
             message: e.to_string(),
         };
         let pull_in_v = self.pull.pull_in().ok().map(|p| p.voltage_v);
+        let reduction = match self.reduction {
+            Some(r) => r,
+            None => self.device_reduction()?,
+        };
         let mut points = Vec::with_capacity(voltages.len());
         let mut spring_force_used = f64::NAN;
         for (k, &v_clamp) in voltages.iter().enumerate() {
@@ -156,10 +215,12 @@ impl Meter {
                 v_clamp,
                 v_clamp_sq: v_clamp * v_clamp,
                 in_contact,
-                load_n,
+                load_n: reduction.a_clamp_n_per_v2 * v_clamp * v_clamp - reduction.spring_force_n,
+                true_load_n: load_n,
                 v_pull: None,
                 v_pull_sq: None,
                 friction_n: None,
+                true_friction_n: None,
                 friction_capacity_n: 0.0,
                 pull_in_at_slip: None,
                 real_area_m2: 0.0,
@@ -197,7 +258,8 @@ impl Meter {
                 if v_pull <= self.protocol.pull_voltage_max {
                     point.v_pull = Some(v_pull);
                     point.v_pull_sq = Some(v_pull * v_pull);
-                    point.friction_n = Some(force(n).map_err(|e| actuator_err("pull", e))?);
+                    point.true_friction_n = Some(force(n).map_err(|e| actuator_err("pull", e))?);
+                    point.friction_n = Some(reduction.a_pull_n_per_v2 * v_pull * v_pull);
                     // Once it slips, only kinetic friction (not modelled: taken as zero) holds the
                     // shuttle; does the pull array run away to its stop?
                     let response = slip_response(&self.pull, v_pull, 0.0).map_err(|e| actuator_err("pull", e))?;
@@ -222,6 +284,7 @@ impl Meter {
             fit: line,
             spring_force_n: spring_force_used,
             pull_array_pull_in_v: pull_in_v,
+            reduction,
         })
     }
 

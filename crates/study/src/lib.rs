@@ -22,7 +22,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::Value;
-use stiction_meter::Meter;
+use stiction_meter::{Meter, Reduction};
 use stiction_scenario::{Scenario, apply_set};
 
 mod sample;
@@ -135,6 +135,11 @@ pub struct StudyResult {
     pub apparent_adhesion_force_n: Option<Spread>,
     /// Samples that failed (their errors are in `samples`).
     pub failed: usize,
+    /// Samples that ran but had fewer than two slip points with L > 0, so no eq. 10 fit (the
+    /// clamp voltages did not bring that device into contact often enough).
+    pub without_fit: usize,
+    /// The nominal conversion every sample's voltages were reduced with.
+    pub reduction: Reduction,
 }
 
 /// Runs a study on the scenario at `path` with `sets` applied before drawing.
@@ -164,14 +169,18 @@ pub fn run_study(
     for s in sets {
         apply_set(&mut base, s)?;
     }
-    // The nominal scenario must be valid before any sample is drawn.
-    Scenario::from_value(base.clone(), path)?;
+    // The nominal scenario must be valid before any sample is drawn; its conversion factors and
+    // spring force are what the lab reduces every measurement with.
+    let nominal = Scenario::from_value(base.clone(), path)?;
     let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let reduction = Meter::from_scenario(&nominal, &base_dir)
+        .and_then(|m| m.device_reduction())
+        .map_err(|e| StudyError::Setting(format!("the nominal scenario cannot run: {e}")))?;
     let indices: Vec<usize> = (0..config.samples).filter(|i| i % config.shard_count == config.shard_index).collect();
     let samples: Vec<SampleResult> = indices
         .par_iter()
         .map(|&i| {
-            let r = run_sample(&base, path, &base_dir, config, i);
+            let r = run_sample(&base, path, &base_dir, config, reduction, i);
             progress();
             r
         })
@@ -182,6 +191,8 @@ pub fn run_study(
         config: config.clone(),
         scenario: path.to_path_buf(),
         failed: samples.iter().filter(|s| s.error.is_some()).count(),
+        without_fit: samples.iter().filter(|s| s.error.is_none() && s.mu_apparent.is_none()).count(),
+        reduction,
         mu_apparent: Spread::of(&mus),
         apparent_adhesion_force_n: Spread::of(&fas),
         samples,
@@ -189,7 +200,14 @@ pub fn run_study(
 }
 
 /// Runs sample `i`: draw, parse, assemble, run.
-fn run_sample(base: &Value, path: &Path, base_dir: &Path, config: &StudyConfig, i: usize) -> SampleResult {
+fn run_sample(
+    base: &Value,
+    path: &Path,
+    base_dir: &Path,
+    config: &StudyConfig,
+    reduction: Reduction,
+    i: usize,
+) -> SampleResult {
     let mut out = SampleResult {
         index: i,
         draws: Vec::new(),
@@ -216,7 +234,10 @@ fn run_sample(base: &Value, path: &Path, base_dir: &Path, config: &StudyConfig, 
     let result = Scenario::from_value(value, path)
         .map_err(|e| e.to_string())
         .and_then(|s| Meter::from_scenario(&s, base_dir).map_err(|e| e.to_string()))
-        .and_then(|mut m| m.run(&mut |_, _| {}).map_err(|e| e.to_string()));
+        .and_then(|mut m| {
+            m.set_reduction(reduction);
+            m.run(&mut |_, _| {}).map_err(|e| e.to_string())
+        });
     match result {
         Ok(r) => {
             out.mu_apparent = r.mu_apparent;

@@ -140,6 +140,12 @@ pub fn run(args: Args) -> CliResult {
     };
     show("mu_e,a (paper 0.7 +/- 0.3)", &result.mu_apparent, 1.0, "");
     show("F_a0 (paper 2.0 +/- 1.3 uN)", &result.apparent_adhesion_force_n, 1e6, " uN");
+    if result.without_fit > 0 {
+        println!(
+            "  {} samples had fewer than two slip points with L > 0 (their clamp voltages hardly reached contact): no fit",
+            result.without_fit
+        );
+    }
     if result.failed > 0 {
         println!("  {} samples failed; their errors are in the JSON output and samples.csv", result.failed);
         for s in result.samples.iter().filter(|s| s.error.is_some()).take(3) {
