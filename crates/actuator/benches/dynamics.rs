@@ -31,8 +31,13 @@ fn benches(c: &mut Criterion) {
     c.bench_function("simulate_slip runaway 1.2 V_pi (Palmer)", |b| {
         b.iter(|| simulate_slip(black_box(&act), 1.2 * v_pi, &d))
     });
-    // Below pull-in: the full 20 periods (40 000 steps) of a damped oscillation.
+    // Below pull-in without friction: the full 20 periods (40 000 steps) of a damped oscillation.
+    let no_friction = SlipDynamics { kinetic_friction_n: 0.0, ..d };
     c.bench_function("simulate_slip 0.8 V_pi, 40k steps (Palmer)", |b| {
+        b.iter(|| simulate_slip(black_box(&act), 0.8 * v_pi, &no_friction))
+    });
+    // With kinetic friction the same oscillation sticks again early.
+    c.bench_function("simulate_slip 0.8 V_pi, sticks again (Palmer)", |b| {
         b.iter(|| simulate_slip(black_box(&act), 0.8 * v_pi, &d))
     });
     let undamped = SlipDynamics { damping_n_s_per_m: 0.0, kinetic_friction_n: 0.0, ..d };

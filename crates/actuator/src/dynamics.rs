@@ -213,7 +213,9 @@ pub struct SlipTrajectory {
     /// True when the motion ended because kinetic friction holds the shuttle at rest (it sticks
     /// again) before `max_time`.
     pub stuck_again: bool,
-    /// Travel history `(t (s), x (m), v (m/s))`, one sample per time step from `t = 0`; after a
+    /// Travel history `(t (s), x (m), v (m/s))`, one sample per time step from `t = 0` (steps are
+    /// `time_step` long, shortened near the electrode so that one step closes at most 1 % of the
+    /// remaining front gap, and to end at `max_time`); after a
     /// runaway the last sample is the impact (interpolated within its step).
     pub samples: Vec<(f64, f64, f64)>,
     /// The simulation's unit system.
@@ -489,7 +491,8 @@ fn run(
         let fe = pull.electrostatic_force_n(x_si, voltage_v);
         fe.is_finite().then(|| fe - pull.suspension.force_n(x_si))
     };
-    integrate(&drive, xc_si, voltage_v, scale, dynamics, record, decide_only)
+    let electrode = Some(pull.plates.front_gap_m);
+    integrate(&drive, xc_si, electrode, voltage_v, scale, dynamics, record, decide_only)
 }
 
 /// Simulates the same 1-DOF slip for an arbitrary driving force law `F(x)` (N, at travel `x` in m;
@@ -519,15 +522,16 @@ pub fn simulate_force_law(
         time_s: (dynamics.shuttle_mass_kg * length_m / characteristic).sqrt(),
     };
     let drive = |x: f64| -> Option<f64> { Some(force_n(x)).filter(|f| f.is_finite()) };
-    integrate(&drive, stop_travel_m, 0.0, scale, dynamics, true, false)
+    integrate(&drive, stop_travel_m, None, 0.0, scale, dynamics, true, false)
 }
 
 /// The time loop: rapier world in the scaled units of `scale`, driving force `drive_si(x)` (N, None
-/// for a collapse), stop at `xc_si` (m).
+/// for a collapse), stop at `xc_si` (m), electrode (where the force diverges) at `electrode_si` (m).
 #[allow(clippy::too_many_arguments)]
 fn integrate(
     drive_si: &dyn Fn(f64) -> Option<f64>,
     xc_si: f64,
+    electrode_si: Option<f64>,
     voltage_v: f64,
     scale: SimulationScale,
     dynamics: &SlipDynamics,
@@ -536,8 +540,9 @@ fn integrate(
 ) -> Result<SlipTrajectory, ActuatorError> {
     let (l0, t0, f0, v0) = (scale.length_m, scale.time_s, scale.force_n(), scale.velocity_m_per_s());
     let dt = dynamics.time_step_s / t0;
-    let steps = (dynamics.max_time_s / dynamics.time_step_s).ceil() as u64;
+    let t_end = dynamics.max_time_s / t0;
     let xc = xc_si / l0;
+    let electrode = electrode_si.map(|e| e / l0);
     let damping_rate = dynamics.damping_n_s_per_m * t0 / scale.mass_kg;
     let friction = dynamics.kinetic_friction_n / f0;
     let mut world = World::new(dt, damping_rate, xc);
@@ -563,8 +568,9 @@ fn integrate(
     let table = (dynamics.damping_n_s_per_m > 0.0).then(|| WorkTable::new(&drive, xc, friction));
     let mut turned = false;
     let mut decided = false;
-    for n in 0..=steps {
-        let t = n as f64 * dt;
+    let mut t = 0.0;
+    let mut steps = 0u64;
+    loop {
         let (x, v) = world.state();
         if record {
             samples.push((t * t0, x * l0, v * v0));
@@ -573,12 +579,29 @@ fn integrate(
         if !turned {
             out.max_travel_m = out.max_travel_m.max(x * l0);
         }
-        if n == steps {
+        if t >= t_end * (1.0 - 1e-12) {
             break;
+        }
+        // Step length: the given one, shortened so that the last step ends at max_time and, near the
+        // electrode, so that one step closes at most 1 % of the remaining gap (the force grows as
+        // 1/gap^2 and would otherwise change by a large factor within one step).
+        let mut h = dt.min(t_end - t);
+        if let Some(e) = electrode
+            && v > 0.0
+        {
+            h = h.min(0.01 * (e - x) / v);
+        }
+        steps += 1;
+        if steps as f64 > MAX_STEPS {
+            return Err(ActuatorError::Solver(format!(
+                "more than {MAX_STEPS:e} steps at t = {:e} s (x = {:e} m): the gap closes too slowly to resolve",
+                t * t0,
+                x * l0
+            )));
         }
         // The force held over the step is taken at the predicted mid-step travel: the work per step
         // is then a midpoint rule (second order) instead of a left Riemann sum.
-        let Some(f_other) = drive(x + 0.5 * v * dt) else {
+        let Some(f_other) = drive((x + 0.5 * v * h).min(xc)) else {
             // Finger collapse: the plates snap shut; counted as reaching the electrode.
             out.runs_away = true;
             out.time_to_stop_s = Some(t * t0);
@@ -588,22 +611,17 @@ fn integrate(
         };
         // Coulomb friction, implicit: if it can stop the shuttle within this step it does
         // (sticking); otherwise it opposes the predicted velocity with its full value.
-        let v_pred = v + f_other * dt;
-        let (f_fric, sticks) = if v_pred.abs() <= friction * dt {
-            (-v / dt - f_other, true)
-        } else {
-            (-friction * v_pred.signum(), false)
-        };
-        if sticks && f_other.abs() <= friction && n > 0 {
-            out.stuck_again = true;
-            break;
-        }
-        if n == 0 && sticks {
-            // The pull force does not overcome kinetic friction at rest: no motion at all.
+        let v_pred = v + f_other * h;
+        let (f_fric, sticks) =
+            if v_pred.abs() <= friction * h { (-v / h - f_other, true) } else { (-friction * v_pred.signum(), false) };
+        if sticks && (f_other.abs() <= friction || steps == 1) {
+            // Held at rest by friction (at the start: the pull force does not overcome kinetic
+            // friction, no motion at all).
             out.stuck_again = true;
             break;
         }
         let force = f_other + f_fric;
+        world.world.integration_parameters.dt = h;
         world.step(force);
         let (x1, v1) = world.state();
         if world.hit_stop() || x1 >= xc {
@@ -611,14 +629,9 @@ fn integrate(
             // x + v tau + a tau^2/2 = x_c, with a the step's acceleration (damping included).
             let a = force - damping_rate * v;
             let gap = (xc - x).max(0.0);
-            let tau = if a.abs() < 1e-300 {
-                gap / v.max(1e-300)
-            } else {
-                let disc = (v * v + 2.0 * a * gap).max(0.0);
-                // Root of a tau^2/2 + v tau - gap = 0 written without cancellation.
-                2.0 * gap / (v + disc.sqrt()).max(1e-300)
-            }
-            .min(dt);
+            let disc = (v * v + 2.0 * a * gap).max(0.0);
+            // Root of a tau^2/2 + v tau - gap = 0 written without cancellation.
+            let tau = (2.0 * gap / (v + disc.sqrt()).max(1e-300)).min(h);
             let v_imp = v + a * tau;
             out.runs_away = true;
             out.time_to_stop_s = Some((t + tau) * t0);
@@ -630,6 +643,7 @@ fn integrate(
             }
             break;
         }
+        t += h;
         if !turned && v > 0.0 && v1 <= 0.0 {
             turned = true;
             out.max_travel_m = out.max_travel_m.max(x1 * l0);
@@ -642,7 +656,7 @@ fn integrate(
                 break;
             }
         }
-        if n + 1 == steps && !decided && !decide_only {
+        if t >= t_end * (1.0 - 1e-12) && !decided && !decide_only {
             return Err(ActuatorError::Solver(format!(
                 "max_time = {:e} s too short: at V = {voltage_v} V the shuttle is still moving towards the \
                  stop (x = {:e} m, v = {:e} m/s)",
