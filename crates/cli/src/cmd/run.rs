@@ -113,9 +113,16 @@ fn print_summary(o: &RunOutput) {
         }
         _ => println!("  too few slip points with L > 0 for the eq. 10 fit"),
     }
-    if let Some(v) = r.pull_array_pull_in_v {
-        let all = r.points.iter().filter_map(|p| p.pull_in_at_slip).all(|b| b);
-        println!("  pull array pull-in voltage (free shoe) {v:.2} V; pulled in at every slip: {all}");
+    let slips: Vec<bool> = r.points.iter().filter_map(|p| p.pull_in_at_slip).collect();
+    if let (Some(v), false) = (r.pull_array_pull_in_v, slips.is_empty()) {
+        let n = slips.iter().filter(|b| **b).count();
+        println!("  pull array pull-in voltage (free shoe) {v:.2} V; it pulled in at {n} of {} slips", slips.len());
+    }
+    let stuck = r.points.iter().filter(|p| p.in_contact && p.v_pull.is_none()).count();
+    if stuck > 0 {
+        println!(
+            "  {stuck} clamp voltages: no slip up to pull_voltage_max (friction above what the pull array can give)"
+        );
     }
 }
 
