@@ -109,7 +109,17 @@ fn g_n_quadrature(n: f64, h: f64) -> f64 {
         let e = (n + 1.0) * ln_t - h * t - 0.5 * t * t;
         e.exp() * 0.5 * PI * u.cosh()
     };
-    de_sum(g, -5.0, 4.5)
+    // Truncate where the integrand is below e^-50 of its scale: t^(n+1) < e^-50 on the left,
+    // h t + t^2/2 - (n+1) ln t > 50 on the right (G_n >= G_n(12) ~ 1e-2 here, so the neglected
+    // parts are below 1e-19 relative).
+    let ln_t_lo = -50.0 / (n + 1.0);
+    let mut t_hi: f64 = 10.0;
+    for _ in 0..4 {
+        let rhs = 50.0 + (n + 1.0) * t_hi.max(1.0).ln();
+        t_hi = -h + (h * h + 2.0 * rhs).sqrt();
+    }
+    let u_of = |ln_t: f64| ((ln_t - ln_scale) * 2.0 / PI).asinh();
+    de_sum(g, u_of(ln_t_lo).max(-5.0), u_of(t_hi.ln()).min(4.5))
 }
 
 /// `F_n(h)` for `h < 0`: `1/sqrt(2 pi) [int_0^b t^n e^{-(t-b)^2/2} dt + int_0^inf (b+u)^n e^{-u^2/2} du]`,
@@ -138,8 +148,9 @@ fn f_n_negative(n: f64, h: f64) -> f64 {
             let e = n * (b + x).ln() - 0.5 * x * x + x.ln();
             e.exp() * 0.5 * PI * u.cosh()
         },
-        -5.0,
-        4.5,
+        // x < e^-50 on the left, x^2/2 - n ln(1 + x/b) > 50 on the right (the integral is >= b^n)
+        -((2.0 / PI) * 50.0_f64).asinh(),
+        ((2.0 / PI) * (100.0 + 2.0 * n * (1.0 + 12.0 / b.max(1e-300)).ln()).sqrt().ln()).asinh().min(4.5),
     );
     (i1 + i2) * (-LN_SQRT_2PI).exp()
 }
