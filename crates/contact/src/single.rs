@@ -893,7 +893,7 @@ pub fn contact_radius_from_load(law: AdhesionLaw, p: &AsperityParams, load_n: f6
 /// Stiffness `dP/d delta`: `3a/(2D)` for Hertz/DMT.
 ///
 /// Cost: Hertz/DMT a few ns (no validation: `p` must satisfy [`AsperityParams::validate`]);
-/// JKR ~0.1 us; Maugis-Dugdale builds its curve on each call (tens of microseconds): for repeated
+/// JKR ~0.1 us; Maugis-Dugdale builds its curve on each call (~0.5 ms): for repeated
 /// calls use [`SummitModel`], which precomputes a [`MaugisTable`].
 pub fn summit_response(law: AdhesionLaw, p: &AsperityParams, interference_m: f64, branch: Branch) -> SummitResponse {
     match effective_law(law, p) {
