@@ -34,6 +34,14 @@ pub(crate) trait LawEval {
     fn p_rel(&self, i: usize) -> f64;
     /// Lowest z_in / z_rel over all summits (<= 0), for the search threshold.
     fn z_min(&self) -> f64;
+    /// p_rel is the largest tension a summit carries on its contact branch (Hertz, DMT).
+    fn release_force_is_extreme(&self) -> bool {
+        false
+    }
+    /// Hertz/DMT with one radius: (R, 1/D, 2 pi dgamma R) for the fast pass.
+    fn uniform_hertz_dmt(&self) -> Option<(f64, f64, f64)> {
+        None
+    }
 }
 
 /// Hertz (eq. 3) and DMT (eq. 4) in closed form: P = R^1/2 z^3/2 / D - 2 pi dgamma R.
@@ -82,6 +90,15 @@ impl LawEval for HertzDmt<'_> {
     }
     fn z_min(&self) -> f64 {
         0.0
+    }
+    fn release_force_is_extreme(&self) -> bool {
+        true
+    }
+    fn uniform_hertz_dmt(&self) -> Option<(f64, f64, f64)> {
+        match self.radii {
+            Radii::Uniform(r) => Some((*r, self.inv_d, self.two_pi_dgamma * r)),
+            Radii::PerSummit(_) => None,
+        }
     }
 }
 

@@ -3,6 +3,8 @@
 use nalgebra::Matrix3;
 use stiction_surface::{Radii, Surface};
 
+mod fast;
+
 use super::laws::{HertzDmt, JkrPerSummit, LawEval, Resp, Uniform};
 use super::types::*;
 use crate::single::{AdhesionLaw, AsperityParams, Branch, SummitModel};
@@ -26,6 +28,9 @@ struct Geom {
     hardness: f64,
     /// FixedContacts: number of supports (the first `n` sorted summits).
     support: Option<usize>,
+    /// Tilt-free and flat modes: (x0, y0, 1/l), the basis is phi = (1, (x - x0)/l, (y - y0)/l)
+    /// (flat: its first function only); enables the fast pass.
+    uv: Option<(f64, f64, f64)>,
 }
 
 impl Geom {
@@ -249,7 +254,8 @@ impl ExplicitSolver {
         let adhesion_ref = 2.0 * std::f64::consts::PI * params.work_of_adhesion_j_per_m2 * check.radius_m;
         let height_range = (hs[0] - hs[n - 1]).max(1e-12);
         let hardness = config.hardness_pa.unwrap_or(f64::INFINITY);
-        let geom = Geom { xs, ys, hs, radii, original, length, width, basis, ndof, load_point, hardness, support };
+        let uv = support.is_none().then_some((load_point.0, load_point.1, 1.0 / ell));
+        let geom = Geom { xs, ys, hs, radii, original, length, width, basis, ndof, load_point, hardness, support, uv };
         let state = State {
             q: [0.0; 3],
             member: vec![0; n.div_ceil(64)],
@@ -677,6 +683,11 @@ impl ExplicitSolver {
     }
 }
 
+/// Largest tilt of a tilt-free shoe \[rad\]: beyond it the small-angle plane `w = d + t x` is no
+/// longer the shoe face (error 1e-3 of the movement) and the solve reports that the shoe tips over.
+/// Equilibria of the Table 1 surfaces stay below 3e-3 rad.
+pub(crate) const MAX_TILT_RAD: f64 = 0.05;
+
 /// Relative residual below which members past their release interference leave the contact set.
 const RELEASE_RESIDUAL: f64 = 1e-4;
 
@@ -710,6 +721,11 @@ fn evaluate<L: LawEval + ?Sized>(
             g.hs.partition_point(|&h| h >= thr).max(st.bound)
         }
     };
+    if let (Some((x0, y0, inv_ell)), Some((radius, inv_d, c0))) = (g.uv, law.uniform_hertz_dmt()) {
+        let a_hard = g.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
+        let k = fast::Kernel { q: *q, x0, y0, inv_ell, radius, inv_d, c0, allow_touch, a_hard };
+        return fast::evaluate(g, st, &k, end, load, touch);
+    }
     let bs = &g.basis;
     let (mut h00, mut h01, mut h02, mut h11, mut h12, mut h22) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     let (mut g0, mut g1, mut g2) = (0.0, 0.0, 0.0);
@@ -770,6 +786,54 @@ fn evaluate<L: LawEval + ?Sized>(
     ev.moment_x = mx;
     ev.moment_y = my;
     ev
+}
+
+/// Interference of sorted summit `i` at pose `q`, computed exactly as the evaluation pass does.
+#[inline(always)]
+fn interference<L: LawEval + ?Sized>(g: &Geom, law: &L, q: &[f64; 3], i: usize) -> f64 {
+    match (g.uv, law.uniform_hertz_dmt()) {
+        (Some((x0, y0, inv_ell)), Some(_)) => {
+            let u = (f64::from(g.xs[i]) - x0) * inv_ell;
+            let v = (f64::from(g.ys[i]) - y0) * inv_ell;
+            g.hs[i] - (q[0] + q[1] * u + q[2] * v)
+        }
+        _ => {
+            let (a, b, c) = g.plane(q);
+            g.hs[i] - (a + b * f64::from(g.xs[i]) + c * f64::from(g.ys[i]))
+        }
+    }
+}
+
+/// Active-set update at the current pose: members below their release interference leave the
+/// contact set. They were off the contact branch (constant force p_rel, zero stiffness) in the
+/// evaluation `ev` at this pose, so their terms are removed from it without a new pass (no other
+/// summit can touch at the same pose: touching summits joined when `ev` was computed).
+fn release<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &mut State, ev: &mut Eval) {
+    let q = st.q;
+    let (x0, y0) = g.load_point;
+    let words = st.bound.div_ceil(64);
+    for w in 0..words {
+        let mut bits = st.member[w];
+        while bits != 0 {
+            let i = w * 64 + bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            if interference(g, law, &q, i) < law.z_rel(i) {
+                st.clear(i);
+                let p = law.p_rel(i);
+                let (x, y) = (f64::from(g.xs[i]), f64::from(g.ys[i]));
+                let phi = g.phi_at(x, y);
+                for (gj, fj) in ev.g.iter_mut().zip(&phi) {
+                    *gj += p * fj;
+                }
+                ev.force -= p;
+                ev.force_abs = (ev.force_abs - p.abs()).max(0.0);
+                ev.moment_x -= p * (x - x0);
+                ev.moment_y -= p * (y - y0);
+                ev.contacts -= 1;
+                ev.releases = ev.releases.saturating_sub(1);
+            }
+        }
+    }
 }
 
 /// Newton direction on the used degrees of freedom; directions of zero stiffness in which the
@@ -869,25 +933,29 @@ fn iterate<L: LawEval + ?Sized>(
         let resid = ev.g[..g.ndof].iter().fold(0.0f64, |m, v| m.max(v.abs()));
         // Active-set update once the Newton iteration has nearly converged on the current set
         // (the last steps are small, so no member is released by an overshoot).
+        // DMT/Hertz: a member past its release interference pulls with its largest tension
+        // p_rel. When every contributor is past release and together they cannot carry the
+        // (tensile) load, no pose with this contact set is an equilibrium: the shoe comes off.
+        if !fixed
+            && load < 0.0
+            && law.release_force_is_extreme()
+            && st.members > 0
+            && ev.releases == st.members
+            && ev.contacts == ev.releases
+            && ev.force > load
+        {
+            return Err(SolveError::NoEquilibrium {
+                load_n: load,
+                reason: "the shoe separates from the surface (load below pull-off)".into(),
+            });
+        }
         if resid <= tol.max(RELEASE_RESIDUAL * scale) && ev.releases > 0 && !fixed {
-            let (a, b, c) = g.plane(&st.q);
-            for i in 0..st.bound {
-                if st.is_member(i) {
-                    let z = g.hs[i] - (a + b * f64::from(g.xs[i]) + c * f64::from(g.ys[i]));
-                    if z < law.z_rel(i) {
-                        st.clear(i);
-                    }
-                }
-            }
+            release(g, law, st, ev);
             if st.members == 0 && load <= 0.0 {
                 return Err(SolveError::NoEquilibrium {
                     load_n: load,
                     reason: "the shoe separates from the surface (load below pull-off)".into(),
                 });
-            }
-            *ev = evaluate(g, law, st, &st.q, load, true, touch);
-            for &i in touch.iter() {
-                st.set(i as usize);
             }
             it += 1;
             if it >= cfg.max_iterations {
@@ -932,24 +1000,12 @@ fn iterate<L: LawEval + ?Sized>(
                 }
             }
             // Release the members below their release interference (active-set update).
-            let (a, b, c) = g.plane(&st.q);
-            for i in 0..st.bound {
-                if st.is_member(i) {
-                    let z = g.hs[i] - (a + b * f64::from(g.xs[i]) + c * f64::from(g.ys[i]));
-                    if z < law.z_rel(i) {
-                        st.clear(i);
-                    }
-                }
-            }
+            release(g, law, st, ev);
             if st.members == 0 && load <= 0.0 {
                 return Err(SolveError::NoEquilibrium {
                     load_n: load,
                     reason: "the shoe separates from the surface (load below pull-off)".into(),
                 });
-            }
-            *ev = evaluate(g, law, st, &st.q, load, !fixed, touch);
-            for &i in touch.iter() {
-                st.set(i as usize);
             }
             it += 1;
             if it >= cfg.max_iterations {
@@ -1017,6 +1073,17 @@ fn iterate<L: LawEval + ?Sized>(
                 load_n: load,
                 reason: "the shoe moves without bound (tips over or separates)".into(),
             });
+        }
+        if g.ndof == 3 && !fixed {
+            let (_, tx, ty) = g.plane(&st.q);
+            if tx.hypot(ty) > MAX_TILT_RAD {
+                return Err(SolveError::NoEquilibrium {
+                    load_n: load,
+                    reason: format!(
+                        "the shoe tips over (tilt above {MAX_TILT_RAD} rad, outside the small-angle model)"
+                    ),
+                });
+            }
         }
     }
     let scale = load.abs().max(ev.force_abs).max(adhesion_ref);
