@@ -14,9 +14,12 @@
 //!
 //! The equation is integrated by rapier (`rapier3d-f64`): the shuttle is a dynamic rigid body whose
 //! rotations and y/z translations are locked (a prismatic guide along x), sleeping is off, gravity
-//! zero; the gap stop is a fixed cuboid collider. Each step the force `F_e(x, V) - k x` plus the
-//! Coulomb friction is evaluated at the current state and applied as the body's user force (reset
-//! every step); damping is rapier's linear damping `c/m` (applied implicitly, `v <- v/(1 + dt c/m)`).
+//! zero; the gap stop is a fixed cuboid collider. Each step the force `F_e(x, V) - k x` (evaluated at
+//! the predicted mid-step travel `x + v dt/2`) plus the Coulomb friction is applied as the body's user
+//! force (reset every step); damping is rapier's linear damping `c/m` (applied implicitly,
+//! `v <- v/(1 + dt c/m)`). The impact is located inside its step from the step's initial state;
+//! rapier's speculative-contact and CCD margins are made negligible so that they do not brake the
+//! shuttle before it touches.
 //!
 //! **Scaling.** Rapier's tolerances are tuned for bodies of metres and seconds with masses and
 //! forces of order one. The simulation therefore runs in scaled units (see [`SimulationScale`]):
