@@ -253,7 +253,14 @@ impl Chart {
 fn tick_label(v: f64, log: bool) -> String {
     if log {
         let r = v.round();
-        if (v - r).abs() < 1e-9 { format!("1e{}", r as i64) } else { format!("{:.3}", 10f64.powf(v)) }
+        let x = 10f64.powf(v);
+        if (v - r).abs() < 1e-9 {
+            format!("1e{}", r as i64)
+        } else if (0.01..1e4).contains(&x) {
+            format!("{x:.2}")
+        } else {
+            format!("{x:.1e}")
+        }
     } else {
         let a = v.abs();
         if a != 0.0 && !(1e-3..1e5).contains(&a) { format!("{v:.1e}") } else { format!("{}", (v * 1e6).round() / 1e6) }
@@ -283,6 +290,8 @@ mod tests {
     #[test]
     fn log_tick_labels_are_powers_of_ten() {
         assert_eq!(tick_label(-3.0, true), "1e-3");
+        assert_eq!(tick_label(-3.5, true), "3.2e-4");
+        assert_eq!(tick_label(-0.5, true), "0.32");
         assert_eq!(tick_label(2.5, false), "2.5");
     }
 }

@@ -180,7 +180,8 @@ pub fn fig7_chart() -> Result<Chart, Box<dyn std::error::Error>> {
     )
     .with(Series::line("N = 3, R = 0.5 um, s = 1.4 GPa, DMT", curve))
     .with(Series::dashed(format!("eq. 10: mu_e,a = {mu:.2} (slope at 3 uN), F_a0 = {:.2} uN", fa0 * 1e6), line))
-    .with(Series::markers("paper: F_a0 = 2.0 +/- 1.3 uN (measured)", vec![(-2.0, 0.0)]));
+    .with(Series::line("paper, measured: F_a0 = 2.0 +/- 1.3 uN (the range on L < 0)", vec![(-3.3, 0.05), (-0.7, 0.05)]))
+    .with(Series::markers("", vec![(-2.0, 0.05)]));
     chart.y_range = Some((0.0, (f0 + mu * 15e-6) * 1e6 * 1.05));
     Ok(chart)
 }
