@@ -232,7 +232,10 @@ fn paper_conversion_factors_imply_gaps() {
     for fr in [Fringing::Off, Fringing::Palmer] {
         let c: Vec<f64> = [1.9e-8, 1.4e-8, 0.9e-8].iter().map(|&a| infer(30, a, fr) * 1e6).collect();
         let p: Vec<f64> = [4.6e-9, 3.8e-9, 3.0e-9].iter().map(|&a| infer(15, a, fr) * 1e6).collect();
-        println!("{fr:?}: clamp gap {:.3} ({:.3}..{:.3}) um, pull gap {:.3} ({:.3}..{:.3}) um", c[1], c[0], c[2], p[1], p[0], p[2]);
+        println!(
+            "{fr:?}: clamp gap {:.3} ({:.3}..{:.3}) um, pull gap {:.3} ({:.3}..{:.3}) um",
+            c[1], c[0], c[2], p[1], p[0], p[2]
+        );
         if fr == Fringing::Off {
             assert!((c[1] - 2.178).abs() < 0.002 && (p[1] - 2.956).abs() < 0.002);
             assert!((c[0] - 1.870).abs() < 0.002 && (c[2] - 2.717).abs() < 0.002);
