@@ -12,8 +12,8 @@
 use std::path::Path;
 
 use serde::Serialize;
-use stiction_actuator::GapClosingActuator;
 use stiction_actuator::meter::{SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
+use stiction_actuator::{GapClosingActuator, SlipDynamics, simulate_slip};
 use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, MeterSpec, Scenario, ShoeMode, SlipCriterion};
 
 mod contact_model;
@@ -84,8 +84,13 @@ pub struct MeterPoint {
     pub true_friction_n: Option<f64>,
     /// The static friction capacity of the contact by the slip criterion, N.
     pub friction_capacity_n: f64,
-    /// Whether the pull array ran away (pulled in) at once when the shoe slipped.
+    /// Whether the pull array ran away (pulled in) at once when the shoe slipped: from the
+    /// shuttle dynamics when the scenario has `meter.slip_dynamics`, else quasi-static.
     pub pull_in_at_slip: Option<bool>,
+    /// With slip dynamics: time from slip to the pull array's stop, s.
+    pub slip_time_to_stop_s: Option<f64>,
+    /// With slip dynamics: shuttle speed when it reaches the stop, m/s.
+    pub slip_impact_velocity_m_per_s: Option<f64>,
     /// Real contact area A_r, m^2.
     pub real_area_m2: f64,
     /// Summits in contact.
@@ -223,6 +228,8 @@ impl Meter {
                 true_friction_n: None,
                 friction_capacity_n: 0.0,
                 pull_in_at_slip: None,
+                slip_time_to_stop_s: None,
+                slip_impact_velocity_m_per_s: None,
                 real_area_m2: 0.0,
                 contacts: 0.0,
                 adhesive_load_n: 0.0,
@@ -262,8 +269,30 @@ impl Meter {
                     point.friction_n = Some(reduction.a_pull_n_per_v2 * v_pull * v_pull);
                     // Once it slips, only kinetic friction (not modelled: taken as zero) holds the
                     // shuttle; does the pull array run away to its stop?
-                    let response = slip_response(&self.pull, v_pull, 0.0).map_err(|e| actuator_err("pull", e))?;
-                    point.pull_in_at_slip = Some(matches!(response, SlipResponse::RunsAway { .. }));
+                    match &self.protocol.slip_dynamics {
+                        Some(dyn_spec) => {
+                            // After slip the shoe slides: kinetic friction on the total load.
+                            let kinetic = dyn_spec.kinetic_friction_coefficient * state.elastic_load_n();
+                            let d = SlipDynamics::with_defaults(
+                                &self.pull,
+                                dyn_spec.shuttle_mass,
+                                dyn_spec.damping,
+                                kinetic,
+                            )
+                            .map_err(|e| actuator_err("pull", e))?;
+                            let t = simulate_slip(&self.pull, v_pull, &d).map_err(|e| actuator_err("pull", e))?;
+                            point.pull_in_at_slip = Some(t.runs_away);
+                            point.slip_time_to_stop_s = t.time_to_stop_s;
+                            point.slip_impact_velocity_m_per_s = t.impact_velocity_m_per_s;
+                        }
+                        None => {
+                            // Quasi-static: with kinetic friction taken as zero, does the pull array
+                            // find an equilibrium before its stop?
+                            let response =
+                                slip_response(&self.pull, v_pull, 0.0).map_err(|e| actuator_err("pull", e))?;
+                            point.pull_in_at_slip = Some(matches!(response, SlipResponse::RunsAway { .. }));
+                        }
+                    }
                 }
             }
             points.push(point);

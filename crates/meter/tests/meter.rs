@@ -115,3 +115,30 @@ fn the_lab_reduces_with_nominal_factors() {
         assert_eq!(p.load_n, p.true_load_n);
     }
 }
+
+#[test]
+fn slip_dynamics_run_the_shuttle_to_its_stop() {
+    // With a pull stop and shuttle dynamics, every slip far above the pull array's pull-in voltage
+    // (about 10.7 V here, slips at 23-40 V) runs away to the stop; the energy bound
+    // 1/2 m v^2 <= work of the electrostatic force over the stop travel caps the impact speed.
+    let json =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/tas2000.json")).unwrap();
+    let s = Scenario::from_str_with_sets(&json, Path::new("tas2000.json"), &[]).unwrap();
+    let r = Meter::from_scenario(&s, Path::new(".")).unwrap().run(&mut |_, _| {}).unwrap();
+    let mass = 107e-12;
+    for p in r.points.iter().filter(|p| p.v_pull.is_some()) {
+        assert_eq!(p.pull_in_at_slip, Some(true));
+        let t = p.slip_time_to_stop_s.expect("time to stop");
+        let v = p.slip_impact_velocity_m_per_s.expect("impact speed");
+        assert!(t > 0.0 && t < 1e-3, "{t}");
+        // Upper bound on the work: the force at the stop (largest; parallel plates, gap 2.956 um as
+        // inferred from a_pull in docs/actuators.md) times the stop travel (2 um).
+        let f_max = p.true_friction_n.unwrap() / (1.0f64 - 2.0 / 2.956).powi(2);
+        assert!(
+            0.5 * mass * v * v <= f_max * 2e-6,
+            "impact energy {} above the bound {}",
+            0.5 * mass * v * v,
+            f_max * 2e-6
+        );
+    }
+}

@@ -305,6 +305,28 @@ pub struct MeterSpec {
     /// Slip criterion (default shear strength times real area).
     #[serde(default)]
     pub slip: SlipCriterion,
+    /// Simulate the motion of the pull shuttle after each slip (rigid-body dynamics with rapier);
+    /// absent: only the quasi-static runaway test.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slip_dynamics: Option<SlipDynamicsSpec>,
+}
+
+/// The pull shuttle's dynamics after slip: `m x'' = F_e(x, V) - k x - c x' - F_k`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SlipDynamicsSpec {
+    /// Moving mass of the pull array and the shoe, kg ("107 ng"; polysilicon 2330 kg/m^3 times the volume).
+    #[serde(deserialize_with = "stiction_units::de::mass_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub shuttle_mass: f64,
+    /// Viscous (air) damping coefficient c, N s/m (squeeze film plus Couette; default 0).
+    #[serde(default, deserialize_with = "stiction_units::de::damping_nonnegative")]
+    #[schemars(with = "QuantityInput")]
+    pub damping: f64,
+    /// Kinetic friction coefficient mu_k on the total (clamp plus adhesive) load: F_k = mu_k (L + L_adh); default 0.
+    #[serde(default, deserialize_with = "stiction_units::de::dimensionless_nonnegative")]
+    #[schemars(with = "QuantityInput")]
+    pub kinetic_friction_coefficient: f64,
 }
 
 fn default_pull_step() -> f64 {

@@ -61,6 +61,8 @@ helpers! {
     dimensionless, dimensionless_positive, dimensionless_nonnegative, opt_dimensionless, opt_dimensionless_positive, opt_dimensionless_nonnegative => Dimension::Dimensionless;
     angle, angle_positive, angle_nonnegative, opt_angle, opt_angle_positive, opt_angle_nonnegative => Dimension::Angle;
     time, time_positive, time_nonnegative, opt_time, opt_time_positive, opt_time_nonnegative => Dimension::Time;
+    mass, mass_positive, mass_nonnegative, opt_mass, opt_mass_positive, opt_mass_nonnegative => Dimension::Mass;
+    damping, damping_positive, damping_nonnegative, opt_damping, opt_damping_positive, opt_damping_nonnegative => Dimension::Damping;
 }
 
 #[cfg(test)]

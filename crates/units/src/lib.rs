@@ -72,6 +72,10 @@ pub enum Dimension {
     Angle,
     /// Time, s.
     Time,
+    /// Mass, kg (written in g with a prefix: "0.1 ng", "107 ng").
+    Mass,
+    /// Viscous damping coefficient, N s/m.
+    Damping,
 }
 
 impl Dimension {
@@ -89,6 +93,8 @@ impl Dimension {
             Dimension::Voltage => [2, 1, -3, -1],
             Dimension::Dimensionless | Dimension::Angle => [0, 0, 0, 0],
             Dimension::Time => [0, 0, 1, 0],
+            Dimension::Mass => [0, 1, 0, 0],
+            Dimension::Damping => [0, 1, -1, 0],
         })
     }
 
@@ -108,6 +114,8 @@ impl Dimension {
             Dimension::Dimensionless => "a pure number",
             Dimension::Angle => "an angle",
             Dimension::Time => "a time",
+            Dimension::Mass => "a mass",
+            Dimension::Damping => "a damping coefficient (force per velocity)",
         }
     }
 
@@ -127,6 +135,8 @@ impl Dimension {
             Dimension::Dimensionless => "",
             Dimension::Angle => "rad",
             Dimension::Time => "s",
+            Dimension::Mass => "kg",
+            Dimension::Damping => "N s/m",
         }
     }
 
@@ -146,6 +156,8 @@ impl Dimension {
             Dimension::Dimensionless => "\"0.35\" or \"35 %\"",
             Dimension::Angle => "\"1 mrad\" or \"0.1 deg\"",
             Dimension::Time => "\"10 ms\"",
+            Dimension::Mass => "\"107 ng\"",
+            Dimension::Damping => "\"2.1e-7 N s/m\"",
         }
     }
 }

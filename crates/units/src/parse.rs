@@ -233,6 +233,8 @@ fn describe(d: DimensionVector) -> String {
         Dimension::Voltage,
         Dimension::Dimensionless,
         Dimension::Time,
+        Dimension::Mass,
+        Dimension::Damping,
     ] {
         if dim.vector() == d {
             return dim.description().to_string();
@@ -312,6 +314,9 @@ mod tests {
             ("12 V", Dimension::Voltage, 12.0),
             ("0.1 N/m", Dimension::SurfaceEnergy, 0.1),
             ("1 mrad", Dimension::Angle, 1e-3),
+            ("107 ng", Dimension::Mass, 107e-12),
+            ("2.1e-7 N s/m", Dimension::Damping, 2.1e-7),
+            ("2.1e-7 N*s/m", Dimension::Damping, 2.1e-7),
             ("180 deg", Dimension::Angle, std::f64::consts::PI),
             ("1 /um^2", Dimension::ArealDensity, 1e12),
             ("5 mm", Dimension::Length, 5e-3),

@@ -118,6 +118,18 @@ fn print_summary(o: &RunOutput) {
         let n = slips.iter().filter(|b| **b).count();
         println!("  pull array pull-in voltage (free shoe) {v:.2} V; it pulled in at {n} of {} slips", slips.len());
     }
+    let times: Vec<f64> = r.points.iter().filter_map(|p| p.slip_time_to_stop_s).collect();
+    let speeds: Vec<f64> = r.points.iter().filter_map(|p| p.slip_impact_velocity_m_per_s).collect();
+    if !times.is_empty() {
+        let range = |v: &[f64], scale: f64| {
+            (v.iter().cloned().fold(f64::INFINITY, f64::min) * scale, v.iter().cloned().fold(0.0, f64::max) * scale)
+        };
+        let (t0, t1) = range(&times, 1e6);
+        let (v0, v1) = range(&speeds, 1.0);
+        println!(
+            "  after slip the pull shuttle reaches its stop in {t0:.1}-{t1:.1} us at {v0:.2}-{v1:.2} m/s (rapier dynamics)"
+        );
+    }
     let stuck = r.points.iter().filter(|p| p.in_contact && p.v_pull.is_none()).count();
     if stuck > 0 {
         println!(
@@ -140,6 +152,8 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
         "friction_n",
         "friction_capacity_n",
         "pull_in_at_slip",
+        "slip_time_to_stop_s",
+        "slip_impact_velocity_m_per_s",
         "real_area_m2",
         "contacts",
         "adhesive_load_n",
@@ -147,6 +161,8 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
         "tilt_y_rad",
         "max_pressure_pa",
         "over_elastic_limit",
+        "true_load_n",
+        "true_friction_n",
     ])?;
     let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
     for p in &o.result.points {
@@ -160,6 +176,8 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
             opt(p.friction_n),
             format!("{:e}", p.friction_capacity_n),
             p.pull_in_at_slip.map_or(String::new(), |b| b.to_string()),
+            opt(p.slip_time_to_stop_s),
+            opt(p.slip_impact_velocity_m_per_s),
             format!("{:e}", p.real_area_m2),
             format!("{}", p.contacts),
             format!("{:e}", p.adhesive_load_n),
@@ -167,6 +185,8 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
             format!("{:e}", p.tilt_y_rad),
             format!("{:e}", p.max_pressure_pa),
             format!("{}", p.over_elastic_limit),
+            format!("{:e}", p.true_load_n),
+            opt(p.true_friction_n),
         ])?;
     }
     w.flush()?;
