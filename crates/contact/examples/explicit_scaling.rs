@@ -4,6 +4,8 @@
 //! `cargo run --release -p stiction-contact --example explicit_scaling -- 1e4 1e5 1e6 1e7 1e8`
 //! (one line per size: summits, generation s, pull-off s, loading points, s per point, bytes per
 //! summit of the solver, peak RSS in MB from /proc/self/status when available).
+//! With `--csv PATH` the lines are also appended to PATH (header written when it is new); the
+//! figures are drawn from that file by `--example explicit_figures -- scaling`.
 
 use std::time::Instant;
 
@@ -19,12 +21,22 @@ fn peak_rss_mb() -> Option<f64> {
 }
 
 fn main() {
-    let sizes: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let csv = args.iter().position(|a| a == "--csv").and_then(|k| args.get(k + 1)).map(std::path::PathBuf::from);
+    let sizes: Vec<f64> = args.iter().filter_map(|a| a.parse().ok()).collect();
     let sizes = if sizes.is_empty() { vec![1e4, 1e5, 1e6] } else { sizes };
     let points = 100;
-    println!(
-        "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb"
-    );
+    let header = "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb";
+    println!("{header}");
+    let mut out = csv.map(|p| {
+        let new = !p.exists();
+        let mut f = std::fs::OpenOptions::new().create(true).append(true).open(&p).expect("open csv");
+        if new {
+            use std::io::Write;
+            writeln!(f, "{header}").expect("write csv");
+        }
+        f
+    });
     for n in sizes {
         let (eta, sigma, r, d) = (4e12, 0.04e-6, 0.5e-6f64, 9.1e-12);
         let area = n / eta;
@@ -50,10 +62,15 @@ fn main() {
         let its = its as f64 / points as f64;
         let per = t.elapsed().as_secs_f64() / points as f64;
         let last = sweep.points.last().map_or(0, |e| e.contacts);
-        println!(
+        let line = format!(
             "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{}",
             solver.bytes_per_summit(),
             peak_rss_mb().map_or("n/a".into(), |v| format!("{v:.0}"))
         );
+        println!("{line}");
+        if let Some(f) = out.as_mut() {
+            use std::io::Write;
+            writeln!(f, "{line}").expect("write csv");
+        }
     }
 }
