@@ -180,3 +180,33 @@ fn with_three_contacts_the_roughness_amplitude_does_not_change_the_friction() {
     assert!(more > 0, "a 2 nm wall should bring more than three summits into contact");
     assert!(num(&smooth, "mu_apparent") > num(&a, "mu_apparent"));
 }
+
+#[test]
+fn measured_voltages_are_reduced_and_compared() {
+    // A scenario with a `measured` section: the measured (V_clamp, V_pull) pairs are reduced with
+    // the nominal factors (a_clamp = 1.4e-8, a_pull = 3.8e-9 N/V^2, F_spring = 7 uN) and fitted
+    // with eq. 10, and the virtual meter runs at the same clamp voltages.
+    let dir = temp_dir("measured");
+    std::fs::copy(root().join("scenarios/tas2000.json"), dir.join("s.json")).unwrap();
+    std::fs::write(dir.join("m.csv"), "# three slips\nv_clamp_v,v_pull_v\n24,27.5\n26,32.0\n28,36.2\n").unwrap();
+    let s = dir.join("s.json");
+    let v = stiction_json(&["run", s.to_str().unwrap(), "--set", r#"measured={"voltages_csv": "m.csv"}"#, "--json"]);
+    let m = &v["measured"];
+    let pts = m["points"].as_array().unwrap();
+    assert_eq!(pts.len(), 3);
+    // Hand reduction: L = 1.4e-8 V^2 - 7e-6, F = 3.8e-9 V^2; least squares on the three points.
+    let data = [(24.0f64, 27.5f64), (26.0, 32.0), (28.0, 36.2)];
+    let xy: Vec<(f64, f64)> = data.iter().map(|(c, p)| (1.4e-8 * c * c - 7e-6, 3.8e-9 * p * p)).collect();
+    let (mx, my) = (xy.iter().map(|p| p.0).sum::<f64>() / 3.0, xy.iter().map(|p| p.1).sum::<f64>() / 3.0);
+    let slope =
+        xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>() / xy.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+    assert!((num(m, "mu_apparent_measured") - slope).abs() < 1e-9, "{m}");
+    assert!(num(&pts[0], "v_pull_model") > 0.0);
+    let residual = num(&pts[1], "v_pull_sq_residual_v2");
+    assert!((residual - (num(&pts[1], "v_pull_model").powi(2) - 32.0f64.powi(2))).abs() < 1e-9);
+    // A bad line is named.
+    std::fs::write(dir.join("bad.csv"), "v_clamp_v,v_pull_v\n24,27.5\n26,x\n").unwrap();
+    let out = stiction(&["run", s.to_str().unwrap(), "--set", r#"measured={"voltages_csv": "bad.csv"}"#]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("bad.csv, line 3") && stderr.contains("\"x\""), "{stderr}");
+}

@@ -18,6 +18,7 @@ use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, MeterSpec, Scen
 
 mod contact_model;
 pub mod fit;
+pub mod measured;
 pub use contact_model::{ContactModel, ContactState};
 use stiction_contact::explicit;
 use stiction_contact::gw::GwSurface;
@@ -43,6 +44,9 @@ pub enum MeterError {
     /// The contact model failed.
     #[error("contact: {0}")]
     Contact(String),
+    /// A measured-data file is wrong.
+    #[error("measured data: {0}")]
+    Measured(String),
 }
 
 /// How the lab turns voltages into forces (section 5): `F_elec = a_clamp V_clamp^2`,
@@ -197,6 +201,15 @@ impl Meter {
     /// `progress(done, total)` is called after each clamp voltage.
     pub fn run(&mut self, progress: &mut dyn FnMut(usize, usize)) -> Result<MeterResult, MeterError> {
         let voltages = self.protocol.clamp_voltages.voltages();
+        self.run_at(&voltages, progress)
+    }
+
+    /// Runs the protocol at the given clamp voltages (V) instead of the scenario's.
+    pub fn run_at(
+        &mut self,
+        voltages: &[f64],
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<MeterResult, MeterError> {
         let a_pull = self.pull.conversion_factor_n_per_v2(0.0);
         let actuator_err = |array: &str, e: stiction_actuator::ActuatorError| MeterError::Actuator {
             array: array.into(),

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
+use stiction_meter::measured::{Comparison, read_measured_voltages};
 use stiction_meter::{ContactModel, Meter, MeterResult};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
@@ -32,6 +33,9 @@ struct RunOutput<'a> {
     description: &'a str,
     #[serde(flatten)]
     result: &'a MeterResult,
+    /// The scenario's measured voltages beside the model, when it has a `measured` section.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    measured: Option<Comparison>,
 }
 
 /// Runs the subcommand.
@@ -49,10 +53,18 @@ pub fn run(args: Args) -> CliResult {
         bar.set_position(done as u64);
     })?;
     bar.finish_and_clear();
+    let measured = match &scenario.measured {
+        Some(m) => {
+            let data = read_measured_voltages(&base.join(&m.voltages_csv))?;
+            Some(meter.compare(&data, result.reduction)?)
+        }
+        None => None,
+    };
     let output = RunOutput {
         scenario: args.scenario.display().to_string(),
         description: &scenario.description,
         result: &result,
+        measured,
     };
     if let Some(dir) = &args.out {
         write_outputs(dir, &output, &scenario, &mut meter)?;
@@ -112,6 +124,15 @@ fn print_summary(o: &RunOutput) {
             println!("  fit over {} points with L > 0, R^2 = {:.4}", fit.points, fit.r_squared);
         }
         _ => println!("  too few slip points with L > 0 for the eq. 10 fit"),
+    }
+    if let Some(c) = &o.measured {
+        println!("\n  measured data ({} slips):", c.points.len());
+        if let (Some(mu), Some(fa0)) = (c.mu_apparent_measured, c.apparent_adhesion_force_measured_n) {
+            println!("    measured mu_e,a = {mu:.3}, F_a0 = {:.3} uN (eq. 10 on the measured voltages)", fa0 * 1e6);
+        }
+        if let Some(rms) = c.rms_v_pull_sq_residual_v2 {
+            println!("    model - measured V_pull^2: rms {rms:.1} V^2");
+        }
     }
     let slips: Vec<bool> = r.points.iter().filter_map(|p| p.pull_in_at_slip).collect();
     if let (Some(v), false) = (r.pull_array_pull_in_v, slips.is_empty()) {
@@ -190,10 +211,22 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
         ])?;
     }
     w.flush()?;
-    let fig5 = fig5_chart(o.result);
+    let mut fig5 = fig5_chart(o.result);
+    if let Some(c) = &o.measured {
+        fig5.series.push(Series::markers(
+            "measured",
+            c.points.iter().map(|p| (p.v_clamp * p.v_clamp, p.v_pull_measured * p.v_pull_measured)).collect(),
+        ));
+    }
     crate::cmd::plot::write_chart(&fig5, &dir.join("fig5.svg"))?;
     crate::cmd::plot::write_chart(&fig5, &dir.join("fig5.png"))?;
-    let fig7 = fig7_chart(o.result, scenario, meter)?;
+    let mut fig7 = fig7_chart(o.result, scenario, meter)?;
+    if let Some(c) = &o.measured {
+        fig7.series.push(Series::markers(
+            "measured (nominal a_clamp, a_pull, F_spring)",
+            c.points.iter().map(|p| (p.load_measured_n * 1e6, p.friction_measured_n * 1e6)).collect(),
+        ));
+    }
     crate::cmd::plot::write_chart(&fig7, &dir.join("fig7.svg"))?;
     crate::cmd::plot::write_chart(&fig7, &dir.join("fig7.png"))?;
     Ok(())
