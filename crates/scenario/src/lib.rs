@@ -104,13 +104,24 @@ pub enum ScenarioError {
 impl Scenario {
     /// Reads, overrides (`--set`), parses and validates a scenario file.
     pub fn load(path: &Path, sets: &[String]) -> Result<Scenario, ScenarioError> {
+        Scenario::from_value(Scenario::load_json(path, sets)?, path)
+    }
+
+    /// Reads a scenario file as JSON and applies the `--set` overrides, without the typed parse
+    /// (a Monte Carlo study draws its uncertain parameters from this tree).
+    pub fn load_json(path: &Path, sets: &[String]) -> Result<Value, ScenarioError> {
         let text =
             std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.to_path_buf(), source })?;
-        Scenario::from_str_with_sets(&text, path, sets)
+        Scenario::json_with_sets(&text, path, sets)
     }
 
     /// Parses scenario text; `origin` names it in errors.
     pub fn from_str_with_sets(text: &str, origin: &Path, sets: &[String]) -> Result<Scenario, ScenarioError> {
+        Scenario::from_value(Scenario::json_with_sets(text, origin, sets)?, origin)
+    }
+
+    /// Scenario text as JSON with the overrides applied; `origin` names it in errors.
+    fn json_with_sets(text: &str, origin: &Path, sets: &[String]) -> Result<Value, ScenarioError> {
         let mut value: Value = serde_json::from_str(text).map_err(|e| ScenarioError::Syntax {
             path: origin.to_path_buf(),
             line: e.line(),
@@ -120,7 +131,7 @@ impl Scenario {
         for set in sets {
             apply_set(&mut value, set)?;
         }
-        Scenario::from_value(value, origin)
+        Ok(value)
     }
 
     /// Parses and validates a JSON value; `origin` names it in errors.

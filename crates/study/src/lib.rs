@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::Value;
 use stiction_meter::{Meter, Reduction};
-use stiction_scenario::{Scenario, apply_set};
+use stiction_scenario::Scenario;
 
 mod sample;
 pub use sample::{Draw, draw, sample_tree};
@@ -158,17 +158,7 @@ pub fn run_study(
             config.shard_index, config.shard_count
         )));
     }
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| stiction_scenario::ScenarioError::Io { path: path.to_path_buf(), source })?;
-    let mut base: Value = serde_json::from_str(&text).map_err(|e| stiction_scenario::ScenarioError::Syntax {
-        path: path.to_path_buf(),
-        line: e.line(),
-        column: e.column(),
-        message: e.to_string(),
-    })?;
-    for s in sets {
-        apply_set(&mut base, s)?;
-    }
+    let base = Scenario::load_json(path, sets)?;
     // The nominal scenario must be valid before any sample is drawn; its conversion factors and
     // spring force are what the lab reduces every measurement with.
     let nominal = Scenario::from_value(base.clone(), path)?;
