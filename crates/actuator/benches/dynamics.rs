@@ -18,6 +18,7 @@ fn pull(fringing: Fringing) -> GapClosingActuator {
         back: None,
         fringing,
         relative_permittivity: 1.0,
+        comb: None,
     };
     GapClosingActuator::new(plates, Suspension::linear(1.0), Some(0.8 * 2.96e-6), None).expect("model")
 }

@@ -17,7 +17,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{ActuatorError, nonnegative, positive};
-use crate::plates::{BackPotential, PlateArray};
+use crate::plates::PlateArray;
 
 /// Cantilever description of every movable finger.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -56,17 +56,12 @@ impl FingerBending {
         };
         let v2 = voltage_v * voltage_v;
         let per_length = |y: f64| -> f64 {
-            let gf = plates.front_gap_m - travel_m - y;
-            if gf <= 0.0 {
+            if plates.front_gap_m - travel_m - y <= 0.0 {
                 return f64::INFINITY;
             }
-            let mut f = -plates.pair_capacitance(gf).1;
-            if let Some(b) = plates.back
-                && b.potential == BackPotential::SameAsFront
-            {
-                f += plates.pair_capacitance(b.gap_m + travel_m + y).1;
-            }
-            0.5 * v2 * f / l
+            // The local line load is the rigid array's at travel x + y (front gap g_f - x - y,
+            // back gap g_b + x + y), per plate and unit overlap length.
+            v2 * plates.line_force_per_volt2(travel_m + y)
         };
         let mut y = vec![0.0; SEGMENTS];
         let gap_scale = plates.front_gap_m - travel_m;

@@ -2,6 +2,8 @@
 //!
 //! * [`plates`]: capacitance and force of a plate array (parallel plate or Palmer fringing,
 //!   optional back gap), force from the co-energy.
+//! * [`cross_section`]: 2D finite-difference Laplace solve of the comb cross-section (thick
+//!   fingers, neighbours, substrate) for `fringing: "cross_section"`.
 //! * [`spring`]: suspension stiffness from a value or from beams.
 //! * [`bending`]: optional finger bending.
 //! * [`actuator`]: quasi-static equilibrium, pull-in, release, hysteresis, sweeps.
@@ -12,6 +14,7 @@
 pub mod actuator;
 pub mod bending;
 pub mod conversion;
+pub mod cross_section;
 pub mod dynamics;
 pub mod error;
 pub mod meter;
@@ -22,6 +25,7 @@ pub mod validate;
 
 pub use actuator::{Equilibrium, GapClosingActuator, Hysteresis, PullIn, Sweep, SweepPoint};
 pub use bending::FingerBending;
+pub use cross_section::{CombGeometry, Substrate, SubstratePotential};
 pub use dynamics::{
     SimulationScale, SlipDynamics, SlipTrajectory, dynamic_pull_in_voltage, simulate_force_law, simulate_slip,
     undamped_dynamic_pull_in_voltage_v,
@@ -29,7 +33,7 @@ pub use dynamics::{
 pub use error::ActuatorError;
 pub use meter::{ClampForce, SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
 pub use plates::{BackElectrode, BackPotential, Fringing, PlateArray, VACUUM_PERMITTIVITY};
-pub use spec::{ArraySpec, BeamsSpec, FingerBendingSpec, SpringSpec, StopSpec};
+pub use spec::{ArraySpec, BeamsSpec, CombSpec, FingerBendingSpec, SpringSpec, StopSpec, SubstrateSpec};
 pub use spring::{BeamKind, BeamSuspension, Suspension};
 pub use validate::{
     MeasuredPoint, SwitchEffect, ValidationPoint, ValidationReport, fit_stop_contact_standoff, parse_measurements,

@@ -16,7 +16,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::cross_section::{CombGeometry, CrossSectionTable};
 use crate::error::{ActuatorError, nonnegative, positive};
+use std::sync::Arc;
 
 /// Vacuum permittivity eps0 (F/m), CODATA 2018.
 pub const VACUUM_PERMITTIVITY: f64 = 8.854_187_812_8e-12;
@@ -34,6 +36,15 @@ pub enum Fringing {
     /// for one dimension `d(l t p/g)/dg` gives the factor `1 + g/(pi d)` on the parallel-plate
     /// force.
     Palmer,
+    /// Two-dimensional cross-section of the comb ([`crate::cross_section`]): the capacitance per
+    /// unit length of one finger between its front and back electrodes from a finite-difference
+    /// Laplace solve (fringing through the top and bottom of both gaps, the finger's own width,
+    /// the neighbouring electrode's shielding, optional substrate), tabulated once per geometry.
+    /// The finger ends keep Palmer's length factor:
+    /// `C = n [eps l t/g_f p(g_f, l) + s_b eps l t/g_b p(g_b, l) + l dC'_2D(x)]`,
+    /// `dC'_2D = C'_2D - eps t (1/g_f + 1/g_b)` the 2D excess over the two parallel plates.
+    /// Needs [`PlateArray::comb`] and a back electrode at the front potential (or none).
+    CrossSection,
 }
 
 /// Potential of the back (anti-gap) electrode.
@@ -74,6 +85,10 @@ pub struct PlateArray {
     pub fringing: Fringing,
     /// Relative permittivity of the gap medium (1 for vacuum; 1.0006 for air).
     pub relative_permittivity: f64,
+    /// Cross-section geometry (finger and electrode widths, substrate), used by
+    /// [`Fringing::CrossSection`] only; default none.
+    #[serde(default)]
+    pub comb: Option<CombGeometry>,
 }
 
 /// Palmer's edge factor `p(g, d) = 1 + g/(pi d) (1 + ln(2 pi d/g))` and its first two
@@ -101,7 +116,45 @@ impl PlateArray {
         if let Some(b) = self.back {
             positive("back_gap", b.gap_m)?;
         }
+        if self.fringing == Fringing::CrossSection {
+            let comb = self.comb.ok_or_else(|| {
+                ActuatorError::Inconsistent("fringing `cross_section` needs the `comb` geometry".into())
+            })?;
+            comb.validate()?;
+            if self.back.is_some_and(|b| b.potential == BackPotential::Grounded) {
+                return Err(ActuatorError::Inconsistent(
+                    "fringing `cross_section` models a back electrode at the front potential (or none), not `grounded`"
+                        .into(),
+                ));
+            }
+            self.cross_section_table()?;
+        }
         Ok(())
+    }
+
+    /// The cross-section table of this array (computed on first use, then cached).
+    fn cross_section_table(&self) -> Result<Arc<CrossSectionTable>, ActuatorError> {
+        let comb = self
+            .comb
+            .ok_or_else(|| ActuatorError::Inconsistent("fringing `cross_section` needs the `comb` geometry".into()))?;
+        crate::cross_section::table(self.thickness_m, self.front_gap_m, self.back.map(|b| b.gap_m), comb)
+    }
+
+    /// Cross-section excess of the whole plate `l dC'_2D(x)` and its first two travel
+    /// derivatives (F, F/m, F/m^2); zero unless [`Fringing::CrossSection`]. NaN if the table
+    /// cannot be computed (reported by [`Self::validate`]).
+    fn cross_section_excess(&self, travel_m: f64) -> (f64, f64, f64) {
+        if self.fringing != Fringing::CrossSection {
+            return (0.0, 0.0, 0.0);
+        }
+        match self.cross_section_table() {
+            Ok(t) => {
+                let (c, c1, c2) = t.excess(travel_m);
+                let s = self.relative_permittivity * self.overlap_length_m;
+                (s * c, s * c1, s * c2)
+            }
+            Err(_) => (f64::NAN, f64::NAN, f64::NAN),
+        }
     }
 
     /// Permittivity of the gap, `eps = eps_r eps0` (F/m).
@@ -116,6 +169,11 @@ impl PlateArray {
         let g = gap_m;
         match self.fringing {
             Fringing::Off => (e / g, -e / (g * g), 2.0 * e / (g * g * g)),
+            Fringing::CrossSection => {
+                // Palmer's factor on the length only; the thickness fringing is in the 2D excess.
+                let (p, p1, p2) = palmer_factor(g, self.overlap_length_m);
+                (e * p / g, e * (p1 / g - p / (g * g)), e * (p2 / g - 2.0 * p1 / (g * g) + 2.0 * p / (g * g * g)))
+            }
             Fringing::Palmer => {
                 let (pt, pt1, pt2) = palmer_factor(g, self.thickness_m);
                 let (pl, pl1, pl2) = palmer_factor(g, self.overlap_length_m);
@@ -138,7 +196,7 @@ impl PlateArray {
         {
             c += self.pair_capacitance(b.gap_m + travel_m).0;
         }
-        n * c
+        n * (c + self.cross_section_excess(travel_m).0)
     }
 
     /// Co-energy `W* = 1/2 C(x) V^2` (J) at travel `x` (m) and voltage `V` (V).
@@ -166,7 +224,15 @@ impl PlateArray {
             f += c1b;
             df += c2b;
         }
-        (0.5 * n * f, 0.5 * n * df)
+        // Travel derivatives of the 2D excess (d/dx, not d/dg).
+        let (_, e1, e2) = self.cross_section_excess(travel_m);
+        (0.5 * n * (f + e1), 0.5 * n * (df + e2))
+    }
+
+    /// Force per volt squared per unit overlap length of one plate at travel `x` (N/(V^2 m)):
+    /// `f(x) / (n l)`, the line load used by the finger-bending model.
+    pub fn line_force_per_volt2(&self, travel_m: f64) -> f64 {
+        self.force_per_volt2(travel_m) / (f64::from(self.plate_count) * self.overlap_length_m)
     }
 
     /// Electrostatic force (N) at travel `x` (m) and voltage `V` (V): `F = f(x) V^2`.
@@ -175,7 +241,8 @@ impl PlateArray {
     }
 
     /// Applies a process undercut `u` (m per edge): gaps grow by `2u`, the overlap shortens by
-    /// `u` (the plate tip recedes by `u`). Thickness is unchanged (vertical etch).
+    /// `u` (the plate tip recedes by `u`), the comb's finger and electrode widths shrink by `2u`.
+    /// Thickness and the substrate gap are unchanged (vertical etch).
     pub fn with_undercut(&self, undercut_m: f64) -> Result<Self, ActuatorError> {
         nonnegative("undercut", undercut_m)?;
         let mut out = *self;
@@ -183,6 +250,10 @@ impl PlateArray {
         out.overlap_length_m -= undercut_m;
         if let Some(b) = out.back.as_mut() {
             b.gap_m += 2.0 * undercut_m;
+        }
+        if let Some(c) = out.comb.as_mut() {
+            c.finger_width_m -= 2.0 * undercut_m;
+            c.electrode_width_m -= 2.0 * undercut_m;
         }
         out.validate()?;
         Ok(out)

@@ -13,14 +13,15 @@
 //! | front gap, back gap | drawn + 2u |
 //! | stop travel | drawn + 2u (the stop gap is a trench too) |
 //! | plate overlap length | drawn - u (the tip recedes by u) |
-//! | beam widths, finger width (bending) | drawn - 2u |
-//! | thickness, beam length, given stiffness | unchanged |
+//! | beam widths, finger width (bending), comb finger and electrode widths | drawn - 2u |
+//! | thickness, beam length, given stiffness, substrate gap | unchanged |
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::actuator::GapClosingActuator;
 use crate::bending::FingerBending;
+use crate::cross_section::{CombGeometry, Substrate, SubstratePotential};
 use crate::error::{ActuatorError, nonnegative, positive};
 use crate::plates::{BackElectrode, BackPotential, Fringing, PlateArray};
 use crate::spring::{BeamKind, BeamSuspension, Suspension};
@@ -111,6 +112,46 @@ pub struct ArraySpec {
     /// Optional finger bending (absent: rigid plates).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub finger_bending: Option<FingerBendingSpec>,
+    /// Cross-section of the comb (drawn finger and electrode widths, substrate), needed by
+    /// `fringing: "cross_section"` and ignored by the other models; default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub comb: Option<CombSpec>,
+}
+
+/// The comb's cross-section for `fringing: "cross_section"` (drawn widths; the undercut narrows
+/// both by `2u`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct CombSpec {
+    /// Drawn in-plane width of a movable finger (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub finger_width: f64,
+    /// Drawn in-plane width of a fixed electrode finger (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub electrode_width: f64,
+    /// Conducting substrate (handle wafer) below the device layer; absent: open below.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub substrate: Option<SubstrateSpec>,
+}
+
+/// Substrate under the device layer.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct SubstrateSpec {
+    /// Distance from the bottom of the device layer to the substrate (m), e.g. the buried oxide
+    /// thickness (the oxide is etched away under released structures).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub gap: f64,
+    /// `plates` (default: the spine's potential, usually ground) or `electrodes`.
+    #[serde(default = "default_substrate_potential")]
+    pub potential: SubstratePotential,
+}
+
+fn default_substrate_potential() -> SubstratePotential {
+    SubstratePotential::Plates
 }
 
 /// Suspension: exactly one of `stiffness` and `beams`, plus optional extra stiffness.
@@ -248,6 +289,19 @@ impl ArraySpec {
             },
             fringing: self.fringing,
             relative_permittivity: positive("relative_permittivity", self.relative_permittivity)?,
+            comb: match &self.comb {
+                Some(c) => Some(CombGeometry {
+                    finger_width_m: positive("comb.finger_width (after undercut)", c.finger_width - 2.0 * u)?,
+                    electrode_width_m: positive("comb.electrode_width (after undercut)", c.electrode_width - 2.0 * u)?,
+                    substrate: match &c.substrate {
+                        Some(sb) => {
+                            Some(Substrate { gap_m: positive("comb.substrate.gap", sb.gap)?, potential: sb.potential })
+                        }
+                        None => None,
+                    },
+                }),
+                None => None,
+            },
         };
         if plates.overlap_length_m <= 0.0 {
             return Err(ActuatorError::Inconsistent(format!(

@@ -228,7 +228,9 @@ pub struct SwitchEffect {
 }
 
 /// Runs the validation with each physics switch of the spec toggled, one at a time: the spec
-/// itself, no back gap, fringing off, fringing Palmer, no undercut, finger bending on/off (when
+/// itself, no back gap, fringing off, fringing Palmer, fringing cross_section (with and without
+/// the substrate, when the spec has a `comb`), plane-stress beams (when a Poisson ratio is given),
+/// no undercut, finger bending on/off (when
 /// the spec has bending inputs), no stop contact standoff, no stop (release then not defined and
 /// left out), plus the rigid parallel-plate baseline (no fringing, no bending, no standoff).
 pub fn switch_effects(spec: &ArraySpec, data: &[MeasuredPoint]) -> Result<Vec<SwitchEffect>, ActuatorError> {
@@ -244,6 +246,28 @@ pub fn switch_effects(spec: &ArraySpec, data: &[MeasuredPoint]) -> Result<Vec<Sw
             s.fringing = fr;
             variants.push((name.into(), s));
         }
+    }
+    if let Some(comb) = &spec.comb {
+        if spec.fringing != crate::plates::Fringing::CrossSection {
+            let mut s = spec.clone();
+            s.fringing = crate::plates::Fringing::CrossSection;
+            variants.push(("fringing cross_section".into(), s));
+        }
+        if comb.substrate.is_some() {
+            let mut s = spec.clone();
+            s.fringing = crate::plates::Fringing::CrossSection;
+            if let Some(c) = s.comb.as_mut() {
+                c.substrate = None;
+            }
+            variants.push(("fringing cross_section, no substrate".into(), s));
+        }
+    }
+    if spec.spring.beams.as_ref().is_some_and(|b| b.poisson_ratio.is_some()) {
+        let mut s = spec.clone();
+        if let Some(b) = s.spring.beams.as_mut() {
+            b.poisson_ratio = None;
+        }
+        variants.push(("plane-stress beams (E, not E/(1-nu^2))".into(), s));
     }
     let mut s = spec.clone();
     s.undercut = 0.0;

@@ -23,6 +23,7 @@ fn pull_array(fringing: Fringing, back: Option<BackElectrode>, stop_fraction: Op
         back,
         fringing,
         relative_permittivity: 1.0,
+        comb: None,
     };
     GapClosingActuator::new(plates, Suspension::linear(1.0), stop_fraction.map(|f| f * plates.front_gap_m), None)
         .unwrap()

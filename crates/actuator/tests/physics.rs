@@ -15,6 +15,7 @@ fn plates(fringing: Fringing, back: Option<BackElectrode>) -> PlateArray {
         back,
         fringing,
         relative_permittivity: 1.0,
+        comb: None,
     }
 }
 
