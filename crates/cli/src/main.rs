@@ -15,7 +15,7 @@ mod output;
 /// Quantities accept a bare number (SI) or a number with a unit: "0.5 um", "1.4 GPa", "3 uN",
 /// "0.1 J/m^2", "9.1e-12 1/Pa". Add --json for machine-readable output.
 #[derive(Parser, Debug)]
-#[command(name = "stiction", version, about, long_about = None, propagate_version = true)]
+#[command(name = "stiction", version, propagate_version = true)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -49,6 +49,16 @@ impl LineFit {
     }
 }
 
+/// Eq. 10 from (L, F_f) points: the least-squares line, mu_e,a = its slope and
+/// F_a0 = intercept / slope (None without a line of positive slope).
+pub fn eq10(points: &[(f64, f64)]) -> (Option<LineFit>, Option<f64>, Option<f64>) {
+    let line = LineFit::least_squares(points);
+    match &line {
+        Some(l) if l.slope > 0.0 => (line, Some(l.slope), Some(l.intercept / l.slope)),
+        _ => (line, None, None),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

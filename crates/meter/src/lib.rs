@@ -280,8 +280,7 @@ impl Meter {
                     point.v_pull_sq = Some(v_pull * v_pull);
                     point.true_friction_n = Some(force(n).map_err(|e| actuator_err("pull", e))?);
                     point.friction_n = Some(reduction.a_pull_n_per_v2 * v_pull * v_pull);
-                    // Once it slips, only kinetic friction (not modelled: taken as zero) holds the
-                    // shuttle; does the pull array run away to its stop?
+                    // Once it slips, does the pull array run away to its stop?
                     match &self.protocol.slip_dynamics {
                         Some(dyn_spec) => {
                             // After slip the shoe slides: kinetic friction on the total load.
@@ -313,11 +312,7 @@ impl Meter {
         }
         let pairs: Vec<(f64, f64)> =
             points.iter().filter(|p| p.load_n > 0.0).filter_map(|p| p.friction_n.map(|f| (p.load_n, f))).collect();
-        let line = fit::LineFit::least_squares(&pairs);
-        let (mu, fa0) = match &line {
-            Some(l) if l.slope > 0.0 => (Some(l.slope), Some(l.intercept / l.slope)),
-            _ => (None, None),
-        };
+        let (line, mu, fa0) = fit::eq10(&pairs);
         Ok(MeterResult {
             contact_model: self.contact.name(),
             points,

@@ -115,11 +115,7 @@ impl Meter {
             .filter(|p| p.load_measured_n > 0.0)
             .map(|p| (p.load_measured_n, p.friction_measured_n))
             .collect();
-        let fit = LineFit::least_squares(&pairs);
-        let (mu, fa0) = match &fit {
-            Some(l) if l.slope > 0.0 => (Some(l.slope), Some(l.intercept / l.slope)),
-            _ => (None, None),
-        };
+        let (fit, mu, fa0) = crate::fit::eq10(&pairs);
         Ok(Comparison {
             points,
             rms_v_pull_sq_residual_v2: rms,
