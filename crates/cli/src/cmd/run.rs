@@ -211,7 +211,7 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
         ])?;
     }
     w.flush()?;
-    let mut fig5 = fig5_chart(o.result);
+    let mut fig5 = fig5_chart(o.result, scenario)?;
     if let Some(c) = &o.measured {
         fig5.series.push(Series::markers(
             "measured",
@@ -233,14 +233,32 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
 }
 
 /// Fig. 5: V_pull^2 at slip against V_clamp^2.
-fn fig5_chart(r: &MeterResult) -> Chart {
+/// Fig. 5: V_pull^2 at slip against V_clamp^2, with the paper's own analysis (discrete N = 3,
+/// eq. 12) turned back into voltages through the same conversion: V_pull^2 = F_f(L) / a_pull,
+/// L = a_clamp V_clamp^2 - F_spring.
+fn fig5_chart(r: &MeterResult, scenario: &Scenario) -> Result<Chart, Box<dyn std::error::Error>> {
     let pts: Vec<(f64, f64)> = r.points.iter().filter_map(|p| p.v_pull_sq.map(|v| (p.v_clamp_sq, v))).collect();
-    Chart::new(
+    let red = r.reduction;
+    let v2_min = red.spring_force_n / red.a_clamp_n_per_v2;
+    let v2_max = r.points.iter().map(|p| p.v_clamp_sq).fold(v2_min, f64::max) * 1.02;
+    let material = scenario.require_material()?;
+    let radius = scenario.require_surface()?.summit_radius.unwrap_or(0.5e-6);
+    let curve =
+        crate::cmd::discrete::friction_curve_n3(material, radius, red.a_clamp_n_per_v2 * v2_max - red.spring_force_n)?;
+    let discrete: Vec<(f64, f64)> = curve
+        .into_iter()
+        .filter(|(l_un, _)| *l_un >= 0.0)
+        .map(|(l_un, f_un)| {
+            ((l_un * 1e-6 + red.spring_force_n) / red.a_clamp_n_per_v2, f_un * 1e-6 / red.a_pull_n_per_v2)
+        })
+        .collect();
+    Ok(Chart::new(
         format!("Fig. 5 (virtual): pull voltage at slip, {} contact model", r.contact_model),
         "clamp voltage squared V_clamp^2 (V^2)",
         "pull voltage squared at slip V_pull^2 (V^2)",
     )
     .with(Series::markers("virtual measurement", pts))
+    .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete)))
 }
 
 /// Fig. 7: friction against load: the meter's points, the contact model's curve from pull-off,
