@@ -82,11 +82,13 @@ pub fn run(args: Args) -> CliResult {
         sets.push(format!("contact.contacts={n}"));
     }
     let scenario = Scenario::load(&args.scenario, &sets)?;
-    let material = scenario.require_material()?.clone();
+    let material = scenario.require_material().map_err(|e| format!("{}: {e}", args.scenario.display()))?.clone();
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
     let c = scenario.contact_or_default();
     debug_assert_eq!(c.model, ModelKind::Explicit);
-    let ContactModel::Explicit(mut solver) = build_contact_model(&scenario, &material, &base)? else {
+    let model =
+        build_contact_model(&scenario, &material, &base).map_err(|e| format!("{}: {e}", args.scenario.display()))?;
+    let ContactModel::Explicit(mut solver) = model else {
         return Err("the explicit solver could not be built".into());
     };
     solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });

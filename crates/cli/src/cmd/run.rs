@@ -42,7 +42,7 @@ struct RunOutput<'a> {
 pub fn run(args: Args) -> CliResult {
     let scenario = Scenario::load(&args.scenario, &args.sets)?;
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
-    let mut meter = Meter::from_scenario(&scenario, &base)?;
+    let mut meter = Meter::from_scenario(&scenario, &base).map_err(|e| format!("{}: {e}", args.scenario.display()))?;
     let bar = ProgressBar::new(0);
     bar.set_style(
         ProgressStyle::with_template("{spinner} clamp voltages {pos}/{len} [{bar:30}] {elapsed_precise}")
