@@ -89,6 +89,92 @@ pub fn couette_damping_n_s_per_m(viscosity_pa_s: f64, area_m2: f64, gap_m: f64) 
     Ok(viscosity_pa_s * area_m2 / gap_m)
 }
 
+/// Density of single-crystal silicon (kg/m^3), the device layer of SOI actuators.
+pub const SILICON_DENSITY_KG_PER_M3: f64 = 2329.0;
+
+/// Mean free path of air molecules at 20 degC and 1 atm (m), about 68 nm (it scales as `1/p`).
+pub const AIR_MEAN_FREE_PATH_M: f64 = 68e-9;
+
+/// Standard atmospheric pressure (Pa).
+pub const ATMOSPHERIC_PRESSURE_PA: f64 = 101_325.0;
+
+/// Effective viscosity of a gas film of thickness `h` with rarefaction (Pa s), Veijola et al.'s
+/// fit for the squeeze film (T. Veijola, H. Kuisma, J. Lahdenpera, T. Ryhanen, Sensors and
+/// Actuators A 48, 239-248, 1995): `mu_eff = mu / (1 + 9.638 Kn^1.159)`, `Kn = lambda / h`, within
+/// 5 % of the Fukui-Kaneko Boltzmann solution for `0 < Kn < 880`. Continuum limit `Kn -> 0`:
+/// `mu`. For air at 1 atm and `h = 5.6 um` (`Kn = 0.012`) it is `mu / 1.057`; at `h = 1.1 um`
+/// (`Kn = 0.06`) `mu / 1.37`.
+pub fn veijola_effective_viscosity_pa_s(
+    viscosity_pa_s: f64,
+    mean_free_path_m: f64,
+    film_thickness_m: f64,
+) -> Result<f64, ActuatorError> {
+    positive("viscosity", viscosity_pa_s)?;
+    nonnegative("mean_free_path", mean_free_path_m)?;
+    positive("film_thickness", film_thickness_m)?;
+    let kn = mean_free_path_m / film_thickness_m;
+    Ok(viscosity_pa_s / (1.0 + 9.638 * kn.powf(1.159)))
+}
+
+/// Aspect-ratio factor of the incompressible squeeze film of a rectangular plate with all four
+/// edges at ambient pressure, `beta(eta) = 1 - (192/pi^5) eta sum_{n odd} tanh(n pi/(2 eta))/n^5`,
+/// `eta = b/a <= 1` (short over long side); `beta(0) = 1` (long strip), `beta(1) = 0.4218`
+/// (square). Series of the Reynolds equation's exact solution (W. S. Griffin, H. H. Richardson,
+/// S. Yamanami, J. Basic Eng. 88, 451, 1966; Senturia, *Microsystem Design*, sec. 13.4), summed
+/// to `n = 199`.
+pub fn squeeze_film_aspect_factor(eta: f64) -> f64 {
+    let eta = eta.clamp(0.0, 1.0);
+    if eta == 0.0 {
+        return 1.0;
+    }
+    let sum: f64 = (0..100)
+        .map(|i| {
+            let n = f64::from(2 * i + 1);
+            (n * std::f64::consts::PI / (2.0 * eta)).tanh() / n.powi(5)
+        })
+        .sum();
+    1.0 - 192.0 / std::f64::consts::PI.powi(5) * eta * sum
+}
+
+/// Incompressible squeeze-film damping of one rectangular plate `a x b` closing a gap `h` with all
+/// edges open (N s/m), with `s = min(a, b)` the escape length and
+/// `L = max(a, b)`: `c = mu L s^3 / h^3 beta(s/L)` ([`squeeze_film_aspect_factor`]); the long-strip
+/// limit `mu L s^3/h^3` is the one used by [`squeeze_film_damping_n_s_per_m`]. Valid for a squeeze
+/// number `12 mu omega s^2 / (p h^2) << 1` ([`squeeze_number`]); `mu` may be the rarefied
+/// effective viscosity ([`veijola_effective_viscosity_pa_s`]).
+pub fn rectangular_squeeze_film_damping_n_s_per_m(
+    viscosity_pa_s: f64,
+    side_a_m: f64,
+    side_b_m: f64,
+    gap_m: f64,
+) -> Result<f64, ActuatorError> {
+    positive("viscosity", viscosity_pa_s)?;
+    positive("side_a", side_a_m)?;
+    positive("side_b", side_b_m)?;
+    positive("gap", gap_m)?;
+    let (short, long) = (side_a_m.min(side_b_m), side_a_m.max(side_b_m));
+    Ok(viscosity_pa_s * long * short.powi(3) / gap_m.powi(3) * squeeze_film_aspect_factor(short / long))
+}
+
+/// Squeeze number of a film (dimensionless), `sigma = 12 mu omega s^2 / (p h^2)` with `s` the
+/// shorter plate side (the escape length), `h` the gap, `omega` the angular frequency (rad/s) and
+/// `p` the ambient pressure. `sigma << 1` (below about 1): the gas escapes before it is compressed,
+/// the film is a pure (incompressible) damper; `sigma >> 1`: it acts as a spring.
+pub fn squeeze_number(
+    viscosity_pa_s: f64,
+    angular_frequency_rad_per_s: f64,
+    escape_length_m: f64,
+    gap_m: f64,
+    pressure_pa: f64,
+) -> Result<f64, ActuatorError> {
+    positive("viscosity", viscosity_pa_s)?;
+    nonnegative("angular_frequency", angular_frequency_rad_per_s)?;
+    positive("escape_length", escape_length_m)?;
+    positive("gap", gap_m)?;
+    positive("pressure", pressure_pa)?;
+    Ok(12.0 * viscosity_pa_s * angular_frequency_rad_per_s * escape_length_m.powi(2) / (pressure_pa * gap_m.powi(2)))
+}
+
 /// Parameters of the slip dynamics (SI units).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SlipDynamics {
@@ -253,7 +339,8 @@ pub fn simulate_slip(
     voltage_v: f64,
     dynamics: &SlipDynamics,
 ) -> Result<SlipTrajectory, ActuatorError> {
-    run(pull, voltage_v, dynamics, true, false)
+    let c = dynamics.damping_n_s_per_m;
+    run(pull, voltage_v, dynamics, &|_| c, true, false)
 }
 
 /// Dynamic pull-in voltage for a step input (V): the lowest step voltage at which the shuttle,
@@ -266,9 +353,26 @@ pub fn simulate_slip(
 /// `V_dyn = sqrt(27/32) V_pi` (travel `g/2` at the threshold); damping raises it towards `V_pi`,
 /// friction raises it further.
 pub fn dynamic_pull_in_voltage(pull: &GapClosingActuator, dynamics: &SlipDynamics) -> Result<f64, ActuatorError> {
+    let c = dynamics.damping_n_s_per_m;
+    dynamic_pull_in_voltage_with_damping_law(pull, dynamics, &|_| c)
+}
+
+/// [`dynamic_pull_in_voltage`] with a damping coefficient that depends on the travel,
+/// `c(x)` (N s/m at travel `x` in m; e.g. the squeeze film `~ 1/(g_f - x)^3`), instead of the
+/// constant [`SlipDynamics::damping_n_s_per_m`] (ignored here):
+/// `m x'' = F_e(x, V) - k x - c(x) x' - F_k sgn(x')`. The damping rate of the rapier body is set
+/// every step from `c` at the predicted mid-step travel. `c(x)` must be finite and `>= 0` on
+/// `[0, x_c]` (checked at every step).
+pub fn dynamic_pull_in_voltage_with_damping_law(
+    pull: &GapClosingActuator,
+    dynamics: &SlipDynamics,
+    damping_n_s_per_m: &dyn Fn(f64) -> f64,
+) -> Result<f64, ActuatorError> {
     dynamics.validate()?;
     let static_pi = pull.pull_in()?.voltage_v;
-    let reaches = |v: f64| -> Result<bool, ActuatorError> { Ok(run(pull, v, dynamics, false, true)?.runs_away) };
+    let reaches = |v: f64| -> Result<bool, ActuatorError> {
+        Ok(run(pull, v, dynamics, damping_n_s_per_m, false, true)?.runs_away)
+    };
     // Just above the static pull-in (exactly at it the shuttle creeps into the saddle-node forever).
     let mut hi = 1.01 * static_pi;
     let mut doublings = 0;
@@ -482,6 +586,7 @@ fn run(
     pull: &GapClosingActuator,
     voltage_v: f64,
     dynamics: &SlipDynamics,
+    damping_n_s_per_m: &dyn Fn(f64) -> f64,
     record: bool,
     decide_only: bool,
 ) -> Result<SlipTrajectory, ActuatorError> {
@@ -495,7 +600,7 @@ fn run(
         fe.is_finite().then(|| fe - pull.suspension.force_n(x_si))
     };
     let electrode = Some(pull.plates.front_gap_m);
-    integrate(&drive, xc_si, electrode, voltage_v, scale, dynamics, record, decide_only)
+    integrate(&drive, damping_n_s_per_m, xc_si, electrode, voltage_v, scale, dynamics, record, decide_only)
 }
 
 /// Simulates the same 1-DOF slip for an arbitrary driving force law `F(x)` (N, at travel `x` in m;
@@ -525,14 +630,17 @@ pub fn simulate_force_law(
         time_s: (dynamics.shuttle_mass_kg * length_m / characteristic).sqrt(),
     };
     let drive = |x: f64| -> Option<f64> { Some(force_n(x)).filter(|f| f.is_finite()) };
-    integrate(&drive, stop_travel_m, None, 0.0, scale, dynamics, true, false)
+    let c = dynamics.damping_n_s_per_m;
+    integrate(&drive, &|_| c, stop_travel_m, None, 0.0, scale, dynamics, true, false)
 }
 
 /// The time loop: rapier world in the scaled units of `scale`, driving force `drive_si(x)` (N, None
-/// for a collapse), stop at `xc_si` (m), electrode (where the force diverges) at `electrode_si` (m).
+/// for a collapse), damping coefficient `damping_si(x)` (N s/m), stop at `xc_si` (m), electrode
+/// (where the force diverges) at `electrode_si` (m).
 #[allow(clippy::too_many_arguments)]
 fn integrate(
     drive_si: &dyn Fn(f64) -> Option<f64>,
+    damping_si: &dyn Fn(f64) -> f64,
     xc_si: f64,
     electrode_si: Option<f64>,
     voltage_v: f64,
@@ -546,7 +654,14 @@ fn integrate(
     let t_end = dynamics.max_time_s / t0;
     let xc = xc_si / l0;
     let electrode = electrode_si.map(|e| e / l0);
-    let damping_rate = dynamics.damping_n_s_per_m * t0 / scale.mass_kg;
+    // Damping rate c(x) T0 / m (scaled), checked finite and >= 0.
+    let rate_at = |x: f64| -> Result<f64, ActuatorError> {
+        let c = damping_si(x * l0);
+        nonnegative("damping", c)?;
+        Ok(c * t0 / scale.mass_kg)
+    };
+    let mut damping_rate = rate_at(0.0)?;
+    let damped = damping_rate > 0.0 || rate_at(xc)? > 0.0;
     let friction = dynamics.kinetic_friction_n / f0;
     let mut world = World::new(dt, damping_rate, xc);
     // Net driving force (scaled) at scaled travel x, without damping and friction.
@@ -568,7 +683,7 @@ fn integrate(
     // With damping the shuttle may creep towards a stable equilibrium without ever turning back; the
     // outcome is then decided by the energy bound (see `WorkTable`). Without damping it always turns
     // back or sticks, and the decision is left to the rapier trajectory alone.
-    let table = (dynamics.damping_n_s_per_m > 0.0).then(|| WorkTable::new(&drive, xc, friction));
+    let table = damped.then(|| WorkTable::new(&drive, xc, friction));
     let mut turned = false;
     let mut decided = false;
     let mut t = 0.0;
@@ -604,7 +719,13 @@ fn integrate(
         }
         // The force held over the step is taken at the predicted mid-step travel: the work per step
         // is then a midpoint rule (second order) instead of a left Riemann sum.
-        let Some(f_other) = drive((x + 0.5 * v * h).min(xc)) else {
+        let x_mid = (x + 0.5 * v * h).min(xc);
+        let rate = rate_at(x_mid)?;
+        if rate != damping_rate {
+            damping_rate = rate;
+            world.world.bodies[world.shuttle].set_linear_damping(rate);
+        }
+        let Some(f_other) = drive(x_mid) else {
             // Finger collapse: the plates snap shut; counted as reaching the electrode.
             out.runs_away = true;
             out.time_to_stop_s = Some(t * t0);

@@ -8,6 +8,8 @@
 //! * [`bending`]: optional finger bending.
 //! * [`actuator`]: quasi-static equilibrium, pull-in, release, hysteresis, sweeps.
 //! * [`dynamics`]: the slip event in time (rapier rigid body), dynamic pull-in for a step voltage.
+//! * [`protocol`]: pull-in protocol (quasi-static ramp or voltage step), shuttle mass and air
+//!   damping from geometry.
 //!
 //! SI units and `f64` everywhere.
 
@@ -19,6 +21,7 @@ pub mod dynamics;
 pub mod error;
 pub mod meter;
 pub mod plates;
+pub mod protocol;
 pub mod spec;
 pub mod spring;
 pub mod validate;
@@ -27,12 +30,14 @@ pub use actuator::{Equilibrium, GapClosingActuator, Hysteresis, PullIn, Sweep, S
 pub use bending::FingerBending;
 pub use cross_section::{CombGeometry, Substrate, SubstratePotential};
 pub use dynamics::{
-    SimulationScale, SlipDynamics, SlipTrajectory, dynamic_pull_in_voltage, simulate_force_law, simulate_slip,
-    undamped_dynamic_pull_in_voltage_v,
+    SimulationScale, SlipDynamics, SlipTrajectory, dynamic_pull_in_voltage, dynamic_pull_in_voltage_with_damping_law,
+    rectangular_squeeze_film_damping_n_s_per_m, simulate_force_law, simulate_slip, squeeze_film_aspect_factor,
+    squeeze_number, undamped_dynamic_pull_in_voltage_v, veijola_effective_viscosity_pa_s,
 };
 pub use error::ActuatorError;
 pub use meter::{ClampForce, SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
 pub use plates::{BackElectrode, BackPotential, Fringing, PlateArray, VACUUM_PERMITTIVITY};
+pub use protocol::{MassBreakdown, PullInProtocol, Shuttle, ShuttleSpec, StepPullIn, step_pull_in};
 pub use spec::{ArraySpec, BeamsSpec, CombSpec, FingerBendingSpec, SpringSpec, StopSpec, SubstrateSpec};
 pub use spring::{BeamKind, BeamSuspension, Suspension};
 pub use validate::{

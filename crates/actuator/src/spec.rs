@@ -24,6 +24,7 @@ use crate::bending::FingerBending;
 use crate::cross_section::{CombGeometry, Substrate, SubstratePotential};
 use crate::error::{ActuatorError, nonnegative, positive};
 use crate::plates::{BackElectrode, BackPotential, Fringing, PlateArray};
+use crate::protocol::{PullInProtocol, ShuttleSpec};
 use crate::spring::{BeamKind, BeamSuspension, Suspension};
 
 fn default_fringing() -> Fringing {
@@ -116,6 +117,18 @@ pub struct ArraySpec {
     /// `fringing: "cross_section"` and ignored by the other models; default none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub comb: Option<CombSpec>,
+    /// How pull-in is applied and observed, default `quasi_static` (slow ramp); `step` (voltage
+    /// step from rest, dynamic pull-in) needs `shuttle` and `stop`. See [`crate::protocol`].
+    #[serde(default, skip_serializing_if = "is_quasi_static")]
+    pub pull_in_protocol: PullInProtocol,
+    /// Moving mass and air-damping inputs for `pull_in_protocol: "step"`; ignored otherwise;
+    /// default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shuttle: Option<ShuttleSpec>,
+}
+
+fn is_quasi_static(p: &PullInProtocol) -> bool {
+    *p == PullInProtocol::QuasiStatic
 }
 
 /// The comb's cross-section for `fringing: "cross_section"` (drawn widths; the undercut narrows

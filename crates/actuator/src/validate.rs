@@ -9,6 +9,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::error::ActuatorError;
+use crate::protocol::{PullInProtocol, Shuttle, step_pull_in};
 use crate::spec::ArraySpec;
 
 /// One measured finger length with its repeats.
@@ -138,7 +139,9 @@ fn mean_sd(v: &[f64]) -> (f64, f64) {
 }
 
 /// Predicts pull-in and release at every measured finger length (the spec's `overlap_length`
-/// replaced by the drawn finger length) and compares. The spec needs a stop.
+/// replaced by the drawn finger length) and compares. The spec needs a stop. Pull-in follows the
+/// spec's `pull_in_protocol` (quasi-static, or the step pull-in of [`step_pull_in`] with the
+/// shuttle's mass and damping at that length); release is always quasi-static.
 pub fn validate(spec: &ArraySpec, data: &[MeasuredPoint]) -> Result<ValidationReport, ActuatorError> {
     if data.is_empty() {
         return Err(ActuatorError::NotAvailable("no measured points to validate against".into()));
@@ -148,7 +151,11 @@ pub fn validate(spec: &ArraySpec, data: &[MeasuredPoint]) -> Result<ValidationRe
         let mut s = spec.clone();
         s.overlap_length = d.finger_length_m;
         let m = s.to_model()?;
-        let h = m.hysteresis()?;
+        let mut h = m.hysteresis()?;
+        if s.pull_in_protocol == PullInProtocol::Step {
+            let step = step_pull_in(&m, &Shuttle::from_spec(&s)?)?;
+            h.pull_in_voltage_v = step.voltage_v;
+        }
         let (pm, ps) = mean_sd(&d.pull_in_v);
         let (rm, rs) = mean_sd(&d.release_v);
         points.push(ValidationPoint {
@@ -230,7 +237,7 @@ pub struct SwitchEffect {
 /// Runs the validation with each physics switch of the spec toggled, one at a time: the spec
 /// itself, no back gap, fringing off, fringing Palmer, fringing cross_section (with and without
 /// the substrate, when the spec has a `comb`), plane-stress beams (when a Poisson ratio is given),
-/// no undercut, finger bending on/off (when
+/// no undercut, the other pull-in protocol (when the spec has a `shuttle`), finger bending on/off (when
 /// the spec has bending inputs), no stop contact standoff, no stop (release then not defined and
 /// left out), plus the rigid parallel-plate baseline (no fringing, no bending, no standoff).
 pub fn switch_effects(spec: &ArraySpec, data: &[MeasuredPoint]) -> Result<Vec<SwitchEffect>, ActuatorError> {
@@ -272,6 +279,20 @@ pub fn switch_effects(spec: &ArraySpec, data: &[MeasuredPoint]) -> Result<Vec<Sw
     let mut s = spec.clone();
     s.undercut = 0.0;
     variants.push(("no undercut".into(), s));
+    if spec.shuttle.is_some() {
+        let mut s = spec.clone();
+        let name = match spec.pull_in_protocol {
+            PullInProtocol::QuasiStatic => {
+                s.pull_in_protocol = PullInProtocol::Step;
+                "pull-in protocol step (dynamic, squeeze-film damping)"
+            }
+            PullInProtocol::Step => {
+                s.pull_in_protocol = PullInProtocol::QuasiStatic;
+                "pull-in protocol quasi_static"
+            }
+        };
+        variants.push((name.into(), s));
+    }
     if let Some(b) = &spec.finger_bending {
         let mut s = spec.clone();
         if let Some(bb) = s.finger_bending.as_mut() {

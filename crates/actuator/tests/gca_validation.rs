@@ -92,4 +92,8 @@ fn switch_effects_show_which_physics_matters() {
     assert!(get("fringing off").pull_in_mean_rel_error > get("as specified").pull_in_mean_rel_error);
     // The stop standoff is what closes the release gap.
     assert!(get("no stop contact standoff").release_mean_abs_rel_error > 0.10);
+    // A voltage step (dynamic pull-in) needs less voltage than a ramp; release is unchanged.
+    let step = get("pull-in protocol step (dynamic, squeeze-film damping)");
+    assert!(step.pull_in_mean_rel_error < get("as specified").pull_in_mean_rel_error);
+    assert_eq!(step.release_mean_abs_rel_error, get("as specified").release_mean_abs_rel_error);
 }
