@@ -210,3 +210,34 @@ fn measured_voltages_are_reduced_and_compared() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && stderr.contains("bad.csv, line 3") && stderr.contains("\"x\""), "{stderr}");
 }
+
+#[test]
+fn staying_clamped_while_unloading_keeps_adhesive_contacts() {
+    // JKR summits stay in contact down to their pull-off interference: a shoe that stays clamped
+    // while the clamp voltage falls (meter.reclamp = false) keeps more summits, and so more
+    // friction, than one that comes down anew at each voltage. On the smooth (2 nm) wall.
+    let run = |reclamp: &str| {
+        stiction_json(&[
+            "run",
+            "scenarios/tas2000-smooth.json",
+            "--set",
+            &format!("meter.reclamp={reclamp}"),
+            "--set",
+            r#"meter.clamp_voltages=["40 V","30 V","26 V","24 V","23 V","22.6 V"]"#,
+            "--set",
+            r#"contact.law="jkr""#,
+            "--set",
+            "meter.slip_dynamics=null",
+            "--json",
+        ])
+    };
+    let cap = |v: &serde_json::Value| -> Vec<f64> {
+        v["points"].as_array().unwrap().iter().map(|p| p["friction_capacity_n"].as_f64().unwrap()).collect()
+    };
+    let (fresh, kept) = (cap(&run("true")), cap(&run("false")));
+    assert_eq!(fresh[0], kept[0], "the first clamp is the same either way");
+    for (f, k) in fresh.iter().zip(&kept) {
+        assert!(k >= &(f * (1.0 - 1e-9)), "kept {k} below fresh {f}");
+    }
+    assert!(kept.last().unwrap() > &(1.2 * fresh.last().unwrap()), "{fresh:?} vs {kept:?}");
+}

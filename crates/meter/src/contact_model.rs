@@ -62,11 +62,16 @@ impl ContactModel {
 
     /// The contact state at external load `load_n` (N). Below pull-off there is no equilibrium,
     /// which is an error (the meter treats it as "no contact").
-    pub fn state_at_load(&mut self, load_n: f64) -> Result<ContactState, MeterError> {
+    ///
+    /// `fresh_contact`: the shoe comes down anew (no load history) rather than following the
+    /// previous equilibrium; it matters only for the explicit solver, whose equilibria depend on
+    /// the load path.
+    pub fn state_at_load(&mut self, load_n: f64, fresh_contact: bool) -> Result<ContactState, MeterError> {
         match self {
             ContactModel::Explicit(solver) => {
-                // Each clamp voltage brings the shoe into contact anew: start from no load history.
-                solver.reset();
+                if fresh_contact {
+                    solver.reset();
+                }
                 let eq: Equilibrium = solver.solve(load_n).map_err(|e| MeterError::Contact(e.to_string()))?;
                 Ok(ContactState {
                     load_n,

@@ -222,6 +222,7 @@ impl Meter {
         };
         let mut points = Vec::with_capacity(voltages.len());
         let mut spring_force_used = f64::NAN;
+        let mut previous_in_contact = false;
         for (k, &v_clamp) in voltages.iter().enumerate() {
             let clamp =
                 clamp_force(&self.clamp, self.contact_travel_m, v_clamp).map_err(|e| actuator_err("clamp", e))?;
@@ -252,7 +253,10 @@ impl Meter {
                 over_elastic_limit: false,
             };
             if in_contact {
-                let state = self.contact.state_at_load(load_n)?;
+                // Re-clamping releases the shoe between clamp voltages; otherwise it stays in
+                // contact and the load path carries over from the previous voltage.
+                let fresh = self.protocol.reclamp || !previous_in_contact;
+                let state = self.contact.state_at_load(load_n, fresh)?;
                 let capacity = self.slip_threshold_n(&state);
                 point.friction_capacity_n = capacity;
                 point.real_area_m2 = state.real_area_m2;
@@ -307,6 +311,7 @@ impl Meter {
                     }
                 }
             }
+            previous_in_contact = in_contact;
             points.push(point);
             progress(k + 1, voltages.len());
         }

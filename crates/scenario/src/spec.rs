@@ -305,6 +305,11 @@ pub struct MeterSpec {
     /// Slip criterion (default shear strength times real area).
     #[serde(default)]
     pub slip: SlipCriterion,
+    /// Release the clamp between clamp voltages, so the shoe comes down anew at each (default
+    /// true); false keeps it in contact and carries the load path over (the explicit solver's
+    /// equilibria depend on it).
+    #[serde(default = "yes")]
+    pub reclamp: bool,
     /// Simulate the motion of the pull shuttle after each slip (rigid-body dynamics with rapier);
     /// absent: only the quasi-static runaway test.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -329,6 +334,9 @@ pub struct SlipDynamicsSpec {
     pub kinetic_friction_coefficient: f64,
 }
 
+fn yes() -> bool {
+    true
+}
 fn default_pull_step() -> f64 {
     0.05
 }
