@@ -368,3 +368,32 @@ mod tests {
         assert!(close(back, v));
     }
 }
+
+#[cfg(test)]
+mod properties {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    proptest! {
+        /// Any finite SI value written with the formatter's prefix parses back within the
+        /// formatter's 4 significant digits (relative 5e-4 by rounding).
+        #[test]
+        fn format_then_parse_round_trips(mantissa in 1.0f64..10.0, exp in -14i32..12, negative in any::<bool>()) {
+            let value = if negative { -1.0 } else { 1.0 } * mantissa * 10f64.powi(exp);
+            for dim in [Dimension::Length, Dimension::Force, Dimension::Pressure, Dimension::Voltage] {
+                let text = format_quantity(value, dim);
+                let back = parse_quantity(&text, dim).unwrap();
+                prop_assert!((back - value).abs() <= 5e-4 * value.abs(), "{} -> {} -> {}", value, text, back);
+            }
+        }
+
+        /// A number with a unit of another dimension is always rejected, never misread.
+        #[test]
+        fn a_force_is_never_a_length(x in 1e-3f64..1e3) {
+            let text = format!("{x} uN");
+            prop_assert!(parse_quantity(&text, Dimension::Length).is_err());
+            prop_assert!((parse_quantity(&text, Dimension::Force).unwrap() - x * 1e-6).abs() <= 1e-15 * x);
+        }
+    }
+}
