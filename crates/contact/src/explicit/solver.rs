@@ -944,18 +944,12 @@ fn iterate<L: LawEval + ?Sized>(
             && ev.contacts == ev.releases
             && ev.force > load
         {
-            return Err(SolveError::NoEquilibrium {
-                load_n: load,
-                reason: "the shoe separates from the surface (load below pull-off)".into(),
-            });
+            return Err(separates(load));
         }
         if resid <= tol.max(RELEASE_RESIDUAL * scale) && ev.releases > 0 && !fixed {
             release(g, law, st, ev);
             if st.members == 0 && load <= 0.0 {
-                return Err(SolveError::NoEquilibrium {
-                    load_n: load,
-                    reason: "the shoe separates from the surface (load below pull-off)".into(),
-                });
+                return Err(separates(load));
             }
             it += 1;
             if it >= cfg.max_iterations {
@@ -1002,10 +996,7 @@ fn iterate<L: LawEval + ?Sized>(
             // Release the members below their release interference (active-set update).
             release(g, law, st, ev);
             if st.members == 0 && load <= 0.0 {
-                return Err(SolveError::NoEquilibrium {
-                    load_n: load,
-                    reason: "the shoe separates from the surface (load below pull-off)".into(),
-                });
+                return Err(separates(load));
             }
             it += 1;
             if it >= cfg.max_iterations {
@@ -1014,10 +1005,7 @@ fn iterate<L: LawEval + ?Sized>(
             continue;
         }
         if st.members == 0 && load < 0.0 {
-            return Err(SolveError::NoEquilibrium {
-                load_n: load,
-                reason: "the shoe separates from the surface (load below pull-off)".into(),
-            });
+            return Err(separates(load));
         }
         it += 1;
         if it >= cfg.max_iterations {
@@ -1139,4 +1127,9 @@ fn tip_to_next_contact<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &State, ev: &
         }
     }
     best.map(|(_, dq)| dq)
+}
+
+/// The shoe comes off: the load is below the pull-off of the current contact.
+fn separates(load_n: f64) -> SolveError {
+    SolveError::NoEquilibrium { load_n, reason: "the shoe separates from the surface (load below pull-off)".into() }
 }
