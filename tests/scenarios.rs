@@ -241,3 +241,38 @@ fn staying_clamped_while_unloading_keeps_adhesive_contacts() {
     }
     assert!(kept.last().unwrap() > &(1.2 * fresh.last().unwrap()), "{fresh:?} vs {kept:?}");
 }
+
+#[test]
+fn an_exported_surface_read_back_gives_the_same_contact() {
+    // `stiction surface --csv` writes the summits in SI; a scenario with "source": "csv" reads them
+    // back, and the explicit solver finds the same equilibrium to the last digit.
+    let dir = temp_dir("surface-csv");
+    let csv = dir.join("summits.csv");
+    let out = stiction(&["surface", "scenarios/tas2000.json", "--csv", csv.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stats = stiction_json(&["surface", "scenarios/tas2000.json", "--json"]);
+    // Table 1: eta = 4e12 m^-2 over 100 um^2 (Poisson: 400 +/- 20, 4 SD = 80), sigma = 40 nm (+/- 15 %).
+    assert!((num(&stats["stats"], "count") - 400.0).abs() < 80.0);
+    assert!((num(&stats["stats"], "height_sd_m") - 40e-9).abs() < 6e-9);
+    let generated = stiction_json(&["contact", "scenarios/tas2000.json", "--load", "3 uN", "--json"]);
+    let from_csv = stiction_json(&[
+        "contact",
+        "scenarios/tas2000.json",
+        "--load",
+        "3 uN",
+        "--json",
+        "--set",
+        "surface.source=\"csv\"",
+        "--set",
+        &format!("surface.csv_path={:?}", csv.to_str().unwrap()),
+        "--set",
+        "surface.summit_density=null",
+        "--set",
+        "surface.summit_sd=null",
+        "--set",
+        "surface.summit_radius=null",
+    ]);
+    for key in ["friction_capacity_n", "real_area_m2", "separation_m", "tilt_x_rad", "tilt_y_rad", "contacts"] {
+        assert_eq!(generated[key], from_csv[key], "{key}");
+    }
+}

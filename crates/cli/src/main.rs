@@ -27,6 +27,8 @@ enum Command {
     Gw(cmd::gw::Args),
     /// The discrete N-contact model (eq. 12): friction, its slope and the apparent adhesion force at a load.
     Discrete(cmd::discrete::Args),
+    /// Generate (or read) a scenario's rough sidewall: summit statistics and a CSV export.
+    Surface(cmd::surface::Args),
     /// The explicit asperity-by-asperity solver on a scenario's surface at a load or over a sweep.
     Contact(cmd::contact::Args),
     /// A gap-closing actuator array of a scenario: pull-in, release, conversion factor, sweeps, validation.
@@ -46,6 +48,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Gw(a) => cmd::gw::run(a),
         Command::Discrete(a) => cmd::discrete::run(a),
+        Command::Surface(a) => cmd::surface::run(a),
         Command::Contact(a) => cmd::contact::run(a),
         Command::Actuator(a) => cmd::actuator::run(a),
         Command::Run(a) => cmd::run::run(a),

@@ -8,3 +8,4 @@ pub mod plot;
 pub mod run;
 pub mod scenario;
 pub mod study;
+pub mod surface;
