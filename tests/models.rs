@@ -87,6 +87,15 @@ fn the_paper_figures_are_drawn() {
         let out = stiction(&["plot", fig, "--out", path.to_str().unwrap()]);
         assert!(out.status.success(), "plot {fig}: {}", String::from_utf8_lossy(&out.stderr));
         let svg = std::fs::read_to_string(&path).unwrap();
-        assert!(svg.contains(title) && svg.contains("<polyline") || svg.contains("<path"), "{fig} looks empty");
+        assert!(svg.contains(title), "{fig} lacks its title");
+        // A data curve is a polyline through many points (grid lines have two).
+        let longest = svg
+            .split("<polyline")
+            .skip(1)
+            .filter_map(|p| p.split("points=\"").nth(1).and_then(|q| q.split('"').next()))
+            .map(|pts| pts.split_whitespace().count())
+            .max()
+            .unwrap_or(0);
+        assert!(longest >= 50, "{fig}: the longest polyline has {longest} points");
     }
 }
