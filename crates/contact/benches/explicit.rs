@@ -3,6 +3,10 @@
 //! * `explicit/table1_loading_point`: the Table 1 surface (about 400 summits), tilt free, DMT:
 //!   one load step of a 0-10 uN loading curve from the previous equilibrium (floor 20 us).
 //! * `explicit/load_point/N`: one step of the loading curve from pull-off to L* = 0.1 for N summits.
+//! * `explicit/table1_md_lognormal_point`: the Table 1 surface with lognormal radii (R = 0.5 +/-
+//!   0.3 um), tilt free, Maugis-Dugdale (per-summit tables): one step of a pull-off to 10 uN
+//!   loading curve.
+//! * `explicit/table1_md_lognormal_new`: building that solver (sorting check and the tables).
 //! * `explicit/curve_1e6_tilt_free`: 1e6 summits, tilt free, DMT: pull-off search plus a 100-point
 //!   loading curve from pull-off to L* = 0.1 (floor 0.5 s in all).
 //!
@@ -13,7 +17,7 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_main};
 use stiction_contact::explicit::{Detail, ExplicitSolver, SolverConfig};
 use stiction_contact::single::{AdhesionLaw, AsperityParams, Branch};
-use stiction_surface::{FaceParams, Layout, Placement, Surface, generate};
+use stiction_surface::{FaceParams, Layout, Placement, RadiusDistribution, Surface, generate};
 
 fn surface(summits: f64, seed: u64) -> Surface {
     let (eta, sigma, r) = (4e12, 0.04e-6, 0.5e-6);
@@ -51,6 +55,32 @@ pub(crate) fn bench(c: &mut Criterion) {
             }
             let e = s1.solve(black_box(steps[k])).expect("solve");
             k = (k + 1) % steps.len();
+            e
+        })
+    });
+    let face_ln = FaceParams {
+        radius_sd_m: 0.3e-6,
+        radius_distribution: RadiusDistribution::Lognormal,
+        ..FaceParams::gaussian_fixed(4e12, 0.04e-6, 0.5e-6)
+    };
+    let t1_ln = generate(&layout, &face_ln).expect("surface");
+    let md = |s: Surface| {
+        ExplicitSolver::new(s, AdhesionLaw::MaugisDugdale, AsperityParams::table1(), SolverConfig::default())
+            .expect("solver")
+    };
+    g.bench_function("table1_md_lognormal_new", |b| b.iter(|| md(black_box(t1_ln.clone()))));
+    let mut s_md = md(t1_ln);
+    let po = s_md.pull_off(0.0, 1e-6).expect("pull-off").load_n;
+    let steps_md = loads(po, 10e-6, 100);
+    let mut k = 0usize;
+    g.bench_function("table1_md_lognormal_point", |b| {
+        b.iter(|| {
+            if k == 0 {
+                s_md.reset();
+                s_md.pull_off(0.0, 1e-6).expect("pull-off");
+            }
+            let e = s_md.solve(black_box(steps_md[k])).expect("solve");
+            k = (k + 1) % steps_md.len();
             e
         })
     });
