@@ -28,6 +28,7 @@ pub mod validate;
 
 pub use actuator::{Equilibrium, GapClosingActuator, Hysteresis, PullIn, Sweep, SweepPoint};
 pub use bending::FingerBending;
+pub use conversion::{PullInCalibration, calibrate_from_pull_in};
 pub use cross_section::{CombGeometry, Substrate, SubstratePotential};
 pub use dynamics::{
     SimulationScale, SlipDynamics, SlipTrajectory, dynamic_pull_in_voltage, dynamic_pull_in_voltage_with_damping_law,

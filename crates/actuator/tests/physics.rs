@@ -246,3 +246,28 @@ fn paper_conversion_factors_imply_gaps() {
         assert!(c[1] < p[1]);
     }
 }
+
+/// Calibration from the pull-in voltage inverts the pull-in closed form: for a parallel-plate array
+/// with a linear spring, V_pi = sqrt(8 k g^3 / (27 n eps0 A)), so a device with gap g pulls in at
+/// V_pi(g), and calibrating the nominal spec (another gap) from that voltage recovers g (to the
+/// bisection's 1e-9) and the conversion factor n eps0 A / (2 g^2) (relative 1e-9).
+#[test]
+fn calibration_from_pull_in_recovers_the_gap() {
+    use stiction_actuator::{ArraySpec, calibrate_from_pull_in};
+    let spec = |gap: &str| -> ArraySpec {
+        serde_json::from_value(serde_json::json!({
+            "plate_count": 15, "overlap_length": "100 um", "thickness": "5 um", "front_gap": gap,
+            "fringing": "off", "spring": {"stiffness": "1 N/m"}
+        }))
+        .unwrap()
+    };
+    let (k, n, area, eps0) = (1.0f64, 15.0f64, 100e-6 * 5e-6, 8.854_187_812_8e-12);
+    let true_gap = 3.1e-6f64;
+    let v_pi = (8.0 * k * true_gap.powi(3) / (27.0 * n * eps0 * area)).sqrt();
+    let cal = calibrate_from_pull_in(&spec("2.96 um"), v_pi).unwrap();
+    assert!((cal.front_gap_m / true_gap - 1.0).abs() < 1e-9, "{}", cal.front_gap_m);
+    let a = n * eps0 * area / (2.0 * true_gap * true_gap);
+    assert!((cal.conversion_factor_n_per_v2 / a - 1.0).abs() < 1e-8, "{} vs {a}", cal.conversion_factor_n_per_v2);
+    // A voltage no gap can give is an error, not a guess.
+    assert!(calibrate_from_pull_in(&spec("2.96 um"), 1e6).is_err());
+}

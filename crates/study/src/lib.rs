@@ -47,6 +47,19 @@ pub enum StudyError {
     Setting(String),
 }
 
+/// How the virtual lab turns each sample's voltages into forces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Calibration {
+    /// The nominal conversion factors and spring force of the file, as the paper did (default).
+    #[default]
+    Nominal,
+    /// Each device's clamp and pull arrays are calibrated from their own pull-in voltages
+    /// ([`stiction_actuator::calibrate_from_pull_in`]: the gap is inferred, the rest of the array
+    /// model is the nominal one); the spring force stays nominal.
+    PullIn,
+}
+
 /// Settings of a Monte Carlo study.
 #[derive(Debug, Clone, Serialize)]
 pub struct StudyConfig {
@@ -60,6 +73,8 @@ pub struct StudyConfig {
     pub shard_index: usize,
     /// Number of shards.
     pub shard_count: usize,
+    /// How each sample's voltages are reduced to forces.
+    pub calibration: Calibration,
 }
 
 /// The outcome of one sample.
@@ -170,7 +185,7 @@ pub fn run_study(
     let samples: Vec<SampleResult> = indices
         .par_iter()
         .map(|&i| {
-            let r = run_sample(&base, path, &base_dir, config, reduction, i);
+            let r = run_sample(&base, path, &base_dir, config, &nominal, reduction, i);
             progress();
             r
         })
@@ -195,6 +210,7 @@ fn run_sample(
     path: &Path,
     base_dir: &Path,
     config: &StudyConfig,
+    nominal: &Scenario,
     reduction: Reduction,
     i: usize,
 ) -> SampleResult {
@@ -221,13 +237,15 @@ fn run_sample(
     {
         surface.insert("seed".into(), Value::from(config.seed.wrapping_add(i as u64)));
     }
-    let result = Scenario::from_value(value, path)
-        .map_err(|e| e.to_string())
-        .and_then(|s| Meter::from_scenario(&s, base_dir).map_err(|e| e.to_string()))
-        .and_then(|mut m| {
-            m.set_reduction(reduction);
-            m.run(&mut |_, _| {}).map_err(|e| e.to_string())
-        });
+    let result = Scenario::from_value(value, path).map_err(|e| e.to_string()).and_then(|s| {
+        let reduction = match config.calibration {
+            Calibration::Nominal => reduction,
+            Calibration::PullIn => calibrated_reduction(nominal, &s, reduction)?,
+        };
+        let mut m = Meter::from_scenario(&s, base_dir).map_err(|e| e.to_string())?;
+        m.set_reduction(reduction);
+        m.run(&mut |_, _| {}).map_err(|e| e.to_string())
+    });
     match result {
         Ok(r) => {
             out.mu_apparent = r.mu_apparent;
@@ -238,6 +256,24 @@ fn run_sample(
         Err(e) => out.error = Some(e),
     }
     out
+}
+
+/// The lab's conversion for one device calibrated from its arrays' pull-in voltages: the device
+/// (`sample`) pulls in at V_pi; the nominal array model, with the gap that reproduces V_pi, gives
+/// the conversion factor. The spring force stays nominal.
+fn calibrated_reduction(
+    nominal: &Scenario,
+    sample: &Scenario,
+    nominal_reduction: Reduction,
+) -> Result<Reduction, String> {
+    let calibrate = |name: &str| -> Result<f64, String> {
+        let device = sample.actuators[name].to_model().map_err(|e| format!("actuator `{name}`: {e}"))?;
+        let v_pi = device.pull_in().map_err(|e| format!("actuator `{name}`: {e}"))?.voltage_v;
+        stiction_actuator::calibrate_from_pull_in(&nominal.actuators[name], v_pi)
+            .map(|c| c.conversion_factor_n_per_v2)
+            .map_err(|e| format!("calibrating `{name}` from its pull-in at {v_pi:.3} V: {e}"))
+    };
+    Ok(Reduction { a_clamp_n_per_v2: calibrate("clamp")?, a_pull_n_per_v2: calibrate("pull")?, ..nominal_reduction })
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use stiction_plot::{Chart, Series};
-use stiction_study::{StudyConfig, StudyResult, run_study};
+use stiction_study::{Calibration, StudyConfig, StudyResult, run_study};
 
 use crate::output::{CliResult, ensure_dir, print_json};
 
@@ -28,6 +28,10 @@ pub struct Args {
     /// Run only shard K of M (samples with index % M == K), as "K/M"; merge the outputs afterwards.
     #[arg(long, value_name = "K/M")]
     pub shard: Option<String>,
+    /// How the virtual lab converts voltages to forces: with the file's nominal factors (as the
+    /// paper did), or with each device's arrays calibrated from their own pull-in voltages.
+    #[arg(long, value_enum, default_value = "nominal")]
+    pub calibration: CalibrationArg,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -40,6 +44,15 @@ pub struct Args {
     /// Override a scenario field (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
+}
+
+/// The --calibration choices.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum CalibrationArg {
+    /// The nominal conversion factors and spring force of the scenario.
+    Nominal,
+    /// Conversion factors from each device's measured pull-in voltages.
+    PullIn,
 }
 
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
@@ -58,7 +71,12 @@ pub fn run(args: Args) -> CliResult {
         Some(s) => parse_shard(s)?,
         None => (0, 1),
     };
+    let calibration = match args.calibration {
+        CalibrationArg::Nominal => Calibration::Nominal,
+        CalibrationArg::PullIn => Calibration::PullIn,
+    };
     let config = StudyConfig {
+        calibration,
         samples: args.samples,
         seed: args.seed,
         vary_surface: !args.fixed_surface,
