@@ -305,3 +305,27 @@ fn calibrating_the_actuators_from_pull_in_narrows_the_scatter() {
     let sd = |v: &serde_json::Value| num(&v["mu_apparent"], "sd");
     assert!(sd(&calibrated) < 0.7 * sd(&nominal), "sd {} vs {}", sd(&calibrated), sd(&nominal));
 }
+
+#[test]
+fn a_point_without_equilibrium_is_reported_and_the_run_goes_on() {
+    // A 40 um summit SD on a 20 um x 5 um shoe: the tilt-free shoe would tip beyond the
+    // small-angle model at every load. Each point says so; the run itself still succeeds.
+    let dir = temp_dir("tips-over");
+    let out = stiction(&[
+        "run",
+        "scenarios/tas2000.json",
+        "--set",
+        "surface.summit_sd=40 um",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("tips over"), "{stdout}");
+    let v = stiction_json(&["run", "scenarios/tas2000.json", "--set", "surface.summit_sd=40 um", "--json"]);
+    let points = v["points"].as_array().unwrap();
+    assert!(points.iter().all(|p| p["error"].as_str().is_some_and(|e| e.contains("tips over"))));
+    assert!(v["mu_apparent"].is_null());
+    let csv = std::fs::read_to_string(dir.join("results.csv")).unwrap();
+    assert!(csv.lines().nth(1).unwrap().contains("tips over"));
+}

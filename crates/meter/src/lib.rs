@@ -109,6 +109,10 @@ pub struct MeterPoint {
     pub max_pressure_pa: f64,
     /// Whether that pressure exceeds the hardness (plastic deformation would start).
     pub over_elastic_limit: bool,
+    /// Why the contact model found no state at this load (e.g. the shoe tips over), if it did
+    /// not; the point then has no slip and is left out of the fit, and the run goes on.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
 }
 
 /// The experiment's outcome.
@@ -251,12 +255,22 @@ impl Meter {
                 tilt_y_rad: 0.0,
                 max_pressure_pa: 0.0,
                 over_elastic_limit: false,
+                error: None,
             };
             if in_contact {
                 // Re-clamping releases the shoe between clamp voltages; otherwise it stays in
                 // contact and the load path carries over from the previous voltage.
                 let fresh = self.protocol.reclamp || !previous_in_contact;
-                let state = self.contact.state_at_load(load_n, fresh)?;
+                let state = match self.contact.state_at_load(load_n, fresh) {
+                    Ok(state) => state,
+                    Err(e) => {
+                        point.error = Some(e.to_string());
+                        previous_in_contact = false;
+                        points.push(point);
+                        progress(k + 1, voltages.len());
+                        continue;
+                    }
+                };
                 let capacity = self.slip_threshold_n(&state);
                 point.friction_capacity_n = capacity;
                 point.real_area_m2 = state.real_area_m2;

@@ -105,11 +105,13 @@ fn print_summary(o: &RunOutput) {
             p.adhesive_load_n * 1e6,
             p.max_pressure_pa * 1e-9,
             if !p.in_contact {
-                "  (no contact)"
+                "  (no contact)".to_string()
+            } else if let Some(e) = &p.error {
+                format!("  (no equilibrium: {e})")
             } else if p.v_pull.is_none() {
-                "  (no slip)"
+                "  (no slip)".to_string()
             } else {
-                ""
+                String::new()
             }
         );
     }
@@ -151,7 +153,7 @@ fn print_summary(o: &RunOutput) {
             "  after slip the pull shuttle reaches its stop in {t0:.1}-{t1:.1} us at {v0:.2}-{v1:.2} m/s (rapier dynamics)"
         );
     }
-    let stuck = r.points.iter().filter(|p| p.in_contact && p.v_pull.is_none()).count();
+    let stuck = r.points.iter().filter(|p| p.in_contact && p.error.is_none() && p.v_pull.is_none()).count();
     if stuck > 0 {
         println!(
             "  {stuck} clamp voltages: no slip up to pull_voltage_max (friction above what the pull array can give)"
@@ -184,6 +186,7 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
         "over_elastic_limit",
         "true_load_n",
         "true_friction_n",
+        "error",
     ])?;
     let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
     for p in &o.result.points {
@@ -208,6 +211,7 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
             format!("{}", p.over_elastic_limit),
             format!("{:e}", p.true_load_n),
             opt(p.true_friction_n),
+            p.error.clone().unwrap_or_default(),
         ])?;
     }
     w.flush()?;
