@@ -15,6 +15,7 @@ use serde::Serialize;
 use stiction_actuator::meter::{SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
 use stiction_actuator::{GapClosingActuator, SlipDynamics, simulate_slip};
 use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, MeterSpec, Scenario, ShoeMode, SlipCriterion};
+use stiction_surface::SurfaceSpec;
 
 mod contact_model;
 pub mod fit;
@@ -368,6 +369,16 @@ pub fn asperity_params(material: &MaterialSpec, radius_m: f64) -> AsperityParams
     }
 }
 
+/// The summit radius R the discrete and statistical curves use: the scenario's `summit_radius`
+/// for a single generated face; otherwise (summits read from a file, or two faces whose pairs
+/// have a composite radius) the mean radius of the summits of the built surface, m.
+pub fn model_summit_radius_m(spec: &SurfaceSpec, base_dir: &Path) -> Result<f64, MeterError> {
+    match (spec.summit_radius, &spec.counter_face) {
+        (Some(r), None) => Ok(r),
+        _ => Ok(spec.build(base_dir).map_err(|e| MeterError::Surface(e.to_string()))?.stats().radius_mean_m),
+    }
+}
+
 /// Builds the contact model a scenario asks for.
 pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Result<ContactModel, MeterError> {
     let c = s.contact_or_default();
@@ -387,7 +398,8 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
                 detail: explicit::Detail::Summary,
                 ..Default::default()
             };
-            let params = asperity_params(material, surface_spec.summit_radius.unwrap_or(0.5e-6));
+            // Each summit carries its own radius; the mean only sets the solver's adhesion scale.
+            let params = asperity_params(material, surface.stats().radius_mean_m);
             let solver = explicit::ExplicitSolver::new(surface, c.law, params, config)
                 .map_err(|e| MeterError::Contact(e.to_string()))?;
             Ok(ContactModel::Explicit(Box::new(solver)))
@@ -405,7 +417,7 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
             Ok(ContactModel::Gw(gw))
         }
         ModelKind::Discrete => {
-            let radius = surface_spec.summit_radius.unwrap_or(0.5e-6);
+            let radius = model_summit_radius_m(surface_spec, base_dir)?;
             Ok(ContactModel::Discrete {
                 contacts: c.contacts.unwrap_or(3),
                 law: c.law,

@@ -151,12 +151,7 @@ pub fn friction_curve_n3(
     radius_m: f64,
     max_load_n: f64,
 ) -> Result<Vec<(f64, f64)>, Box<dyn std::error::Error>> {
-    let params = AsperityParams {
-        radius_m,
-        compliance_per_pa: material.compliance_per_pa(),
-        work_of_adhesion_j_per_m2: material.work_of_adhesion,
-        equilibrium_spacing_m: material.equilibrium_spacing,
-    };
+    let params = stiction_meter::asperity_params(material, radius_m);
     let model = DiscreteModel::new(3, AdhesionLaw::Dmt, params, material.shear_strength)?;
     let pull_off = model.pull_off_load_n()?;
     Ok(model.friction_curve(pull_off, max_load_n, 200)?.into_iter().map(|(l, f)| (l * 1e6, f * 1e6)).collect())

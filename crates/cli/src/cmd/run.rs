@@ -67,7 +67,7 @@ pub fn run(args: Args) -> CliResult {
         measured,
     };
     if let Some(dir) = &args.out {
-        write_outputs(dir, &output, &scenario, &mut meter)?;
+        write_outputs(dir, &output, &scenario, &mut meter, &base)?;
     }
     if args.json {
         return print_json(&output);
@@ -161,7 +161,7 @@ fn print_summary(o: &RunOutput) {
     }
 }
 
-fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Meter) -> CliResult {
+fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Meter, base: &Path) -> CliResult {
     ensure_dir(dir)?;
     std::fs::write(dir.join("results.json"), serde_json::to_string_pretty(o)? + "\n")?;
     let mut w = csv::Writer::from_path(dir.join("results.csv"))?;
@@ -215,7 +215,7 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
         ])?;
     }
     w.flush()?;
-    let mut fig5 = fig5_chart(o.result, scenario)?;
+    let mut fig5 = fig5_chart(o.result, scenario, base)?;
     if let Some(c) = &o.measured {
         fig5.series.push(Series::markers(
             "measured",
@@ -224,7 +224,7 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
     }
     crate::cmd::plot::write_chart(&fig5, &dir.join("fig5.svg"))?;
     crate::cmd::plot::write_chart(&fig5, &dir.join("fig5.png"))?;
-    let mut fig7 = fig7_chart(o.result, scenario, meter)?;
+    let mut fig7 = fig7_chart(o.result, scenario, meter, base)?;
     if let Some(c) = &o.measured {
         fig7.series.push(Series::markers(
             "measured (nominal a_clamp, a_pull, F_spring)",
@@ -240,13 +240,13 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
 /// Fig. 5: V_pull^2 at slip against V_clamp^2, with the paper's own analysis (discrete N = 3,
 /// eq. 12) turned back into voltages through the same conversion: V_pull^2 = F_f(L) / a_pull,
 /// L = a_clamp V_clamp^2 - F_spring.
-fn fig5_chart(r: &MeterResult, scenario: &Scenario) -> Result<Chart, Box<dyn std::error::Error>> {
+fn fig5_chart(r: &MeterResult, scenario: &Scenario, base: &Path) -> Result<Chart, Box<dyn std::error::Error>> {
     let pts: Vec<(f64, f64)> = r.points.iter().filter_map(|p| p.v_pull_sq.map(|v| (p.v_clamp_sq, v))).collect();
     let red = r.reduction;
     let v2_min = red.spring_force_n / red.a_clamp_n_per_v2;
     let v2_max = r.points.iter().map(|p| p.v_clamp_sq).fold(v2_min, f64::max) * 1.02;
     let material = scenario.require_material()?;
-    let radius = scenario.require_surface()?.summit_radius.unwrap_or(0.5e-6);
+    let radius = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
     let curve =
         crate::cmd::discrete::friction_curve_n3(material, radius, red.a_clamp_n_per_v2 * v2_max - red.spring_force_n)?;
     let discrete: Vec<(f64, f64)> = curve
@@ -267,9 +267,14 @@ fn fig5_chart(r: &MeterResult, scenario: &Scenario) -> Result<Chart, Box<dyn std
 
 /// Fig. 7: friction against load: the meter's points, the contact model's curve from pull-off,
 /// the discrete N = 3 model (eq. 12) and the eq. 10 line.
-fn fig7_chart(r: &MeterResult, scenario: &Scenario, meter: &mut Meter) -> Result<Chart, Box<dyn std::error::Error>> {
+fn fig7_chart(
+    r: &MeterResult,
+    scenario: &Scenario,
+    meter: &mut Meter,
+    base: &Path,
+) -> Result<Chart, Box<dyn std::error::Error>> {
     let material = scenario.require_material()?;
-    let radius = scenario.require_surface()?.summit_radius.unwrap_or(0.5e-6);
+    let radius = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
     let max_load = r.points.iter().map(|p| p.load_n).fold(0.0, f64::max).max(1e-6) * 1.1;
     let meas: Vec<(f64, f64)> =
         r.points.iter().filter_map(|p| p.friction_n.map(|f| (p.load_n * 1e6, f * 1e6))).collect();
