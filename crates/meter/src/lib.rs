@@ -294,7 +294,8 @@ impl Meter {
                 let step = self.protocol.pull_voltage_step;
                 let n_max = (self.protocol.pull_voltage_max / step).floor().max(1.0);
                 let force = |n: f64| pull_force_stuck_n(&self.pull, n * step).map_err(|e| actuator_err("pull", e));
-                let n = if !capacity.is_finite() || !(force(n_max)? >= capacity) {
+                let top = force(n_max)?;
+                let n = if !capacity.is_finite() || top.is_nan() || top < capacity {
                     // No slip up to pull_voltage_max (or a capacity that no force reaches).
                     n_max + 1.0
                 } else {
@@ -307,6 +308,9 @@ impl Meter {
                         let (mut lo, mut hi) = (0.0f64, n_max);
                         while hi - lo > 1.0 {
                             let mid = (lo + (hi - lo) / 2.0).floor();
+                            if mid <= lo || mid >= hi {
+                                break; // cannot happen below 2^53; a guard against an endless loop
+                            }
                             if force(mid)? >= capacity {
                                 hi = mid;
                             } else {

@@ -136,6 +136,15 @@ impl Meter {
     /// Runs the virtual meter at the measured clamp voltages and compares: the pull voltages, and
     /// eq. 10 fitted to the measured data reduced with `reduction` (the lab's nominal values).
     pub fn compare(&mut self, measured: &[MeasuredSlip], reduction: Reduction) -> Result<Comparison, MeterError> {
+        let limit = self.protocol.max_clamp_voltages.unwrap_or(stiction_scenario::DEFAULT_MAX_CLAMP_VOLTAGES);
+        if measured.len() as u64 > limit {
+            return Err(MeterError::Measured(format!(
+                "{} measured rows: the virtual meter runs once per row and the limit is {limit} clamp voltages \
+                 (`meter.max_clamp_voltages`, default {}); raise `meter.max_clamp_voltages` if you mean it",
+                measured.len(),
+                stiction_scenario::DEFAULT_MAX_CLAMP_VOLTAGES
+            )));
+        }
         let voltages: Vec<f64> = measured.iter().map(|m| m.v_clamp).collect();
         let model = self.run_at(&voltages, &mut |_, _| {})?;
         let mut points = Vec::with_capacity(measured.len());

@@ -420,7 +420,7 @@ impl MeterSpec {
             ));
         }
         let steps = self.pull_voltage_max / self.pull_voltage_step;
-        if !(steps <= MAX_PULL_RAMP_STEPS) {
+        if steps.is_nan() || steps > MAX_PULL_RAMP_STEPS {
             return Err((
                 "pull_voltage_step".into(),
                 format!(

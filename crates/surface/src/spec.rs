@@ -262,7 +262,7 @@ impl SurfaceSpec {
                 }
             }
         };
-        if !(expected <= budget) {
+        if expected.is_nan() || expected > budget {
             return Err((
                 field.into(),
                 format!(
@@ -340,7 +340,7 @@ impl SurfaceSpec {
                             Some(r) => r,
                             None => {
                                 let r = 4.0 * wall.summit_sd_m.hypot(shoe.summit_sd_m);
-                                if !(r > 0.0) {
+                                if r.is_nan() || r <= 0.0 {
                                     return Err(SurfaceError::InvalidParameter {
                                         field: "summit_sd".into(),
                                         value: format!(

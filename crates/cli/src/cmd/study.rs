@@ -105,10 +105,14 @@ pub fn run(args: Args) -> CliResult {
         pool = pool.num_threads(t);
     }
     let pool = pool.build()?;
+    // Check the output folder before the work, so a refusal comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "study", args.force)?),
+        None => None,
+    };
     let result = pool.install(|| run_study(&args.scenario, &args.sets, &config, &progress))?;
     bar.finish_and_clear();
-    if let Some(dir) = &args.out {
-        let mut set = OutputSet::begin(dir, "study", args.force)?;
+    if let Some(mut set) = outputs {
         set.add_bytes("study.json", (serde_json::to_string_pretty(&result)? + "\n").as_bytes())?;
         let mut w = csv::Writer::from_writer(Vec::new());
         let params: Vec<String> = result
