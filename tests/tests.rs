@@ -4,6 +4,7 @@
 mod util;
 
 mod bad_inputs;
+mod hardening;
 mod models;
 mod scenarios;
 mod standalone;

@@ -56,6 +56,7 @@ fn main() -> ExitCode {
         Command::Scenario(a) => cmd::scenario::run(a),
         Command::Study(a) => cmd::study::run(a),
     };
+    output::flush_stdout();
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

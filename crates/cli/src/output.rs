@@ -1,11 +1,53 @@
 //! Shared helpers of the subcommands: quantity flags, JSON and table printing, output folders.
+//!
+//! Standard output goes through [`write_stdout`] (the [`outln!`](crate::outln) macro): a closed
+//! pipe (`stiction scenario F | head -3`) ends the program quietly with status 0, any other write
+//! error (a full disk, `> /dev/full`) with a clean error and status 2; never a panic. Output
+//! folders go through [`OutputSet`]: one run's files, with a `manifest.json`, swapped in whole.
 
-use std::path::Path;
+use std::fmt;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 /// The result of a subcommand.
 pub type CliResult = Result<(), Box<dyn std::error::Error>>;
+
+/// `println!` for the subcommands: writes a line to standard output through [`write_stdout`].
+#[macro_export]
+macro_rules! outln {
+    () => {
+        $crate::output::write_stdout(format_args!(""))
+    };
+    ($($arg:tt)*) => {
+        $crate::output::write_stdout(format_args!($($arg)*))
+    };
+}
+
+/// Writes `args` and a newline to standard output. On a closed pipe the program ends quietly
+/// with status 0 (the reader has all it wanted); on any other error with a message and status 2.
+pub fn write_stdout(args: fmt::Arguments) {
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_fmt(args).and_then(|()| out.write_all(b"\n")) {
+        stdout_failed(&e);
+    }
+}
+
+/// Flushes standard output at the end of the program (a full disk shows here).
+pub fn flush_stdout() {
+    if let Err(e) = std::io::stdout().lock().flush() {
+        stdout_failed(&e);
+    }
+}
+
+fn stdout_failed(e: &std::io::Error) -> ! {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        std::process::exit(0);
+    }
+    let _ = writeln!(std::io::stderr(), "error: cannot write to standard output: {e}");
+    std::process::exit(2);
+}
 
 /// A clap value parser for a quantity of `dim` (bare SI number or number with a unit).
 pub fn quantity(
@@ -17,21 +59,27 @@ pub fn quantity(
 
 /// Prints a value as pretty JSON on stdout.
 pub fn print_json<T: serde::Serialize>(value: &T) -> CliResult {
-    println!("{}", serde_json::to_string_pretty(value)?);
+    let text = serde_json::to_string_pretty(value)?;
+    crate::outln!("{text}");
     Ok(())
 }
 
 /// Prints a two-column table of (name, value with unit).
 pub fn print_table(title: &str, rows: &[(&str, String)]) {
-    println!("{title}");
+    crate::outln!("{title}");
     let width = rows.iter().map(|(n, _)| n.len()).max().unwrap_or(0);
     for (name, value) in rows {
-        println!("  {name:<width$}  {value}");
+        crate::outln!("  {name:<width$}  {value}");
     }
 }
 
-/// Creates an output folder (and its parents).
+/// Creates an output folder (and its parents); errors name the folder.
 pub fn ensure_dir(dir: &Path) -> CliResult {
+    if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
+        return Err(
+            format!("output folder {} is a symbolic link; outputs never go through a link", dir.display()).into()
+        );
+    }
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create output folder {}: {e}", dir.display()))?;
     Ok(())
 }
@@ -39,4 +87,203 @@ pub fn ensure_dir(dir: &Path) -> CliResult {
 /// Formats an SI value with a prefix and unit.
 pub fn q(value: f64, dim: Dimension) -> String {
     stiction_units::format_quantity(value, dim)
+}
+
+/// The name of an output folder's manifest: the list of files one stiction run wrote there.
+pub const MANIFEST: &str = "manifest.json";
+
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Manifest {
+    /// Always "stiction".
+    tool: String,
+    /// The subcommand that wrote the folder.
+    command: String,
+    /// The files of that run, in the order written.
+    files: Vec<String>,
+}
+
+/// One run's output folder, written as a whole.
+///
+/// The files go to a hidden staging folder beside the target (same file system). On
+/// [`OutputSet::commit`] a `manifest.json` listing them is added and the staging folder replaces
+/// the target: the old folder is renamed aside, the new one renamed in, the old one removed. A run
+/// killed at any moment leaves the previous complete folder, the new complete folder, or (between
+/// the two renames) no folder; never a partial file and never two runs' files side by side.
+///
+/// A target folder that holds files no earlier stiction run listed in its manifest is refused,
+/// unless `force`: then each new file replaces its namesake atomically, the earlier run's other
+/// files are removed and the foreign files are left alone.
+pub struct OutputSet {
+    dir: PathBuf,
+    staging: PathBuf,
+    command: String,
+    files: Vec<String>,
+    old_files: Vec<String>,
+    in_place: bool,
+    committed: bool,
+}
+
+fn io_err(action: &str, path: &Path, e: std::io::Error) -> Box<dyn std::error::Error> {
+    format!("cannot {action} {}: {e}", path.display()).into()
+}
+
+/// Whether a process id is alive (Linux: /proc; elsewhere assumed alive).
+fn pid_alive(pid: u32) -> bool {
+    if cfg!(target_os = "linux") { Path::new(&format!("/proc/{pid}")).exists() } else { true }
+}
+
+impl OutputSet {
+    /// Prepares to write the outputs of `command` into `dir`.
+    pub fn begin(dir: &Path, command: &str, force: bool) -> Result<OutputSet, Box<dyn std::error::Error>> {
+        let name = dir
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .ok_or_else(|| format!("output folder {}: expected a folder name", dir.display()))?;
+        let parent = match dir.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        ensure_dir(&parent)?;
+        // Leftovers of killed runs into the same folder.
+        let prefix = format!(".{name}.stiction-");
+        if let Ok(entries) = std::fs::read_dir(&parent) {
+            for e in entries.flatten() {
+                let n = e.file_name().to_string_lossy().into_owned();
+                if let Some(rest) = n.strip_prefix(&prefix) {
+                    let pid = rest.rsplit('-').next().and_then(|p| p.parse::<u32>().ok());
+                    if pid.is_some_and(|p| p != std::process::id() && !pid_alive(p)) {
+                        let _ = std::fs::remove_dir_all(e.path());
+                    }
+                }
+            }
+        }
+        let mut old_files = Vec::new();
+        let mut in_place = false;
+        match std::fs::symlink_metadata(dir) {
+            Ok(m) if m.file_type().is_symlink() => {
+                return Err(format!(
+                    "output folder {} is a symbolic link; outputs never go through a link",
+                    dir.display()
+                )
+                .into());
+            }
+            Ok(m) if !m.is_dir() => {
+                return Err(format!("output folder {} exists and is not a folder", dir.display()).into());
+            }
+            Ok(_) => {
+                let manifest_path = dir.join(MANIFEST);
+                if manifest_path.exists() {
+                    let text = stiction_units::io::read_input_text(&manifest_path, 1 << 20)?;
+                    let m: Manifest = serde_json::from_str(&text)
+                        .map_err(|e| format!("{}: not a stiction manifest ({e})", manifest_path.display()))?;
+                    old_files = m.files;
+                }
+                let mut foreign: Vec<String> = std::fs::read_dir(dir)
+                    .map_err(|e| io_err("list the output folder", dir, e))?
+                    .flatten()
+                    .map(|e| e.file_name().to_string_lossy().into_owned())
+                    .filter(|n| n != MANIFEST && !old_files.contains(n))
+                    .collect();
+                foreign.sort();
+                if !foreign.is_empty() {
+                    if !force {
+                        let shown: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
+                        return Err(format!(
+                            "output folder {} holds {} file(s) that no stiction run listed in its {MANIFEST} ({}{}); \
+                             choose a new or empty folder, or pass --force to write beside them",
+                            dir.display(),
+                            foreign.len(),
+                            shown.join(", "),
+                            if foreign.len() > 5 { ", ..." } else { "" }
+                        )
+                        .into());
+                    }
+                    in_place = true;
+                }
+            }
+            Err(_) => {}
+        }
+        let staging = parent.join(format!("{prefix}staging-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&staging);
+        std::fs::create_dir(&staging).map_err(|e| {
+            format!("cannot write output folder {} (its staging folder {}): {e}", dir.display(), staging.display())
+        })?;
+        Ok(OutputSet {
+            dir: dir.to_path_buf(),
+            staging,
+            command: command.to_string(),
+            files: Vec::new(),
+            old_files,
+            in_place,
+            committed: false,
+        })
+    }
+
+    fn claim(&mut self, name: &str) -> Result<PathBuf, Box<dyn std::error::Error>> {
+        if name == MANIFEST || name.contains(['/', '\\']) || self.files.iter().any(|f| f == name) {
+            return Err(format!("internal: output name {name} is not allowed or used twice").into());
+        }
+        self.files.push(name.to_string());
+        Ok(self.staging.join(name))
+    }
+
+    /// Adds a file with these bytes.
+    pub fn add_bytes(&mut self, name: &str, bytes: &[u8]) -> CliResult {
+        let path = self.claim(name)?;
+        let target = self.dir.join(name);
+        std::fs::write(&path, bytes).map_err(|e| io_err("write", &target, e))?;
+        Ok(())
+    }
+
+    /// Adds a chart, SVG or PNG by the name's extension.
+    pub fn add_chart(&mut self, name: &str, chart: &stiction_plot::Chart) -> CliResult {
+        let path = self.claim(name)?;
+        crate::cmd::plot::render_chart(chart, &path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
+        Ok(())
+    }
+
+    /// Writes the manifest and puts the folder in place.
+    pub fn commit(mut self) -> CliResult {
+        let manifest = Manifest { tool: "stiction".into(), command: self.command.clone(), files: self.files.clone() };
+        let text = serde_json::to_string_pretty(&manifest)? + "\n";
+        std::fs::write(self.staging.join(MANIFEST), &text).map_err(|e| io_err("write", &self.dir.join(MANIFEST), e))?;
+        for f in self.files.iter().map(String::as_str).chain([MANIFEST]) {
+            let p = self.staging.join(f);
+            std::fs::File::open(&p).and_then(|h| h.sync_all()).map_err(|e| io_err("flush", &p, e))?;
+        }
+        if self.in_place {
+            // Foreign files stay: replace ours one by one (each atomically), then drop stale ones,
+            // then the manifest last.
+            for f in &self.files {
+                let bytes = std::fs::read(self.staging.join(f)).map_err(|e| io_err("read", &self.staging, e))?;
+                stiction_units::io::write_atomic(&self.dir.join(f), &bytes)?;
+            }
+            for f in self.old_files.iter().filter(|f| !self.files.contains(f)) {
+                let _ = std::fs::remove_file(self.dir.join(f));
+            }
+            stiction_units::io::write_atomic(&self.dir.join(MANIFEST), text.as_bytes())?;
+            let _ = std::fs::remove_dir_all(&self.staging);
+        } else if self.dir.exists() {
+            let old = self.staging.with_file_name(
+                self.staging.file_name().unwrap_or_default().to_string_lossy().replace("-staging-", "-old-"),
+            );
+            let _ = std::fs::remove_dir_all(&old);
+            std::fs::rename(&self.dir, &old)
+                .map_err(|e| io_err("move aside the earlier output folder", &self.dir, e))?;
+            std::fs::rename(&self.staging, &self.dir).map_err(|e| io_err("put in place", &self.dir, e))?;
+            let _ = std::fs::remove_dir_all(&old);
+        } else {
+            std::fs::rename(&self.staging, &self.dir).map_err(|e| io_err("put in place", &self.dir, e))?;
+        }
+        self.committed = true;
+        Ok(())
+    }
+}
+
+impl Drop for OutputSet {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.staging);
+        }
+    }
 }

@@ -9,9 +9,9 @@ pub struct LineFit {
     pub slope: f64,
     /// Intercept (for eq. 10: mu_e,a F_a0, N).
     pub intercept: f64,
-    /// Standard error of the slope (NaN with two points).
+    /// Standard error of the slope.
     pub slope_se: f64,
-    /// Standard error of the intercept (NaN with two points).
+    /// Standard error of the intercept.
     pub intercept_se: f64,
     /// Coefficient of determination R^2.
     pub r_squared: f64,
@@ -19,11 +19,38 @@ pub struct LineFit {
     pub points: usize,
 }
 
+/// Relative tolerance below which two abscissae count as equal: differences below
+/// 1e-9 of the largest |x| are rounding noise of the inputs, not a spread to fit a slope on.
+pub const DISTINCT_X_RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// The least number of distinct abscissae a line is fitted through: with two, the line goes
+/// through both points and nothing estimates its uncertainty.
+pub const MIN_DISTINCT_X: usize = 3;
+
+/// The number of distinct abscissae of `points`: sorted x values more than
+/// [`DISTINCT_X_RELATIVE_TOLERANCE`] times max |x| apart.
+pub fn distinct_abscissae(points: &[(f64, f64)]) -> usize {
+    let mut xs: Vec<f64> = points.iter().map(|p| p.0).collect();
+    xs.sort_by(f64::total_cmp);
+    let scale = xs.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let tol = DISTINCT_X_RELATIVE_TOLERANCE * scale;
+    let mut count = 0;
+    let mut last = f64::NEG_INFINITY;
+    for x in xs {
+        if count == 0 || x - last > tol {
+            count += 1;
+            last = x;
+        }
+    }
+    count
+}
+
 impl LineFit {
-    /// Fits `points` (x, y); None with fewer than two points or all x equal.
+    /// Fits `points` (x, y); None with fewer than [`MIN_DISTINCT_X`] distinct abscissae (relative
+    /// spread, see [`distinct_abscissae`]), a non-finite point, or a non-finite result.
     pub fn least_squares(points: &[(f64, f64)]) -> Option<LineFit> {
         let n = points.len();
-        if n < 2 {
+        if points.iter().any(|p| !p.0.is_finite() || !p.1.is_finite()) || distinct_abscissae(points) < MIN_DISTINCT_X {
             return None;
         }
         let nf = n as f64;
@@ -32,21 +59,36 @@ impl LineFit {
         let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
         let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
         let syy: f64 = points.iter().map(|p| (p.1 - my).powi(2)).sum();
-        if sxx <= 0.0 {
+        if sxx.is_nan() || sxx <= 0.0 {
             return None;
         }
         let slope = sxy / sxx;
         let intercept = my - slope * mx;
         let sse: f64 = points.iter().map(|p| (p.1 - intercept - slope * p.0).powi(2)).sum();
-        let (slope_se, intercept_se) = if n > 2 {
-            let s2 = sse / (nf - 2.0);
-            ((s2 / sxx).sqrt(), (s2 * (1.0 / nf + mx * mx / sxx)).sqrt())
-        } else {
-            (f64::NAN, f64::NAN)
-        };
+        // n >= 3 here.
+        let s2 = sse / (nf - 2.0);
+        let (slope_se, intercept_se) = ((s2 / sxx).sqrt(), (s2 * (1.0 / nf + mx * mx / sxx)).sqrt());
         let r_squared = if syy > 0.0 { 1.0 - sse / syy } else { 1.0 };
-        Some(LineFit { slope, intercept, slope_se, intercept_se, r_squared, points: n })
+        let fit = LineFit { slope, intercept, slope_se, intercept_se, r_squared, points: n };
+        [slope, intercept, slope_se, intercept_se, r_squared].iter().all(|v| v.is_finite()).then_some(fit)
     }
+}
+
+/// Why [`LineFit::least_squares`] gives no line for these points (None when it gives one).
+pub fn no_fit_reason(points: &[(f64, f64)]) -> Option<String> {
+    if LineFit::least_squares(points).is_some() {
+        return None;
+    }
+    let d = distinct_abscissae(points);
+    Some(if d < MIN_DISTINCT_X {
+        format!(
+            "{} point(s) with L > 0 at {d} distinct load(s): the eq. 10 fit needs at least {MIN_DISTINCT_X} distinct \
+             loads (relative spread above {DISTINCT_X_RELATIVE_TOLERANCE:e})",
+            points.len()
+        )
+    } else {
+        "the eq. 10 fit has no finite result for these points (values out of range)".to_string()
+    })
 }
 
 /// Eq. 10 from (L, F_f) points: the least-squares line, mu_e,a = its slope and
@@ -77,6 +119,15 @@ mod tests {
         assert!((f.r_squared - 1.0).abs() < 1e-12);
         assert!(LineFit::least_squares(&pts[..1]).is_none());
         assert!(LineFit::least_squares(&[(1.0, 1.0), (1.0, 2.0)]).is_none());
+        // Two points fit exactly but have no standard error: refused (was "+/- NaN").
+        assert!(LineFit::least_squares(&pts[..2]).is_none());
+        // Seven equal loads with rounding noise are one abscissa, not a spread (was R^2 = 1).
+        let equal: Vec<(f64, f64)> =
+            (0..7).map(|i| (4.2e-6 * (1.0 + i as f64 * 1e-16), 3e-6 + i as f64 * 1e-9)).collect();
+        assert_eq!(distinct_abscissae(&equal), 1);
+        assert!(LineFit::least_squares(&equal).is_none());
+        assert!(no_fit_reason(&equal).unwrap().contains("1 distinct"));
+        assert!(LineFit::least_squares(&[(0.0, 0.0), (1.0, f64::NAN), (2.0, 1.0)]).is_none());
     }
 
     #[test]

@@ -129,6 +129,9 @@ pub struct MeterResult {
     pub apparent_adhesion_force_n: Option<f64>,
     /// The straight-line fit behind the two numbers.
     pub fit: Option<fit::LineFit>,
+    /// Why there is no fit (fewer than three distinct loads with slip), when there is none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fit_note: Option<String>,
     /// F_spring used, N.
     pub spring_force_n: f64,
     /// Pull-in voltage of the pull array with the shoe free, V.
@@ -281,23 +284,47 @@ impl Meter {
                 point.tilt_y_rad = state.tilt_y_rad;
                 point.max_pressure_pa = state.max_pressure_pa;
                 point.over_elastic_limit = state.max_pressure_pa > self.material.hardness;
-                // The pull ramp: V_n = n * step. While the shoe sticks the pull gap is fixed, so
-                // F_pull(V) = a_pull V^2 rises monotonically: slip happens at the first step with
-                // a_pull V^2 >= capacity, found directly and then confirmed by the force itself.
+                // The pull ramp: V_n = n * step, n = 1..=n_max with n_max = floor(V_max / step)
+                // (at most MAX_PULL_RAMP_STEPS, checked when the scenario is loaded, so every n is
+                // exact in f64). While the shoe sticks the pull gap is fixed, so F_pull(V_n) rises
+                // monotonically in n: slip happens at the first n with F_pull >= capacity. The
+                // closed-form guess a_pull V^2 = capacity is confirmed by the force itself and, when
+                // it is off, corrected by bisection over [1, n_max]: at most ~60 force evaluations
+                // whatever the step, the capacity or the conversion factor.
                 let step = self.protocol.pull_voltage_step;
-                let mut n = ((capacity / a_pull).sqrt() / step).ceil().max(1.0);
-                let force = |n: f64| pull_force_stuck_n(&self.pull, n * step);
-                while n > 1.0 && force(n - 1.0).map_err(|e| actuator_err("pull", e))? >= capacity {
-                    n -= 1.0;
-                }
-                while force(n).map_err(|e| actuator_err("pull", e))? < capacity {
-                    n += 1.0;
-                }
+                let n_max = (self.protocol.pull_voltage_max / step).floor().max(1.0);
+                let force = |n: f64| pull_force_stuck_n(&self.pull, n * step).map_err(|e| actuator_err("pull", e));
+                let top = force(n_max)?;
+                let n = if !capacity.is_finite() || top.is_nan() || top < capacity {
+                    // No slip up to pull_voltage_max (or a capacity that no force reaches).
+                    n_max + 1.0
+                } else {
+                    let guess = ((capacity / a_pull).sqrt() / step).ceil();
+                    let guess = if guess.is_finite() { guess.clamp(1.0, n_max) } else { n_max };
+                    if force(guess)? >= capacity && (guess <= 1.0 || force(guess - 1.0)? < capacity) {
+                        guess
+                    } else {
+                        // Invariant: force(hi) >= capacity, force(lo) < capacity (or lo = 0).
+                        let (mut lo, mut hi) = (0.0f64, n_max);
+                        while hi - lo > 1.0 {
+                            let mid = (lo + (hi - lo) / 2.0).floor();
+                            if mid <= lo || mid >= hi {
+                                break; // cannot happen below 2^53; a guard against an endless loop
+                            }
+                            if force(mid)? >= capacity {
+                                hi = mid;
+                            } else {
+                                lo = mid;
+                            }
+                        }
+                        hi
+                    }
+                };
                 let v_pull = n * step;
-                if v_pull <= self.protocol.pull_voltage_max {
+                if n <= n_max {
                     point.v_pull = Some(v_pull);
                     point.v_pull_sq = Some(v_pull * v_pull);
-                    point.true_friction_n = Some(force(n).map_err(|e| actuator_err("pull", e))?);
+                    point.true_friction_n = Some(force(n)?);
                     point.friction_n = Some(reduction.a_pull_n_per_v2 * v_pull * v_pull);
                     // Once it slips, does the pull array run away to its stop?
                     match &self.protocol.slip_dynamics {
@@ -338,6 +365,7 @@ impl Meter {
             points,
             mu_apparent: mu,
             apparent_adhesion_force_n: fa0,
+            fit_note: fit::no_fit_reason(&pairs),
             fit: line,
             spring_force_n: spring_force_used,
             pull_array_pull_in_v: pull_in_v,
@@ -359,6 +387,11 @@ impl Meter {
     }
 }
 
+/// `text` cut to 120 characters for an error message (a user's file is quoted only in part).
+pub(crate) fn short(text: &str) -> String {
+    stiction_scenario::truncate(text, 120)
+}
+
 /// The summit parameters of a scenario's material and surface (mean radius).
 pub fn asperity_params(material: &MaterialSpec, radius_m: f64) -> AsperityParams {
     AsperityParams {
@@ -375,7 +408,17 @@ pub fn asperity_params(material: &MaterialSpec, radius_m: f64) -> AsperityParams
 pub fn model_summit_radius_m(spec: &SurfaceSpec, base_dir: &Path) -> Result<f64, MeterError> {
     match (spec.summit_radius, &spec.counter_face) {
         (Some(r), None) => Ok(r),
-        _ => Ok(spec.build(base_dir).map_err(|e| MeterError::Surface(e.to_string()))?.stats().radius_mean_m),
+        _ => {
+            let surface = spec.build(base_dir).map_err(|e| MeterError::Surface(e.to_string()))?;
+            if surface.is_empty() {
+                return Err(MeterError::Surface(
+                    "the surface has no summits, so it has no mean summit radius (raise `summit_density` or the \
+                     apparent area)"
+                        .into(),
+                ));
+            }
+            Ok(surface.stats().radius_mean_m)
+        }
     }
 }
 

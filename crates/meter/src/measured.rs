@@ -17,46 +17,84 @@ pub struct MeasuredSlip {
     pub v_pull: f64,
 }
 
+/// Largest measured-voltage CSV read, bytes (256 MiB: about 10 million rows).
+pub const MAX_MEASURED_CSV_BYTES: u64 = 256 << 20;
+
 /// Reads a CSV with the header `v_clamp_v,v_pull_v` (more columns are allowed and ignored; a
-/// `#` starts a comment line). Every bad line is an error naming the file, the line and the value.
+/// `#` starts a comment line). The file must be a regular file of at most
+/// [`MAX_MEASURED_CSV_BYTES`]. Every bad line is an error naming the file, the line and the value.
 pub fn read_measured_voltages(path: &Path) -> Result<Vec<MeasuredSlip>, MeterError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| MeterError::Measured(format!("cannot read {}: {e}", path.display())))?;
+    let text = stiction_units::io::read_input_text(path, MAX_MEASURED_CSV_BYTES)
+        .map_err(|e| MeterError::Measured(e.to_string()))?;
     parse_measured_voltages(&text, &path.display().to_string())
 }
 
-/// Parses the text of a measured-voltage CSV; `source` names it in errors.
+/// Parses the text of a measured-voltage CSV; `source` names it in errors. One pass with the
+/// `csv` crate (quoting, CRLF; a byte-order mark is removed by the file reader): linear in the size.
 pub fn parse_measured_voltages(text: &str, source: &str) -> Result<Vec<MeasuredSlip>, MeterError> {
-    let err = |line: usize, msg: String| MeterError::Measured(format!("{source}, line {line}: {msg}"));
-    let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-    let (hline, header) =
-        lines.next().ok_or_else(|| err(1, "empty file; expected a header `v_clamp_v,v_pull_v`".into()))?;
-    let names: Vec<&str> = header.split(',').map(str::trim).collect();
-    let col = |name: &str| {
-        names.iter().position(|n| *n == name).ok_or_else(|| {
-            err(hline + 1, format!("no column `{name}` in the header {names:?}; expected `v_clamp_v,v_pull_v`"))
-        })
+    let err = |line: u64, msg: String| MeterError::Measured(format!("{source}, line {line}: {msg}"));
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .comment(Some(b'#'))
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let csv_err = |e: csv::Error| {
+        let line = e.position().map_or(0, |p| p.line());
+        err(line, crate::short(&e.to_string()))
+    };
+    let header = r.headers().map_err(csv_err)?.clone();
+    let hline = header.position().map_or(1, |p| p.line());
+    if header.is_empty() || header.iter().all(str::is_empty) {
+        return Err(err(1, "empty file; expected a header `v_clamp_v,v_pull_v`".into()));
+    }
+    let col = |name: &str| -> Result<usize, MeterError> {
+        let found: Vec<usize> = header.iter().enumerate().filter(|(_, n)| *n == name).map(|(i, _)| i).collect();
+        match found.as_slice() {
+            [k] => Ok(*k),
+            [] => Err(err(
+                hline,
+                format!(
+                    "no column `{name}` in the header {}; expected `v_clamp_v,v_pull_v`",
+                    crate::short(&format!("{:?}", header.iter().collect::<Vec<_>>()))
+                ),
+            )),
+            _ => Err(err(hline, format!("column `{name}` appears {} times; expected it once", found.len()))),
+        }
     };
     let (ic, ip) = (col("v_clamp_v")?, col("v_pull_v")?);
     let mut out = Vec::new();
-    for (i, line) in lines {
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+    let mut rec = csv::StringRecord::new();
+    while r.read_record(&mut rec).map_err(csv_err)? {
+        let line = rec.position().map_or(0, |p| p.line());
+        if rec.iter().all(str::is_empty) {
+            continue;
+        }
         let get = |k: usize, name: &str| -> Result<f64, MeterError> {
-            let raw = fields
-                .get(k)
-                .ok_or_else(|| err(i + 1, format!("missing column `{name}` ({} fields)", fields.len())))?;
+            let raw = rec.get(k).ok_or_else(|| err(line, format!("missing column `{name}` ({} fields)", rec.len())))?;
             match raw.parse::<f64>() {
-                Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
-                _ => Err(err(i + 1, format!("{name} = {raw:?}: expected a non-negative voltage in V"))),
+                Ok(v) if v.is_finite() && (0.0..=MAX_MEASURED_VOLTAGE_V).contains(&v) => Ok(v),
+                _ => Err(err(
+                    line,
+                    format!(
+                        "{name} = {:?}: expected a non-negative voltage in V, at most {MAX_MEASURED_VOLTAGE_V:e} V",
+                        crate::short(raw)
+                    ),
+                )),
             }
         };
         out.push(MeasuredSlip { v_clamp: get(ic, "v_clamp_v")?, v_pull: get(ip, "v_pull_v")? });
     }
     if out.is_empty() {
-        return Err(err(hline + 1, "no data lines after the header".into()));
+        return Err(err(hline, "no data lines after the header".into()));
     }
     Ok(out)
 }
+
+/// Highest voltage accepted in a measured CSV, V (the scenario's limit, see
+/// [`stiction_scenario::MAX_VOLTAGE_V`]).
+pub const MAX_MEASURED_VOLTAGE_V: f64 = stiction_scenario::MAX_VOLTAGE_V;
 
 /// One measured slip beside the virtual meter at the same clamp voltage.
 #[derive(Debug, Clone, Serialize)]
@@ -88,12 +126,25 @@ pub struct Comparison {
     pub mu_apparent_measured: Option<f64>,
     /// F_a0 of the measured data, N.
     pub apparent_adhesion_force_measured_n: Option<f64>,
+    /// Why the measured data have no eq. 10 fit, when they have none (fewer than three distinct
+    /// loads above zero).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured_fit_note: Option<String>,
 }
 
 impl Meter {
     /// Runs the virtual meter at the measured clamp voltages and compares: the pull voltages, and
     /// eq. 10 fitted to the measured data reduced with `reduction` (the lab's nominal values).
     pub fn compare(&mut self, measured: &[MeasuredSlip], reduction: Reduction) -> Result<Comparison, MeterError> {
+        let limit = self.protocol.max_clamp_voltages.unwrap_or(stiction_scenario::DEFAULT_MAX_CLAMP_VOLTAGES);
+        if measured.len() as u64 > limit {
+            return Err(MeterError::Measured(format!(
+                "{} measured rows: the virtual meter runs once per row and the limit is {limit} clamp voltages \
+                 (`meter.max_clamp_voltages`, default {}); raise `meter.max_clamp_voltages` if you mean it",
+                measured.len(),
+                stiction_scenario::DEFAULT_MAX_CLAMP_VOLTAGES
+            )));
+        }
         let voltages: Vec<f64> = measured.iter().map(|m| m.v_clamp).collect();
         let model = self.run_at(&voltages, &mut |_, _| {})?;
         let mut points = Vec::with_capacity(measured.len());
@@ -122,6 +173,7 @@ impl Meter {
             measured_fit: fit,
             mu_apparent_measured: mu,
             apparent_adhesion_force_measured_n: fa0,
+            measured_fit_note: crate::fit::no_fit_reason(&pairs),
         })
     }
 }
@@ -146,5 +198,12 @@ mod tests {
         assert!(parse_measured_voltages("v_clamp_v,v_pull_v\n", "m.csv").is_err());
         let e = parse_measured_voltages("v_clamp_v,v_pull_v\n25\n", "m.csv").unwrap_err().to_string();
         assert!(e.contains("missing column `v_pull_v`"), "{e}");
+        let e = parse_measured_voltages("v_clamp_v,v_pull_v,v_pull_v\n25,1,2\n", "m.csv").unwrap_err().to_string();
+        assert!(e.contains("`v_pull_v` appears 2 times"), "{e}");
+        let e = parse_measured_voltages("v_clamp_v,v_pull_v\n25,1e200\n", "m.csv").unwrap_err().to_string();
+        assert!(e.contains("line 2") && e.contains("at most"), "{e}");
+        // Quoting, CRLF and a BOM as a spreadsheet writes them.
+        let ok = parse_measured_voltages("\u{feff}\"v_clamp_v\",v_pull_v\r\n\"25\",30\r\n", "m.csv").unwrap();
+        assert_eq!(ok, vec![MeasuredSlip { v_clamp: 25.0, v_pull: 30.0 }]);
     }
 }

@@ -23,8 +23,21 @@ use serde_json::Value;
 
 mod overrides;
 mod spec;
+pub mod strict_json;
 pub use overrides::{apply_set, parse_set};
 pub use spec::*;
+
+/// Largest scenario file read, bytes (16 MiB: the bundled ones are a few kB).
+pub const MAX_SCENARIO_BYTES: u64 = 16 << 20;
+
+/// `text` cut to at most `max` characters, with "..." when cut: errors quote at most a short piece
+/// of a user's file.
+pub fn truncate(text: &str, max: usize) -> String {
+    match text.char_indices().nth(max) {
+        Some((i, _)) => format!("{}...", &text[..i]),
+        None => text.to_string(),
+    }
+}
 
 /// The format version this build reads.
 pub const FORMAT_VERSION: u32 = 1;
@@ -61,13 +74,13 @@ pub struct Scenario {
 /// A scenario loading error: where (file and JSON path), what was given and what was expected.
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
-    /// The file could not be read.
+    /// The file could not be read (missing, not a regular file, too large, not UTF-8).
     #[error("cannot read scenario {path}: {source}")]
     Io {
         /// The file.
         path: PathBuf,
-        /// The OS error.
-        source: std::io::Error,
+        /// What went wrong.
+        source: stiction_units::io::FileError,
     },
     /// The file is not JSON.
     #[error("{path}: not valid JSON at line {line}, column {column}: {message}")]
@@ -110,8 +123,8 @@ impl Scenario {
     /// Reads a scenario file as JSON and applies the `--set` overrides, without the typed parse
     /// (a Monte Carlo study draws its uncertain parameters from this tree).
     pub fn load_json(path: &Path, sets: &[String]) -> Result<Value, ScenarioError> {
-        let text =
-            std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.to_path_buf(), source })?;
+        let text = stiction_units::io::read_input_text(path, MAX_SCENARIO_BYTES)
+            .map_err(|source| ScenarioError::Io { path: path.to_path_buf(), source })?;
         Scenario::json_with_sets(&text, path, sets)
     }
 
@@ -122,11 +135,13 @@ impl Scenario {
 
     /// Scenario text as JSON with the overrides applied; `origin` names it in errors.
     fn json_with_sets(text: &str, origin: &Path, sets: &[String]) -> Result<Value, ScenarioError> {
-        let mut value: Value = serde_json::from_str(text).map_err(|e| ScenarioError::Syntax {
+        let mut value: Value = strict_json::from_str(text).map_err(|e| ScenarioError::Syntax {
             path: origin.to_path_buf(),
             line: e.line(),
             column: e.column(),
-            message: e.to_string(),
+            // serde_json's messages quote at most a key or a short token; truncated all the same,
+            // so a wrong file (a binary, /etc/passwd) is never echoed.
+            message: truncate(&e.to_string(), 200),
         })?;
         for set in sets {
             apply_set(&mut value, set)?;
@@ -147,14 +162,23 @@ impl Scenario {
             Some(other) => {
                 return Err(field(
                     "format_version".into(),
-                    format!("{other} is not supported; expected {FORMAT_VERSION}"),
+                    format!("{} is not supported; expected {FORMAT_VERSION}", truncate(&other.to_string(), 40)),
                 ));
             }
             None => return Err(field("format_version".into(), format!("missing; expected {FORMAT_VERSION}"))),
         }
+        // Fields that a model does not use yet are refused rather than silently ignored.
+        if value.get("material").and_then(|m| m.get("relative_humidity")).is_some() {
+            return Err(field(
+                "material.relative_humidity".into(),
+                "not modelled yet (capillary adhesion may come later): no model uses the humidity, so the \
+                 field is refused rather than silently ignored; remove it (note it in `description`)"
+                    .into(),
+            ));
+        }
         let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
             let p = e.path().to_string();
-            field(if p == "." { "(top level)".into() } else { p }, e.into_inner().to_string())
+            field(if p == "." { "(top level)".into() } else { p }, truncate(&e.into_inner().to_string(), 300))
         })?;
         scenario.validate().map_err(|(p, m)| field(p, m))?;
         Ok(scenario)
@@ -162,6 +186,9 @@ impl Scenario {
 
     /// Cross-field checks that serde cannot express. Returns (JSON path, message).
     fn validate(&self) -> Result<(), (String, String)> {
+        if let Some(s) = &self.surface {
+            s.check().map_err(|(p, msg)| (format!("surface.{p}"), msg))?;
+        }
         if let Some(m) = &self.material {
             m.validate().map_err(|(p, msg)| (format!("material.{p}"), msg))?;
         }

@@ -23,7 +23,7 @@ pub fn parse_set(set: &str) -> Result<(Vec<String>, Value), ScenarioError> {
         return Err(err(format!("`{path}` has an empty segment")));
     }
     let raw = raw.trim();
-    let value = serde_json::from_str(raw).unwrap_or_else(|_| Value::String(raw.to_string()));
+    let value = crate::strict_json::from_str(raw).unwrap_or_else(|_| Value::String(raw.to_string()));
     Ok((segments, value))
 }
 

@@ -55,14 +55,6 @@ pub struct MaterialSpec {
     #[serde(default = "default_spacing", deserialize_with = "stiction_units::de::length_positive")]
     #[schemars(with = "QuantityInput")]
     pub equilibrium_spacing: f64,
-    /// Relative humidity (recorded; capillary adhesion is not modelled). The paper: 35 %.
-    #[serde(
-        default,
-        deserialize_with = "stiction_units::de::opt_dimensionless_nonnegative",
-        skip_serializing_if = "Option::is_none"
-    )]
-    #[schemars(with = "Option<QuantityInput>")]
-    pub relative_humidity: Option<f64>,
 }
 
 fn default_hardness() -> f64 {
@@ -314,6 +306,10 @@ pub struct MeterSpec {
     /// absent: only the quasi-static runaway test.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub slip_dynamics: Option<SlipDynamicsSpec>,
+    /// Largest number of clamp voltages (default 100 000): checked before the run starts; raise it
+    /// for a longer sweep.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_clamp_voltages: Option<u64>,
 }
 
 /// The pull shuttle's dynamics after slip: `m x'' = F_e(x, V) - k x - c x' - F_k`.
@@ -346,10 +342,92 @@ fn default_pull_max() -> f64 {
 
 impl MeterSpec {
     pub(crate) fn validate(&self) -> Result<(), (String, String)> {
+        self.check_limits()?;
         if self.pull_voltage_step >= self.pull_voltage_max {
             return Err((
                 "pull_voltage_step".into(),
                 format!("{} V is not below pull_voltage_max = {} V", self.pull_voltage_step, self.pull_voltage_max),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Highest voltage a scenario may apply (clamp voltages, `pull_voltage_max`), V: far above the
+/// breakdown of any micrometre air gap (a few hundred volts), and low enough that V^2 and the
+/// forces stay finite in f64. A limit of the physics, not raisable.
+pub const MAX_VOLTAGE_V: f64 = 1e4;
+
+/// Largest number of pull-ramp steps `pull_voltage_max / pull_voltage_step`: 2^53, the largest
+/// count that f64 holds exactly (the ramp's step index is an f64). A numerical limit, not raisable.
+pub const MAX_PULL_RAMP_STEPS: f64 = 9_007_199_254_740_992.0;
+
+/// Default of `meter.max_clamp_voltages`: each clamp voltage costs one contact solve (about a
+/// millisecond on the paper's surface, more on large ones) and one row of every output.
+pub const DEFAULT_MAX_CLAMP_VOLTAGES: u64 = 100_000;
+
+impl MeterSpec {
+    /// Checks the protocol's sizes and ranges before any work (see [`MAX_VOLTAGE_V`],
+    /// [`MAX_PULL_RAMP_STEPS`], [`DEFAULT_MAX_CLAMP_VOLTAGES`]). Returns (field, message).
+    pub fn check_limits(&self) -> Result<(), (String, String)> {
+        let limit = self.max_clamp_voltages.unwrap_or(DEFAULT_MAX_CLAMP_VOLTAGES);
+        if limit == 0 {
+            return Err(("max_clamp_voltages".into(), "0: expected a positive count".into()));
+        }
+        let count = match &self.clamp_voltages {
+            VoltageSchedule::List(v) => v.len() as u64,
+            VoltageSchedule::Ramp { steps, .. } => *steps as u64,
+        };
+        if count > limit {
+            return Err((
+                "clamp_voltages".into(),
+                format!(
+                    "{count} clamp voltages (about {:.1e} bytes of results and one contact solve each) exceed the \
+                     limit of {limit} (`meter.max_clamp_voltages`, default {DEFAULT_MAX_CLAMP_VOLTAGES}); raise \
+                     `meter.max_clamp_voltages` if you mean it",
+                    count as f64 * 512.0
+                ),
+            ));
+        }
+        let too_high = |v: f64| v > MAX_VOLTAGE_V;
+        match &self.clamp_voltages {
+            VoltageSchedule::List(v) => {
+                if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| too_high(**x)) {
+                    return Err((
+                        format!("clamp_voltages[{i}]"),
+                        format!("{x:e} V is above {MAX_VOLTAGE_V:e} V, the highest voltage stiction applies"),
+                    ));
+                }
+            }
+            VoltageSchedule::Ramp { from, to, .. } => {
+                for (name, x) in [("from", *from), ("to", *to)] {
+                    if too_high(x) {
+                        return Err((
+                            format!("clamp_voltages.{name}"),
+                            format!("{x:e} V is above {MAX_VOLTAGE_V:e} V, the highest voltage stiction applies"),
+                        ));
+                    }
+                }
+            }
+        }
+        if too_high(self.pull_voltage_max) {
+            return Err((
+                "pull_voltage_max".into(),
+                format!(
+                    "{:e} V is above {MAX_VOLTAGE_V:e} V, the highest voltage stiction applies",
+                    self.pull_voltage_max
+                ),
+            ));
+        }
+        let steps = self.pull_voltage_max / self.pull_voltage_step;
+        if steps.is_nan() || steps > MAX_PULL_RAMP_STEPS {
+            return Err((
+                "pull_voltage_step".into(),
+                format!(
+                    "{:e} V gives pull_voltage_max / pull_voltage_step = {steps:.3e} ramp steps, more than 2^53 = \
+                     {MAX_PULL_RAMP_STEPS:.3e} (the largest step count f64 holds exactly); take a larger step",
+                    self.pull_voltage_step
+                ),
             ));
         }
         Ok(())

@@ -27,11 +27,14 @@ impl Surface {
         Ok(())
     }
 
-    /// Writes the CSV to a file (see [`Surface::write_csv`]).
+    /// Writes the CSV to a file atomically (see [`Surface::write_csv`] and
+    /// [`stiction_units::io::write_atomic`]: a temporary file renamed over the target, never
+    /// through a symbolic link).
     pub fn write_csv_file(&self, path: &Path) -> Result<(), SurfaceError> {
-        let f = std::fs::File::create(path)
-            .map_err(|e| SurfaceError::Io { path: path.display().to_string(), message: e.to_string() })?;
-        self.write_csv(std::io::BufWriter::new(f))
+        let mut bytes = Vec::new();
+        self.write_csv(&mut bytes)?;
+        stiction_units::io::write_atomic(path, &bytes)
+            .map_err(|e| SurfaceError::Io { path: path.display().to_string(), message: e.to_string() })
     }
 
     /// Reads a summit list from CSV with the columns `x_m,y_m,height_m,radius_m` (any order, all
@@ -122,6 +125,12 @@ impl Surface {
             hs.push(h);
             rs.push(rad);
         }
+        if xs.is_empty() {
+            return Err(SurfaceError::Csv {
+                line: 1,
+                message: "no summit rows after the header: expected at least one summit".into(),
+            });
+        }
         let radii = match rs.first() {
             Some(&r0) if rs.iter().all(|&r| r == r0) => Radii::Uniform(r0),
             Some(_) => Radii::PerSummit(rs),
@@ -132,9 +141,10 @@ impl Surface {
 
     /// Reads a summit list from a CSV file (see [`Surface::read_csv`]); errors name the path.
     pub fn read_csv_file(path: &Path, apparent_length_m: f64, apparent_width_m: f64) -> Result<Surface, SurfaceError> {
-        let f = std::fs::File::open(path)
+        // A regular file of at most 1 GiB (no FIFO, no /dev/zero), BOM removed.
+        let text = stiction_units::io::read_input_text(path, stiction_units::io::DEFAULT_INPUT_LIMIT_BYTES)
             .map_err(|e| SurfaceError::Io { path: path.display().to_string(), message: e.to_string() })?;
-        Surface::read_csv(std::io::BufReader::new(f), apparent_length_m, apparent_width_m).map_err(|e| match e {
+        Surface::read_csv(text.as_bytes(), apparent_length_m, apparent_width_m).map_err(|e| match e {
             SurfaceError::Csv { line, message } => {
                 SurfaceError::CsvFile { path: path.display().to_string(), line, message }
             }

@@ -199,8 +199,11 @@ fn positions(layout: &Layout, density: f64, stream: u64, field: &str) -> Result<
             Ok((xs, ys))
         }
         Placement::JitteredGrid => {
+            // nx ny ~ target cells, nearly square; on a very elongated area (1 m x 1e-12 m) the
+            // square-cell count along x alone would exceed the target, so nx is capped at the
+            // target and the cells become elongated: the count always follows the density.
             let target = mean.round().max(1.0);
-            let nx = ((target * l / w).sqrt().round() as usize).max(1);
+            let nx = ((target * l / w).sqrt().round().clamp(1.0, target)) as usize;
             let ny = ((target / nx as f64).round() as usize).max(1);
             let (cx, cy) = (l / nx as f64, w / ny as f64);
             let n = nx * ny;
@@ -336,6 +339,19 @@ pub fn generate_two_face(
     shoe: &FaceParams,
     pair_reach_m: f64,
 ) -> Result<Surface, SurfaceError> {
+    generate_two_face_limited(layout, wall, shoe, pair_reach_m, MAX_SUMMITS)
+}
+
+/// [`generate_two_face`] that stops with an error naming `pair_reach` as soon as more than
+/// `max_pairs` pairs are found (a large reach pairs every wall summit with every shoe summit:
+/// n_wall x n_shoe pairs), so memory stays bounded whatever the reach.
+pub fn generate_two_face_limited(
+    layout: &Layout,
+    wall: &FaceParams,
+    shoe: &FaceParams,
+    pair_reach_m: f64,
+    max_pairs: usize,
+) -> Result<Surface, SurfaceError> {
     layout.validate()?;
     wall.validate("")?;
     shoe.validate("counter_face.")?;
@@ -396,6 +412,19 @@ pub fn generate_two_face(
                     let rj = srad(j);
                     let drop = (dx * dx + dy * dy) / (2.0 * (ri + rj));
                     if drop <= pair_reach_m {
+                        if px.len() >= max_pairs.min(MAX_SUMMITS) {
+                            return Err(SurfaceError::InvalidParameter {
+                                field: "pair_reach".into(),
+                                value: format!("{pair_reach_m} m"),
+                                expected: format!(
+                                    "a reach giving at most {} summit pairs (the limit `max_summits`; more \
+                                     were found before wall summit {i} of {}): lower `pair_reach` or raise \
+                                     `surface.max_summits` if the machine has the memory",
+                                    max_pairs.min(MAX_SUMMITS),
+                                    wx.len()
+                                ),
+                            });
+                        }
                         let t = ri / (ri + rj);
                         px.push(clamp_f32(xi + t * dx, l));
                         py.push(clamp_f32(yi + t * dy, w));

@@ -25,7 +25,9 @@ pub use csv_io::CSV_HEADER;
 pub use error::SurfaceError;
 pub use generate::{
     FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution, generate, generate_composite,
-    generate_two_face,
+    generate_two_face, generate_two_face_limited,
 };
-pub use spec::{FaceSpec, SurfaceSource, SurfaceSpec, TwoFaceMode};
+pub use spec::{
+    DEFAULT_MAX_SUMMITS, ESTIMATED_BYTES_PER_SUMMIT, FaceSpec, MAX_LENGTH_M, SurfaceSource, SurfaceSpec, TwoFaceMode,
+};
 pub use surface::{Radii, Surface, SurfaceStats};

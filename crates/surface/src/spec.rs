@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::{
     FaceParams, HeightDistribution, Layout, Placement, RadiusDistribution, Surface, SurfaceError, generate,
-    generate_composite, generate_two_face,
+    generate_composite, generate_two_face_limited,
 };
 
 /// Where the summits come from.
@@ -150,7 +150,24 @@ pub struct SurfaceSpec {
     #[serde(default, deserialize_with = "stiction_units::de::opt_length_positive")]
     #[schemars(with = "Option<stiction_units::QuantityInput>")]
     pub pair_reach: Option<f64>,
+    /// Largest number of summits (or, in explicit two-face mode, summit pairs) the surface may
+    /// hold; default 10 000 000 (about 1 GB with the explicit solver's arrays, see
+    /// docs/reliability.md). The expected count eta A_a is checked against it before anything is
+    /// generated. Raise it when the machine has the memory.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_summits: Option<u64>,
 }
+
+/// The default of `surface.max_summits`.
+pub const DEFAULT_MAX_SUMMITS: u64 = 10_000_000;
+
+/// Bytes per summit the budget message estimates (surface arrays 16-24 B plus the explicit
+/// solver's per-summit state and sort buffers; measured order of magnitude, see docs/reliability.md).
+pub const ESTIMATED_BYTES_PER_SUMMIT: f64 = 100.0;
+
+/// Largest length any surface field may have, m: a MEMS sidewall and its summits are far below
+/// a metre; beyond it the heights and offsets overflow the solver's arithmetic.
+pub const MAX_LENGTH_M: f64 = 1.0;
 
 impl SurfaceSpec {
     /// The wall face's (or only face's) parameters; errors name a missing field.
@@ -168,6 +185,98 @@ impl SurfaceSpec {
         })
     }
 
+    /// The summit budget: `max_summits` or [`DEFAULT_MAX_SUMMITS`].
+    pub fn summit_budget(&self) -> u64 {
+        self.max_summits.unwrap_or(DEFAULT_MAX_SUMMITS)
+    }
+
+    /// Checks ranges and the summit budget without generating anything (called when a scenario
+    /// is loaded, so `stiction scenario` reports it). Returns (field, message).
+    pub fn check(&self) -> Result<(), (String, String)> {
+        let mut lengths = vec![
+            ("apparent_length", Some(self.apparent_length)),
+            ("apparent_width", Some(self.apparent_width)),
+            ("summit_sd", self.summit_sd),
+            ("summit_radius", self.summit_radius),
+            ("radius_sd", Some(self.radius_sd)),
+            ("pair_reach", self.pair_reach),
+        ];
+        if let Some(c) = &self.counter_face {
+            lengths.extend([
+                ("counter_face.summit_sd", Some(c.summit_sd)),
+                ("counter_face.summit_radius", Some(c.summit_radius)),
+                ("counter_face.radius_sd", Some(c.radius_sd)),
+            ]);
+        }
+        for (name, v) in lengths {
+            if let Some(v) = v
+                && v > MAX_LENGTH_M
+            {
+                return Err((
+                    name.into(),
+                    format!(
+                        "{v:e} m is larger than {MAX_LENGTH_M} m, the largest length a MEMS surface field may have"
+                    ),
+                ));
+            }
+        }
+        if let (Some(c), TwoFaceMode::Explicit, None) = (&self.counter_face, self.two_face, self.pair_reach)
+            && self.summit_sd == Some(0.0)
+            && c.summit_sd == 0.0
+        {
+            return Err((
+                "summit_sd".into(),
+                "0 m on both faces (and counter_face.summit_sd = 0 m): the default `pair_reach` is \
+                 4 sqrt(summit_sd^2 + counter_face.summit_sd^2) = 0; give a summit_sd > 0 or a `pair_reach`"
+                    .into(),
+            ));
+        }
+        if self.max_summits == Some(0) {
+            return Err(("max_summits".into(), "0: expected a positive number of summits".into()));
+        }
+        let budget = self.summit_budget() as f64;
+        let area = self.apparent_length * self.apparent_width;
+        let (field, expected) = match (self.source, &self.counter_face, self.two_face) {
+            (SurfaceSource::Csv, _, _) => return Ok(()),
+            (_, None, _) => ("summit_density", self.summit_density.unwrap_or(0.0) * area),
+            (_, Some(c), TwoFaceMode::Composite) => {
+                ("summit_density", (self.summit_density.unwrap_or(0.0) + c.summit_density) * area)
+            }
+            (_, Some(c), TwoFaceMode::Explicit) => {
+                let n_wall = self.summit_density.unwrap_or(0.0) * area;
+                let n_shoe = c.summit_density * area;
+                let over = |n: f64| n > budget;
+                if over(n_wall) {
+                    ("summit_density", n_wall)
+                } else if over(n_shoe) {
+                    ("counter_face.summit_density", n_shoe)
+                } else {
+                    // Pairs within the reach: a shoe summit pairs with the wall summits in a disc
+                    // of radius sqrt(2 (R1 + R2) reach) (capped at the whole area).
+                    let sd = self.summit_sd.unwrap_or(0.0).hypot(c.summit_sd);
+                    let reach = self.pair_reach.unwrap_or(4.0 * sd);
+                    let r_sum = self.summit_radius.unwrap_or(0.0) + c.summit_radius;
+                    let disc = std::f64::consts::PI * 2.0 * r_sum * reach;
+                    let fraction = if area > 0.0 { (disc / area).min(1.0) } else { 1.0 };
+                    ("pair_reach", n_wall * n_shoe * fraction)
+                }
+            }
+        };
+        if expected.is_nan() || expected > budget {
+            return Err((
+                field.into(),
+                format!(
+                    "this surface would hold about {expected:.3e} summits{} (about {:.3e} bytes), more than the \
+                     limit of {budget:.0} (`surface.max_summits`, default {DEFAULT_MAX_SUMMITS}); lower the value or \
+                     raise `surface.max_summits` if the machine has the memory",
+                    if field == "pair_reach" { " pairs" } else { "" },
+                    expected * ESTIMATED_BYTES_PER_SUMMIT
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The apparent area, placement and seed.
     pub fn layout(&self) -> Layout {
         Layout {
@@ -181,6 +290,7 @@ impl SurfaceSpec {
     /// Builds the surface: generates it or reads the CSV file (relative `csv_path` resolved
     /// against `base_dir`, normally the scenario file's folder).
     pub fn build(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
+        self.check().map_err(|(field, message)| SurfaceError::Spec(format!("`{field}`: {message}")))?;
         match self.source {
             SurfaceSource::Csv => {
                 let path = self
@@ -226,8 +336,28 @@ impl SurfaceSpec {
                     }
                     (Some(shoe), TwoFaceMode::Explicit) => {
                         let shoe = shoe.params();
-                        let reach = self.pair_reach.unwrap_or(4.0 * wall.summit_sd_m.hypot(shoe.summit_sd_m));
-                        generate_two_face(&layout, &wall, &shoe, reach)
+                        let reach = match self.pair_reach {
+                            Some(r) => r,
+                            None => {
+                                let r = 4.0 * wall.summit_sd_m.hypot(shoe.summit_sd_m);
+                                if r.is_nan() || r <= 0.0 {
+                                    return Err(SurfaceError::InvalidParameter {
+                                        field: "summit_sd".into(),
+                                        value: format!(
+                                            "{} m (and counter_face.summit_sd = {} m)",
+                                            wall.summit_sd_m, shoe.summit_sd_m
+                                        ),
+                                        expected: "a summit_sd > 0 on at least one face: the default `pair_reach` \
+                                                   is 4 sqrt(summit_sd^2 + counter_face.summit_sd^2); or give \
+                                                   `pair_reach`"
+                                            .into(),
+                                    });
+                                }
+                                r
+                            }
+                        };
+                        let budget = usize::try_from(self.summit_budget()).unwrap_or(usize::MAX);
+                        generate_two_face_limited(&layout, &wall, &shoe, reach, budget)
                     }
                 }
             }

@@ -273,3 +273,28 @@ fn spec_reads_csv_relative_to_base_dir() {
     assert!(e.contains("bad.csv") && e.contains("line 3") && e.contains("not finite"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn sizes_are_checked_against_the_budget_and_the_density_is_kept() {
+    // Issue 9: a jittered grid 1 m x 1e-12 m asked for 4 summits (eta A_a = 4e12 x 1e-12) and gave
+    // 2e6 square cells; the count must follow the density.
+    let layout =
+        Layout { apparent_length_m: 1.0, apparent_width_m: 1e-12, placement: Placement::JitteredGrid, seed: 1 };
+    assert_eq!(generate(&layout, &table1_face()).unwrap().len(), 4);
+    // A density of 2e19 m^-2 over the paper's 100 um^2 is 2e9 summits: refused before generating,
+    // naming the field, the estimate and the limit.
+    let spec: SurfaceSpec = serde_json::from_str(
+        r#"{"apparent_length": "20 um", "apparent_width": "5 um", "summit_density": "2e19 m^-2",
+            "summit_sd": "40 nm", "summit_radius": "0.5 um"}"#,
+    )
+    .unwrap();
+    let (field, msg) = spec.check().unwrap_err();
+    assert!(field == "summit_density" && msg.contains("2.000e9") && msg.contains("max_summits"), "{msg}");
+    // Two faces with a 1 m pair reach pair everything with everything: the pair loop stops at the budget.
+    let wall = FaceParams { summit_density_per_m2: 2e12, ..table1_face() };
+    let e = generate_two_face_limited(&table1_layout(1), &wall, &wall, 1.0, 1000).unwrap_err().to_string();
+    assert!(e.contains("pair_reach") && e.contains("1000"), "{e}");
+    // A header-only summit CSV has no statistics: an error, not a null mean height.
+    let e = Surface::read_csv("x_m,y_m,height_m,radius_m\n".as_bytes(), 2e-5, 5e-6).unwrap_err().to_string();
+    assert!(e.contains("no summit rows"), "{e}");
+}

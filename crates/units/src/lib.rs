@@ -34,13 +34,22 @@ pub use uncertain::{Distribution, ScalarInput, UncertainInput, nominal_from_json
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct DimensionVector(pub [i8; 4]);
 
+/// Largest |exponent| of a base dimension in a unit expression (m^-2, V^-2 are far below it).
+pub const MAX_UNIT_EXPONENT: i32 = 24;
+
 impl DimensionVector {
-    fn mul(self, other: Self, power: i8) -> Self {
+    /// `self * other^power`; None when an exponent leaves [-MAX_UNIT_EXPONENT, MAX_UNIT_EXPONENT]
+    /// (checked arithmetic: "N^64 N^64 N^64 N^64" must not wrap around to a length).
+    fn mul(self, other: Self, power: i8) -> Option<Self> {
         let mut out = self.0;
         for (o, b) in out.iter_mut().zip(other.0) {
-            *o += b * power;
+            let v = i32::from(*o) + i32::from(b) * i32::from(power);
+            if v.abs() > MAX_UNIT_EXPONENT {
+                return None;
+            }
+            *o = v as i8;
         }
-        DimensionVector(out)
+        Some(DimensionVector(out))
     }
 }
 

@@ -177,7 +177,9 @@ fn parse_unit(unit: &str) -> Result<(f64, DimensionVector), String> {
         for token in group.split(['*', ' ', '·']).filter(|t| !t.is_empty()) {
             let (f, d) = parse_factor(token).map_err(|e| format!("in unit `{unit}`: {e}"))?;
             factor *= f.powi(sign as i32);
-            dims = dims.mul(d, sign);
+            dims = dims
+                .mul(d, sign)
+                .ok_or_else(|| format!("unit `{unit}` has a power beyond +/-{}", crate::MAX_UNIT_EXPONENT))?;
         }
     }
     Ok((factor, dims))
@@ -203,7 +205,10 @@ fn parse_factor(token: &str) -> Result<(f64, DimensionVector), String> {
         }
     };
     let (f, d) = lookup(base).ok_or_else(|| format!("unknown unit `{base}`"))?;
-    Ok((f.powi(power as i32), DimensionVector::default().mul(d, power)))
+    let dims = DimensionVector::default()
+        .mul(d, power)
+        .ok_or_else(|| format!("`{token}`: the power {power} is beyond +/-{}", crate::MAX_UNIT_EXPONENT))?;
+    Ok((f.powi(power as i32), dims))
 }
 
 fn lookup(base: &str) -> Option<(f64, DimensionVector)> {
@@ -325,6 +330,15 @@ mod tests {
             let got = parse_quantity(text, *dim).unwrap_or_else(|e| panic!("{text}: {e}"));
             assert!(close(got, *want), "{text}: got {got}, want {want}");
         }
+    }
+
+    #[test]
+    fn unit_exponents_never_wrap() {
+        // 4 x 64 = 256 wraps an i8 to 0: the unit must not silently become dimensionless.
+        let e = parse_quantity_checked("0.5 N^64 N^64 N^64 N^64 um", Dimension::Length, Constraint::Positive);
+        assert!(e.unwrap_err().to_string().contains("beyond"));
+        assert!(parse_quantity("1 m^127", Dimension::Length).is_err());
+        assert!(parse_quantity("1 m^-128", Dimension::Length).is_err());
     }
 
     #[test]

@@ -8,7 +8,7 @@ use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 use stiction_units::{Constraint, Dimension};
 
-use crate::output::{CliResult, ensure_dir, print_json, print_table, q, quantity};
+use crate::output::{CliResult, OutputSet, print_json, print_table, q, quantity};
 
 /// Pull-in, release, conversion factor and stiffness of an actuator array; sweeps; validation against measurements.
 #[derive(clap::Args, Debug)]
@@ -24,15 +24,15 @@ pub struct Args {
     /// Highest sweep voltage (default 1.3 x the pull-in voltage).
     #[arg(long, value_parser = quantity(Dimension::Voltage, Constraint::Positive))]
     pub sweep_max: Option<f64>,
-    /// Number of voltage steps of each sweep direction.
-    #[arg(long, default_value_t = 200)]
-    pub sweep_steps: usize,
+    /// Number of voltage steps of each sweep direction (2 to 1 000 000).
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u32).range(2..=1_000_000))]
+    pub sweep_steps: u32,
     /// Compare predicted pull-in and release with a measured CSV
     /// (finger_length_drawn_um, pull_in_v_1.., release_v), one prediction per finger length.
     #[arg(long, value_name = "MEASURED.csv")]
     pub validate: Option<PathBuf>,
     /// With --validate: also report the error with each physics switch toggled.
-    #[arg(long)]
+    #[arg(long, requires = "validate")]
     pub switches: bool,
     /// Print one JSON object instead of a table.
     #[arg(long)]
@@ -40,6 +40,9 @@ pub struct Args {
     /// Write results.json and plots (SVG and PNG) to this folder.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write into an --out folder that holds files not from an earlier stiction run.
+    #[arg(long)]
+    pub force: bool,
     /// Override a scenario field (repeatable): --set actuators.gca.undercut="0.3 um".
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
@@ -113,7 +116,7 @@ pub fn run(args: Args) -> CliResult {
     };
     if args.sweep || args.out.is_some() {
         let vmax = args.sweep_max.unwrap_or(1.3 * pull_in.voltage_v);
-        summary.sweep = Some(model.sweep(vmax, args.sweep_steps.max(2))?);
+        summary.sweep = Some(model.sweep(vmax, args.sweep_steps as usize)?);
     }
     if let Some(csv) = &args.validate {
         let data = read_measurements(csv)?;
@@ -123,18 +126,19 @@ pub fn run(args: Args) -> CliResult {
         }
     }
     if let Some(dir) = &args.out {
-        ensure_dir(dir)?;
-        std::fs::write(dir.join("results.json"), serde_json::to_string_pretty(&summary)?)?;
+        let mut set = OutputSet::begin(dir, "actuator", args.force)?;
+        set.add_bytes("results.json", (serde_json::to_string_pretty(&summary)? + "\n").as_bytes())?;
         if let Some(sweep) = &summary.sweep {
             let chart = sweep_chart(&name, sweep, &model);
-            crate::cmd::plot::write_chart(&chart, &dir.join("hysteresis.svg"))?;
-            crate::cmd::plot::write_chart(&chart, &dir.join("hysteresis.png"))?;
+            set.add_chart("hysteresis.svg", &chart)?;
+            set.add_chart("hysteresis.png", &chart)?;
         }
         if let Some(report) = &summary.validation {
             let chart = validation_chart(report);
-            crate::cmd::plot::write_chart(&chart, &dir.join("validation.svg"))?;
-            crate::cmd::plot::write_chart(&chart, &dir.join("validation.png"))?;
+            set.add_chart("validation.svg", &chart)?;
+            set.add_chart("validation.png", &chart)?;
         }
+        set.commit()?;
         eprintln!("wrote {}", dir.display());
     }
     if args.json {
@@ -166,17 +170,23 @@ pub fn run(args: Args) -> CliResult {
         ],
     );
     if let Some(r) = &summary.validation {
-        println!(
+        crate::outln!(
             "\nValidation against {} ({} finger lengths)",
             args.validate.as_ref().map_or(String::new(), |p| p.display().to_string()),
             r.points.len()
         );
-        println!(
+        crate::outln!(
             "  {:>10}  {:>9} {:>9} {:>8}   {:>9} {:>9} {:>8}",
-            "L_f (um)", "V_pi meas", "V_pi mod", "err", "V_r meas", "V_r mod", "err"
+            "L_f (um)",
+            "V_pi meas",
+            "V_pi mod",
+            "err",
+            "V_r meas",
+            "V_r mod",
+            "err"
         );
         for p in &r.points {
-            println!(
+            crate::outln!(
                 "  {:>10.2}  {:>9.2} {:>9.2} {:>7.1}%   {:>9.2} {:>9.2} {:>7.1}%",
                 p.finger_length_m * 1e6,
                 p.pull_in_v_measured,
@@ -187,16 +197,16 @@ pub fn run(args: Args) -> CliResult {
                 100.0 * p.release_rel_error
             );
         }
-        println!(
+        crate::outln!(
             "  mean |relative error|: pull-in {:.1} %, release {:.1} %",
             100.0 * r.pull_in_mean_abs_rel_error,
             100.0 * r.release_mean_abs_rel_error
         );
     }
     if let Some(sw) = &summary.switches {
-        println!("\nPhysics switches (mean |rel. error| pull-in, release; mean signed)");
+        crate::outln!("\nPhysics switches (mean |rel. error| pull-in, release; mean signed)");
         for s in sw {
-            println!(
+            crate::outln!(
                 "  {:<36} {:>6.1} % {:>6.1} %   ({:+.1} %, {:+.1} %)",
                 s.switch,
                 100.0 * s.pull_in_mean_abs_rel_error,

@@ -38,6 +38,9 @@ pub struct Args {
     /// A load sweep FROM:TO:STEPS, like "0uN:10uN:21" (loads in order; each from the previous equilibrium).
     #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEPS")]
     pub sweep: Option<String>,
+    /// Largest number of --sweep steps (each is one equilibrium solve and one row of output).
+    #[arg(long, default_value_t = DEFAULT_MAX_SWEEP_STEPS, value_name = "N")]
+    pub max_sweep_steps: usize,
     /// Also list every summit in contact (interference, load, contact radius, peak pressure).
     #[arg(long)]
     pub summits: bool,
@@ -49,8 +52,11 @@ pub struct Args {
     pub sets: Vec<String>,
 }
 
-/// Parses FROM:TO:STEPS into the loads, N.
-pub fn parse_sweep(text: &str) -> Result<Vec<f64>, String> {
+/// Default of `--max-sweep-steps`: a million equilibria take minutes and their rows about 100 MB.
+pub const DEFAULT_MAX_SWEEP_STEPS: usize = 1_000_000;
+
+/// Parses FROM:TO:STEPS into the loads, N; at most `max_steps` steps (checked before allocating).
+pub fn parse_sweep(text: &str, max_steps: usize) -> Result<Vec<f64>, String> {
     let parts: Vec<&str> = text.split(':').collect();
     if parts.len() != 3 {
         return Err(format!("--sweep {text:?}: expected FROM:TO:STEPS, like \"0uN:10uN:21\""));
@@ -65,6 +71,13 @@ pub fn parse_sweep(text: &str) -> Result<Vec<f64>, String> {
         .ok()
         .filter(|n| *n >= 2)
         .ok_or_else(|| format!("--sweep STEPS {:?}: expected a whole number >= 2", parts[2]))?;
+    if steps > max_steps {
+        return Err(format!(
+            "--sweep STEPS {steps}: more than the limit of {max_steps} steps (one equilibrium solve and about 100 \
+             bytes of output each: {:.1e} bytes); raise it with --max-sweep-steps if you mean it",
+            steps as f64 * 100.0
+        ));
+    }
     Ok((0..steps).map(|i| from + (to - from) * i as f64 / (steps - 1) as f64).collect())
 }
 
@@ -93,19 +106,26 @@ pub fn run(args: Args) -> CliResult {
     };
     solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });
     if let Some(sweep) = &args.sweep {
-        let loads = parse_sweep(sweep)?;
+        let loads = parse_sweep(sweep, args.max_sweep_steps)?;
         let increasing = loads.last() >= loads.first();
         let result = solver.sweep(&loads, if increasing { Branch::Loading } else { Branch::Unloading })?;
         if args.json {
             return print_json(&result);
         }
-        println!("Load sweep on {} summits, mode {:?}, law {:?}", solver.len(), c.mode, c.law);
-        println!(
+        crate::outln!("Load sweep on {} summits, mode {:?}, law {:?}", solver.len(), c.mode, c.law);
+        crate::outln!(
             "  {:>10} {:>12} {:>10} {:>10} {:>8} {:>12} {:>11} {:>11}",
-            "L (uN)", "d (nm)", "tilt_x", "tilt_y", "N", "A_r (um^2)", "F_cap (uN)", "q0 (GPa)"
+            "L (uN)",
+            "d (nm)",
+            "tilt_x",
+            "tilt_y",
+            "N",
+            "A_r (um^2)",
+            "F_cap (uN)",
+            "q0 (GPa)"
         );
         for e in &result.points {
-            println!(
+            crate::outln!(
                 "  {:>10.4} {:>12.4} {:>10.2e} {:>10.2e} {:>8} {:>12.5e} {:>11.4} {:>11.3}",
                 e.load_n * 1e6,
                 e.separation_m * 1e9,
@@ -118,7 +138,7 @@ pub fn run(args: Args) -> CliResult {
             );
         }
         for ev in &result.events {
-            println!("  event: {}", serde_json::to_string(ev)?);
+            crate::outln!("  event: {}", serde_json::to_string(ev)?);
         }
         return Ok(());
     }
@@ -132,12 +152,18 @@ pub fn run(args: Args) -> CliResult {
         &rows(&eq, material.hardness),
     );
     if args.summits {
-        println!(
+        crate::outln!(
             "\n  {:>8} {:>10} {:>10} {:>12} {:>11} {:>10} {:>9}",
-            "index", "x (um)", "y (um)", "z (nm)", "P (uN)", "a (nm)", "q0 (GPa)"
+            "index",
+            "x (um)",
+            "y (um)",
+            "z (nm)",
+            "P (uN)",
+            "a (nm)",
+            "q0 (GPa)"
         );
         for s in &eq.summits {
-            println!(
+            crate::outln!(
                 "  {:>8} {:>10.4} {:>10.4} {:>12.5} {:>11.5} {:>10.3} {:>9.3}",
                 s.index,
                 s.x_m * 1e6,

@@ -31,7 +31,9 @@ fn parse_theta(s: &str) -> Result<Theta, String> {
     }
     match t.parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(Theta(Some(x))),
-        Ok(x) if x.is_infinite() && x > 0.0 => Ok(Theta(None)),
+        Ok(x) if x.is_infinite() && x > 0.0 => {
+            Err(format!("{s:?} overflows to infinity; write \"inf\" for plain GW (no adhesion), or a finite theta"))
+        }
         _ => Err(format!("{s:?}: expected a positive adhesion parameter or \"inf\"")),
     }
 }

@@ -40,21 +40,68 @@ pub struct Args {
     pub sets: Vec<String>,
 }
 
-/// Writes a chart to `path` as SVG, or PNG by extension.
-pub fn write_chart(chart: &Chart, path: &Path) -> CliResult {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        crate::output::ensure_dir(dir)?;
+/// The image format of an output path: "svg" or "png" by its extension; any other is an error.
+pub fn chart_format(path: &Path) -> Result<&'static str, String> {
+    match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).as_deref() {
+        Some("svg") => Ok("svg"),
+        Some("png") => Ok("png"),
+        other => Err(format!(
+            "{}: unknown image extension {}; expected .svg or .png",
+            path.display(),
+            other.map_or("(none)".to_string(), |e| format!(".{e}"))
+        )),
     }
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
-        chart.write_png(path)?;
-    } else {
-        chart.write_svg(path)?;
+}
+
+/// Renders a chart to `path` (a fresh file; SVG or PNG by extension). Not atomic by itself: used
+/// inside a staging folder ([`crate::output::OutputSet`]) or by [`write_chart`].
+pub fn render_chart(chart: &Chart, path: &Path) -> CliResult {
+    match chart_format(path)? {
+        "png" => chart.write_png(path)?,
+        _ => chart.write_svg(path)?,
     }
     Ok(())
 }
 
+/// Writes a chart to `path` as SVG, or PNG by extension, atomically: rendered to a temporary
+/// file in the same folder, then put in place with [`stiction_units::io::write_atomic`] (which
+/// refuses a symbolic link). Errors name the path.
+pub fn write_chart(chart: &Chart, path: &Path) -> CliResult {
+    let format = chart_format(path)?;
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        crate::output::ensure_dir(dir)?;
+    }
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.render-{}.{format}", std::process::id()));
+    let result = (|| -> CliResult {
+        render_chart(chart, &tmp).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        let bytes = std::fs::read(&tmp).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        stiction_units::io::write_atomic(path, &bytes)?;
+        Ok(())
+    })();
+    let _ = std::fs::remove_file(&tmp);
+    result
+}
+
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
+    chart_format(&args.out).map_err(|e| format!("--out {e}"))?;
+    if !matches!(args.figure, Figure::Actuator) {
+        for (flag, given) in [
+            ("--scenario", args.scenario.is_some()),
+            ("--array", args.array.is_some()),
+            ("--set", !args.sets.is_empty()),
+        ] {
+            if given {
+                return Err(format!(
+                    "{flag} is used only by `plot actuator`; `plot {}` draws the paper's figure from its own numbers",
+                    format!("{:?}", args.figure).to_lowercase()
+                )
+                .into());
+            }
+        }
+    }
     let chart = match args.figure {
         Figure::Fig2 => fig2()?,
         Figure::Fig3 => fig3()?,

@@ -9,7 +9,7 @@ use stiction_meter::{ContactModel, Meter, MeterResult};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 
-use crate::output::{CliResult, ensure_dir, print_json};
+use crate::output::{CliResult, OutputSet, print_json};
 
 /// Run the friction meter: clamp at each clamp voltage, ramp the pull voltage until slip, fit eq. 10.
 #[derive(clap::Args, Debug)]
@@ -25,6 +25,10 @@ pub struct Args {
     /// Print one JSON object on stdout instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Write into an --out folder that holds files not from an earlier stiction run (they are
+    /// left alone; the earlier run's files are replaced or removed).
+    #[arg(long)]
+    pub force: bool,
 }
 
 #[derive(Serialize)]
@@ -41,6 +45,11 @@ struct RunOutput<'a> {
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     let scenario = Scenario::load(&args.scenario, &args.sets)?;
+    // Check the output folder before the work, so a refusal comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "run", args.force)?),
+        None => None,
+    };
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
     let mut meter = Meter::from_scenario(&scenario, &base).map_err(|e| format!("{}: {e}", args.scenario.display()))?;
     let bar = ProgressBar::new(0);
@@ -66,34 +75,45 @@ pub fn run(args: Args) -> CliResult {
         result: &result,
         measured,
     };
-    if let Some(dir) = &args.out {
-        write_outputs(dir, &output, &scenario, &mut meter, &base)?;
+    if let Some(set) = outputs {
+        write_outputs(set, &output, &scenario, &mut meter, &base)?;
     }
     if args.json {
         return print_json(&output);
     }
     print_summary(&output);
     if let Some(dir) = &args.out {
-        println!("\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig7.svg, fig7.png", dir.display());
+        crate::outln!(
+            "\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig7.svg, fig7.png, manifest.json",
+            dir.display()
+        );
     }
     Ok(())
 }
 
 fn print_summary(o: &RunOutput) {
     let r = o.result;
-    println!("stiction run {}", o.scenario);
+    crate::outln!("stiction run {}", o.scenario);
     if !o.description.is_empty() {
-        println!("  {}", o.description);
+        crate::outln!("  {}", o.description);
     }
-    println!("  contact model: {}, F_spring = {:.3} uN", r.contact_model, r.spring_force_n * 1e6);
-    println!(
+    crate::outln!("  contact model: {}, F_spring = {:.3} uN", r.contact_model, r.spring_force_n * 1e6);
+    crate::outln!(
         "\n  {:>8} {:>10} {:>9} {:>9} {:>10} {:>11} {:>8} {:>11} {:>9}",
-        "V_clamp", "L (uN)", "V_pull", "V_pull^2", "F_f (uN)", "A_r (um^2)", "N", "F_adh (uN)", "q0 (GPa)"
+        "V_clamp",
+        "L (uN)",
+        "V_pull",
+        "V_pull^2",
+        "F_f (uN)",
+        "A_r (um^2)",
+        "N",
+        "F_adh (uN)",
+        "q0 (GPa)"
     );
     for p in &r.points {
         let opt =
             |x: Option<f64>, scale: f64, prec: usize| x.map_or("-".to_string(), |v| format!("{:.prec$}", v * scale));
-        println!(
+        crate::outln!(
             "  {:>8.2} {:>10.4} {:>9} {:>9} {:>10} {:>11.5} {:>8.0} {:>11.4} {:>9.3}{}",
             p.v_clamp,
             p.load_n * 1e6,
@@ -115,31 +135,46 @@ fn print_summary(o: &RunOutput) {
             }
         );
     }
-    println!();
+    crate::outln!();
     match (r.mu_apparent, r.apparent_adhesion_force_n, &r.fit) {
         (Some(mu), Some(fa0), Some(fit)) => {
-            println!(
+            crate::outln!(
                 "  apparent friction coefficient mu_e,a = {mu:.3} +/- {:.3}  (eq. 10; paper measured 0.7 +/- 0.3)",
                 fit.slope_se
             );
-            println!("  apparent zero-load adhesion F_a0    = {:.3} uN  (paper measured 2.0 +/- 1.3 uN)", fa0 * 1e6);
-            println!("  fit over {} points with L > 0, R^2 = {:.4}", fit.points, fit.r_squared);
+            crate::outln!(
+                "  apparent zero-load adhesion F_a0    = {:.3} uN  (paper measured 2.0 +/- 1.3 uN)",
+                fa0 * 1e6
+            );
+            crate::outln!("  fit over {} points with L > 0, R^2 = {:.4}", fit.points, fit.r_squared);
         }
-        _ => println!("  too few slip points with L > 0 for the eq. 10 fit"),
+        _ => crate::outln!(
+            "  no eq. 10 fit: {}",
+            r.fit_note.as_deref().unwrap_or("the fitted slope is not positive, so mu_e,a and F_a0 are undefined")
+        ),
     }
     if let Some(c) = &o.measured {
-        println!("\n  measured data ({} slips):", c.points.len());
+        crate::outln!("\n  measured data ({} slips):", c.points.len());
         if let (Some(mu), Some(fa0)) = (c.mu_apparent_measured, c.apparent_adhesion_force_measured_n) {
-            println!("    measured mu_e,a = {mu:.3}, F_a0 = {:.3} uN (eq. 10 on the measured voltages)", fa0 * 1e6);
+            crate::outln!(
+                "    measured mu_e,a = {mu:.3}, F_a0 = {:.3} uN (eq. 10 on the measured voltages)",
+                fa0 * 1e6
+            );
+        }
+        if let Some(note) = &c.measured_fit_note {
+            crate::outln!("    no eq. 10 fit of the measured data: {note}");
         }
         if let Some(rms) = c.rms_v_pull_sq_residual_v2 {
-            println!("    model - measured V_pull^2: rms {rms:.1} V^2");
+            crate::outln!("    model - measured V_pull^2: rms {rms:.1} V^2");
         }
     }
     let slips: Vec<bool> = r.points.iter().filter_map(|p| p.pull_in_at_slip).collect();
     if let (Some(v), false) = (r.pull_array_pull_in_v, slips.is_empty()) {
         let n = slips.iter().filter(|b| **b).count();
-        println!("  pull array pull-in voltage (free shoe) {v:.2} V; it pulled in at {n} of {} slips", slips.len());
+        crate::outln!(
+            "  pull array pull-in voltage (free shoe) {v:.2} V; it pulled in at {n} of {} slips",
+            slips.len()
+        );
     }
     let times: Vec<f64> = r.points.iter().filter_map(|p| p.slip_time_to_stop_s).collect();
     let speeds: Vec<f64> = r.points.iter().filter_map(|p| p.slip_impact_velocity_m_per_s).collect();
@@ -149,22 +184,21 @@ fn print_summary(o: &RunOutput) {
         };
         let (t0, t1) = range(&times, 1e6);
         let (v0, v1) = range(&speeds, 1.0);
-        println!(
+        crate::outln!(
             "  after slip the pull shuttle reaches its stop in {t0:.1}-{t1:.1} us at {v0:.2}-{v1:.2} m/s (rapier dynamics)"
         );
     }
     let stuck = r.points.iter().filter(|p| p.in_contact && p.error.is_none() && p.v_pull.is_none()).count();
     if stuck > 0 {
-        println!(
+        crate::outln!(
             "  {stuck} clamp voltages: no slip up to pull_voltage_max (friction above what the pull array can give)"
         );
     }
 }
 
-fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Meter, base: &Path) -> CliResult {
-    ensure_dir(dir)?;
-    std::fs::write(dir.join("results.json"), serde_json::to_string_pretty(o)? + "\n")?;
-    let mut w = csv::Writer::from_path(dir.join("results.csv"))?;
+fn write_outputs(mut set: OutputSet, o: &RunOutput, scenario: &Scenario, meter: &mut Meter, base: &Path) -> CliResult {
+    set.add_bytes("results.json", (serde_json::to_string_pretty(o)? + "\n").as_bytes())?;
+    let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "v_clamp_v",
         "v_clamp_sq_v2",
@@ -214,7 +248,8 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
             p.error.clone().unwrap_or_default(),
         ])?;
     }
-    w.flush()?;
+    let csv_bytes = w.into_inner().map_err(|e| format!("results.csv: {e}"))?;
+    set.add_bytes("results.csv", &csv_bytes)?;
     let mut fig5 = fig5_chart(o.result, scenario, base)?;
     if let Some(c) = &o.measured {
         fig5.series.push(Series::markers(
@@ -222,8 +257,8 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
             c.points.iter().map(|p| (p.v_clamp * p.v_clamp, p.v_pull_measured * p.v_pull_measured)).collect(),
         ));
     }
-    crate::cmd::plot::write_chart(&fig5, &dir.join("fig5.svg"))?;
-    crate::cmd::plot::write_chart(&fig5, &dir.join("fig5.png"))?;
+    set.add_chart("fig5.svg", &fig5)?;
+    set.add_chart("fig5.png", &fig5)?;
     let mut fig7 = fig7_chart(o.result, scenario, meter, base)?;
     if let Some(c) = &o.measured {
         fig7.series.push(Series::markers(
@@ -231,9 +266,9 @@ fn write_outputs(dir: &Path, o: &RunOutput, scenario: &Scenario, meter: &mut Met
             c.points.iter().map(|p| (p.load_measured_n * 1e6, p.friction_measured_n * 1e6)).collect(),
         ));
     }
-    crate::cmd::plot::write_chart(&fig7, &dir.join("fig7.svg"))?;
-    crate::cmd::plot::write_chart(&fig7, &dir.join("fig7.png"))?;
-    Ok(())
+    set.add_chart("fig7.svg", &fig7)?;
+    set.add_chart("fig7.png", &fig7)?;
+    set.commit()
 }
 
 /// Fig. 5: V_pull^2 at slip against V_clamp^2.

@@ -7,7 +7,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use stiction_plot::{Chart, Series};
 use stiction_study::{Calibration, StudyConfig, StudyResult, run_study};
 
-use crate::output::{CliResult, ensure_dir, print_json};
+use crate::output::{CliResult, OutputSet, print_json};
 
 /// Run the friction meter on many realisations of a scenario: every parameter written with an
 /// uncertainty is drawn anew, and each sample gets its own rough surface. Reports the spread of
@@ -41,6 +41,9 @@ pub struct Args {
     /// Print one JSON object instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Write into an --out folder that holds files not from an earlier stiction run.
+    #[arg(long)]
+    pub force: bool,
     /// Override a scenario field (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
@@ -102,12 +105,16 @@ pub fn run(args: Args) -> CliResult {
         pool = pool.num_threads(t);
     }
     let pool = pool.build()?;
+    // Check the output folder before the work, so a refusal comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "study", args.force)?),
+        None => None,
+    };
     let result = pool.install(|| run_study(&args.scenario, &args.sets, &config, &progress))?;
     bar.finish_and_clear();
-    if let Some(dir) = &args.out {
-        ensure_dir(dir)?;
-        std::fs::write(dir.join("study.json"), serde_json::to_string_pretty(&result)? + "\n")?;
-        let mut w = csv::Writer::from_path(dir.join("samples.csv"))?;
+    if let Some(mut set) = outputs {
+        set.add_bytes("study.json", (serde_json::to_string_pretty(&result)? + "\n").as_bytes())?;
+        let mut w = csv::Writer::from_writer(Vec::new());
         let params: Vec<String> = result
             .samples
             .iter()
@@ -129,16 +136,18 @@ pub fn run(args: Args) -> CliResult {
             row.push(s.error.clone().unwrap_or_default());
             w.write_record(&row)?;
         }
-        w.flush()?;
+        let csv_bytes = w.into_inner().map_err(|e| format!("samples.csv: {e}"))?;
+        set.add_bytes("samples.csv", &csv_bytes)?;
         for (name, chart) in [("mu_cdf", cdf_chart(&result)), ("mu_vs_fa0", scatter_chart(&result))] {
-            crate::cmd::plot::write_chart(&chart, &dir.join(format!("{name}.svg")))?;
-            crate::cmd::plot::write_chart(&chart, &dir.join(format!("{name}.png")))?;
+            set.add_chart(&format!("{name}.svg"), &chart)?;
+            set.add_chart(&format!("{name}.png"), &chart)?;
         }
+        set.commit()?;
     }
     if args.json {
         return print_json(&result);
     }
-    println!(
+    crate::outln!(
         "Monte Carlo study of {} ({} samples{}, seed {})",
         args.scenario.display(),
         result.samples.len(),
@@ -146,7 +155,7 @@ pub fn run(args: Args) -> CliResult {
         args.seed
     );
     let show = |name: &str, s: &Option<stiction_study::Spread>, scale: f64, unit: &str| match s {
-        Some(s) => println!(
+        Some(s) => crate::outln!(
             "  {name:<28} mean {:.3}{unit} sd {:.3}{unit}  5-95 %: {:.3}..{:.3}{unit}  (n = {})",
             s.mean * scale,
             s.sd * scale,
@@ -154,20 +163,20 @@ pub fn run(args: Args) -> CliResult {
             s.p95 * scale,
             s.count
         ),
-        None => println!("  {name:<28} no sample gave a value"),
+        None => crate::outln!("  {name:<28} no sample gave a value"),
     };
     show("mu_e,a (paper 0.7 +/- 0.3)", &result.mu_apparent, 1.0, "");
     show("F_a0 (paper 2.0 +/- 1.3 uN)", &result.apparent_adhesion_force_n, 1e6, " uN");
     if result.without_fit > 0 {
-        println!(
+        crate::outln!(
             "  {} samples had fewer than two slip points with L > 0 (their clamp voltages hardly reached contact): no fit",
             result.without_fit
         );
     }
     if result.failed > 0 {
-        println!("  {} samples failed; their errors are in the JSON output and samples.csv", result.failed);
+        crate::outln!("  {} samples failed; their errors are in the JSON output and samples.csv", result.failed);
         for s in result.samples.iter().filter(|s| s.error.is_some()).take(3) {
-            println!("    sample {}: {}", s.index, s.error.as_deref().unwrap_or(""));
+            crate::outln!("    sample {}: {}", s.index, s.error.as_deref().unwrap_or(""));
         }
     }
     Ok(())

@@ -40,6 +40,14 @@ pub fn run(args: Args) -> CliResult {
     let spec = scenario.require_surface().map_err(|e| format!("{}: {e}", args.scenario.display()))?;
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
     let surface = spec.build(&base).map_err(|e| format!("{}: surface: {e}", args.scenario.display()))?;
+    if surface.is_empty() {
+        return Err(format!(
+            "{}: the surface has no summits (density x apparent area is too small), so it has no height or radius \
+             statistics; raise `surface.summit_density` or the apparent area",
+            args.scenario.display()
+        )
+        .into());
+    }
     if let Some(path) = &args.csv {
         surface.write_csv_file(path)?;
         eprintln!("wrote {} summits to {}", surface.len(), path.display());
