@@ -18,7 +18,7 @@ fn gca(length_m: f64) -> ArraySpec {
     s
 }
 
-fn benches(c: &mut Criterion) {
+fn transient_benches(c: &mut Criterion) {
     let model = TransientModel::from_spec(&gca(76.5e-6), TransientPhysics::default()).expect("model");
     c.bench_function("transient pull-in 76.5 um, 20 V (slowest measured, ~90 us)", |b| {
         b.iter(|| model.time_s(TransientEvent::PullIn, std::hint::black_box(20.0), 0.0).expect("runs"))
@@ -41,5 +41,5 @@ fn benches(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, benches);
+criterion_group!(benches, transient_benches);
 criterion_main!(benches);

@@ -281,6 +281,8 @@ pub struct TransientModel {
     pub mass_kg: f64,
     /// Stop travel `x_s` (m).
     pub stop_travel_m: f64,
+    /// Finite-aspect factor `beta(s/L)` of a finger face (1 when `finite_aspect` is off), computed once.
+    pub aspect_factor: f64,
     kick: Option<KickInputs>,
 }
 
@@ -328,7 +330,13 @@ impl TransientModel {
                 ));
             }
         };
-        Ok(Self { actuator, shuttle, physics, mass_kg, stop_travel_m, kick })
+        let p = &actuator.plates;
+        let aspect_factor = if physics.finite_aspect {
+            squeeze_film_aspect_factor(p.overlap_length_m.min(p.thickness_m) / p.overlap_length_m.max(p.thickness_m))
+        } else {
+            1.0
+        };
+        Ok(Self { actuator, shuttle, physics, mass_kg, stop_travel_m, aspect_factor, kick })
     }
 
     /// Squeeze-film damping of one `l x t` face at gap `h` (N s/m), with the switches.
@@ -344,8 +352,7 @@ impl TransientModel {
             self.shuttle.viscosity_pa_s
         };
         let (s, l) = (p.overlap_length_m.min(p.thickness_m), p.overlap_length_m.max(p.thickness_m));
-        let beta = if self.physics.finite_aspect { squeeze_film_aspect_factor(s / l) } else { 1.0 };
-        mu * l * s.powi(3) / h.powi(3) * beta
+        mu * l * s.powi(3) / h.powi(3) * self.aspect_factor
     }
 
     /// Damping coefficient `c(x)` at travel `x` (N s/m), see the module docs.
