@@ -271,7 +271,7 @@ pub fn step_pull_in(actuator: &GapClosingActuator, shuttle: &Shuttle) -> Result<
     // The dynamic threshold is found with rigid fingers: bending changes this GCA's force by
     // < 1e-4 (docs/actuators.md) but would cost a beam solve per force evaluation (seconds per
     // length instead of ~0.1 s). Release and the quasi-static pull-in keep the bending.
-    let mut rigid = actuator.clone();
+    let mut rigid = *actuator;
     rigid.bending = None;
     let dynamics = SlipDynamics::with_defaults(&rigid, shuttle.mass_kg, 0.0, 0.0)?;
     let law = |x: f64| shuttle.damping_n_s_per_m(&rigid, x);

@@ -230,14 +230,15 @@ pub fn run(args: Args) -> CliResult {
     if let Some(sw) = &summary.transient_switches {
         println!("\nTransient model ingredients (mean |rel. error| pull-in, release; mean signed)");
         let pct = |v: Option<f64>| v.map_or("     -".to_string(), |x| format!("{:6.1}", 100.0 * x));
+        let signed = |v: Option<f64>| v.map_or("     -".to_string(), |x| format!("{:+6.1}", 100.0 * x));
         for s in sw {
             println!(
                 "  {:<52} {} % {} %   ({} %, {} %){}",
                 s.switch,
                 pct(s.pull_in_time_mean_abs_rel_error),
                 pct(s.release_time_mean_abs_rel_error),
-                pct(s.pull_in_time_mean_rel_error),
-                pct(s.release_time_mean_rel_error),
+                signed(s.pull_in_time_mean_rel_error),
+                signed(s.release_time_mean_rel_error),
                 if s.unpredicted > 0 { format!("  {} points not predicted", s.unpredicted) } else { String::new() }
             );
         }
@@ -443,6 +444,7 @@ fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
         .filter(|p| p.finger_length_m == length_m)
         .map(|p| (p.measured_mean_s + p.measured_sd_s).max(p.predicted_s.unwrap_or(0.0)) * 1e6)
         .fold(0.0, f64::max);
-    chart.y_range = Some((0.0, 1.08 * top));
+    // Headroom for the legend box (top left).
+    chart.y_range = Some((0.0, 1.4 * top));
     chart
 }
