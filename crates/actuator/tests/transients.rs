@@ -206,3 +206,22 @@ fn switch_effects_of_the_transient_model() {
             < 0.01
     );
 }
+
+/// Consistency: the step pull-in voltage of the `step` protocol (crate::protocol, the scenario's
+/// protocol) uses the same mass and damping law as the transient model that fits the times.
+#[test]
+fn step_protocol_uses_the_transient_model() {
+    for l in [15.3e-6, 76.5e-6] {
+        let spec = at_length(&gca_spec(), l);
+        let m = TransientModel::from_spec(&spec, TransientPhysics::default()).unwrap();
+        let shuttle = Shuttle::from_spec(&spec).unwrap();
+        assert_eq!(m.mass_kg, shuttle.mass_kg);
+        for i in 0..=10 {
+            let x = m.stop_travel_m * f64::from(i) / 10.0;
+            let a = m.damping_n_s_per_m(x);
+            let b = shuttle.damping_n_s_per_m(&m.actuator, x);
+            assert!((a / b - 1.0).abs() < 1e-12, "x = {x:e}: {a:e} vs {b:e}");
+        }
+    }
+    assert_eq!(gca_spec().pull_in_protocol, PullInProtocol::Step);
+}
