@@ -371,13 +371,14 @@ fn write_transients(dir: &Path, r: &TransientReport) -> CliResult {
     ])?;
     for p in &r.points {
         w.write_record([
-            format!("{}", p.finger_length_m * 1e6),
+            // um, rounded to 1e-9 um so that 15.3e-6 m prints as 15.3, not 15.299999999999999.
+            format!("{}", (p.finger_length_m * 1e15).round() / 1e9),
             p.event.name().to_string(),
             format!("{}", p.voltage_v),
             format!("{}", p.external_force_n),
             format!("{}", p.repeats),
-            format!("{}", p.measured_mean_s * 1e6),
-            format!("{}", p.measured_sd_s * 1e6),
+            format!("{}", (p.measured_mean_s * 1e15).round() / 1e9),
+            format!("{}", (p.measured_sd_s * 1e15).round() / 1e9),
             p.predicted_s.map_or(String::new(), |t| format!("{}", t * 1e6)),
             p.rel_error.map_or(String::new(), |e| format!("{e}")),
         ])?;
