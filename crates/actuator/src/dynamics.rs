@@ -600,7 +600,7 @@ fn run(
         fe.is_finite().then(|| fe - pull.suspension.force_n(x_si))
     };
     let electrode = Some(pull.plates.front_gap_m);
-    integrate(&drive, damping_n_s_per_m, xc_si, electrode, voltage_v, scale, dynamics, record, decide_only)
+    integrate(&drive, damping_n_s_per_m, xc_si, electrode, 0.0, voltage_v, scale, dynamics, record, decide_only)
 }
 
 /// Simulates the same 1-DOF slip for an arbitrary driving force law `F(x)` (N, at travel `x` in m;
@@ -631,18 +631,20 @@ pub fn simulate_force_law(
     };
     let drive = |x: f64| -> Option<f64> { Some(force_n(x)).filter(|f| f.is_finite()) };
     let c = dynamics.damping_n_s_per_m;
-    integrate(&drive, &|_| c, stop_travel_m, None, 0.0, scale, dynamics, true, false)
+    integrate(&drive, &|_| c, stop_travel_m, None, 0.0, 0.0, scale, dynamics, true, false)
 }
 
 /// The time loop: rapier world in the scaled units of `scale`, driving force `drive_si(x)` (N, None
 /// for a collapse), damping coefficient `damping_si(x)` (N s/m), stop at `xc_si` (m), electrode
-/// (where the force diverges) at `electrode_si` (m).
+/// (where the force diverges) at `electrode_si` (m), from `x = 0` with the velocity
+/// `initial_velocity_si` (m/s, towards the stop when positive).
 #[allow(clippy::too_many_arguments)]
-fn integrate(
+pub(crate) fn integrate(
     drive_si: &dyn Fn(f64) -> Option<f64>,
     damping_si: &dyn Fn(f64) -> f64,
     xc_si: f64,
     electrode_si: Option<f64>,
+    initial_velocity_si: f64,
     voltage_v: f64,
     scale: SimulationScale,
     dynamics: &SlipDynamics,
@@ -664,6 +666,10 @@ fn integrate(
     let damped = damping_rate > 0.0 || rate_at(xc)? > 0.0;
     let friction = dynamics.kinetic_friction_n / f0;
     let mut world = World::new(dt, damping_rate, xc);
+    if initial_velocity_si != 0.0 {
+        use rapier3d_f64::math::Vector;
+        world.world.bodies[world.shuttle].set_linvel(Vector::new(initial_velocity_si / v0, 0.0, 0.0), true);
+    }
     // Net driving force (scaled) at scaled travel x, without damping and friction.
     let drive = |x: f64| drive_si(x * l0).map(|f| f / f0);
 

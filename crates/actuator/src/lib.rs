@@ -10,6 +10,7 @@
 //! * [`dynamics`]: the slip event in time (rapier rigid body), dynamic pull-in for a step voltage.
 //! * [`protocol`]: pull-in protocol (quasi-static ramp or voltage step), shuttle mass and air
 //!   damping from geometry.
+//! * [`transients`]: pull-in and release times point by point against measured times.
 //!
 //! SI units and `f64` everywhere.
 
@@ -24,6 +25,7 @@ pub mod plates;
 pub mod protocol;
 pub mod spec;
 pub mod spring;
+pub mod transients;
 pub mod validate;
 
 pub use actuator::{Equilibrium, GapClosingActuator, Hysteresis, PullIn, Sweep, SweepPoint};
@@ -41,6 +43,11 @@ pub use plates::{BackElectrode, BackPotential, Fringing, PlateArray, VACUUM_PERM
 pub use protocol::{MassBreakdown, PullInProtocol, Shuttle, ShuttleSpec, StepPullIn, step_pull_in};
 pub use spec::{ArraySpec, BeamsSpec, CombSpec, FingerBendingSpec, SpringSpec, StopSpec, SubstrateSpec};
 pub use spring::{BeamKind, BeamSuspension, Suspension};
+pub use transients::{
+    MeasuredTransient, ReleaseKick, TransientComparison, TransientErrors, TransientEvent, TransientModel,
+    TransientPhysics, TransientReport, TransientSwitchEffect, compare_transients, parse_transients, read_transients,
+    transient_switch_effects,
+};
 pub use validate::{
     MeasuredPoint, SwitchEffect, ValidationPoint, ValidationReport, fit_stop_contact_standoff, parse_measurements,
     read_measurements, switch_effects, validate,

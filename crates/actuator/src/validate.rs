@@ -192,8 +192,11 @@ pub fn fit_stop_contact_standoff(
         .as_ref()
         .ok_or_else(|| ActuatorError::NotAvailable("fitting the stop standoff needs `stop`".into()))?;
     let upper = (1e-6f64).min(0.5 * (stop.travel + 2.0 * spec.undercut));
+    // Release does not depend on the pull-in protocol: the search runs quasi-static (fast).
+    let mut quasi = spec.clone();
+    quasi.pull_in_protocol = PullInProtocol::QuasiStatic;
     let cost = |d: f64| -> Result<f64, ActuatorError> {
-        let mut s = spec.clone();
+        let mut s = quasi.clone();
         if let Some(st) = s.stop.as_mut() {
             st.contact_standoff = d;
         }
@@ -239,7 +242,8 @@ pub struct SwitchEffect {
 /// the substrate, when the spec has a `comb`), plane-stress beams (when a Poisson ratio is given),
 /// no undercut, the other pull-in protocol (when the spec has a `shuttle`), finger bending on/off (when
 /// the spec has bending inputs), no stop contact standoff, no stop (release then not defined and
-/// left out), plus the rigid parallel-plate baseline (no fringing, no bending, no standoff).
+/// left out), plus the rigid parallel-plate baseline (quasi-static, no fringing, no bending, no
+/// standoff: the data README's orientation).
 pub fn switch_effects(spec: &ArraySpec, data: &[MeasuredPoint]) -> Result<Vec<SwitchEffect>, ActuatorError> {
     let mut variants: Vec<(String, ArraySpec)> = vec![("as specified".into(), spec.clone())];
     let mut s = spec.clone();
@@ -308,6 +312,7 @@ pub fn switch_effects(spec: &ArraySpec, data: &[MeasuredPoint]) -> Result<Vec<Sw
         variants.push(("no stop contact standoff".into(), s));
     }
     let mut base = spec.clone();
+    base.pull_in_protocol = PullInProtocol::QuasiStatic;
     base.fringing = crate::plates::Fringing::Off;
     if let Some(b) = base.finger_bending.as_mut() {
         b.enabled = false;

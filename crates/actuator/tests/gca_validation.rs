@@ -92,8 +92,13 @@ fn switch_effects_show_which_physics_matters() {
     assert!(get("fringing off").pull_in_mean_rel_error > get("as specified").pull_in_mean_rel_error);
     // The stop standoff is what closes the release gap.
     assert!(get("no stop contact standoff").release_mean_abs_rel_error > 0.10);
-    // A voltage step (dynamic pull-in) needs less voltage than a ramp; release is unchanged.
-    let step = get("pull-in protocol step (dynamic, squeeze-film damping)");
-    assert!(step.pull_in_mean_rel_error < get("as specified").pull_in_mean_rel_error);
-    assert_eq!(step.release_mean_abs_rel_error, get("as specified").release_mean_abs_rel_error);
+    // The scenario's protocol is the step (the measured times are step responses, docs/actuators.md):
+    // a slow ramp (quasi-static) needs more voltage than a step; release is unchanged.
+    let ramp = get("pull-in protocol quasi_static");
+    assert!(ramp.pull_in_mean_rel_error > get("as specified").pull_in_mean_rel_error);
+    assert_eq!(ramp.release_mean_abs_rel_error, get("as specified").release_mean_abs_rel_error);
+    // Evidence for the step default: the same dynamic model that fits the measured times gives
+    // the pull-in voltages within 5 % under a step, against about 9 % for the quasi-static ramp.
+    assert!(get("as specified").pull_in_mean_abs_rel_error < 0.05);
+    assert!(ramp.pull_in_mean_abs_rel_error > 0.085);
 }

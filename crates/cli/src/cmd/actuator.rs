@@ -3,7 +3,10 @@
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
-use stiction_actuator::{ArraySpec, GapClosingActuator, Sweep, read_measurements, switch_effects, validate};
+use stiction_actuator::{
+    ArraySpec, GapClosingActuator, Sweep, TransientEvent, TransientPhysics, TransientReport, compare_transients,
+    read_measurements, read_transients, switch_effects, transient_switch_effects, validate,
+};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 use stiction_units::{Constraint, Dimension};
@@ -29,10 +32,15 @@ pub struct Args {
     pub sweep_steps: u32,
     /// Compare predicted pull-in and release with a measured CSV
     /// (finger_length_drawn_um, pull_in_v_1.., release_v), one prediction per finger length.
-    #[arg(long, value_name = "MEASURED.csv")]
+    #[arg(long, value_name = "MEASURED.csv", conflicts_with = "transients", group = "measured")]
     pub validate: Option<PathBuf>,
-    /// With --validate: also report the error with each physics switch toggled.
-    #[arg(long, requires = "validate")]
+    /// Simulate every measured pull-in and release time of a CSV (finger_length_um, event, voltage_v,
+    /// time_us, optional repeat and external_force_n) and compare: pull-in is a voltage step from rest
+    /// until the stop, release is from the stop with the voltage switched off until the open position.
+    #[arg(long, value_name = "MEASURED.csv", group = "measured")]
+    pub transients: Option<PathBuf>,
+    /// With --validate or --transients: also report the error with each physics switch toggled.
+    #[arg(long, requires = "measured")]
     pub switches: bool,
     /// Print one JSON object instead of a table.
     #[arg(long)]
@@ -68,6 +76,12 @@ struct Summary {
     validation: Option<stiction_actuator::ValidationReport>,
     #[serde(skip_serializing_if = "Option::is_none")]
     switches: Option<Vec<stiction_actuator::SwitchEffect>>,
+    /// With --transients: `points`, `pull_in_time_mean_abs_rel_error`, `release_time_mean_abs_rel_error`,
+    /// `errors` (per event and finger length) at the top level.
+    #[serde(flatten)]
+    transients: Option<TransientReport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    transient_switches: Option<Vec<stiction_actuator::TransientSwitchEffect>>,
 }
 
 /// Loads a scenario and picks the named array (or the only one).
@@ -113,6 +127,8 @@ pub fn run(args: Args) -> CliResult {
         sweep: None,
         validation: None,
         switches: None,
+        transients: None,
+        transient_switches: None,
     };
     if args.sweep || args.out.is_some() {
         let vmax = args.sweep_max.unwrap_or(1.3 * pull_in.voltage_v);
@@ -123,6 +139,15 @@ pub fn run(args: Args) -> CliResult {
         summary.validation = Some(validate(&spec, &data)?);
         if args.switches {
             summary.switches = Some(switch_effects(&spec, &data)?);
+        }
+    }
+    if let Some(csv) = &args.transients {
+        let data = read_transients(csv)?;
+        let physics = TransientPhysics::default();
+        summary.transients =
+            Some(compare_transients(&spec, physics, &data).map_err(|e| format!("{}: {e}", csv.display()))?);
+        if args.switches {
+            summary.transient_switches = Some(transient_switch_effects(&spec, physics, &data)?);
         }
     }
     if let Some(dir) = &args.out {
@@ -137,6 +162,9 @@ pub fn run(args: Args) -> CliResult {
             let chart = validation_chart(report);
             set.add_chart("validation.svg", &chart)?;
             set.add_chart("validation.png", &chart)?;
+        }
+        if let Some(report) = &summary.transients {
+            write_transients(&mut set, report)?;
         }
         set.commit()?;
         eprintln!("wrote {}", dir.display());
@@ -202,6 +230,25 @@ pub fn run(args: Args) -> CliResult {
             100.0 * r.pull_in_mean_abs_rel_error,
             100.0 * r.release_mean_abs_rel_error
         );
+    }
+    if let Some(r) = &summary.transients {
+        print_transients(args.transients.as_deref(), r);
+    }
+    if let Some(sw) = &summary.transient_switches {
+        println!("\nTransient model ingredients (mean |rel. error| pull-in, release; mean signed)");
+        let pct = |v: Option<f64>| v.map_or("     -".to_string(), |x| format!("{:6.1}", 100.0 * x));
+        let signed = |v: Option<f64>| v.map_or("     -".to_string(), |x| format!("{:+6.1}", 100.0 * x));
+        for s in sw {
+            println!(
+                "  {:<52} {} % {} %   ({} %, {} %){}",
+                s.switch,
+                pct(s.pull_in_time_mean_abs_rel_error),
+                pct(s.release_time_mean_abs_rel_error),
+                signed(s.pull_in_time_mean_rel_error),
+                signed(s.release_time_mean_rel_error),
+                if s.unpredicted > 0 { format!("  {} points not predicted", s.unpredicted) } else { String::new() }
+            );
+        }
     }
     if let Some(sw) = &summary.switches {
         crate::outln!("\nPhysics switches (mean |rel. error| pull-in, release; mean signed)");
@@ -275,4 +322,137 @@ pub fn hysteresis_chart(
     let model = spec.to_model()?;
     let vmax = 1.3 * model.pull_in()?.voltage_v;
     Ok(sweep_chart(&name, &model.sweep(vmax, 300)?, &model))
+}
+
+fn print_transients(path: Option<&Path>, r: &TransientReport) {
+    println!(
+        "\nPull-in and release times against {} ({} points)",
+        path.map_or(String::new(), |p| p.display().to_string()),
+        r.points.len()
+    );
+    println!(
+        "  {:>8}  {:<8} {:>7}  {:>10} {:>8}  {:>10}  {:>7}",
+        "L_f (um)", "event", "V", "meas (us)", "SD (us)", "model (us)", "err"
+    );
+    for p in &r.points {
+        println!(
+            "  {:>8.2}  {:<8} {:>7.1}  {:>10.2} {:>8.2}  {:>10}  {:>7}{}",
+            p.finger_length_m * 1e6,
+            p.event.name(),
+            p.voltage_v,
+            p.measured_mean_s * 1e6,
+            p.measured_sd_s * 1e6,
+            p.predicted_s.map_or("-".to_string(), |t| format!("{:.2}", t * 1e6)),
+            p.rel_error.map_or("-".to_string(), |e| format!("{:+.1}%", 100.0 * e)),
+            p.no_prediction.as_ref().map_or(String::new(), |why| format!("  ({why})"))
+        );
+    }
+    println!("\n  {:<8} {:>8}  {:>10} {:>10} {:>10}", "event", "L_f (um)", "mean|err|", "mean err", "RMSE (us)");
+    for e in &r.errors {
+        println!(
+            "  {:<8} {:>8}  {:>9.1}% {:>9.1}% {:>10.2}{}",
+            e.event.name(),
+            e.finger_length_m.map_or("all".to_string(), |l| format!("{:.2}", l * 1e6)),
+            100.0 * e.mean_abs_rel_error,
+            100.0 * e.mean_rel_error,
+            e.rmse_s * 1e6,
+            if e.unpredicted > 0 { format!("  ({} not predicted)", e.unpredicted) } else { String::new() }
+        );
+    }
+}
+
+/// `transients.csv` (every point) and one figure per finger length (`transients_L<um>.svg/.png`):
+/// measured mean with the SD of the repeats as error bars, and the model, time against voltage.
+fn write_transients(set: &mut OutputSet, r: &TransientReport) -> CliResult {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record([
+        "finger_length_um",
+        "event",
+        "voltage_v",
+        "external_force_n",
+        "repeats",
+        "measured_mean_us",
+        "measured_sd_us",
+        "predicted_us",
+        "rel_error",
+    ])?;
+    for p in &r.points {
+        w.write_record([
+            // um, rounded to 1e-9 um so that 15.3e-6 m prints as 15.3, not 15.299999999999999.
+            format!("{}", (p.finger_length_m * 1e15).round() / 1e9),
+            p.event.name().to_string(),
+            format!("{}", p.voltage_v),
+            format!("{}", p.external_force_n),
+            format!("{}", p.repeats),
+            format!("{}", (p.measured_mean_s * 1e15).round() / 1e9),
+            format!("{}", (p.measured_sd_s * 1e15).round() / 1e9),
+            p.predicted_s.map_or(String::new(), |t| format!("{}", t * 1e6)),
+            p.rel_error.map_or(String::new(), |e| format!("{e}")),
+        ])?;
+    }
+    set.add_bytes("transients.csv", &w.into_inner()?)?;
+    let mut lengths: Vec<f64> = r.points.iter().map(|p| p.finger_length_m).collect();
+    lengths.sort_by(f64::total_cmp);
+    lengths.dedup();
+    for l in lengths {
+        let chart = transient_chart(r, l);
+        let stem = format!("transients_L{:.2}um", l * 1e6);
+        set.add_chart(&format!("{stem}.svg"), &chart)?;
+        set.add_chart(&format!("{stem}.png"), &chart)?;
+    }
+    Ok(())
+}
+
+/// Time against voltage at one finger length: measured (mean, SD of repeats) and model.
+fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
+    let err = |event: TransientEvent| {
+        r.errors
+            .iter()
+            .find(|e| e.event == event && e.finger_length_m == Some(length_m))
+            .map_or(String::new(), |e| format!("{:.1} %", 100.0 * e.mean_abs_rel_error))
+    };
+    let mut chart = Chart::new(
+        format!(
+            "GCA, {:.2} um fingers: pull-in and release times (mean |err| {} / {})",
+            length_m * 1e6,
+            err(TransientEvent::PullIn),
+            err(TransientEvent::Release)
+        ),
+        "voltage (V): pull-in step / release hold",
+        "time (us)",
+    );
+    for (event, label) in [(TransientEvent::PullIn, "pull-in"), (TransientEvent::Release, "release")] {
+        let pts: Vec<&stiction_actuator::TransientComparison> =
+            r.points.iter().filter(|p| p.event == event && p.finger_length_m == length_m).collect();
+        if pts.is_empty() {
+            continue;
+        }
+        chart = chart
+            .with(
+                Series::markers(
+                    format!("{label}, measured (mean, SD of repeats)"),
+                    pts.iter().map(|p| (p.voltage_v, p.measured_mean_s * 1e6)).collect(),
+                )
+                .with_y_err(pts.iter().map(|p| p.measured_sd_s * 1e6).collect()),
+            )
+            .with(match event {
+                TransientEvent::PullIn => Series::line(
+                    format!("{label}, model"),
+                    pts.iter().filter_map(|p| p.predicted_s.map(|t| (p.voltage_v, t * 1e6))).collect(),
+                ),
+                TransientEvent::Release => Series::dashed(
+                    format!("{label}, model"),
+                    pts.iter().filter_map(|p| p.predicted_s.map(|t| (p.voltage_v, t * 1e6))).collect(),
+                ),
+            });
+    }
+    let top = r
+        .points
+        .iter()
+        .filter(|p| p.finger_length_m == length_m)
+        .map(|p| (p.measured_mean_s + p.measured_sd_s).max(p.predicted_s.unwrap_or(0.0)) * 1e6)
+        .fold(0.0, f64::max);
+    // Headroom for the legend box (top left).
+    chart.y_range = Some((0.0, 1.4 * top));
+    chart
 }
