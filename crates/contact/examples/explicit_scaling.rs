@@ -20,13 +20,21 @@ fn peak_rss_mb() -> Option<f64> {
     Some(kb / 1024.0)
 }
 
+/// CPU time of this thread in s (`/proc/thread-self/schedstat`, ns on the CPU; robust against
+/// other processes sharing the machine), None where unavailable.
+fn thread_cpu_s() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let csv = args.iter().position(|a| a == "--csv").and_then(|k| args.get(k + 1)).map(std::path::PathBuf::from);
     let sizes: Vec<f64> = args.iter().filter_map(|a| a.parse().ok()).collect();
     let sizes = if sizes.is_empty() { vec![1e4, 1e5, 1e6] } else { sizes };
     let points = 100;
-    let header = "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb";
+    let header = "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb,cpu_s_per_point";
     println!("{header}");
     let mut out = csv.map(|p| {
         let new = !p.exists();
@@ -57,15 +65,18 @@ fn main() {
         let loads: Vec<f64> =
             (0..points).map(|k| po.load_n + (l_max - po.load_n) * k as f64 / (points - 1) as f64).collect();
         let t = Instant::now();
+        let cpu0 = thread_cpu_s();
         let sweep = solver.sweep(&loads, Branch::Loading).expect("sweep");
+        let cpu_per = cpu0.and_then(|c0| Some((thread_cpu_s()? - c0) / points as f64));
         let its: usize = sweep.points.iter().map(|p| p.iterations).sum();
         let its = its as f64 / points as f64;
         let per = t.elapsed().as_secs_f64() / points as f64;
         let last = sweep.points.last().map_or(0, |e| e.contacts);
         let line = format!(
-            "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{}",
+            "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{},{}",
             solver.bytes_per_summit(),
-            peak_rss_mb().map_or("n/a".into(), |v| format!("{v:.0}"))
+            peak_rss_mb().map_or("n/a".into(), |v| format!("{v:.0}")),
+            cpu_per.map_or("n/a".into(), |v| format!("{v:.3e}"))
         );
         println!("{line}");
         if let Some(f) = out.as_mut() {
