@@ -2,6 +2,9 @@
 //! the scaled GW integrals G_n(h) = F_n(h)/phi(h) for n = 1/2, 3/2 about the centres
 //! c_i = -10 + (i + 1/2)/4, i = 0..87 (see the script for the derivation). Do not edit.
 
+// The 20 significant digits printed by mpmath (more than f64 holds, so that it rounds correctly).
+#![allow(clippy::excessive_precision)]
+
 /// First centre minus half a step, and the step of the centres.
 pub(crate) const H_LO: f64 = -10.0;
 pub(crate) const STEP: f64 = 0.25;
