@@ -422,7 +422,7 @@ fn solve_decreasing_below(g: impl Fn(f64) -> f64, upper: f64, what: &'static str
     while g(lo) < 0.0 {
         step *= 2.0;
         lo -= step;
-        if lo < -1e8 {
+        if lo.is_nan() || lo <= -1e300 {
             return Err(ContactError::NoConvergence { what, iterations: 0 });
         }
     }
@@ -433,9 +433,37 @@ fn solve_decreasing_below(g: impl Fn(f64) -> f64, upper: f64, what: &'static str
 // GW and GW+DMT in normalised form
 // ---------------------------------------------------------------------------------------------
 
+/// `ln(F_n(h)/F_m(h)) = ln(G_n(h)/G_m(h))` without cancellation: from `ln F` for `h < 0` (where
+/// `ln G` carries `h^2/2`), from `ln G` for `h >= 0` (where `ln F` carries `-h^2/2`).
+fn ln_ratio(n: f64, m: f64, h: f64) -> f64 {
+    if h < 0.0 { ln_f_n_neg(n, h) - ln_f_n_neg(m, h) } else { ln_g_n(n, h) - ln_g_n(m, h) }
+}
+
 /// `ln(G_3/2(h)/G_0(h))`, decreasing in `h`.
 fn ln_ratio_32_0(h: f64) -> f64 {
-    ln_g_n(1.5, h) - ln_g_n(0.0, h)
+    ln_ratio(1.5, 0.0, h)
+}
+
+/// `(sign, ln |L*(h)|)` with `L* = F_3/2 - c F_0` (eq. 8, `c = 2 pi/theta`), without the
+/// cancellation of the difference near zero load (for small theta both parts are ~1e11 there):
+/// `L* = c F_0 expm1(D)`, `D = ln(F_3/2/F_0) - ln c`, with `ln(F_3/2/F_0)` from [`ln_ratio`]
+/// (absolute error ~1e-14), so the root `L*(h) = target` is found to ~1e-14 in `h` for any load.
+fn ln_l_star(c: f64, h: f64) -> (f64, f64) {
+    if c == 0.0 {
+        return (1.0, ln_f_n_unchecked(1.5, h));
+    }
+    let d = ln_ratio_32_0(h) - c.ln();
+    if d == 0.0 {
+        return (0.0, f64::NEG_INFINITY);
+    }
+    // ln |expm1(d)|: for d > 0, d + ln(1 - e^-d) (no overflow for large d)
+    let ln_em1 = if d > 0.0 { d + (-(-d).exp_m1()).ln() } else { (-d.exp_m1()).ln() };
+    (d.signum(), c.ln() + ln_f_n_unchecked(0.0, h) + ln_em1)
+}
+
+/// `theta` formatted for messages.
+fn fmt_theta(theta: Option<f64>) -> String {
+    theta.map_or("inf (no adhesion)".into(), |t| format!("{t:e}"))
 }
 
 /// The pull-off (minimum load) point of GW+DMT for a finite adhesion parameter.
@@ -529,13 +557,32 @@ impl GwModel {
         };
         check_positive("theta", t, "a finite adhesion parameter > 0, or none for infinity")?;
         let c = 2.0 * PI / t;
+        let fail = |l_star: &str, e: ContactError| ContactError::GwSolve {
+            theta: fmt_theta(theta),
+            l_star: l_star.into(),
+            reason: format!("{e} (the normalised separation h could not be bracketed or solved in [-1e300, 1e300])"),
+        };
+        if !c.is_finite() || !(2.0 * c / 3.0).ln().is_finite() {
+            return Err(ContactError::GwSolve {
+                theta: fmt_theta(theta),
+                l_star: "pull-off".into(),
+                reason: "2 pi/theta is not a finite positive number in f64".into(),
+            });
+        }
         // pull-off: G_1/2(h) = 2c/3 (ln G_1/2 decreasing in h)
         let target = (2.0 * c / 3.0).ln();
         let g = |h: f64| ln_g_n(0.5, h) - target;
-        let h_m = bracket_decreasing(&g, "GW+DMT pull-off separation")?;
+        let h_m = bracket_decreasing(&g, "GW+DMT pull-off separation").map_err(|e| fail("pull-off", e))?;
         // zero load: ln(G_3/2/G_0) = ln c, below h_m
         let lc = c.ln();
-        let h0 = solve_decreasing_below(|h| ln_ratio_32_0(h) - lc, h_m, "GW+DMT zero-load separation")?;
+        // For large theta (>~ 1e10) the two separations agree to rounding (they differ by a
+        // relative O(1/h^2) with h ~ 1e7): then the zero-load separation is the pull-off one.
+        let h0 = if ln_ratio_32_0(h_m) - lc >= 0.0 {
+            h_m
+        } else {
+            solve_decreasing_below(|h| ln_ratio_32_0(h) - lc, h_m, "GW+DMT zero-load separation")
+                .map_err(|e| fail("0 (zero load)", e))?
+        };
         let (ln_abs, l_star) = if h_m < 0.0 {
             let v = f_n_neg(0.0, h_m) * c - f_n_neg(1.5, h_m);
             (v.ln(), -v)
@@ -573,6 +620,13 @@ impl GwModel {
         self.zero_load_h
     }
 
+    /// `(sign, ln |L*|)` of the normalised load at separation `h` (eq. 5c, 8), in log space (finite
+    /// where `L*` itself underflows, e.g. near the pull-off of a large theta); sign 0 at `L* = 0`.
+    pub fn ln_abs_l_star_at_h(&self, h: f64) -> Result<(f64, f64), ContactError> {
+        check_finite("h", h, "a finite normalised separation")?;
+        Ok(ln_l_star(self.theta.map_or(0.0, |t| 2.0 * PI / t), h))
+    }
+
     /// The state at normalised separation `h` (any `h`, also on the unstable branch).
     pub fn state_at_h(&self, h: f64) -> Result<GwState, ContactError> {
         check_finite("h", h, "a finite normalised separation")?;
@@ -580,7 +634,7 @@ impl GwModel {
         let ln_n = ln_f_n_unchecked(0.0, h);
         let ln_f1 = ln_f_n_unchecked(1.0, h);
         let ln_f32 = ln_f_n_unchecked(1.5, h);
-        let (g0, g1, g32) = (ln_g_n(0.0, h), ln_g_n(1.0, h), ln_g_n(1.5, h));
+        let (g0, g32) = (ln_g_n(0.0, h), ln_g_n(1.5, h));
         let l_star =
             if h < 0.0 { f_n_neg(1.5, h) - c * f_n_neg(0.0, h) } else { normal_pdf(h) * (g32.exp() - c * g0.exp()) };
         let ln_a = PI.ln() + ln_f1;
@@ -594,8 +648,8 @@ impl GwModel {
             log10_a_star: ln_a / std::f64::consts::LN_10,
             elastic_l_star: ln_f32.exp(),
             adhesive_l_star: c * ln_n.exp(),
-            elastic_pressure_star: (g32 - g1).exp() / PI,
-            applied_pressure_star: ((g32 - g1).exp() - c * (g0 - g1).exp()) / PI,
+            elastic_pressure_star: ln_ratio(1.5, 1.0, h).exp() / PI,
+            applied_pressure_star: (ln_ratio(1.5, 1.0, h).exp() - c * ln_ratio(0.0, 1.0, h).exp()) / PI,
             pull_off: self.pull_off,
         })
     }
@@ -603,8 +657,27 @@ impl GwModel {
     /// Separation `h` on the stable branch (most contact) for normalised load `l_star` (eq. 5c / 8).
     /// Without adhesion `l_star` must be > 0. Below the pull-off load: `Err(NoEquilibrium)`
     /// (for large theta the pull-off `|L*|` is below the f64 range, so every negative load is).
+    /// A failed bracket or root search is reported as [`ContactError::GwSolve`], naming theta, L*
+    /// and the reason; a load exactly at the pull-off value solves to the pull-off separation.
     pub fn solve_h(&self, l_star: f64) -> Result<f64, ContactError> {
         check_finite("l_star", l_star, "a finite normalised load L*")?;
+        self.solve_h_inner(l_star).map_err(|e| match e {
+            ContactError::NoConvergence { what, iterations } => ContactError::GwSolve {
+                theta: fmt_theta(self.theta),
+                l_star: format!("{l_star:e}"),
+                reason: if iterations == 0 {
+                    format!(
+                        "{what}: no bracket of the separation h in [-1e300, 1e300] (L*(h) is not representable there)"
+                    )
+                } else {
+                    format!("{what}: Brent's method did not converge in {iterations} iterations")
+                },
+            },
+            other => other,
+        })
+    }
+
+    fn solve_h_inner(&self, l_star: f64) -> Result<f64, ContactError> {
         let Some(theta) = self.theta else {
             if l_star <= 0.0 {
                 return Err(ContactError::InvalidParameter {
@@ -627,18 +700,22 @@ impl GwModel {
             let target = l_star.ln();
             // ln L*(h) for h < h0 (where L* > 0); beyond, a huge negative stand-in for -inf
             let ln_l = |h: f64| -> f64 {
-                let (v, ln_scale) = if h < 0.0 {
-                    (f_n_neg(1.5, h) - c * f_n_neg(0.0, h), 0.0)
-                } else {
-                    (g_n_nonneg(1.5, h) - c * g_n_nonneg(0.0, h), ln_normal_pdf(h))
-                };
-                if v > 0.0 { ln_scale + v.ln() } else { -1e300 }
+                let (sign, ln_abs) = ln_l_star(c, h);
+                if sign > 0.0 { ln_abs } else { -1e300 }
             };
-            return solve_decreasing_below(|h| ln_l(h) - target, h0, "GW+DMT separation from load");
+            // h0 is the zero-load root to rounding: step above it until L* < target
+            let upper = step_until(h0, 1.0, |h| ln_l(h) < target);
+            return solve_decreasing_below(|h| ln_l(h) - target, upper, "GW+DMT separation from load");
         }
         // L*_min <= L* < 0: h in (h0, h_m], -L* increasing there
+        if l_star == po.l_star {
+            // exactly at the pull-off value (not below it)
+            return Ok(po.h);
+        }
         let target = (-l_star).ln();
-        if target > po.log10_abs_l_star * std::f64::consts::LN_10 {
+        let ln_pull = po.log10_abs_l_star * std::f64::consts::LN_10;
+        let below = if po.l_star != 0.0 { l_star < po.l_star } else { target > ln_pull + 1e-12 * ln_pull.abs() };
+        if below {
             let pull = if po.l_star != 0.0 {
                 format!("L* = {:e}", po.l_star)
             } else {
@@ -648,15 +725,13 @@ impl GwModel {
         }
         // ln(-L*(h)) for h > h0 (where L* < 0); below, a huge negative stand-in for -inf
         let ln_neg = |h: f64| -> f64 {
-            let (v, ln_scale) = if h < 0.0 {
-                (c * f_n_neg(0.0, h) - f_n_neg(1.5, h), 0.0)
-            } else {
-                (c * g_n_nonneg(0.0, h) - g_n_nonneg(1.5, h), ln_normal_pdf(h))
-            };
-            if v > 0.0 { ln_scale + v.ln() } else { -1e300 }
+            let (sign, ln_abs) = ln_l_star(c, h);
+            if sign < 0.0 { ln_abs } else { -1e300 }
         };
-        // increasing in h on (h0, h_m]: solve ln(-L*) - target = 0
-        brent(|h| ln_neg(h) - target, h0, po.h, "GW+DMT separation from tensile load").or_else(|e| {
+        // increasing in h on (h0, h_m]: solve ln(-L*) - target = 0 (h0 is the zero-load root to
+        // rounding: step below it until -L* < target)
+        let lower = step_until(h0, -1.0, |h| ln_neg(h) < target);
+        brent(|h| ln_neg(h) - target, lower, po.h, "GW+DMT separation from tensile load").or_else(|e| {
             // target equal to the pull-off within rounding
             if (ln_neg(po.h) - target).abs() <= 1e-12 * target.abs().max(1.0) { Ok(po.h) } else { Err(e) }
         })
@@ -671,6 +746,21 @@ impl GwModel {
         }
         Ok(st)
     }
+}
+
+/// From `h`, steps of `dir * 1e-12 max(|h|, 1)` doubling (at most 60) until `ok(h)`; the last
+/// point tried otherwise (the following bracket check then reports the failure).
+fn step_until(h: f64, dir: f64, ok: impl Fn(f64) -> bool) -> f64 {
+    let mut step = 1e-12 * h.abs().max(1.0);
+    let mut x = h;
+    for _ in 0..60 {
+        if ok(x) {
+            return x;
+        }
+        x = h + dir * step;
+        step *= 2.0;
+    }
+    x
 }
 
 /// Root of a decreasing function of `h` on the whole line (bracket found by doubling steps
@@ -695,7 +785,7 @@ fn bracket_decreasing(g: &dyn Fn(f64) -> f64, what: &'static str) -> Result<f64,
         }
         prev = next;
         step *= 2.0;
-        if step > 1e9 {
+        if step > 1e300 {
             return Err(ContactError::NoConvergence { what, iterations: 0 });
         }
     }

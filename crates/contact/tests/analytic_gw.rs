@@ -583,3 +583,63 @@ fn far_negative_h_is_finite_and_continuous() {
         assert!((far - n * 2e13f64.ln()).abs() <= 1e-12 * far.abs(), "n = {n}: {far}");
     }
 }
+
+/// Issue 9, item 9: theta from 1e-10 to 1e12 and L* from pull-off to 1e20 either solve, with the
+/// load reproduced to 1e-10 relative (in log space where L* underflows), or fail with a message
+/// naming theta, L* and why. A load exactly at the pull-off value is not below it.
+#[test]
+fn gw_extremes_solve_or_name_theta_and_load() {
+    let thetas = [1e-10, 1e-8, 1e-6, 1e-3, 1.0, 15.0, 1e3, 1e6, 1e9, 1e12];
+    for &theta in &thetas {
+        let m = GwModel::new(Some(theta)).unwrap_or_else(|e| panic!("theta = {theta:e}: {e}"));
+        let po = m.pull_off().unwrap();
+        let mut loads = vec![po.l_star, 0.0, 1e-20, 1e-3, 1.0, 1e3, 1e10, 1e20];
+        if po.l_star < 0.0 {
+            loads.push(0.5 * po.l_star);
+        }
+        for &l in &loads {
+            match m.solve_h(l) {
+                Ok(h) => {
+                    // the root lies within h +- 1e-10 max(|h|, 1): L* - l changes sign across it
+                    // (L* decreases in h on the stable branch; L*(h) in log space with its sign)
+                    let dh = 1e-10 * h.abs().max(1.0);
+                    let side = |h: f64| {
+                        let (sign, ln_abs) = m.ln_abs_l_star_at_h(h).unwrap();
+                        if l == 0.0 {
+                            sign
+                        } else if sign != l.signum() {
+                            sign
+                        } else {
+                            l.signum() * (ln_abs - l.abs().ln()).signum()
+                        }
+                    };
+                    let (lo, hi) = (side(h - dh), side(h + dh));
+                    let at_pull_off = l == po.l_star;
+                    assert!(
+                        at_pull_off || (lo >= 0.0 && hi <= 0.0),
+                        "theta {theta:e}, L* = {l:e}: h = {h} is not within 1e-10 of the root ({lo}, {hi})"
+                    );
+                }
+                Err(e) => {
+                    let msg = e.to_string();
+                    assert!(msg.contains("theta") && msg.contains("L*"), "theta {theta:e}, L* = {l:e}: {msg}");
+                    panic!("theta {theta:e}, L* = {l:e} failed: {msg}");
+                }
+            }
+        }
+        // exactly at the pull-off value: solved, not "below the pull-off value" (for theta >= 1e6
+        // the pull-off load underflows to 0 = zero load)
+        if po.l_star < 0.0 {
+            assert_eq!(m.solve_h(po.l_star).unwrap(), po.h, "theta {theta:e}");
+            let below = m.solve_h(po.l_star * (1.0 + 1e-9)).unwrap_err().to_string();
+            assert!(below.contains("below the pull-off"), "{below}");
+        }
+    }
+}
+
+/// A theta whose 2 pi/theta overflows f64 fails with a message naming theta and L*.
+#[test]
+fn gw_unrepresentable_theta_names_itself() {
+    let msg = GwModel::new(Some(1e-310)).unwrap_err().to_string();
+    assert!(msg.contains("theta = 1e-310") && msg.contains("L*") && msg.contains("not a finite"), "{msg}");
+}
