@@ -605,9 +605,7 @@ fn gw_extremes_solve_or_name_theta_and_load() {
                     let dh = 1e-10 * h.abs().max(1.0);
                     let side = |h: f64| {
                         let (sign, ln_abs) = m.ln_abs_l_star_at_h(h).unwrap();
-                        if l == 0.0 {
-                            sign
-                        } else if sign != l.signum() {
+                        if l == 0.0 || sign != l.signum() {
                             sign
                         } else {
                             l.signum() * (ln_abs - l.abs().ln()).signum()
