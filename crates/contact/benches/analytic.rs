@@ -15,6 +15,13 @@ fn bench_f_n(c: &mut Criterion) {
         ("ln_f_n n=1.5 h=1.3", 1.5, 1.3),
         ("ln_f_n n=1.5 h=-4", 1.5, -4.0),
         ("ln_f_n n=1.5 h=190", 1.5, 190.0),
+        ("ln_f_n n=1.5 h=7.7", 1.5, 7.7),
+        ("ln_f_n n=0.5 h=1.3", 0.5, 1.3),
+        // The same orders a hair off 1/2, 3/2 take the general quadrature (the method F_3/2 used
+        // before the Taylor tables, issue 16): the speed-up is the ratio of these to the above.
+        ("quadrature ln_f_n n=1.5+1e-12 h=1.3", 1.5 + 1e-12, 1.3),
+        ("quadrature ln_f_n n=1.5+1e-12 h=-4", 1.5 + 1e-12, -4.0),
+        ("quadrature ln_f_n n=1.5+1e-12 h=7.7", 1.5 + 1e-12, 7.7),
     ] {
         c.bench_function(name, |b| b.iter(|| ln_f_n(black_box(n), black_box(h)).unwrap()));
     }

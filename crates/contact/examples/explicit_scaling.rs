@@ -1,7 +1,7 @@
 //! Scaling of the explicit solver: summits 1e4 .. 1e8 (Table 1 statistics, square-ish area),
 //! time per load point of a tilt-free loading curve from pull-off to L* = 0.1 and bytes per summit.
 //!
-//! `cargo run --release -p stiction-contact --example explicit_scaling -- 1e4 1e5 1e6 1e7 1e8`
+//! `cargo run --release -p stiction-contact --example explicit_scaling -- 1e4 1e5 1e6 1e7 1e8 [--flat]`
 //! (one line per size: summits, generation s, pull-off s, loading points, s per point, bytes per
 //! summit of the solver, peak RSS in MB from /proc/self/status when available).
 //! With `--csv PATH` the lines are also appended to PATH (header written when it is new); the
@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use stiction_contact::explicit::{Detail, ExplicitSolver, SolverConfig};
+use stiction_contact::explicit::{Detail, ExplicitSolver, ShoeMode, SolverConfig};
 use stiction_contact::single::{AdhesionLaw, AsperityParams, Branch};
 use stiction_surface::{FaceParams, Layout, Placement, generate};
 
@@ -20,13 +20,23 @@ fn peak_rss_mb() -> Option<f64> {
     Some(kb / 1024.0)
 }
 
+/// CPU time of this thread in s (`/proc/thread-self/schedstat`, ns on the CPU; robust against
+/// other processes sharing the machine), None where unavailable.
+fn thread_cpu_s() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let csv = args.iter().position(|a| a == "--csv").and_then(|k| args.get(k + 1)).map(std::path::PathBuf::from);
     let sizes: Vec<f64> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    // --flat: the flat shoe (approach only) instead of the tilt-free one.
+    let mode = if args.iter().any(|a| a == "--flat") { ShoeMode::Flat } else { ShoeMode::TiltFree };
     let sizes = if sizes.is_empty() { vec![1e4, 1e5, 1e6] } else { sizes };
     let points = 100;
-    let header = "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb";
+    let header = "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb,cpu_s_per_point,pull_off_cpu_s";
     println!("{header}");
     let mut out = csv.map(|p| {
         let new = !p.exists();
@@ -49,23 +59,29 @@ fn main() {
         let m = surface.len() as f64;
         // L* = D L / (eta A_a R^1/2 sigma^3/2) = 0.1 (eq. 5c).
         let l_max = 0.1 * m * r.sqrt() * sigma.powf(1.5) / d;
-        let cfg = SolverConfig { detail: Detail::Summary, ..Default::default() };
+        let cfg = SolverConfig { detail: Detail::Summary, mode, ..Default::default() };
         let mut solver = ExplicitSolver::new(surface, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver");
         let t = Instant::now();
+        let cpu_po = thread_cpu_s();
         let po = solver.pull_off(0.0, 1e-6).expect("pull-off");
         let po_s = t.elapsed().as_secs_f64();
+        let po_cpu = cpu_po.and_then(|c0| Some(thread_cpu_s()? - c0));
         let loads: Vec<f64> =
             (0..points).map(|k| po.load_n + (l_max - po.load_n) * k as f64 / (points - 1) as f64).collect();
         let t = Instant::now();
+        let cpu0 = thread_cpu_s();
         let sweep = solver.sweep(&loads, Branch::Loading).expect("sweep");
+        let cpu_per = cpu0.and_then(|c0| Some((thread_cpu_s()? - c0) / points as f64));
         let its: usize = sweep.points.iter().map(|p| p.iterations).sum();
         let its = its as f64 / points as f64;
         let per = t.elapsed().as_secs_f64() / points as f64;
         let last = sweep.points.last().map_or(0, |e| e.contacts);
         let line = format!(
-            "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{}",
+            "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{},{},{}",
             solver.bytes_per_summit(),
-            peak_rss_mb().map_or("n/a".into(), |v| format!("{v:.0}"))
+            peak_rss_mb().map_or("n/a".into(), |v| format!("{v:.0}")),
+            cpu_per.map_or("n/a".into(), |v| format!("{v:.3e}")),
+            po_cpu.map_or("n/a".into(), |v| format!("{v:.4}"))
         );
         println!("{line}");
         if let Some(f) = out.as_mut() {

@@ -18,7 +18,8 @@ use crate::single::{AdhesionLaw, AsperityParams, load_state};
 /// A discrete-contact configuration: `contacts` equally loaded summits of one law.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 pub struct DiscreteModel {
-    /// Number of contacts `N` (the paper: 1, 2 or 3 by the degrees of freedom; any N >= 1 allowed).
+    /// Number of contacts `N`: 1, 2 or 3 (the paper, by the shoe's degrees of freedom; eq. 12 with
+    /// equal loads holds by statics only for N <= 3, as for the scenario field `contact.contacts`).
     pub contacts: u32,
     /// Single-asperity law (DMT in the paper).
     pub law: AdhesionLaw,
@@ -37,8 +38,10 @@ pub struct DiscretePoint {
     pub load_per_contact_n: f64,
     /// Friction force `F_f = s A_r` (eq. 1, 12), N.
     pub friction_n: f64,
-    /// Slope `dF_f/dL` (dimensionless; the friction coefficient mu_e,a of eq. 10 at this load).
-    pub friction_slope: f64,
+    /// Slope `dF_f/dL` (dimensionless; the friction coefficient mu_e,a of eq. 10 at this load);
+    /// `None` where the contact radius is 0 (zero load without adhesion, or the DMT pull-off): there
+    /// `a ~ P^(1/3)` and the slope is unbounded (see [`DiscreteModel::SLOPE_NULL_REASON`]).
+    pub friction_slope: Option<f64>,
     /// Real contact area `A_r = N pi a^2`, m^2.
     pub real_area_m2: f64,
     /// Contact radius of each summit `a`, m.
@@ -68,13 +71,17 @@ impl DiscreteModel {
         DiscreteModel { contacts: 3, law: AdhesionLaw::Dmt, params: AsperityParams::table1(), shear_strength_pa: 1.4e9 }
     }
 
+    /// Why [`DiscretePoint::friction_slope`] is `None`.
+    pub const SLOPE_NULL_REASON: &'static str = "the contact radius is 0 at this load (zero load without adhesion, or the pull-off): dF_f/dL ~ L^(-1/3) is unbounded";
+
     /// Check the fields.
     pub fn validate(&self) -> Result<(), ContactError> {
-        if self.contacts == 0 {
+        if !(1..=3).contains(&self.contacts) {
             return Err(ContactError::InvalidParameter {
                 field: "contacts",
-                value: 0.0,
-                expected: "at least 1 contact (the paper uses 1, 2 or 3)",
+                value: f64::from(self.contacts),
+                expected: "1, 2 or 3 contacts: the discrete model (eq. 12) shares the load equally, which statics \
+                           guarantees only for up to 3 (as the scenario field contact.contacts)",
             });
         }
         self.params.validate()?;
@@ -103,7 +110,8 @@ impl DiscreteModel {
             load_n,
             load_per_contact_n: per,
             friction_n: self.shear_strength_pa * area,
-            friction_slope: 2.0 * PI * self.shear_strength_pa * a * st.dradius_dload_m_per_n,
+            friction_slope: Some(2.0 * PI * self.shear_strength_pa * a * st.dradius_dload_m_per_n)
+                .filter(|v| v.is_finite() && a > 0.0),
             real_area_m2: area,
             contact_radius_m: a,
             interference_m: st.interference_m,
@@ -112,10 +120,12 @@ impl DiscreteModel {
     }
 
     /// Apparent zero-load adhesion force of eq. 10, `F_a0 = F_f(0)/mu` with `mu = dF_f/dL` at
-    /// `reference_load_n` (the paper: 3 uN), N.
-    pub fn apparent_adhesion_force_n(&self, reference_load_n: f64) -> Result<f64, ContactError> {
+    /// `reference_load_n` (the paper: 3 uN), N; `None` where the slope is (see
+    /// [`DiscretePoint::friction_slope`]) or is 0 (zero shear strength).
+    pub fn apparent_adhesion_force_n(&self, reference_load_n: f64) -> Result<Option<f64>, ContactError> {
         let slope = self.at_load(reference_load_n)?.friction_slope;
-        Ok(self.at_load(0.0)?.friction_n / slope)
+        let f0 = self.at_load(0.0)?.friction_n;
+        Ok(slope.filter(|s| *s > 0.0).map(|s| f0 / s))
     }
 
     /// The shear strength (Pa) for which the slope `dF_f/dL` at `load_n` equals `target_slope`
@@ -124,7 +134,13 @@ impl DiscreteModel {
     pub fn shear_strength_for_slope(&self, target_slope: f64, load_n: f64) -> Result<f64, ContactError> {
         check_positive("target_slope", target_slope, "a finite friction slope > 0")?;
         let unit = DiscreteModel { shear_strength_pa: 1.0, ..*self };
-        let per_unit = unit.at_load(load_n)?.friction_slope;
+        let Some(per_unit) = unit.at_load(load_n)?.friction_slope else {
+            return Err(ContactError::InvalidParameter {
+                field: "load_n",
+                value: load_n,
+                expected: "a load where the contact radius is > 0 (the slope is unbounded where it is 0)",
+            });
+        };
         Ok(target_slope / per_unit)
     }
 

@@ -26,6 +26,16 @@ pub enum ContactError {
         /// The pull-off (minimum) value, formatted (it may be far below f64 range, then given as log10).
         pull_off: String,
     },
+    /// A Greenwood-Williamson solve failed for this adhesion parameter and load (named, with the reason).
+    #[error("GW solve for theta = {theta}, L* = {l_star}: {reason}")]
+    GwSolve {
+        /// The adhesion parameter theta (eq. 9), formatted ("inf" without adhesion).
+        theta: String,
+        /// The normalised load L* (eq. 5c, 8), formatted ("pull-off" or "zero load" for those solves).
+        l_star: String,
+        /// Why it failed.
+        reason: String,
+    },
     /// An iterative solver did not converge (never expected for valid input; reported, never hidden).
     #[error("{what} did not converge after {iterations} iterations")]
     NoConvergence {

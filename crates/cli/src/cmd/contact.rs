@@ -104,7 +104,16 @@ pub fn run(args: Args) -> CliResult {
     let ContactModel::Explicit(mut solver) = model else {
         return Err("the explicit solver could not be built".into());
     };
-    solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });
+    // Per-contact detail only where an output shows it: the summit table (--summits) or the JSON
+    // (contact indices); the plain table needs the totals only, which the solver's last pass holds
+    // (no second pass, no index lists: issue 16).
+    solver.set_detail(if args.summits {
+        Detail::Full
+    } else if args.json {
+        Detail::Indices
+    } else {
+        Detail::Summary
+    });
     if let Some(sweep) = &args.sweep {
         let loads = parse_sweep(sweep, args.max_sweep_steps)?;
         let increasing = loads.last() >= loads.first();

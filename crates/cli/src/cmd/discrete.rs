@@ -74,9 +74,12 @@ struct Output {
     law: AdhesionLaw,
     load_n: f64,
     friction_n: f64,
-    friction_slope: f64,
+    /// null where the contact radius is 0 (then `friction_slope_null_reason` says why).
+    friction_slope: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    friction_slope_null_reason: Option<&'static str>,
     zero_load_friction_n: f64,
-    apparent_adhesion_force_n: f64,
+    apparent_adhesion_force_n: Option<f64>,
     pull_off_load_n: f64,
     real_area_m2: f64,
     contact_radius_m: f64,
@@ -106,9 +109,10 @@ pub fn run(args: Args) -> CliResult {
         load_n: args.load,
         friction_n: at.friction_n,
         friction_slope: at.friction_slope,
+        friction_slope_null_reason: at.friction_slope.is_none().then_some(DiscreteModel::SLOPE_NULL_REASON),
         zero_load_friction_n: zero.friction_n,
         // Eq. 10 as the paper evaluates it in section 5: F_a0 = F_f(0) / (dF_f/dL at the load).
-        apparent_adhesion_force_n: zero.friction_n / at.friction_slope,
+        apparent_adhesion_force_n: at.friction_slope.filter(|s| *s > 0.0).map(|s| zero.friction_n / s),
         pull_off_load_n: model.pull_off_load_n()?,
         real_area_m2: at.real_area_m2,
         contact_radius_m: at.contact_radius_m,
@@ -128,9 +132,17 @@ pub fn run(args: Args) -> CliResult {
         ("contacts N, law", format!("{}, {:?}", out.contacts, out.law)),
         ("load L", q(out.load_n, Dimension::Force)),
         ("friction F_f = s A_r", q(out.friction_n, Dimension::Force)),
-        ("slope dF_f/dL (mu_e,a)", format!("{:.4}", out.friction_slope)),
+        (
+            "slope dF_f/dL (mu_e,a)",
+            out.friction_slope
+                .map_or_else(|| format!("n/a ({})", DiscreteModel::SLOPE_NULL_REASON), |s| format!("{s:.4}")),
+        ),
         ("F_f(L = 0)", q(out.zero_load_friction_n, Dimension::Force)),
-        ("apparent adhesion F_a0 = F_f(0)/slope", q(out.apparent_adhesion_force_n, Dimension::Force)),
+        (
+            "apparent adhesion F_a0 = F_f(0)/slope",
+            out.apparent_adhesion_force_n
+                .map_or_else(|| "n/a (no finite slope > 0 at this load)".into(), |v| q(v, Dimension::Force)),
+        ),
         ("pull-off load", q(out.pull_off_load_n, Dimension::Force)),
         ("real area A_r", format!("{:.5e} m^2", out.real_area_m2)),
         ("contact radius a (each)", q(out.contact_radius_m, Dimension::Length)),
@@ -164,7 +176,7 @@ pub fn fig7_chart() -> Result<Chart, Box<dyn std::error::Error>> {
     let pull_off = model.pull_off_load_n()?;
     let curve: Vec<(f64, f64)> =
         model.friction_curve(pull_off, 15e-6, 300)?.into_iter().map(|(l, f)| (l * 1e6, f * 1e6)).collect();
-    let mu = model.at_load(3e-6)?.friction_slope;
+    let mu = model.at_load(3e-6)?.friction_slope.ok_or(DiscreteModel::SLOPE_NULL_REASON)?;
     let f0 = model.at_load(0.0)?.friction_n;
     let fa0 = f0 / mu;
     let line = vec![(-fa0 * 1e6, 0.0), (15.0, (f0 + mu * 15e-6) * 1e6)];

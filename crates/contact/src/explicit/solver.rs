@@ -125,6 +125,9 @@ struct Eval {
     over_limit: usize,
     moment_x: f64,
     moment_y: f64,
+    /// Words of the contact bit set that can hold a member past release (first, last), when the
+    /// pass knows them (the fast pass); `None`: any word.
+    release_words: Option<(usize, usize)>,
 }
 
 enum LawImpl {
@@ -848,7 +851,13 @@ fn release<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &mut State, ev: &mut Eval
     let q = st.q;
     let (x0, y0) = g.load_point;
     let words = st.bound.div_ceil(64);
-    for w in 0..words {
+    // The fast pass names the words holding members past release (members only leave the set
+    // here, and summits that joined at this pose have z >= 0, so no other word can hold one).
+    let (lo, hi) = match ev.release_words {
+        Some((lo, hi)) => (lo, (hi + 1).min(words)),
+        None => (0, words),
+    };
+    for w in lo..hi {
         let mut bits = st.member[w];
         while bits != 0 {
             let i = w * 64 + bits.trailing_zeros() as usize;
@@ -875,6 +884,9 @@ fn release<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &mut State, ev: &mut Eval
 /// Newton direction on the used degrees of freedom; directions of zero stiffness in which the
 /// energy still decreases get a long descent component (capped later by the trust radius).
 fn direction(ev: &Eval, ndof: usize, tol: f64, tau_scale: f64) -> [f64; 3] {
+    if let Some(d) = newton_ldlt(&ev.h, &ev.g, ndof) {
+        return d;
+    }
     let mut m = Matrix3::zeros();
     let mut diag_max: f64 = 0.0;
     for j in 0..ndof {
@@ -906,6 +918,59 @@ fn direction(ev: &Eval, ndof: usize, tol: f64, tau_scale: f64) -> [f64; 3] {
         d[j] = 0.0;
     }
     [d[0], d[1], d[2]]
+}
+
+/// Newton direction `d = -H^-1 g` on the used degrees of freedom by an LDL^T factorisation of
+/// the (at most 3x3, symmetric) Hessian, when every pivot is at least `1e-8` of the largest
+/// diagonal entry (then H is positive definite and far from the zero-stiffness directions that
+/// need the eigen-decomposition of [`direction`]); `None` otherwise. It replaces the
+/// eigen-decomposition in the common case (about 30x cheaper; the two agree to rounding).
+#[allow(clippy::needless_range_loop)]
+fn newton_ldlt(h: &[[f64; 3]; 3], g: &[f64; 3], ndof: usize) -> Option<[f64; 3]> {
+    let dmax = (0..ndof).fold(0.0f64, |m, j| m.max(h[j][j]));
+    if !(dmax > 0.0 && dmax.is_finite()) {
+        return None;
+    }
+    let thr = 1e-8 * dmax;
+    let mut l = [[0.0f64; 3]; 3];
+    let mut d = [0.0f64; 3];
+    for j in 0..ndof {
+        let mut dj = h[j][j];
+        for k in 0..j {
+            dj -= l[j][k] * l[j][k] * d[k];
+        }
+        if dj.is_nan() || dj <= thr {
+            return None;
+        }
+        d[j] = dj;
+        for i in j + 1..ndof {
+            let mut v = h[i][j];
+            for k in 0..j {
+                v -= l[i][k] * l[j][k] * d[k];
+            }
+            l[i][j] = v / dj;
+        }
+    }
+    // Solve L y = -g, D z = y, L^T x = z.
+    let mut x = [0.0f64; 3];
+    for i in 0..ndof {
+        let mut v = -g[i];
+        for k in 0..i {
+            v -= l[i][k] * x[k];
+        }
+        x[i] = v;
+    }
+    for i in 0..ndof {
+        x[i] /= d[i];
+    }
+    for i in (0..ndof).rev() {
+        let mut v = x[i];
+        for k in i + 1..ndof {
+            v -= l[k][i] * x[k];
+        }
+        x[i] = v;
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -1143,7 +1208,20 @@ fn tip_to_next_contact<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &State, ev: &
             continue;
         }
         let (da, db, dc) = g.plane(&vq);
+        // Lower bound of the step that brings summit i to touch: its gap is at least
+        // z_min + w_min - h_i (w_min the lowest plane point over the apparent area) and the plane
+        // moves by at most dw_max per unit step there (a linear function: largest at a corner).
+        // It grows down the height-sorted list, so the scan stops once it exceeds the best step
+        // (summits lie inside the apparent area: Surface::new checks it).
+        let wmin = a + (b * g.length).min(0.0) + (c * g.width).min(0.0);
+        let dw_max = g.movement(&vq) * (1.0 + 1e-9);
+        let z_min = law.z_min();
         for i in 0..g.hs.len() {
+            if let Some((b0, _)) = best
+                && (z_min + wmin - g.hs[i]) > b0 * dw_max + 1e-12 * (wmin.abs() + g.hs[i].abs())
+            {
+                break;
+            }
             if st.is_member(i) {
                 continue;
             }
@@ -1168,4 +1246,67 @@ fn tip_to_next_contact<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &State, ev: &
 /// The shoe comes off: the load is below the pull-off of the current contact.
 fn separates(load_n: f64) -> SolveError {
     SolveError::NoEquilibrium { load_n, reason: "the shoe separates from the surface (load below pull-off)".into() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use stiction_surface::{FaceParams, Layout, Placement, generate};
+
+    /// The fast pass gives the same bits on the baseline instruction set and on the best one of
+    /// this machine (AVX2+FMA on most x86-64): fixed lanes, no contraction, exact sqrt.
+    #[test]
+    fn fast_pass_has_the_same_bits_on_every_instruction_set() {
+        let layout =
+            Layout { apparent_length_m: 40e-6, apparent_width_m: 10e-6, placement: Placement::Poisson, seed: 7 };
+        for (mode, hardness) in [(ShoeMode::TiltFree, None), (ShoeMode::Flat, None), (ShoeMode::TiltFree, Some(2e9))] {
+            let surface = generate(&layout, &FaceParams::gaussian_fixed(4e12, 0.04e-6, 0.5e-6)).expect("surface");
+            let cfg = SolverConfig { mode, hardness_pa: hardness, ..Default::default() };
+            let mut s = ExplicitSolver::new(surface, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver");
+            s.solve(0.1).expect("solve");
+            let LawImpl::HertzDmt { inv_d, two_pi_dgamma } = s.imp else { panic!("DMT law expected") };
+            let (x0, y0, inv_ell) = s.geom.uv.expect("fast pass");
+            let radius = s.geom.radius(0);
+            let a_hard = s.geom.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
+            // A pose slightly off the equilibrium (members past release, summits touching).
+            let q = [s.state.q[0] - 1e-9, s.state.q[1] + 4e-9, s.state.q[2] - 4e-9];
+            let k = fast::Kernel {
+                q,
+                x0,
+                y0,
+                inv_ell,
+                radius,
+                inv_d,
+                c0: two_pi_dgamma * radius,
+                allow_touch: true,
+                a_hard,
+            };
+            let end = s.geom.hs.len();
+            let (mut t1, mut t2) = (Vec::new(), Vec::new());
+            let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &k, end, 0.1, &mut t1);
+            let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &k, end, 0.1, &mut t2);
+            assert!(e1.contacts > 100 && e1.releases > 0 && !t1.is_empty(), "{e1:?}");
+            assert_eq!(format!("{e1:?}"), format!("{e2:?}"), "{mode:?}");
+            assert_eq!(t1, t2);
+        }
+    }
+
+    /// The LDL^T Newton direction agrees with the eigen-decomposition (to rounding) on a positive
+    /// definite Hessian, and declines a singular one.
+    #[test]
+    fn ldlt_direction_matches_the_eigen_direction() {
+        let h = [[4.0, 1.0, 0.5], [1.0, 3.0, 0.25], [0.5, 0.25, 2.0]];
+        let ev = Eval { g: [1.0, -2.0, 0.5], h, ..Default::default() };
+        let d = newton_ldlt(&ev.h, &ev.g, 3).expect("positive definite");
+        let m = Matrix3::from_fn(|i, j| h[i][j]);
+        let x = m.try_inverse().expect("regular") * nalgebra::Vector3::new(-1.0, 2.0, -0.5);
+        for j in 0..3 {
+            assert!((d[j] - x[j]).abs() <= 1e-14 * x.norm(), "{d:?} {x:?}");
+        }
+        let singular = [[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert!(newton_ldlt(&singular, &ev.g, 3).is_none());
+        // Flat mode: one degree of freedom.
+        let d1 = newton_ldlt(&h, &[2.0, 9.0, 9.0], 1).expect("k > 0");
+        assert_eq!(d1, [-0.5, 0.0, 0.0]);
+    }
 }

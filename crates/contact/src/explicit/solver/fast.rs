@@ -1,17 +1,32 @@
 //! Fast evaluation pass for Hertz/DMT summits of one radius on a tilt-free or flat shoe (the hot
 //! path of large surfaces): the same quantities as the generic pass in `solver.rs`, computed
-//! branch-free over blocks of 64 summits (one word of the contact bit set) with fixed per-lane
-//! partial sums, so the compiler vectorises it and the result does not depend on the instruction
-//! set (no fused multiply-add; the summation order is fixed by the lane layout).
+//! branch-free over blocks of 64 summits (one word of the contact bit set).
 //!
 //! Per summit i (u, v = (x - x0)/l, (y - y0)/l; q the pose; c = 2 pi dgamma R, 0 for Hertz):
 //! `z = h - (q0 + q1 u + q2 v)`, `a = sqrt(R z+)`, `P = a z+ / D - c`, `k = 3 a / (2 D)` (eq. 3, 4)
 //! for members and summits touching at this pose; non-members carry nothing.
+//!
+//! # Layout (why it is fast, and why it gives the same bits everywhere)
+//! A block is processed in three stages, each a simple loop over the 64 summits that the compiler
+//! vectorises on its own:
+//! 1. map: interference, contact radius (the square roots, all independent of each other, so
+//!    their latency overlaps), force, activity; results go to small arrays on the stack (L1);
+//! 2. force sums: P, P u, P v, |P|, z+, elastic load, largest z+, summits over the hardness;
+//! 3. stiffness sums (tilt-free only): k, k u, k v, k u^2, k u v, k v^2 (a flat shoe uses k only).
+//!
+//! Splitting the stages keeps each loop's accumulators in registers (one pass with all 16 sums
+//! spilled them to the stack) and breaks the square-root-to-add dependency chain. Every sum has
+//! `W = 4` fixed lanes (summit j adds to lane j mod 4), combined in a fixed order at the end, so
+//! the summation order does not depend on the instruction set. The pass runs through
+//! [`pulp::Arch::dispatch`]: on x86-64 with AVX2+FMA (checked at run time) the same code is
+//! compiled for 256-bit registers, elsewhere for the baseline (SSE2, NEON). Rust never contracts
+//! `a * b + c` into a fused multiply-add and the square root, f32 -> f64 conversion, comparisons
+//! and selections are exact in IEEE 754, so both versions give the same bits (tested).
 
 use super::{Eval, Geom, State};
 
-/// Lanes of the partial sums (one SSE2 register per sum).
-const W: usize = 2;
+/// Lanes of the partial sums.
+const W: usize = 4;
 /// Summits per block: one word of the contact bit set.
 const B: usize = 64;
 
@@ -37,42 +52,39 @@ struct Acc {
     pu: [f64; W],
     pv: [f64; W],
     pabs: [f64; W],
+    zc: [f64; W],
+    el: [f64; W],
+    zmax: [f64; W],
+    over: [f64; W],
     k: [f64; W],
     ku: [f64; W],
     kv: [f64; W],
     kuu: [f64; W],
     kuv: [f64; W],
     kvv: [f64; W],
-    zc: [f64; W],
-    el: [f64; W],
-    n: [f64; W],
-    amax: [f64; W],
-    over: [f64; W],
-    rel: [f64; W],
 }
 
 impl Acc {
     fn zero() -> Self {
         let z = [0.0; W];
-        Self {
-            p: z,
-            pu: z,
-            pv: z,
-            pabs: z,
-            k: z,
-            ku: z,
-            kv: z,
-            kuu: z,
-            kuv: z,
-            kvv: z,
-            zc: z,
-            el: z,
-            n: z,
-            amax: z,
-            over: z,
-            rel: z,
-        }
+        Self { p: z, pu: z, pv: z, pabs: z, zc: z, el: z, zmax: z, over: z, k: z, ku: z, kv: z, kuu: z, kuv: z, kvv: z }
     }
+}
+
+/// Stage-1 results of one block (reused from block to block: no zeroing per block).
+struct Buf {
+    us: [f64; B],
+    vs: [f64; B],
+    ps: [f64; B],
+    zcs: [f64; B],
+    as_: [f64; B],
+}
+
+/// Per-block counts: summits touching at this pose, members past release.
+#[derive(Clone, Copy, Default)]
+struct Counts {
+    touches: u32,
+    releases: u32,
 }
 
 /// Membership of a block: all members, none, or mixed (bits read per lane).
@@ -80,13 +92,26 @@ const ALL: u8 = 0;
 const NONE: u8 = 1;
 const MIXED: u8 = 2;
 
-/// Accumulates one block of 64 summits; returns the number of summits touching at this pose.
+/// Accumulates one block of 64 summits (see the module docs for the three stages).
+/// `TILT`: accumulate the stiffness moments (tilt-free shoe); `HARD`: count summits over the hardness.
 /// (Indexed lanes on purpose: the fixed lane layout is what the compiler vectorises.)
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn block<const M: u8>(acc: &mut Acc, xs: &[f32; B], ys: &[f32; B], hs: &[f64; B], word: u64, k: &Kernel) -> u32 {
+fn block<const M: u8, const TILT: bool, const HARD: bool>(
+    acc: &mut Acc,
+    buf: &mut Buf,
+    xs: &[f32; B],
+    ys: &[f32; B],
+    hs: &[f64; B],
+    word: u64,
+    k: &Kernel,
+) -> Counts {
     let touch_zero = k.c0 != 0.0;
-    let mut touches = [0u32; W];
+    let Buf { us, vs, ps, zcs, as_ } = buf;
+    // Counts as f64 lanes (exact below 2^53): mixing integer lanes into the float code costs packing.
+    let mut touches = [0.0f64; W];
+    let mut rels = [0.0f64; W];
+    // Stage 1: map.
     for grp in 0..B / W {
         for l in 0..W {
             let j = grp * W + l;
@@ -101,61 +126,123 @@ fn block<const M: u8>(acc: &mut Acc, xs: &[f32; B], ys: &[f32; B], hs: &[f64; B]
             // Touch rule of the generic pass: z >= z_in = 0, and z = 0 only with adhesion.
             let pos = z > 0.0 || (touch_zero && z == 0.0);
             let act = mem || (k.allow_touch && pos);
-            touches[l] += u32::from(!mem && k.allow_touch && pos);
+            touches[l] += if !mem && k.allow_touch && pos { 1.0 } else { 0.0 };
+            rels[l] += if mem && z < 0.0 { 1.0 } else { 0.0 };
             let zc = if z > 0.0 { z } else { 0.0 };
             let a = (k.radius * zc).sqrt();
             let el = a * zc * k.inv_d;
-            let stiff = 1.5 * a * k.inv_d;
-            let (p, kk, zc, el, a, one) =
-                if act { (el - k.c0, stiff, zc, el, a, 1.0) } else { (0.0, 0.0, 0.0, 0.0, 0.0, 0.0) };
-            acc.p[l] += p;
-            acc.pu[l] += p * u;
-            acc.pv[l] += p * v;
-            acc.pabs[l] += p.abs();
-            acc.k[l] += kk;
-            let ku = kk * u;
-            let kv = kk * v;
-            acc.ku[l] += ku;
-            acc.kv[l] += kv;
-            acc.kuu[l] += ku * u;
-            acc.kuv[l] += ku * v;
-            acc.kvv[l] += kv * v;
-            acc.zc[l] += zc;
-            acc.el[l] += el;
-            acc.n[l] += one;
-            acc.amax[l] = if a > acc.amax[l] { a } else { acc.amax[l] };
-            acc.over[l] += if a > k.a_hard { 1.0 } else { 0.0 };
-            acc.rel[l] += if mem && z < 0.0 { 1.0 } else { 0.0 };
+            us[j] = u;
+            vs[j] = v;
+            ps[j] = if act { el - k.c0 } else { 0.0 };
+            zcs[j] = if act { zc } else { 0.0 };
+            as_[j] = if act { a } else { 0.0 };
         }
     }
-    touches.iter().sum()
+    let touches: f64 = touches.iter().sum();
+    let counts = Counts { touches: touches as u32, releases: rels.iter().sum::<f64>() as u32 };
+    if M == NONE && touches == 0.0 {
+        // Nothing active: every term below is +0 (skipping them leaves the same bits).
+        return counts;
+    }
+    // Stage 2: force sums.
+    for grp in 0..B / W {
+        for l in 0..W {
+            let j = grp * W + l;
+            let p = ps[j];
+            acc.p[l] += p;
+            acc.pu[l] += p * us[j];
+            acc.pv[l] += p * vs[j];
+            acc.pabs[l] += p.abs();
+            acc.zc[l] += zcs[j];
+            acc.el[l] += as_[j] * zcs[j] * k.inv_d;
+            acc.zmax[l] = if zcs[j] > acc.zmax[l] { zcs[j] } else { acc.zmax[l] };
+            if HARD {
+                acc.over[l] += if as_[j] > k.a_hard { 1.0 } else { 0.0 };
+            }
+        }
+    }
+    // Stage 3: stiffness sums.
+    for grp in 0..B / W {
+        for l in 0..W {
+            let j = grp * W + l;
+            let kk = 1.5 * as_[j] * k.inv_d;
+            acc.k[l] += kk;
+            if TILT {
+                let ku = kk * us[j];
+                let kv = kk * vs[j];
+                acc.ku[l] += ku;
+                acc.kv[l] += kv;
+                acc.kuu[l] += ku * us[j];
+                acc.kuv[l] += ku * vs[j];
+                acc.kvv[l] += kv * vs[j];
+            }
+        }
+    }
+    counts
 }
 
-#[inline(never)]
-fn block_dispatch(acc: &mut Acc, xs: &[f32; B], ys: &[f32; B], hs: &[f64; B], word: u64, k: &Kernel) -> u32 {
+#[inline(always)]
+fn block_dispatch<const TILT: bool, const HARD: bool>(
+    acc: &mut Acc,
+    buf: &mut Buf,
+    xs: &[f32; B],
+    ys: &[f32; B],
+    hs: &[f64; B],
+    word: u64,
+    k: &Kernel,
+) -> Counts {
     match word {
-        u64::MAX => block::<ALL>(acc, xs, ys, hs, word, k),
-        0 => block::<NONE>(acc, xs, ys, hs, word, k),
-        _ => block::<MIXED>(acc, xs, ys, hs, word, k),
+        u64::MAX => block::<ALL, TILT, HARD>(acc, buf, xs, ys, hs, word, k),
+        0 => block::<NONE, TILT, HARD>(acc, buf, xs, ys, hs, word, k),
+        _ => block::<MIXED, TILT, HARD>(acc, buf, xs, ys, hs, word, k),
     }
 }
 
-/// The pass over the summits `0..end` (every member has an index below `end`; summits at or
-/// beyond it cannot touch). Touching summits are pushed to `touch` in ascending order.
-pub(crate) fn evaluate(g: &Geom, st: &State, k: &Kernel, end: usize, load: f64, touch: &mut Vec<u32>) -> Eval {
-    touch.clear();
+/// Totals of one pass before they become an [`Eval`].
+struct Totals {
+    acc: Acc,
+    contacts: usize,
+    releases: usize,
+    /// First and last word of the contact bit set holding a member past release.
+    release_words: Option<(usize, usize)>,
+}
+
+/// The loop over the blocks `0..end`, compiled once per instruction set by `pulp` (inlined into
+/// its dispatch).
+#[inline(always)]
+fn pass<const TILT: bool, const HARD: bool>(
+    g: &Geom,
+    st: &State,
+    k: &Kernel,
+    end: usize,
+    touch: &mut Vec<u32>,
+) -> Totals {
     let n = g.hs.len();
     let mut acc = Acc::zero();
+    let z = [0.0; B];
+    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z };
+    let mut contacts = 0usize;
+    let mut releases = 0usize;
+    let mut release_words: Option<(usize, usize)> = None;
     let full = end.div_ceil(B).min(n / B);
+    let mut on_block = |blk: usize, c: Counts, word: u64| {
+        contacts += (word.count_ones() + c.touches) as usize;
+        if c.releases > 0 {
+            releases += c.releases as usize;
+            release_words = Some(release_words.map_or((blk, blk), |(lo, _)| (lo, blk)));
+        }
+    };
     for blk in 0..full {
         let r = blk * B..(blk + 1) * B;
         let xs: &[f32; B] = g.xs[r.clone()].try_into().expect("block");
         let ys: &[f32; B] = g.ys[r.clone()].try_into().expect("block");
         let hs: &[f64; B] = g.hs[r].try_into().expect("block");
         let word = st.member[blk];
-        if block_dispatch(&mut acc, xs, ys, hs, word, k) > 0 {
+        let c = block_dispatch::<TILT, HARD>(&mut acc, &mut buf, xs, ys, hs, word, k);
+        if c.touches > 0 {
             push_touches(xs, ys, hs, word, blk * B, k, touch);
         }
+        on_block(blk, c, word);
     }
     if full * B < end {
         // Last partial block: pad with summits that cannot touch (and are no members).
@@ -166,35 +253,91 @@ pub(crate) fn evaluate(g: &Geom, st: &State, k: &Kernel, end: usize, load: f64, 
         ys[..len].copy_from_slice(&g.ys[base..]);
         hs[..len].copy_from_slice(&g.hs[base..]);
         let word = st.member[full];
-        if block_dispatch(&mut acc, &xs, &ys, &hs, word, k) > 0 {
+        let c = block_dispatch::<TILT, HARD>(&mut acc, &mut buf, &xs, &ys, &hs, word, k);
+        if c.touches > 0 {
             push_touches(&xs, &ys, &hs, word, base, k, touch);
         }
+        on_block(full, c, word);
     }
-    let s = |v: &[f64; W]| v.iter().sum::<f64>();
+    Totals { acc, contacts, releases, release_words }
+}
+
+/// The pass as a `pulp` operation: `with_simd` is inlined into the function `pulp` compiles for
+/// each instruction set (a closure would be called, and compiled for the baseline only).
+struct PassOp<'a> {
+    g: &'a Geom,
+    st: &'a State,
+    k: &'a Kernel,
+    end: usize,
+    touch: &'a mut Vec<u32>,
+    tilt: bool,
+    hard: bool,
+}
+
+impl pulp::WithSimd for PassOp<'_> {
+    type Output = Totals;
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Totals {
+        let PassOp { g, st, k, end, touch, tilt, hard } = self;
+        match (tilt, hard) {
+            (true, false) => pass::<true, false>(g, st, k, end, touch),
+            (true, true) => pass::<true, true>(g, st, k, end, touch),
+            (false, false) => pass::<false, false>(g, st, k, end, touch),
+            (false, true) => pass::<false, true>(g, st, k, end, touch),
+        }
+    }
+}
+
+/// The pass over the summits `0..end` (every member has an index below `end`; summits at or
+/// beyond it cannot touch). Touching summits are pushed to `touch` in ascending order.
+/// `arch` selects the instruction set (`pulp::Arch::new()`: the best one this machine has).
+pub(crate) fn evaluate_with(
+    arch: pulp::Arch,
+    g: &Geom,
+    st: &State,
+    k: &Kernel,
+    end: usize,
+    load: f64,
+    touch: &mut Vec<u32>,
+) -> Eval {
+    touch.clear();
+    let tilt = g.ndof > 1;
+    let hard = k.a_hard.is_finite();
+    let t = arch.dispatch(PassOp { g, st, k, end, touch, tilt, hard });
+    let acc = &t.acc;
+    let s = |v: &[f64; W]| (v[0] + v[1]) + (v[2] + v[3]);
     let (p, pu, pv) = (s(&acc.p), s(&acc.pu), s(&acc.pv));
     let (kk, ku, kv, kuu, kuv, kvv) = (s(&acc.k), s(&acc.ku), s(&acc.kv), s(&acc.kuu), s(&acc.kuv), s(&acc.kvv));
     let ell = 1.0 / k.inv_ell;
-    let amax = acc.amax.iter().copied().fold(0.0, f64::max);
+    let zmax = acc.zmax.iter().copied().fold(0.0, f64::max);
+    // Largest contact radius: sqrt is monotone, so this is the largest of the summits' radii.
+    let amax = (k.radius * zmax).sqrt();
     let mut ev = Eval {
         g: [load - p, -pu, -pv],
         h: [[kk, ku, kv], [ku, kuu, kuv], [kv, kuv, kvv]],
         force: p,
         force_abs: s(&acc.pabs),
-        releases: s(&acc.rel) as usize,
-        contacts: s(&acc.n) as usize,
+        releases: t.releases,
+        contacts: t.contacts,
         area: std::f64::consts::PI * k.radius * s(&acc.zc),
         elastic: s(&acc.el),
         q0_max: 1.5 * amax * k.inv_d / (std::f64::consts::PI * k.radius),
         over_limit: s(&acc.over) as usize,
         moment_x: pu * ell,
         moment_y: pv * ell,
+        release_words: Some(t.release_words.unwrap_or((1, 0))),
     };
-    if g.ndof == 1 {
+    if !tilt {
         ev.g[1] = 0.0;
         ev.g[2] = 0.0;
         ev.h = [[kk, 0.0, 0.0], [0.0; 3], [0.0; 3]];
     }
     ev
+}
+
+/// [`evaluate_with`] on the best instruction set of this machine.
+pub(crate) fn evaluate(g: &Geom, st: &State, k: &Kernel, end: usize, load: f64, touch: &mut Vec<u32>) -> Eval {
+    evaluate_with(pulp::Arch::new(), g, st, k, end, load, touch)
 }
 
 #[cold]
