@@ -29,7 +29,7 @@
 use stiction_actuator::{ActuatorError, GapClosingActuator, SlipDynamics, simulate_slip};
 
 /// Which integrator follows the shuttle after slip.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SlipPath {
     /// The rapier rigid-body trajectory (default for single runs).
