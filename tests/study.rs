@@ -207,3 +207,64 @@ fn progress_is_a_plain_line_off_a_terminal_and_nothing_when_quiet() {
     let v = stiction_json(&["study", "scenarios/tas2000.json", "--samples", "8", "--json"]);
     assert_eq!(v["samples_done"], 8);
 }
+
+#[test]
+fn the_slurm_scripts_run_a_study_without_the_scheduler() {
+    // Slurm is not part of CI (docs/cluster.md): the array task and the merge job are run as plain
+    // bash with the variables Slurm would set, and submit-study.sh with a stand-in `sbatch` that
+    // records its arguments, to check the array range and the dependency of the merge job.
+    let dir = temp_dir("study-slurm");
+    let bin = env!("CARGO_BIN_EXE_stiction");
+    let out = dir.join("study");
+    let env = |c: &mut Command| {
+        c.current_dir(root())
+            .env("STICTION", bin)
+            .env("STUDY_SCENARIO", "scenarios/tas2000.json")
+            .env("STUDY_SAMPLES", "48")
+            .env("STUDY_SHARDS", "3")
+            .env("STUDY_OUT", &out)
+            .env("STUDY_SEED", "5")
+            .env("STUDY_FLAGS", "--quiet");
+    };
+    for k in ["2", "0", "1"] {
+        let mut c = Command::new("bash");
+        c.arg("scripts/slurm/study-shard.sbatch").env("SLURM_ARRAY_TASK_ID", k).env("SLURM_CPUS_PER_TASK", "1");
+        env(&mut c);
+        let r = c.output().unwrap();
+        assert!(r.status.success(), "task {k}: {}", String::from_utf8_lossy(&r.stderr));
+    }
+    let mut c = Command::new("bash");
+    c.arg("scripts/slurm/study-merge.sbatch");
+    env(&mut c);
+    let r = c.output().unwrap();
+    assert!(r.status.success(), "merge: {}", String::from_utf8_lossy(&r.stderr));
+    let single = dir.join("single");
+    study(&single, &[]);
+    same_files(&single, &out.join("merged"));
+
+    let fake = dir.join("bin");
+    std::fs::create_dir_all(&fake).unwrap();
+    let calls = dir.join("sbatch-calls");
+    std::fs::write(fake.join("sbatch"), format!("#!/bin/bash\necho \"$*\" >> '{}'\necho 4242\n", calls.display()))
+        .unwrap();
+    Command::new("chmod").arg("+x").arg(fake.join("sbatch")).status().unwrap();
+    let path = format!("{}:{}", fake.display(), std::env::var("PATH").unwrap_or_default());
+    let r = Command::new("bash")
+        .args([
+            "scripts/slurm/submit-study.sh",
+            "scenarios/tas2000.json",
+            "1000",
+            "4",
+            dir.join("sub").to_str().unwrap(),
+        ])
+        .current_dir(root())
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let calls = std::fs::read_to_string(calls).unwrap();
+    let lines: Vec<&str> = calls.lines().collect();
+    assert_eq!(lines.len(), 2, "{calls}");
+    assert!(lines[0].contains("--array=0-3") && lines[0].ends_with("study-shard.sbatch"), "{calls}");
+    assert!(lines[1].contains("--dependency=afterok:4242") && lines[1].ends_with("study-merge.sbatch"), "{calls}");
+}

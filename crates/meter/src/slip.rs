@@ -72,13 +72,16 @@ pub fn slip_outcome(
     })
 }
 
+/// A trajectory: `(t (s), x (m), v (m/s))` samples.
+pub type Trajectory = Vec<(f64, f64, f64)>;
+
 /// The light path's trajectory `(t (s), x (m), v (m/s))`, one sample per RK4 step, the impact
 /// last (for validation against the rigid-body path).
 pub fn light_trajectory(
     pull: &GapClosingActuator,
     voltage_v: f64,
     dynamics: &SlipDynamics,
-) -> Result<(SlipOutcome, Vec<(f64, f64, f64)>), ActuatorError> {
+) -> Result<(SlipOutcome, Trajectory), ActuatorError> {
     let mut samples = Vec::new();
     let out = light(pull, voltage_v, dynamics, Some(&mut samples))?;
     Ok((out, samples))
@@ -88,7 +91,7 @@ fn light(
     pull: &GapClosingActuator,
     voltage_v: f64,
     d: &SlipDynamics,
-    mut record: Option<&mut Vec<(f64, f64, f64)>>,
+    mut record: Option<&mut Trajectory>,
 ) -> Result<SlipOutcome, ActuatorError> {
     let still = SlipOutcome { runs_away: false, time_to_stop_s: None, impact_velocity_m_per_s: None };
     let m = d.shuttle_mass_kg;

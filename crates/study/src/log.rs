@@ -177,7 +177,10 @@ pub fn read_header(path: &Path) -> Result<Header, StudyError> {
 
 /// Streams the rows of a log after its header, checking that they are the shard's samples in
 /// order. `f` gets each row and its raw line (with the newline).
-pub fn for_each_row(path: &Path, f: &mut dyn FnMut(Row, &[u8]) -> Result<(), StudyError>) -> Result<usize, StudyError> {
+pub fn for_each_row<F>(path: &Path, mut f: F) -> Result<usize, StudyError>
+where
+    F: FnMut(Row, &[u8]) -> Result<(), StudyError>,
+{
     let header = read_header(path)?;
     let file = File::open(path).map_err(|e| StudyError::Log(format!("cannot open {}: {e}", path.display())))?;
     let mut r = BufReader::with_capacity(1 << 16, file);
@@ -308,7 +311,7 @@ impl LogWriter {
                 header.shard_count
             )));
         }
-        let done = for_each_row(&path, &mut |_, _| Ok(()))?;
+        let done = for_each_row(&path, |_, _| Ok(()))?;
         let file = OpenOptions::new()
             .append(true)
             .open(&path)
@@ -382,7 +385,7 @@ pub fn merge(inputs: &[PathBuf], out_dir: &Path) -> Result<Header, StudyError> {
     let mut rows: Vec<Vec<Vec<u8>>> = Vec::with_capacity(m);
     for (h, p) in &logs {
         let mut lines = Vec::new();
-        let n = for_each_row(p, &mut |_, l| {
+        let n = for_each_row(p, |_, l| {
             lines.push(l.to_vec());
             Ok(())
         })?;

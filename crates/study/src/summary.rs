@@ -157,7 +157,7 @@ pub fn summarize(path: &Path, mut csv: Option<&mut Vec<u8>>) -> Result<(StudySum
     let (mut mus, mut fas, mut xs, mut scatter) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut reasons: BTreeMap<String, usize> = BTreeMap::new();
     let (mut failed, mut without) = (0, 0);
-    let done = log::for_each_row(path, &mut |row, line| {
+    let done = log::for_each_row(path, |row, line| {
         if let Some(c) = csv.as_deref_mut() {
             c.extend_from_slice(line);
         }

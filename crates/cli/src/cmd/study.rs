@@ -363,7 +363,7 @@ fn cdf_points(fig: &FigureData) -> Vec<(f64, f64)> {
     let step = n.div_ceil(2000).max(1);
     let mut pts: Vec<(f64, f64)> =
         (0..n).step_by(step).map(|i| (fig.mu_sorted[i], (i as f64 + 0.5) / n as f64)).collect();
-    if n > 0 && (n - 1) % step != 0 {
+    if n > 0 && !(n - 1).is_multiple_of(step) {
         pts.push((fig.mu_sorted[n - 1], (n as f64 - 0.5) / n as f64));
     }
     pts
@@ -394,25 +394,23 @@ fn scatter_chart(fig: &FigureData) -> Chart {
 /// First-order Sobol indices as markers at x = input number (1, 2, ...), mu_e,a and F_a0 side by side.
 fn sensitivity_chart(summary: &StudySummary) -> Chart {
     let rows = &summary.sensitivity.inputs;
-    let names: Vec<String> = rows.iter().enumerate().map(|(i, r)| format!("{} = {}", i + 1, r.input)).collect();
+    // Short names: the last two parts of a JSON path ("clamp.conversion_factor").
+    let short = |s: &str| -> String {
+        if s.contains(' ') {
+            return "surface + interactions".into();
+        }
+        let parts: Vec<&str> = s.split('.').collect();
+        parts[parts.len().saturating_sub(2)..].join(".")
+    };
+    let names: Vec<String> = rows.iter().enumerate().map(|(i, r)| format!("{} {}", i + 1, short(&r.input))).collect();
     let series = |off: f64, f: &dyn Fn(&stiction_study::sensitivity::InputShare) -> Option<f64>| -> Vec<(f64, f64)> {
         rows.iter().enumerate().filter_map(|(i, r)| f(r).map(|v| (i as f64 + 1.0 + off, v))).collect()
     };
-    let bars = |pts: &[(f64, f64)]| -> Vec<(f64, f64)> { pts.to_vec() };
-    let mu = series(-0.1, &|r| r.mu_first_order);
-    let fa = series(0.1, &|r| r.fa0_first_order);
-    let mut chart = Chart::new(
+    Chart::new(
         format!("Share of the variance by input ({} samples with a fit)", summary.sensitivity.samples),
-        format!("input: {}", names.join("; ")),
+        format!("input: {}", names.join(", ")),
         "first-order Sobol index",
     )
-    .with(Series::markers("mu_e,a", bars(&mu)))
-    .with(Series::markers("F_a0", bars(&fa)));
-    for &(x, y) in &mu {
-        chart = chart.with(Series::line("", vec![(x, 0.0), (x, y)]));
-    }
-    for &(x, y) in &fa {
-        chart = chart.with(Series::dashed("", vec![(x, 0.0), (x, y)]));
-    }
-    chart
+    .with(Series::markers("mu_e,a", series(-0.1, &|r| r.mu_first_order)))
+    .with(Series::markers("F_a0", series(0.1, &|r| r.fa0_first_order)))
 }
