@@ -14,9 +14,9 @@
 //!      nothing to integrate. The minima of `W` sit at the unstable equilibria (net force turning
 //!      from restoring to driving) or at `x_c`; they are found by a 64-point scan of the net force
 //!      and bisection.
-//!   2. otherwise a **light integrator**: classical RK4 on `(x, v)` with a step of `T/200`
-//!      (`T = 2 pi sqrt(m/k)`), shortened near the electrode so that a step closes at most 1 % of
-//!      the remaining gap; the impact is located inside its step on the cubic Hermite
+//!   2. otherwise a **light integrator**: classical RK4 on `(x, v)` with a step of `T/100`
+//!      (`T = 2 pi sqrt(m/k)`), shortened near the electrode so that a step closes at most 5 % of
+//!      the remaining gap (the force grows as `1/gap^2`); the impact is located inside its step on the cubic Hermite
 //!      interpolant of `(x, v)` (bisection), the impact velocity from its derivative. The motion
 //!      is also decided as soon as the kinetic energy cannot carry the shuttle over the next
 //!      minimum of `W` (the creeping, over-damped case). A shuttle still undecided after
@@ -127,7 +127,7 @@ fn light(
         let f = net(x);
         if prev.1 < 0.0 && f >= 0.0 {
             let (mut a, mut b) = (prev.0, x);
-            for _ in 0..60 {
+            for _ in 0..40 {
                 let mid = 0.5 * (a + b);
                 if net(mid) < 0.0 { a = mid } else { b = mid }
             }
@@ -145,7 +145,7 @@ fn light(
     // RK4 in SI on y = (x, v), forward motion only.
     let accel = |x: f64, v: f64| (pull.plates.force_per_volt2(x) * v2 - k * x - fk - c * v) / m;
     let period = 2.0 * std::f64::consts::PI * (m / k).sqrt();
-    let h0 = period / 200.0;
+    let h0 = period / 100.0;
     let t_end = d.max_time_s;
     let (mut t, mut x, mut v) = (0.0f64, 0.0f64, 0.0f64);
     if let Some(r) = record.as_deref_mut() {
@@ -155,7 +155,7 @@ fn light(
     while t < t_end {
         let mut h = h0;
         if v > 0.0 {
-            h = h.min(0.01 * (gap - x) / v);
+            h = h.min(0.05 * (gap - x) / v);
         }
         steps += 1;
         if steps > 10_000_000 {
@@ -212,11 +212,14 @@ fn light(
             // Turned back before the stop: it cannot reach the stop any more.
             return Ok(still);
         }
-        // Creeping: the kinetic energy cannot carry it over the next minimum of W.
-        let w_here = work(x);
-        let ahead = minima.iter().filter(|(xm, _)| *xm >= x).fold(f64::INFINITY, |a, w| a.min(w.1));
-        if 0.5 * m * v * v + 1e-9 * scale < w_here - ahead {
-            return Ok(still);
+        // Creeping: the kinetic energy cannot carry it over the next minimum of W. Only checked
+        // while the shuttle slows down (an accelerating shuttle is not held back).
+        if a0 < 0.0 {
+            let w_here = work(x);
+            let ahead = minima.iter().filter(|(xm, _)| *xm >= x).fold(f64::INFINITY, |a, w| a.min(w.1));
+            if 0.5 * m * v * v + 1e-9 * scale < w_here - ahead {
+                return Ok(still);
+            }
         }
     }
     Err(ActuatorError::Solver(format!(

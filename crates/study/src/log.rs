@@ -135,13 +135,10 @@ pub struct Row {
     pub reason: String,
 }
 
-fn parse_row(rec: &csv::StringRecord, n_params: usize, what: &dyn Fn() -> String) -> Result<Row, StudyError> {
+fn parse_row(rec: &[&str], n_params: usize, what: &dyn Fn() -> String) -> Result<Row, StudyError> {
     let bad = |m: String| StudyError::Log(format!("{}: {m}", what()));
-    if rec.len() != 6 + n_params {
-        return Err(bad(format!("{} fields, expected {}", rec.len(), 6 + n_params)));
-    }
     let num = |k: usize| -> Result<Option<f64>, StudyError> {
-        let t = &rec[k];
+        let t = rec[k];
         if t.is_empty() {
             return Ok(None);
         }
@@ -152,7 +149,7 @@ fn parse_row(rec: &csv::StringRecord, n_params: usize, what: &dyn Fn() -> String
             .ok_or_else(|| bad(format!("field {k} = {t:?} is not a number")))
     };
     Ok(Row {
-        index: rec[0].parse().map_err(|_| bad(format!("sample index {:?} is not a whole number", &rec[0])))?,
+        index: rec[0].parse().map_err(|_| bad(format!("sample index {:?} is not a whole number", rec[0])))?,
         mu_apparent: num(1)?,
         apparent_adhesion_force_n: num(2)?,
         draws: (0..n_params).map(|k| num(4 + k).map(|x| x.unwrap_or(f64::NAN))).collect::<Result<_, _>>()?,
@@ -202,12 +199,16 @@ where
             )));
         }
         let what = || format!("{} line {line_no}", path.display());
-        let mut rd = csv::ReaderBuilder::new().has_headers(false).from_reader(&line[..]);
-        let mut rec = csv::StringRecord::new();
-        if !rd.read_record(&mut rec).map_err(|e| StudyError::Log(format!("{}: {e}", what())))? {
-            return Err(StudyError::Log(format!("{}: empty line", what())));
+        // The number and code fields are never quoted (written by `row`); only the last field,
+        // the detail text, may be: split off the first 5 + p fields.
+        let text = std::str::from_utf8(&line[..line.len() - 1])
+            .map_err(|_| StudyError::Log(format!("{}: not UTF-8 text", what())))?;
+        let n_fields = 5 + header.parameters.len();
+        let fields: Vec<&str> = text.splitn(n_fields + 1, ',').collect();
+        if fields.len() != n_fields + 1 {
+            return Err(StudyError::Log(format!("{}: {} fields, expected {}", what(), fields.len(), n_fields + 1)));
         }
-        let row = parse_row(&rec, header.parameters.len(), &what)?;
+        let row = parse_row(&fields[..n_fields], header.parameters.len(), &what)?;
         let expected = header.shard_index + n * header.shard_count;
         if row.index != expected {
             return Err(StudyError::Log(format!(
