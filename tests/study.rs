@@ -268,3 +268,25 @@ fn the_slurm_scripts_run_a_study_without_the_scheduler() {
     assert!(lines[0].contains("--array=0-3") && lines[0].ends_with("study-shard.sbatch"), "{calls}");
     assert!(lines[1].contains("--dependency=afterok:4242") && lines[1].ends_with("study-merge.sbatch"), "{calls}");
 }
+
+#[test]
+fn the_sensitivity_table_agrees_with_the_one_at_a_time_table() {
+    // docs/experiment.md, sources switched on one at a time (400 samples each): sidewall only
+    // sd(mu) 0.065, sidewall + summit radius 0.24, all sources 0.35. The radius alone therefore
+    // explains (0.24^2 - 0.065^2) / 0.35^2 = 0.44 of the variance of mu_e,a; the sidewall
+    // realisation 0.065^2 / 0.35^2 = 0.03 (a lower bound of the table's last row, which adds the
+    // interactions). Tolerance 0.15 on the radius: the binned estimator's standard error with ~600
+    // fits is about 0.05.
+    let v = stiction_json(&["study", "scenarios/tas2000.json", "--samples", "800", "--seed", "1", "--json"]);
+    let rows = v["sensitivity"]["inputs"].as_array().unwrap();
+    let row = |name: &str| rows.iter().find(|r| r["input"].as_str().unwrap().starts_with(name)).unwrap();
+    let radius = row("surface.summit_radius")["mu_first_order"].as_f64().unwrap();
+    assert!((radius - 0.44).abs() < 0.15, "radius share {radius}");
+    let rest = row("surface realisation")["mu_first_order"].as_f64().unwrap();
+    assert!(rest >= 0.03 - 0.05 && rest < 0.4, "surface + interactions {rest}");
+    // F_spring moves every load by the same amount, so it dominates F_a0 (docs/experiment.md),
+    // and a larger a_pull means a smaller reported mu (negative rank correlation).
+    let spring = row("meter.spring_force");
+    assert!(spring["fa0_first_order"].as_f64().unwrap() > 0.3, "{spring}");
+    assert!(row("actuators.pull.conversion_factor")["mu_spearman"].as_f64().unwrap() < -0.2);
+}
