@@ -126,42 +126,6 @@ fn the_gca_actuator_matches_measured_hardware() {
 }
 
 #[test]
-fn a_study_gives_the_same_bytes_whatever_the_threads_or_shards() {
-    let base = ["study", "scenarios/tas2000.json", "--samples", "24", "--seed", "5", "--json"];
-    let run = |extra: &[&str]| {
-        let mut args: Vec<&str> = base.to_vec();
-        args.extend_from_slice(extra);
-        stiction_json(&args)
-    };
-    let one = run(&["--threads", "1"]);
-    let two = run(&["--threads", "2"]);
-    assert_eq!(
-        serde_json::to_string(&one["samples"]).unwrap(),
-        serde_json::to_string(&two["samples"]).unwrap(),
-        "thread count changed the samples"
-    );
-    let mut merged: Vec<serde_json::Value> = Vec::new();
-    for shard in ["0/3", "1/3", "2/3"] {
-        merged.extend(run(&["--shard", shard])["samples"].as_array().unwrap().iter().cloned());
-    }
-    merged.sort_by_key(|s| s["index"].as_u64());
-    assert_eq!(
-        serde_json::to_string(&merged).unwrap(),
-        serde_json::to_string(&one["samples"]).unwrap(),
-        "shards differ"
-    );
-    // The draws really vary: the 24 samples have distinct spring forces and F_a0 values.
-    let fa0: Vec<f64> =
-        one["samples"].as_array().unwrap().iter().filter_map(|s| s["apparent_adhesion_force_n"].as_f64()).collect();
-    assert!(fa0.len() >= 12, "too few fits: {}", fa0.len());
-    let mean = fa0.iter().sum::<f64>() / fa0.len() as f64;
-    assert!(fa0.iter().any(|f| (f - mean).abs() > 0.1e-6), "no spread in F_a0");
-    // A different seed gives different draws.
-    let other = stiction_json(&["study", "scenarios/tas2000.json", "--samples", "24", "--seed", "6", "--json"]);
-    assert_ne!(serde_json::to_string(&other["samples"]).unwrap(), serde_json::to_string(&one["samples"]).unwrap());
-}
-
-#[test]
 fn with_three_contacts_the_roughness_amplitude_does_not_change_the_friction() {
     // A finding of the explicit solver (docs/experiment.md): while three summits carry the shoe,
     // statics fixes their loads from their positions alone, so scaling every height (summit SD

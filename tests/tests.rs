@@ -8,3 +8,4 @@ mod hardening;
 mod models;
 mod scenarios;
 mod standalone;
+mod study;

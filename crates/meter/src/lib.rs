@@ -12,15 +12,17 @@
 use std::path::Path;
 
 use serde::Serialize;
+use stiction_actuator::GapClosingActuator;
 use stiction_actuator::meter::{SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
-use stiction_actuator::{GapClosingActuator, SlipDynamics, simulate_slip};
 use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, MeterSpec, Scenario, ShoeMode, SlipCriterion};
 use stiction_surface::SurfaceSpec;
 
 mod contact_model;
 pub mod fit;
 pub mod measured;
+pub mod slip;
 pub use contact_model::{ContactModel, ContactState};
+pub use slip::SlipPath;
 use stiction_contact::explicit;
 use stiction_contact::gw::GwSurface;
 use stiction_contact::single::AsperityParams;
@@ -150,6 +152,7 @@ pub struct Meter {
     protocol: MeterSpec,
     contact: ContactModel,
     reduction: Option<Reduction>,
+    slip_path: SlipPath,
 }
 
 impl Meter {
@@ -174,6 +177,7 @@ impl Meter {
             protocol,
             contact,
             reduction: None,
+            slip_path: SlipPath::default(),
         })
     }
 
@@ -198,6 +202,11 @@ impl Meter {
     /// Reports forces with these (nominal) values instead of the device's own.
     pub fn set_reduction(&mut self, reduction: Reduction) {
         self.reduction = Some(reduction);
+    }
+
+    /// Follows the shuttle after slip with this path (default: the rapier rigid body).
+    pub fn set_slip_path(&mut self, path: SlipPath) {
+        self.slip_path = path;
     }
 
     /// The contact model in use (for reports and extra curves).
@@ -331,14 +340,15 @@ impl Meter {
                         Some(dyn_spec) => {
                             // After slip the shoe slides: kinetic friction on the total load.
                             let kinetic = dyn_spec.kinetic_friction_coefficient * state.elastic_load_n();
-                            let d = SlipDynamics::with_defaults(
+                            let t = slip::slip_outcome(
+                                self.slip_path,
                                 &self.pull,
+                                v_pull,
                                 dyn_spec.shuttle_mass,
                                 dyn_spec.damping,
                                 kinetic,
                             )
                             .map_err(|e| actuator_err("pull", e))?;
-                            let t = simulate_slip(&self.pull, v_pull, &d).map_err(|e| actuator_err("pull", e))?;
                             point.pull_in_at_slip = Some(t.runs_away);
                             point.slip_time_to_stop_s = t.time_to_stop_s;
                             point.slip_impact_velocity_m_per_s = t.impact_velocity_m_per_s;

@@ -14,19 +14,39 @@
 //! Sample `i` draws from `ChaCha8Rng::seed_from_u64(seed)` on stream `i` (`set_stream(i)`), so
 //! its values depend only on (`seed`, `i`), never on the thread that runs it, the number of
 //! threads or the shard. Results are kept in sample order. Same seed, same bytes.
+//!
+//! # Nothing lost, streamed
+//! A study appends each finished sample, in index order, to `samples.log` ([`log`]) and flushes
+//! it; every summary (study.json, samples.csv, figures, sensitivity) is computed from that log
+//! alone ([`summary`]), so an uninterrupted run, a resumed one and a merge of shards give the
+//! same bytes. Memory: the samples in flight plus a few numbers per sample for the percentiles
+//! and the sensitivity table.
 
 use std::path::{Path, PathBuf};
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use stiction_meter::{Meter, Reduction};
+use stiction_meter::{Meter, Reduction, SlipPath};
 use stiction_scenario::Scenario;
 
+pub mod log;
 mod sample;
-pub use sample::{Draw, draw, sample_tree};
+pub mod sensitivity;
+pub mod summary;
+pub use sample::{Draw, draw, sample_tree, uncertain_parameters};
+pub use summary::{Spread, StudySummary};
+
+/// Largest number of samples in one study. The summary keeps about 100 bytes per sample in
+/// memory (percentiles, sensitivity) and samples.csv about 150 bytes per sample on disk and, while
+/// it is written atomically, in memory: 1e7 samples need ~2.5 GB. Raise it with the environment
+/// variable `STICTION_MAX_SAMPLES`.
+pub const MAX_SAMPLES: usize = 10_000_000;
+
+/// Largest thread count: more threads than cores only add overhead; this bounds the start-up
+/// (each thread has its stack) far above any machine's core count.
+pub const MAX_THREADS: usize = 1024;
 
 /// Why a study failed.
 #[derive(Debug, thiserror::Error)]
@@ -45,10 +65,13 @@ pub enum StudyError {
     /// A study setting is wrong.
     #[error("{0}")]
     Setting(String),
+    /// The sample log or an output file.
+    #[error("{0}")]
+    Log(String),
 }
 
 /// How the virtual lab turns each sample's voltages into forces.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Calibration {
     /// The nominal conversion factors and spring force of the file, as the paper did (default).
@@ -75,6 +98,56 @@ pub struct StudyConfig {
     pub shard_count: usize,
     /// How each sample's voltages are reduced to forces.
     pub calibration: Calibration,
+    /// How the shuttle is followed after each slip (light by default; rigid body on request).
+    pub slip_path: SlipPath,
+}
+
+/// The sample limit in force: [`MAX_SAMPLES`] or `STICTION_MAX_SAMPLES`.
+pub fn max_samples() -> usize {
+    std::env::var("STICTION_MAX_SAMPLES").ok().and_then(|s| s.trim().parse().ok()).unwrap_or(MAX_SAMPLES)
+}
+
+impl StudyConfig {
+    /// Checks the counts before anything is read or allocated.
+    pub fn validate(&self) -> Result<(), StudyError> {
+        if self.samples == 0 {
+            return Err(StudyError::Setting("--samples 0: a study needs at least 1 sample".into()));
+        }
+        let limit = max_samples();
+        if self.samples > limit {
+            return Err(StudyError::Setting(format!(
+                "--samples {}: more than the limit of {limit} samples per study (the summary holds about \
+                 250 bytes per sample in memory, {:.1} GB here); run several studies with different --seed, \
+                 or raise the limit with the environment variable STICTION_MAX_SAMPLES",
+                self.samples,
+                self.samples as f64 * 250e-9
+            )));
+        }
+        if self.shard_count == 0 || self.shard_index >= self.shard_count {
+            return Err(StudyError::Setting(format!(
+                "--shard {}/{}: expected K/M with 0 <= K < M",
+                self.shard_index, self.shard_count
+            )));
+        }
+        if self.shard_index >= self.samples {
+            return Err(StudyError::Setting(format!(
+                "--shard {}/{} with --samples {}: this shard has no samples (shard K runs the samples i with \
+                 i % M == K); use at most {} shards",
+                self.shard_index, self.shard_count, self.samples, self.samples
+            )));
+        }
+        Ok(())
+    }
+
+    /// Number of samples of this shard: `#{i < n : i % M == K}`.
+    pub fn shard_len(&self) -> usize {
+        if self.shard_index >= self.samples { 0 } else { (self.samples - self.shard_index).div_ceil(self.shard_count) }
+    }
+
+    /// The `j`-th sample index of this shard.
+    pub fn shard_index_at(&self, j: usize) -> usize {
+        self.shard_index + j * self.shard_count
+    }
 }
 
 /// The outcome of one sample.
@@ -82,180 +155,245 @@ pub struct StudyConfig {
 pub struct SampleResult {
     /// Sample index.
     pub index: usize,
-    /// The drawn parameters.
-    pub draws: Vec<Draw>,
-    /// mu_e,a of eq. 10 (None: fewer than two slip points with L > 0).
+    /// The drawn parameters, SI (in the order of the study's columns).
+    pub draws: Vec<f64>,
+    /// mu_e,a of eq. 10.
     pub mu_apparent: Option<f64>,
     /// F_a0 of eq. 10, N.
     pub apparent_adhesion_force_n: Option<f64>,
     /// Mean number of contacts over the clamp voltages in contact.
     pub mean_contacts: Option<f64>,
-    /// Why the sample failed, if it did (kept, never skipped silently).
-    pub error: Option<String>,
+    /// Why there is no fit (a short code; see [`summary::REASONS`]), None when there is one.
+    pub reason: Option<String>,
+    /// The reason in words (the error message, or what the fit lacked).
+    pub detail: Option<String>,
 }
 
-/// Summary statistics of one reported quantity over the samples that gave it.
-#[derive(Debug, Clone, Serialize, PartialEq)]
-pub struct Spread {
-    /// Number of samples with a value.
-    pub count: usize,
-    /// Mean.
-    pub mean: f64,
-    /// Sample standard deviation.
-    pub sd: f64,
-    /// 5th percentile.
-    pub p05: f64,
-    /// Median.
-    pub median: f64,
-    /// 95th percentile.
-    pub p95: f64,
-    /// Smallest value.
-    pub min: f64,
-    /// Largest value.
-    pub max: f64,
-}
-
-impl Spread {
-    /// Statistics of `values` (None when empty). Percentiles by linear interpolation.
-    pub fn of(values: &[f64]) -> Option<Spread> {
-        if values.is_empty() {
-            return None;
-        }
-        let mut v = values.to_vec();
-        v.sort_by(f64::total_cmp);
-        let n = v.len();
-        let mean = v.iter().sum::<f64>() / n as f64;
-        let sd = if n > 1 { (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt() } else { 0.0 };
-        let pct = |p: f64| {
-            let r = p * (n - 1) as f64;
-            let (lo, hi) = (r.floor() as usize, r.ceil() as usize);
-            v[lo] + (v[hi] - v[lo]) * (r - lo as f64)
-        };
-        Some(Spread { count: n, mean, sd, p05: pct(0.05), median: pct(0.5), p95: pct(0.95), min: v[0], max: v[n - 1] })
-    }
-}
-
-/// A whole study.
-#[derive(Debug, Clone, Serialize)]
-pub struct StudyResult {
+/// A study ready to run: the scenario read, the nominal device checked, the columns known.
+pub struct Study {
+    base: Value,
+    path: PathBuf,
+    base_dir: PathBuf,
+    nominal: Scenario,
+    reduction: Reduction,
     /// The settings.
     pub config: StudyConfig,
-    /// The scenario file.
-    pub scenario: PathBuf,
-    /// Per-sample results, in index order.
-    pub samples: Vec<SampleResult>,
-    /// Spread of mu_e,a.
-    pub mu_apparent: Option<Spread>,
-    /// Spread of F_a0, N.
-    pub apparent_adhesion_force_n: Option<Spread>,
-    /// Samples that failed (their errors are in `samples`).
-    pub failed: usize,
-    /// Samples that ran but had fewer than two slip points with L > 0, so no eq. 10 fit (the
-    /// clamp voltages did not bring that device into contact often enough).
-    pub without_fit: usize,
-    /// The nominal conversion every sample's voltages were reduced with.
-    pub reduction: Reduction,
+    /// The uncertain parameters `(JSON path, SI unit)`, in draw order.
+    pub parameters: Vec<(String, String)>,
 }
 
-/// Runs a study on the scenario at `path` with `sets` applied before drawing.
-pub fn run_study(
-    path: &Path,
-    sets: &[String],
-    config: &StudyConfig,
-    progress: &(dyn Fn() + Sync),
-) -> Result<StudyResult, StudyError> {
-    if config.samples == 0 {
-        return Err(StudyError::Setting("--samples must be at least 1".into()));
+impl Study {
+    /// Reads the scenario at `path` with `sets` applied and checks the settings and the nominal
+    /// device (its conversion is what the lab reduces every sample with).
+    pub fn prepare(path: &Path, sets: &[String], config: &StudyConfig) -> Result<Study, StudyError> {
+        config.validate()?;
+        let base = Scenario::load_json(path, sets)?;
+        let nominal = Scenario::from_value(base.clone(), path)?;
+        let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        let reduction = Meter::from_scenario(&nominal, &base_dir)
+            .and_then(|m| m.device_reduction())
+            .map_err(|e| StudyError::Setting(format!("the nominal scenario cannot run: {e}")))?;
+        let parameters = uncertain_parameters(&base)?;
+        // A trial draw (its own stream, never a sample's) so that a parameter that can never be
+        // drawn (bounds that overflow, a lognormal of a negative value) stops the study at once,
+        // naming the field, instead of failing every sample.
+        let mut trial = ChaCha8Rng::seed_from_u64(config.seed);
+        trial.set_stream(u64::MAX);
+        sample_tree(&mut base.clone(), &mut trial)?;
+        Ok(Study { base, path: path.to_path_buf(), base_dir, nominal, reduction, config: config.clone(), parameters })
     }
-    if config.shard_count == 0 || config.shard_index >= config.shard_count {
-        return Err(StudyError::Setting(format!(
-            "shard {}/{} is not valid: expected K/M with 0 <= K < M",
-            config.shard_index, config.shard_count
-        )));
-    }
-    let base = Scenario::load_json(path, sets)?;
-    // The nominal scenario must be valid before any sample is drawn; its conversion factors and
-    // spring force are what the lab reduces every measurement with.
-    let nominal = Scenario::from_value(base.clone(), path)?;
-    let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let reduction = Meter::from_scenario(&nominal, &base_dir)
-        .and_then(|m| m.device_reduction())
-        .map_err(|e| StudyError::Setting(format!("the nominal scenario cannot run: {e}")))?;
-    let indices: Vec<usize> = (0..config.samples).filter(|i| i % config.shard_count == config.shard_index).collect();
-    let samples: Vec<SampleResult> = indices
-        .par_iter()
-        .map(|&i| {
-            let r = run_sample(&base, path, &base_dir, config, &nominal, reduction, i);
-            progress();
-            r
-        })
-        .collect();
-    let mus: Vec<f64> = samples.iter().filter_map(|s| s.mu_apparent).collect();
-    let fas: Vec<f64> = samples.iter().filter_map(|s| s.apparent_adhesion_force_n).collect();
-    Ok(StudyResult {
-        config: config.clone(),
-        scenario: path.to_path_buf(),
-        failed: samples.iter().filter(|s| s.error.is_some()).count(),
-        without_fit: samples.iter().filter(|s| s.error.is_none() && s.mu_apparent.is_none()).count(),
-        reduction,
-        mu_apparent: Spread::of(&mus),
-        apparent_adhesion_force_n: Spread::of(&fas),
-        samples,
-    })
-}
 
-/// Runs sample `i`: draw, parse, assemble, run.
-fn run_sample(
-    base: &Value,
-    path: &Path,
-    base_dir: &Path,
-    config: &StudyConfig,
-    nominal: &Scenario,
-    reduction: Reduction,
-    i: usize,
-) -> SampleResult {
-    let mut out = SampleResult {
-        index: i,
-        draws: Vec::new(),
-        mu_apparent: None,
-        apparent_adhesion_force_n: None,
-        mean_contacts: None,
-        error: None,
-    };
-    let mut rng = ChaCha8Rng::seed_from_u64(config.seed);
-    rng.set_stream(i as u64);
-    let mut value = base.clone();
-    match sample_tree(&mut value, &mut rng) {
-        Ok(d) => out.draws = d,
-        Err(e) => {
-            out.error = Some(e.to_string());
-            return out;
+    /// The log header that identifies this study (and shard).
+    pub fn header(&self) -> log::Header {
+        log::Header {
+            format: log::FORMAT,
+            scenario: self.path.display().to_string(),
+            scenario_hash: format!("{:016x}", fnv1a(serde_json::to_string(&self.base).unwrap_or_default().as_bytes())),
+            samples: self.config.samples,
+            seed: self.config.seed,
+            vary_surface: self.config.vary_surface,
+            calibration: self.config.calibration,
+            slip_path: self.config.slip_path,
+            shard_index: self.config.shard_index,
+            shard_count: self.config.shard_count,
+            reduction: [
+                format!("{:e}", self.reduction.a_clamp_n_per_v2),
+                format!("{:e}", self.reduction.a_pull_n_per_v2),
+                format!("{:e}", self.reduction.spring_force_n),
+            ],
+            parameters: self.parameters.clone(),
         }
     }
-    if config.vary_surface
-        && let Some(surface) = value.get_mut("surface").and_then(Value::as_object_mut)
-    {
-        surface.insert("seed".into(), Value::from(config.seed.wrapping_add(i as u64)));
-    }
-    let result = Scenario::from_value(value, path).map_err(|e| e.to_string()).and_then(|s| {
-        let reduction = match config.calibration {
-            Calibration::Nominal => reduction,
-            Calibration::PullIn => calibrated_reduction(nominal, &s, reduction)?,
+
+    /// Runs sample `i`: draw, parse, assemble, run. Never fails: a failure is the sample's reason.
+    pub fn run_sample(&self, i: usize) -> SampleResult {
+        let mut out = SampleResult {
+            index: i,
+            draws: vec![f64::NAN; self.parameters.len()],
+            mu_apparent: None,
+            apparent_adhesion_force_n: None,
+            mean_contacts: None,
+            reason: None,
+            detail: None,
         };
-        let mut m = Meter::from_scenario(&s, base_dir).map_err(|e| e.to_string())?;
-        m.set_reduction(reduction);
-        m.run(&mut |_, _| {}).map_err(|e| e.to_string())
-    });
-    match result {
-        Ok(r) => {
-            out.mu_apparent = r.mu_apparent;
-            out.apparent_adhesion_force_n = r.apparent_adhesion_force_n;
-            let c: Vec<f64> = r.points.iter().filter(|p| p.in_contact).map(|p| p.contacts).collect();
-            out.mean_contacts = (!c.is_empty()).then(|| c.iter().sum::<f64>() / c.len() as f64);
+        let mut rng = ChaCha8Rng::seed_from_u64(self.config.seed);
+        rng.set_stream(i as u64);
+        let mut value = self.base.clone();
+        match sample_tree(&mut value, &mut rng) {
+            Ok(d) => out.draws = d.into_iter().map(|d| d.value).collect(),
+            Err(e) => {
+                out.reason = Some("draw-failed".into());
+                out.detail = Some(e.to_string());
+                return out;
+            }
         }
-        Err(e) => out.error = Some(e),
+        if self.config.vary_surface
+            && let Some(surface) = value.get_mut("surface").and_then(Value::as_object_mut)
+        {
+            surface.insert("seed".into(), Value::from(self.config.seed.wrapping_add(i as u64)));
+        }
+        let scenario = match Scenario::from_value(value, &self.path) {
+            Ok(s) => s,
+            Err(e) => {
+                out.reason = Some("invalid-scenario".into());
+                out.detail = Some(e.to_string());
+                return out;
+            }
+        };
+        let result = (|| {
+            let reduction = match self.config.calibration {
+                Calibration::Nominal => self.reduction,
+                Calibration::PullIn => calibrated_reduction(&self.nominal, &scenario, self.reduction)?,
+            };
+            let mut m = Meter::from_scenario(&scenario, &self.base_dir).map_err(|e| e.to_string())?;
+            m.set_reduction(reduction);
+            m.set_slip_path(self.config.slip_path);
+            m.run(&mut |_, _| {}).map_err(|e| e.to_string())
+        })();
+        match result {
+            Ok(r) => {
+                out.mu_apparent = r.mu_apparent;
+                out.apparent_adhesion_force_n = r.apparent_adhesion_force_n;
+                let c: Vec<f64> = r.points.iter().filter(|p| p.in_contact).map(|p| p.contacts).collect();
+                out.mean_contacts = (!c.is_empty()).then(|| c.iter().sum::<f64>() / c.len() as f64);
+                if r.mu_apparent.is_none() {
+                    let in_contact = r.points.iter().filter(|p| p.in_contact).count();
+                    let slips = r.points.iter().filter(|p| p.load_n > 0.0 && p.friction_n.is_some()).count();
+                    let (reason, detail) = if in_contact == 0 {
+                        (
+                            "no-contact",
+                            format!("none of the {} clamp voltages brought the shoe into contact", r.points.len()),
+                        )
+                    } else if slips < 2 {
+                        (
+                            "too-few-slips",
+                            format!(
+                                "{slips} slip point(s) with L > 0 ({in_contact} of {} clamp voltages in contact): the eq. 10 \
+                                 line needs at least 2",
+                                r.points.len()
+                            ),
+                        )
+                    } else {
+                        match &r.fit {
+                            Some(l) if l.slope <= 0.0 => {
+                                ("non-positive-slope", format!("the eq. 10 line has slope {:e} <= 0", l.slope))
+                            }
+                            _ => ("degenerate-fit", format!("{slips} slip points but no straight line through them")),
+                        }
+                    };
+                    out.reason = Some(reason.into());
+                    out.detail = Some(detail);
+                }
+            }
+            Err(e) => {
+                out.reason = Some("meter-failed".into());
+                out.detail = Some(e);
+            }
+        }
+        out
     }
-    out
+}
+
+impl Study {
+    /// Runs the shard's samples from the `done`-th on, appending each to `log` in index order as
+    /// soon as it and all before it are finished. Workers take indices in order from a shared
+    /// counter, so only the samples in flight (about one per thread) can be lost by a kill.
+    /// `progress(n)` gets the number of samples of the shard in the log.
+    pub fn run_into(
+        &self,
+        log: &mut log::LogWriter,
+        done: usize,
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Result<(), StudyError> {
+        use std::collections::BTreeMap;
+        use std::sync::Mutex;
+        use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+        let total = self.config.shard_len();
+        let next = AtomicUsize::new(done);
+        let stop = AtomicBool::new(false);
+        struct Pending<'a> {
+            next: usize,
+            lines: BTreeMap<usize, Vec<u8>>,
+            log: &'a mut log::LogWriter,
+            error: Option<StudyError>,
+        }
+        let pending = Mutex::new(Pending { next: done, lines: BTreeMap::new(), log, error: None });
+        let worker = || {
+            loop {
+                if stop.load(Ordering::Relaxed) {
+                    return;
+                }
+                let j = next.fetch_add(1, Ordering::Relaxed);
+                if j >= total {
+                    return;
+                }
+                let line = log::row(&self.run_sample(self.config.shard_index_at(j)));
+                let mut p = pending.lock().unwrap_or_else(|e| e.into_inner());
+                match line {
+                    Ok(l) => {
+                        p.lines.insert(j, l);
+                    }
+                    Err(e) => {
+                        p.error.get_or_insert(e);
+                        stop.store(true, Ordering::Relaxed);
+                        return;
+                    }
+                }
+                let mut wrote = false;
+                loop {
+                    let k = p.next;
+                    let Some(l) = p.lines.remove(&k) else { break };
+                    if let Err(e) = p.log.append(&l) {
+                        p.error.get_or_insert(e);
+                        stop.store(true, Ordering::Relaxed);
+                        return;
+                    }
+                    p.next += 1;
+                    wrote = true;
+                }
+                if wrote {
+                    progress(p.next);
+                }
+            }
+        };
+        rayon::scope(|s| {
+            for _ in 0..rayon::current_num_threads() {
+                s.spawn(|_| worker());
+            }
+        });
+        let p = pending.into_inner().unwrap_or_else(|e| e.into_inner());
+        match p.error {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+}
+
+/// FNV-1a, 64 bit: a fingerprint of the scenario (after `--set`) in the log header, so that
+/// resume and merge refuse pieces of another study. Hand-written (five lines) rather than a
+/// dependency: it identifies, it does not protect against tampering.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
 }
 
 /// The lab's conversion for one device calibrated from its arrays' pull-in voltages: the device
@@ -280,13 +418,40 @@ fn calibrated_reduction(
 mod tests {
     use super::*;
 
+    fn config(samples: usize, k: usize, m: usize) -> StudyConfig {
+        StudyConfig {
+            samples,
+            seed: 1,
+            vary_surface: true,
+            shard_index: k,
+            shard_count: m,
+            calibration: Calibration::Nominal,
+            slip_path: SlipPath::Light,
+        }
+    }
+
     #[test]
-    fn spread_percentiles_interpolate() {
-        let s = Spread::of(&[4.0, 1.0, 3.0, 2.0, 5.0]).unwrap();
-        assert_eq!((s.count, s.min, s.max, s.median), (5, 1.0, 5.0, 3.0));
-        assert!((s.mean - 3.0).abs() < 1e-15);
-        assert!((s.sd - 2.5f64.sqrt()).abs() < 1e-15);
-        assert!((s.p05 - 1.2).abs() < 1e-12 && (s.p95 - 4.8).abs() < 1e-12);
-        assert!(Spread::of(&[]).is_none());
+    fn shard_sizes_add_up_and_empty_shards_are_refused() {
+        for n in [1, 2, 3, 10, 11] {
+            for m in 1..=5 {
+                let total: usize = (0..m).map(|k| config(n, k, m).shard_len()).sum();
+                assert_eq!(total, n, "n = {n}, m = {m}");
+                for k in 0..m {
+                    let c = config(n, k, m);
+                    let brute = (0..n).filter(|i| i % m == k).count();
+                    assert_eq!(c.shard_len(), brute);
+                    assert_eq!(c.validate().is_ok(), brute > 0, "n = {n}, {k}/{m}");
+                }
+            }
+        }
+        let e = config(3, 5, 10).validate().unwrap_err().to_string();
+        assert!(e.contains("--shard 5/10") && e.contains("--samples 3") && e.contains("no samples"), "{e}");
+    }
+
+    #[test]
+    fn a_huge_sample_count_is_refused_before_anything_is_read() {
+        let e = config(1_000_000_000_000, 0, 1).validate().unwrap_err().to_string();
+        assert!(e.contains("--samples 1000000000000") && e.contains("STICTION_MAX_SAMPLES"), "{e}");
+        assert!(config(0, 0, 1).validate().is_err());
     }
 }

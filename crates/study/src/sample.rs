@@ -85,13 +85,94 @@ pub fn draw(u: &UncertainInput, path: &str, rng: &mut ChaCha8Rng) -> Result<f64,
                 (Some(a), Some(b)) => (a, b),
                 _ => (m - 3f64.sqrt() * sd, m + 3f64.sqrt() * sd),
             };
+            if !(a.is_finite() && b.is_finite() && (b - a).is_finite()) {
+                return Err(err(format!(
+                    "uniform bounds [{a:e}, {b:e}]: the bounds and their width b - a must be finite numbers \
+                     (|b - a| < 1.8e308)"
+                )));
+            }
             if b < a {
                 return Err(err(format!("uniform bounds [{a}, {b}] are reversed")));
             }
             if b == a { a } else { rng.random_range(a..b) }
         }
     };
+    if !value.is_finite() {
+        return Err(err(format!("the drawn value {value:e} is not a finite number (value {m:e}, sd {sd:e})")));
+    }
     Ok(value)
+}
+
+/// The uncertain parameters of a scenario tree, in draw order (the order of [`sample_tree`]):
+/// `(JSON path, SI unit of the drawn value)`. The unit comes from the `value` text ("0.5 um" ->
+/// "m"); a bare number is already SI, its unit is given as "SI".
+pub fn uncertain_parameters(value: &Value) -> Result<Vec<(String, String)>, StudyError> {
+    fn go(v: &Value, path: String, out: &mut Vec<(String, String)>) -> Result<(), StudyError> {
+        match v {
+            Value::Object(map) if is_uncertain(map) => {
+                let u: UncertainInput = serde_json::from_value(Value::Object(map.clone()))
+                    .map_err(|e| StudyError::Sample { path: path.clone(), message: e.to_string() })?;
+                let unit = match &u.value {
+                    ScalarInput::Number(_) => "SI".to_string(),
+                    ScalarInput::Text(_) => {
+                        let dim = si(&u.value, &path, "value")?.1;
+                        unit_of(dim)
+                    }
+                };
+                out.push((path, unit));
+            }
+            Value::Object(map) => {
+                let mut keys: Vec<&String> = map.keys().collect();
+                keys.sort();
+                for k in keys {
+                    let child = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                    go(&map[k], child, out)?;
+                }
+            }
+            Value::Array(items) => {
+                for (i, c) in items.iter().enumerate() {
+                    go(c, format!("{path}.{i}"), out)?;
+                }
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+    let mut out = Vec::new();
+    go(value, String::new(), &mut out)?;
+    Ok(out)
+}
+
+/// The SI unit of a dimension vector, by the names the scenario format uses.
+fn unit_of(dim: stiction_units::DimensionVector) -> String {
+    use stiction_units::Dimension as D;
+    const ALL: [D; 15] = [
+        D::Dimensionless,
+        D::Length,
+        D::Area,
+        D::Force,
+        D::Pressure,
+        D::SurfaceEnergy,
+        D::Compliance,
+        D::ArealDensity,
+        D::ForcePerVoltageSquared,
+        D::Voltage,
+        D::Stiffness,
+        D::Angle,
+        D::Time,
+        D::Mass,
+        D::Damping,
+    ];
+    match ALL.iter().find(|d| d.vector() == dim) {
+        Some(D::Dimensionless) => "1".into(),
+        Some(d) => d.si_unit().into(),
+        None => {
+            let names = ["m", "kg", "s", "A"];
+            let parts: Vec<String> =
+                dim.0.iter().zip(names).filter(|(e, _)| **e != 0).map(|(e, n)| format!("{n}^{e}")).collect();
+            parts.join(" ")
+        }
+    }
 }
 
 /// Replaces every uncertain parameter in `value` (depth first, keys in sorted order, so the
@@ -181,6 +262,33 @@ mod tests {
         assert!(v["b"].as_f64().unwrap() > 0.0 && v["b"].as_f64().unwrap() < 1e-5);
         assert_eq!(v["c"], "1 um");
         assert_eq!(v["a"][1], 3);
+    }
+
+    #[test]
+    fn an_overflowing_uniform_range_is_an_error_not_a_panic() {
+        // Issue 9: min -1.7e308, max 1.7e308 made rand panic (the width overflows to inf).
+        let u: UncertainInput = serde_json::from_value(serde_json::json!({
+            "value": 0.0, "distribution": "uniform", "min": -1.7e308, "max": 1.7e308
+        }))
+        .unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let e = draw(&u, "meter.spring_force", &mut rng).unwrap_err().to_string();
+        assert!(e.contains("meter.spring_force") && e.contains("finite"), "{e}");
+    }
+
+    #[test]
+    fn parameters_are_listed_in_draw_order_with_their_units() {
+        let v = serde_json::json!({
+            "b": {"value": "0.5 um", "sd": "0.3 um", "distribution": "lognormal"},
+            "a": [{"value": "1.4e-8 N/V^2", "sd": "0.5e-8 N/V^2"}, 3],
+            "c": {"value": 0.7, "sd": 0.1}
+        });
+        let p = uncertain_parameters(&v).unwrap();
+        let want = [("a.0", "N/V^2"), ("b", "m"), ("c", "SI")];
+        assert_eq!(p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect::<Vec<_>>(), want);
+        let mut w = v.clone();
+        let draws = sample_tree(&mut w, &mut ChaCha8Rng::seed_from_u64(1)).unwrap();
+        assert_eq!(draws.iter().map(|d| d.path.as_str()).collect::<Vec<_>>(), vec!["a.0", "b", "c"]);
     }
 
     #[test]

@@ -4,6 +4,7 @@ pub mod actuator;
 pub mod contact;
 pub mod discrete;
 pub mod gw;
+pub mod merge;
 pub mod plot;
 pub mod run;
 pub mod scenario;

@@ -1,22 +1,31 @@
 //! `stiction study`: Monte Carlo over a scenario's uncertain parameters and surface realisations.
 
-use std::path::PathBuf;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
+use stiction_meter::SlipPath;
 use stiction_plot::{Chart, Series};
-use stiction_study::{Calibration, StudyConfig, StudyResult, run_study};
+use stiction_study::log::LogWriter;
+use stiction_study::summary::FigureData;
+use stiction_study::{Calibration, MAX_THREADS, Study, StudyConfig, StudySummary};
 
-use crate::output::{CliResult, OutputSet, print_json};
+use crate::output::{CliResult, ensure_dir, print_json};
 
 /// Run the friction meter on many realisations of a scenario: every parameter written with an
 /// uncertainty is drawn anew, and each sample gets its own rough surface. Reports the spread of
-/// mu_e,a and F_a0 (eq. 10). Same seed, same bytes, whatever --threads or --shard.
+/// mu_e,a and F_a0 (eq. 10) and which input explains how much of it. Same seed, same bytes,
+/// whatever --threads or --shard.
+///
+/// Each finished sample is appended to OUT/samples.log at once; a killed study is finished with
+/// --resume (same bytes as an uninterrupted run); shards are combined with `stiction merge`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The scenario JSON file.
     pub scenario: PathBuf,
-    /// Number of samples of the whole study.
+    /// Number of samples of the whole study (at most 1e7; STICTION_MAX_SAMPLES raises it).
     #[arg(long, default_value_t = 100)]
     pub samples: usize,
     /// Base seed.
@@ -25,25 +34,34 @@ pub struct Args {
     /// Keep the scenario's surface for every sample (vary only the uncertain parameters).
     #[arg(long)]
     pub fixed_surface: bool,
-    /// Run only shard K of M (samples with index % M == K), as "K/M"; merge the outputs afterwards.
+    /// Run only shard K of M (samples with index % M == K), as "K/M"; combine the shards' folders
+    /// with `stiction merge DIR... --out DIR`.
     #[arg(long, value_name = "K/M")]
     pub shard: Option<String>,
     /// How the virtual lab converts voltages to forces: with the file's nominal factors (as the
     /// paper did), or with each device's arrays calibrated from their own pull-in voltages.
     #[arg(long, value_enum, default_value = "nominal")]
     pub calibration: CalibrationArg,
-    /// Worker threads (default: all cores).
+    /// How the pull shuttle is followed after each slip (with `meter.slip_dynamics`): the light
+    /// path (energy criterion + RK4, validated against rapier) or the full rapier rigid body.
+    #[arg(long, value_enum, default_value = "light")]
+    pub slip_path: SlipPathArg,
+    /// Worker threads (default: all cores; at most 1024).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Write study.json, samples.csv and plots (SVG, PNG) to this folder.
+    /// Write samples.log, study.json, samples.csv, sensitivity.csv and plots (SVG, PNG) to this folder.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Print one JSON object instead of the summary.
+    /// Finish the study whose log is in --out (after a kill): the result is the same bytes as an
+    /// uninterrupted run.
+    #[arg(long, requires = "out")]
+    pub resume: bool,
+    /// No progress output.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Print one JSON object (study.json) instead of the summary.
     #[arg(long)]
     pub json: bool,
-    /// Write into an --out folder that holds files not from an earlier stiction run.
-    #[arg(long)]
-    pub force: bool,
     /// Override a scenario field (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
@@ -58,6 +76,15 @@ pub enum CalibrationArg {
     PullIn,
 }
 
+/// The --slip-path choices.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum SlipPathArg {
+    /// Energy criterion for the runaway plus an RK4 integrator for the time to the stop.
+    Light,
+    /// The rapier rigid-body trajectory (about 100 times slower).
+    RigidBody,
+}
+
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
     let (k, m) = s.split_once('/').ok_or_else(|| format!("--shard {s:?}: expected K/M, like 0/4"))?;
     let k: usize = k.trim().parse().map_err(|_| format!("--shard {s:?}: K is not a whole number"))?;
@@ -68,94 +95,160 @@ fn parse_shard(s: &str) -> Result<(usize, usize), String> {
     Ok((k, m))
 }
 
+/// Progress: a bar on a terminal, a plain line every 5 s elsewhere, nothing with --quiet.
+pub(crate) struct Progress {
+    bar: Option<ProgressBar>,
+    plain: Option<Mutex<(Instant, Instant)>>,
+    total: usize,
+    start_done: usize,
+}
+
+impl Progress {
+    pub(crate) fn new(total: usize, start_done: usize, quiet: bool) -> Progress {
+        let terminal = std::io::stderr().is_terminal();
+        let bar = (!quiet && terminal).then(|| {
+            let b = ProgressBar::new(total as u64);
+            b.set_style(
+                ProgressStyle::with_template("{spinner} samples {pos}/{len} [{bar:30}] {per_sec} eta {eta}")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            );
+            b.set_position(start_done as u64);
+            b.reset_eta();
+            b
+        });
+        let now = Instant::now();
+        let plain = (!quiet && !terminal).then(|| Mutex::new((now, now)));
+        Progress { bar, plain, total, start_done }
+    }
+
+    pub(crate) fn line(&self, done: usize, elapsed: Duration) -> String {
+        let secs = elapsed.as_secs_f64().max(1e-9);
+        let rate = (done - self.start_done.min(done)) as f64 / secs;
+        let left =
+            if rate > 0.0 { format!("{:.0} s", (self.total - done.min(self.total)) as f64 / rate) } else { "?".into() };
+        format!(
+            "study: {done}/{} samples ({:.0} %), {rate:.0} samples/s, about {left} left",
+            self.total,
+            100.0 * done as f64 / self.total.max(1) as f64
+        )
+    }
+
+    pub(crate) fn update(&self, done: usize) {
+        if let Some(b) = &self.bar {
+            b.set_position(done as u64);
+        }
+        if let Some(p) = &self.plain {
+            let mut g = p.lock().unwrap_or_else(|e| e.into_inner());
+            let now = Instant::now();
+            if now.duration_since(g.1) >= Duration::from_secs(5) {
+                g.1 = now;
+                eprintln!("{}", self.line(done, now.duration_since(g.0)));
+            }
+        }
+    }
+
+    pub(crate) fn finish(&self, done: usize) {
+        if let Some(b) = &self.bar {
+            b.finish_and_clear();
+        }
+        if let Some(p) = &self.plain {
+            let g = p.lock().unwrap_or_else(|e| e.into_inner());
+            eprintln!("{}", self.line(done, g.0.elapsed()));
+        }
+    }
+}
+
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     let (shard_index, shard_count) = match &args.shard {
         Some(s) => parse_shard(s)?,
         None => (0, 1),
     };
-    let calibration = match args.calibration {
-        CalibrationArg::Nominal => Calibration::Nominal,
-        CalibrationArg::PullIn => Calibration::PullIn,
-    };
     let config = StudyConfig {
-        calibration,
+        calibration: match args.calibration {
+            CalibrationArg::Nominal => Calibration::Nominal,
+            CalibrationArg::PullIn => Calibration::PullIn,
+        },
+        slip_path: match args.slip_path {
+            SlipPathArg::Light => SlipPath::Light,
+            SlipPathArg::RigidBody => SlipPath::RigidBody,
+        },
         samples: args.samples,
         seed: args.seed,
         vary_surface: !args.fixed_surface,
         shard_index,
         shard_count,
     };
-    let total = (0..args.samples).filter(|i| i % shard_count == shard_index).count();
-    let bar = ProgressBar::new(total as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{spinner} samples {pos}/{len} [{bar:30}] {elapsed_precise} eta {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    let done = AtomicUsize::new(0);
-    let progress = || {
-        let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-        bar.set_position(n as u64);
-    };
+    // Counts first: nothing is read or started before they are known to be sane.
+    config.validate()?;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
-        if t == 0 {
-            return Err("--threads must be at least 1".into());
+        if t == 0 || t > MAX_THREADS {
+            return Err(format!(
+                "--threads {t}: expected 1 to {MAX_THREADS} (this machine has {} cores; more threads than cores do \
+                 not make a study faster)",
+                std::thread::available_parallelism().map_or(1, |n| n.get())
+            )
+            .into());
         }
         pool = pool.num_threads(t);
     }
-    let pool = pool.build()?;
-    // Check the output folder before the work, so a refusal comes at once.
-    let outputs = match &args.out {
-        Some(dir) => Some(OutputSet::begin(dir, "study", args.force)?),
-        None => None,
+    let study = Study::prepare(&args.scenario, &args.sets, &config)?;
+    let header = study.header();
+    // Without --out the log lives in a temporary folder removed at the end.
+    let (dir, temporary) = match &args.out {
+        Some(d) => (d.clone(), false),
+        None => (std::env::temp_dir().join(format!("stiction-study-{}", std::process::id())), true),
     };
-    let result = pool.install(|| run_study(&args.scenario, &args.sets, &config, &progress))?;
-    bar.finish_and_clear();
-    if let Some(mut set) = outputs {
-        set.add_bytes("study.json", (serde_json::to_string_pretty(&result)? + "\n").as_bytes())?;
-        let mut w = csv::Writer::from_writer(Vec::new());
-        let params: Vec<String> = result
-            .samples
-            .iter()
-            .find(|s| s.error.is_none())
-            .map(|s| s.draws.iter().map(|d| d.path.clone()).collect())
-            .unwrap_or_default();
-        let mut header =
-            vec!["index".to_string(), "mu_apparent".into(), "apparent_adhesion_force_n".into(), "mean_contacts".into()];
-        header.extend(params.iter().cloned());
-        header.push("error".into());
-        w.write_record(&header)?;
-        for s in &result.samples {
-            let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
-            let mut row =
-                vec![s.index.to_string(), opt(s.mu_apparent), opt(s.apparent_adhesion_force_n), opt(s.mean_contacts)];
-            for p in &params {
-                row.push(s.draws.iter().find(|d| &d.path == p).map_or(String::new(), |d| format!("{:e}", d.value)));
-            }
-            row.push(s.error.clone().unwrap_or_default());
-            w.write_record(&row)?;
-        }
-        let csv_bytes = w.into_inner().map_err(|e| format!("samples.csv: {e}"))?;
-        set.add_bytes("samples.csv", &csv_bytes)?;
-        for (name, chart) in [("mu_cdf", cdf_chart(&result)), ("mu_vs_fa0", scatter_chart(&result))] {
-            set.add_chart(&format!("{name}.svg"), &chart)?;
-            set.add_chart(&format!("{name}.png"), &chart)?;
-        }
-        set.commit()?;
+    if temporary {
+        let _ = std::fs::remove_dir_all(&dir);
     }
-    if args.json {
-        return print_json(&result);
+    ensure_dir(&dir)?;
+    let (mut log, done) =
+        if args.resume { LogWriter::resume(&dir, &header)? } else { (LogWriter::create(&dir, &header)?, 0) };
+    let total = config.shard_len();
+    let progress = Progress::new(total, done, args.quiet || args.json);
+    let pool = pool.build()?;
+    let ran = pool.install(|| study.run_into(&mut log, done, &|n| progress.update(n)));
+    progress.finish(if ran.is_ok() { total } else { done });
+    ran?;
+    drop(log);
+    let result = if temporary {
+        stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| s)
+    } else {
+        finish_folder(&dir).map_err(|e| stiction_study::StudyError::Log(e.to_string()))
+    };
+    if temporary {
+        let _ = std::fs::remove_dir_all(&dir);
     }
-    crate::outln!(
+    let summary = result?;
+    report(&summary, args.json, &args.scenario)
+}
+
+/// Writes study.json, samples.csv, sensitivity.csv and the figures of the study whose complete
+/// log is in `dir` (shared with `stiction merge`).
+pub(crate) fn finish_folder(dir: &Path) -> Result<StudySummary, Box<dyn std::error::Error>> {
+    let (summary, fig) = stiction_study::summary::finalize(dir)?;
+    write_sensitivity_csv(&summary, dir)?;
+    write_figures(&summary, &fig, dir)?;
+    Ok(summary)
+}
+
+/// Prints the summary (or JSON).
+pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> CliResult {
+    if json {
+        return print_json(summary);
+    }
+    let c = &summary.config;
+    println!(
         "Monte Carlo study of {} ({} samples{}, seed {})",
-        args.scenario.display(),
-        result.samples.len(),
-        if shard_count > 1 { format!(", shard {shard_index}/{shard_count}") } else { String::new() },
-        args.seed
+        scenario.display(),
+        summary.samples_done,
+        if c.shard != "0/1" { format!(", shard {}", c.shard) } else { String::new() },
+        c.seed
     );
     let show = |name: &str, s: &Option<stiction_study::Spread>, scale: f64, unit: &str| match s {
-        Some(s) => crate::outln!(
+        Some(s) => println!(
             "  {name:<28} mean {:.3}{unit} sd {:.3}{unit}  5-95 %: {:.3}..{:.3}{unit}  (n = {})",
             s.mean * scale,
             s.sd * scale,
@@ -163,43 +256,132 @@ pub fn run(args: Args) -> CliResult {
             s.p95 * scale,
             s.count
         ),
-        None => crate::outln!("  {name:<28} no sample gave a value"),
+        None => println!("  {name:<28} no sample gave a value"),
     };
-    show("mu_e,a (paper 0.7 +/- 0.3)", &result.mu_apparent, 1.0, "");
-    show("F_a0 (paper 2.0 +/- 1.3 uN)", &result.apparent_adhesion_force_n, 1e6, " uN");
-    if result.without_fit > 0 {
-        crate::outln!(
-            "  {} samples had fewer than two slip points with L > 0 (their clamp voltages hardly reached contact): no fit",
-            result.without_fit
+    show("mu_e,a (paper 0.7 +/- 0.3)", &summary.mu_apparent, 1.0, "");
+    show("F_a0 (paper 2.0 +/- 1.3 uN)", &summary.apparent_adhesion_force_n, 1e6, " uN");
+    if !summary.reasons.is_empty() {
+        println!(
+            "  samples without a fit ({} ran without one, {} failed), by reason:",
+            summary.without_fit, summary.failed
         );
+        for (code, n) in &summary.reasons {
+            let what = stiction_study::summary::REASONS.iter().find(|r| r.0 == code).map_or("", |r| r.1);
+            println!("    {n:>8}  {code}: {what}");
+        }
     }
-    if result.failed > 0 {
-        crate::outln!("  {} samples failed; their errors are in the JSON output and samples.csv", result.failed);
-        for s in result.samples.iter().filter(|s| s.error.is_some()).take(3) {
-            crate::outln!("    sample {}: {}", s.index, s.error.as_deref().unwrap_or(""));
+    let s = &summary.sensitivity;
+    if s.samples >= 20 {
+        println!("  share of the variance (first-order Sobol index; Spearman rho), {} samples with a fit:", s.samples);
+        println!("    {:<48} {:>16} {:>16}", "input", "mu_e,a", "F_a0");
+        let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
+        for r in &s.inputs {
+            let cell = |a: Option<f64>, b: Option<f64>| match b {
+                Some(_) => format!("{} ({})", f(a), f(b)),
+                None => f(a),
+            };
+            println!(
+                "    {:<48} {:>16} {:>16}",
+                r.input,
+                cell(r.mu_first_order, r.mu_spearman),
+                cell(r.fa0_first_order, r.fa0_spearman)
+            );
         }
     }
     Ok(())
 }
 
-fn cdf_chart(r: &StudyResult) -> Chart {
-    let mut mus: Vec<f64> = r.samples.iter().filter_map(|s| s.mu_apparent).collect();
-    mus.sort_by(f64::total_cmp);
-    let n = mus.len().max(1) as f64;
-    let pts: Vec<(f64, f64)> = mus.iter().enumerate().map(|(i, &m)| (m, (i as f64 + 0.5) / n)).collect();
+fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
+    let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
+    w.write_record([
+        "input [path]",
+        "mu_first_order_sobol [1]",
+        "fa0_first_order_sobol [1]",
+        "mu_spearman_rho [1]",
+        "fa0_spearman_rho [1]",
+    ])?;
+    let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
+    for r in &summary.sensitivity.inputs {
+        w.write_record([
+            r.input.clone(),
+            f(r.mu_first_order),
+            f(r.fa0_first_order),
+            f(r.mu_spearman),
+            f(r.fa0_spearman),
+        ])?;
+    }
+    let bytes = w.into_inner().map_err(|e| e.to_string())?;
+    stiction_units::io::write_atomic(&dir.join("sensitivity.csv"), &bytes)?;
+    Ok(())
+}
+
+/// Draws a chart to a temporary file and moves its bytes into place atomically.
+fn write_chart_atomic(chart: &Chart, path: &Path) -> CliResult {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let tmp = path.with_file_name(format!(
+        ".{name}.render-{}.{}",
+        std::process::id(),
+        if name.ends_with(".png") { "png" } else { "svg" }
+    ));
+    crate::cmd::plot::write_chart(chart, &tmp)?;
+    let bytes = std::fs::read(&tmp);
+    let _ = std::fs::remove_file(&tmp);
+    stiction_units::io::write_atomic(path, &bytes?)?;
+    Ok(())
+}
+
+fn write_figures(summary: &StudySummary, fig: &FigureData, dir: &Path) -> CliResult {
+    // A figure without data is left out (a shard or a tiny study may have no fit or too few
+    // samples for the sensitivity table, which needs 20 with a fit).
+    let has_sens = summary.sensitivity.inputs.iter().any(|r| r.mu_first_order.is_some());
+    let charts = [
+        ("mu_cdf", !fig.mu_sorted.is_empty(), cdf_chart(fig)),
+        ("mu_vs_fa0", !fig.scatter.is_empty(), scatter_chart(fig)),
+        ("sensitivity", has_sens, sensitivity_chart(summary)),
+    ];
+    for (name, _, chart) in charts.iter().filter(|c| c.1) {
+        write_chart_atomic(chart, &dir.join(format!("{name}.svg")))?;
+        write_chart_atomic(chart, &dir.join(format!("{name}.png")))?;
+    }
+    // The data beside the figures.
+    let mut cdf = String::from("mu_apparent [1],cumulative_fraction [1]\n");
+    for (m, p) in cdf_points(fig) {
+        cdf.push_str(&format!("{m:e},{p:e}\n"));
+    }
+    stiction_units::io::write_atomic(&dir.join("mu_cdf.csv"), cdf.as_bytes())?;
+    let mut sc = String::from("apparent_adhesion_force [N],mu_apparent [1]\n");
+    for (f, m) in &fig.scatter {
+        sc.push_str(&format!("{f:e},{m:e}\n"));
+    }
+    stiction_units::io::write_atomic(&dir.join("mu_vs_fa0.csv"), sc.as_bytes())?;
+    Ok(())
+}
+
+/// At most 2000 points of the empirical CDF (every k-th sorted value).
+fn cdf_points(fig: &FigureData) -> Vec<(f64, f64)> {
+    let n = fig.mu_sorted.len();
+    let step = n.div_ceil(2000).max(1);
+    let mut pts: Vec<(f64, f64)> =
+        (0..n).step_by(step).map(|i| (fig.mu_sorted[i], (i as f64 + 0.5) / n as f64)).collect();
+    if n > 0 && !(n - 1).is_multiple_of(step) {
+        pts.push((fig.mu_sorted[n - 1], (n as f64 - 0.5) / n as f64));
+    }
+    pts
+}
+
+fn cdf_chart(fig: &FigureData) -> Chart {
     Chart::new(
-        format!("Spread of the apparent friction coefficient ({} samples)", mus.len()),
+        format!("Spread of the apparent friction coefficient ({} samples)", fig.mu_sorted.len()),
         "apparent friction coefficient mu_e,a (eq. 10)",
         "cumulative fraction of samples",
     )
-    .with(Series::line("virtual meters", pts))
+    .with(Series::line("virtual meters", cdf_points(fig)))
     .with(Series::markers("paper: 0.7 +/- 0.3", vec![(0.7, 0.5)]).with_y_err(vec![0.0]))
     .with(Series::dashed("", vec![(0.4, 0.5), (1.0, 0.5)]))
 }
 
-fn scatter_chart(r: &StudyResult) -> Chart {
-    let pts: Vec<(f64, f64)> =
-        r.samples.iter().filter_map(|s| Some((s.apparent_adhesion_force_n? * 1e6, s.mu_apparent?))).collect();
+fn scatter_chart(fig: &FigureData) -> Chart {
+    let pts: Vec<(f64, f64)> = fig.scatter.iter().map(|&(f, m)| (f * 1e6, m)).collect();
     Chart::new(
         "mu_e,a against F_a0 over the samples",
         "apparent zero-load adhesion force F_a0 (uN)",
@@ -207,4 +389,28 @@ fn scatter_chart(r: &StudyResult) -> Chart {
     )
     .with(Series::markers("virtual meters", pts))
     .with(Series::markers("paper (measured)", vec![(2.0, 0.7)]).with_y_err(vec![0.3]))
+}
+
+/// First-order Sobol indices as markers at x = input number (1, 2, ...), mu_e,a and F_a0 side by side.
+fn sensitivity_chart(summary: &StudySummary) -> Chart {
+    let rows = &summary.sensitivity.inputs;
+    // Short names: the last two parts of a JSON path ("clamp.conversion_factor").
+    let short = |s: &str| -> String {
+        if s.contains(' ') {
+            return "surface + interactions".into();
+        }
+        let parts: Vec<&str> = s.split('.').collect();
+        parts[parts.len().saturating_sub(2)..].join(".")
+    };
+    let names: Vec<String> = rows.iter().enumerate().map(|(i, r)| format!("{} {}", i + 1, short(&r.input))).collect();
+    let series = |off: f64, f: &dyn Fn(&stiction_study::sensitivity::InputShare) -> Option<f64>| -> Vec<(f64, f64)> {
+        rows.iter().enumerate().filter_map(|(i, r)| f(r).map(|v| (i as f64 + 1.0 + off, v))).collect()
+    };
+    Chart::new(
+        format!("Share of the variance by input ({} samples with a fit)", summary.sensitivity.samples),
+        format!("input: {}", names.join(", ")),
+        "first-order Sobol index",
+    )
+    .with(Series::markers("mu_e,a", series(-0.1, &|r| r.mu_first_order)))
+    .with(Series::markers("F_a0", series(0.1, &|r| r.fa0_first_order)))
 }

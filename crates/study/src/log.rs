@@ -1,0 +1,416 @@
+//! The append-only sample log `samples.log` of a study folder.
+//!
+//! Line 1 is `# ` and a one-line JSON [`Header`] that identifies the study (scenario fingerprint,
+//! seed, sample count, settings) and the shard; every further line is one finished sample, in
+//! index order, exactly as its row of samples.csv ([`columns`]). Each row is written with one
+//! `write_all` and flushed at once, so a killed study leaves at most a torn last line, which
+//! [`LogWriter::resume`] cuts off. samples.csv is the column line followed by the rows.
+
+use std::fs::{File, OpenOptions};
+use std::io::{BufRead, BufReader, Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+use stiction_meter::SlipPath;
+
+use crate::{Calibration, SampleResult, StudyError};
+
+/// Version of the log format.
+pub const FORMAT: u32 = 1;
+
+/// File name of the log in a study folder.
+pub const LOG_NAME: &str = "samples.log";
+
+/// Longest header line accepted when reading a log (bytes).
+const MAX_HEADER_BYTES: u64 = 1 << 20;
+
+/// What identifies a study and one shard of it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Header {
+    /// Log format version.
+    pub format: u32,
+    /// The scenario file as given on the command line.
+    pub scenario: String,
+    /// FNV-1a fingerprint of the scenario tree after `--set`.
+    pub scenario_hash: String,
+    /// Samples of the whole study.
+    pub samples: usize,
+    /// Base seed.
+    pub seed: u64,
+    /// Whether each sample has its own surface.
+    pub vary_surface: bool,
+    /// How voltages are reduced to forces.
+    pub calibration: Calibration,
+    /// How the slip is followed.
+    pub slip_path: SlipPath,
+    /// This shard's K.
+    pub shard_index: usize,
+    /// M, the number of shards.
+    pub shard_count: usize,
+    /// The nominal reduction (a_clamp N/V^2, a_pull N/V^2, F_spring N), as exact decimal text.
+    pub reduction: [String; 3],
+    /// The uncertain parameters `(path, unit)`.
+    pub parameters: Vec<(String, String)>,
+}
+
+impl Header {
+    /// Why `other` is not a piece of the same study (None: it is). Shard and scenario path may
+    /// differ (shards run on other machines).
+    pub fn mismatch(&self, other: &Header) -> Option<String> {
+        let checks: [(&str, String, String); 8] = [
+            ("log format", self.format.to_string(), other.format.to_string()),
+            ("scenario (fingerprint of the file after --set)", self.scenario_hash.clone(), other.scenario_hash.clone()),
+            ("--samples", self.samples.to_string(), other.samples.to_string()),
+            ("--seed", self.seed.to_string(), other.seed.to_string()),
+            ("--fixed-surface", (!self.vary_surface).to_string(), (!other.vary_surface).to_string()),
+            ("--calibration", format!("{:?}", self.calibration), format!("{:?}", other.calibration)),
+            ("--slip-path", format!("{:?}", self.slip_path), format!("{:?}", other.slip_path)),
+            ("uncertain parameters", format!("{:?}", self.parameters), format!("{:?}", other.parameters)),
+        ];
+        checks.into_iter().find(|(_, a, b)| a != b).map(|(what, a, b)| format!("{what}: {a} vs {b}"))
+    }
+
+    /// Number of samples of this shard.
+    pub fn shard_len(&self) -> usize {
+        if self.shard_index >= self.samples {
+            0
+        } else {
+            (self.samples - self.shard_index).div_ceil(self.shard_count.max(1))
+        }
+    }
+
+    fn line(&self) -> String {
+        format!("# {}\n", serde_json::to_string(self).unwrap_or_default())
+    }
+}
+
+/// The column names of samples.csv: units in every name.
+pub fn columns(header: &Header) -> Vec<String> {
+    let mut c = vec![
+        "sample [index]".to_string(),
+        "mu_apparent [1]".into(),
+        "apparent_adhesion_force [N]".into(),
+        "mean_contacts [count]".into(),
+    ];
+    c.extend(header.parameters.iter().map(|(p, u)| format!("{p} [{u}]")));
+    c.push("reason [code]".into());
+    c.push("detail [text]".into());
+    c
+}
+
+fn csv_line(fields: &[String]) -> Result<Vec<u8>, StudyError> {
+    let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
+    w.write_record(fields).map_err(|e| StudyError::Log(format!("formatting a sample row: {e}")))?;
+    w.into_inner().map_err(|e| StudyError::Log(format!("formatting a sample row: {e}")))
+}
+
+/// The column line of samples.csv.
+pub fn column_line(header: &Header) -> Result<Vec<u8>, StudyError> {
+    csv_line(&columns(header))
+}
+
+/// One sample as its samples.csv row (numbers in Rust's shortest round-trip form).
+pub fn row(s: &SampleResult) -> Result<Vec<u8>, StudyError> {
+    let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
+    let mut f = vec![s.index.to_string(), opt(s.mu_apparent), opt(s.apparent_adhesion_force_n), opt(s.mean_contacts)];
+    f.extend(s.draws.iter().map(|&d| opt(d.is_finite().then_some(d))));
+    f.push(s.reason.clone().unwrap_or_default());
+    // One sample, one line.
+    f.push(s.detail.as_deref().unwrap_or("").replace(['\n', '\r'], " "));
+    csv_line(&f)
+}
+
+/// A sample read back from a log.
+#[derive(Debug, Clone)]
+pub struct Row {
+    /// Sample index.
+    pub index: usize,
+    /// mu_e,a.
+    pub mu_apparent: Option<f64>,
+    /// F_a0, N.
+    pub apparent_adhesion_force_n: Option<f64>,
+    /// Draws, SI (NaN: not drawn).
+    pub draws: Vec<f64>,
+    /// Reason code, empty with a fit.
+    pub reason: String,
+}
+
+fn parse_row(rec: &[&str], n_params: usize, what: &dyn Fn() -> String) -> Result<Row, StudyError> {
+    let bad = |m: String| StudyError::Log(format!("{}: {m}", what()));
+    let num = |k: usize| -> Result<Option<f64>, StudyError> {
+        let t = rec[k];
+        if t.is_empty() {
+            return Ok(None);
+        }
+        t.parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .map(Some)
+            .ok_or_else(|| bad(format!("field {k} = {t:?} is not a number")))
+    };
+    Ok(Row {
+        index: rec[0].parse().map_err(|_| bad(format!("sample index {:?} is not a whole number", rec[0])))?,
+        mu_apparent: num(1)?,
+        apparent_adhesion_force_n: num(2)?,
+        draws: (0..n_params).map(|k| num(4 + k).map(|x| x.unwrap_or(f64::NAN))).collect::<Result<_, _>>()?,
+        reason: rec[4 + n_params].to_string(),
+    })
+}
+
+/// Reads the header of a log.
+pub fn read_header(path: &Path) -> Result<Header, StudyError> {
+    let f = File::open(path).map_err(|e| StudyError::Log(format!("cannot open {}: {e}", path.display())))?;
+    let mut line = String::new();
+    BufReader::new(f.take(MAX_HEADER_BYTES))
+        .read_line(&mut line)
+        .map_err(|e| StudyError::Log(format!("cannot read {}: {e}", path.display())))?;
+    let json = line
+        .strip_suffix('\n')
+        .and_then(|l| l.strip_prefix("# "))
+        .ok_or_else(|| StudyError::Log(format!("{}: the first line is not a study log header", path.display())))?;
+    serde_json::from_str(json)
+        .map_err(|e| StudyError::Log(format!("{}: the study log header is not valid ({e})", path.display())))
+}
+
+/// Streams the rows of a log after its header, checking that they are the shard's samples in
+/// order. `f` gets each row and its raw line (with the newline).
+pub fn for_each_row<F>(path: &Path, mut f: F) -> Result<usize, StudyError>
+where
+    F: FnMut(Row, &[u8]) -> Result<(), StudyError>,
+{
+    let header = read_header(path)?;
+    let file = File::open(path).map_err(|e| StudyError::Log(format!("cannot open {}: {e}", path.display())))?;
+    let mut r = BufReader::with_capacity(1 << 16, file);
+    let mut line = Vec::new();
+    r.read_until(b'\n', &mut line).map_err(|e| StudyError::Log(format!("{}: {e}", path.display())))?;
+    let mut n = 0usize;
+    let mut line_no = 1usize;
+    loop {
+        line.clear();
+        let got = r.read_until(b'\n', &mut line).map_err(|e| StudyError::Log(format!("{}: {e}", path.display())))?;
+        if got == 0 {
+            break;
+        }
+        line_no += 1;
+        if line.last() != Some(&b'\n') {
+            return Err(StudyError::Log(format!(
+                "{} line {line_no}: torn last line (the study was interrupted): finish it with --resume",
+                path.display()
+            )));
+        }
+        let what = || format!("{} line {line_no}", path.display());
+        // The number and code fields are never quoted (written by `row`); only the last field,
+        // the detail text, may be: split off the first 5 + p fields.
+        let text = std::str::from_utf8(&line[..line.len() - 1])
+            .map_err(|_| StudyError::Log(format!("{}: not UTF-8 text", what())))?;
+        let n_fields = 5 + header.parameters.len();
+        let fields: Vec<&str> = text.splitn(n_fields + 1, ',').collect();
+        if fields.len() != n_fields + 1 {
+            return Err(StudyError::Log(format!("{}: {} fields, expected {}", what(), fields.len(), n_fields + 1)));
+        }
+        let row = parse_row(&fields[..n_fields], header.parameters.len(), &what)?;
+        let expected = header.shard_index + n * header.shard_count;
+        if row.index != expected {
+            return Err(StudyError::Log(format!(
+                "{}: sample {} where sample {expected} was expected (the log is not this shard's, in order)",
+                what(),
+                row.index
+            )));
+        }
+        f(row, &line)?;
+        n += 1;
+    }
+    Ok(n)
+}
+
+/// The append-only writer of a log.
+pub struct LogWriter {
+    file: File,
+    path: PathBuf,
+}
+
+impl LogWriter {
+    /// Starts a new log in `dir`; refuses when one exists (finish it with resume, or use another
+    /// folder).
+    pub fn create(dir: &Path, header: &Header) -> Result<LogWriter, StudyError> {
+        let path = dir.join(LOG_NAME);
+        if std::fs::symlink_metadata(&path).is_ok() {
+            return Err(StudyError::Log(format!(
+                "{} exists: this folder holds a study already; add --resume to finish it, or choose another --out",
+                path.display()
+            )));
+        }
+        let mut file = OpenOptions::new()
+            .create_new(true)
+            .append(true)
+            .open(&path)
+            .map_err(|e| StudyError::Log(format!("cannot create {}: {e}", path.display())))?;
+        file.write_all(header.line().as_bytes())
+            .and_then(|()| file.flush())
+            .map_err(|e| StudyError::Log(format!("cannot write {}: {e}", path.display())))?;
+        Ok(LogWriter { file, path })
+    }
+
+    /// Reopens the log in `dir` to finish it: checks that it belongs to the same study and shard
+    /// (`header`), cuts a torn last line, and returns the writer and the number of samples done.
+    /// Without a log (or with only a torn header) it starts a new one.
+    pub fn resume(dir: &Path, header: &Header) -> Result<(LogWriter, usize), StudyError> {
+        let path = dir.join(LOG_NAME);
+        let meta = match std::fs::symlink_metadata(&path) {
+            Ok(m) => m,
+            Err(_) => return Ok((LogWriter::create(dir, header)?, 0)),
+        };
+        if !meta.file_type().is_file() {
+            return Err(StudyError::Log(format!("{} is not a regular file", path.display())));
+        }
+        let mut file = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open(&path)
+            .map_err(|e| StudyError::Log(format!("cannot open {}: {e}", path.display())))?;
+        // Cut a torn last line: keep everything up to the last newline.
+        let len = meta.len();
+        let mut keep = len;
+        let mut buf = [0u8; 4096];
+        while keep > 0 {
+            let start = keep.saturating_sub(buf.len() as u64);
+            let n = (keep - start) as usize;
+            file.seek(SeekFrom::Start(start))
+                .and_then(|_| file.read_exact(&mut buf[..n]))
+                .map_err(|e| StudyError::Log(format!("cannot read {}: {e}", path.display())))?;
+            match buf[..n].iter().rposition(|&b| b == b'\n') {
+                Some(p) => {
+                    keep = start + p as u64 + 1;
+                    break;
+                }
+                None => keep = start,
+            }
+        }
+        if keep != len {
+            file.set_len(keep).map_err(|e| StudyError::Log(format!("cannot cut {}: {e}", path.display())))?;
+        }
+        drop(file);
+        if keep == 0 {
+            std::fs::remove_file(&path)
+                .map_err(|e| StudyError::Log(format!("cannot remove {}: {e}", path.display())))?;
+            return Ok((LogWriter::create(dir, header)?, 0));
+        }
+        let old = read_header(&path)?;
+        if let Some(m) = header.mismatch(&old) {
+            return Err(StudyError::Log(format!(
+                "{} belongs to another study ({m}); resume with the same scenario and flags, or choose another --out",
+                path.display()
+            )));
+        }
+        if (old.shard_index, old.shard_count) != (header.shard_index, header.shard_count) {
+            return Err(StudyError::Log(format!(
+                "{} holds shard {}/{}, not {}/{}",
+                path.display(),
+                old.shard_index,
+                old.shard_count,
+                header.shard_index,
+                header.shard_count
+            )));
+        }
+        let done = for_each_row(&path, |_, _| Ok(()))?;
+        let file = OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(|e| StudyError::Log(format!("cannot open {}: {e}", path.display())))?;
+        Ok((LogWriter { file, path }, done))
+    }
+
+    /// Appends one row (a whole line) and flushes it.
+    pub fn append(&mut self, line: &[u8]) -> Result<(), StudyError> {
+        self.file
+            .write_all(line)
+            .and_then(|()| self.file.flush())
+            .map_err(|e| StudyError::Log(format!("cannot append to {}: {e}", self.path.display())))
+    }
+
+    /// The log's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}
+
+/// Merges complete shard logs (`inputs`, any order) into one log at `out_dir` for the whole
+/// study, as a single run would have written it. Refuses pieces of different studies, missing
+/// or repeated shards and unfinished shards, each with what differs.
+pub fn merge(inputs: &[PathBuf], out_dir: &Path) -> Result<Header, StudyError> {
+    if inputs.is_empty() {
+        return Err(StudyError::Setting("merge needs at least one study folder".into()));
+    }
+    let mut logs: Vec<(Header, PathBuf)> = Vec::new();
+    for dir in inputs {
+        let p = dir.join(LOG_NAME);
+        let h = read_header(&p)?;
+        if let Some((first, fp)) = logs.first()
+            && let Some(m) = first.mismatch(&h)
+        {
+            return Err(StudyError::Setting(format!(
+                "{} and {} are pieces of different studies ({m}); merge only shards of one study",
+                fp.display(),
+                p.display()
+            )));
+        }
+        logs.push((h, p));
+    }
+    let m = logs[0].0.shard_count;
+    let mut seen: Vec<Option<PathBuf>> = vec![None; m];
+    for (h, p) in &logs {
+        if h.shard_count != m {
+            return Err(StudyError::Setting(format!(
+                "{} is shard {}/{} but {} is one of {m} shards",
+                p.display(),
+                h.shard_index,
+                h.shard_count,
+                logs[0].1.display()
+            )));
+        }
+        if let Some(q) = &seen[h.shard_index] {
+            return Err(StudyError::Setting(format!(
+                "shard {}/{m} given twice: {} and {}",
+                h.shard_index,
+                q.display(),
+                p.display()
+            )));
+        }
+        seen[h.shard_index] = Some(p.clone());
+    }
+    if let Some(k) = seen.iter().position(Option::is_none) {
+        return Err(StudyError::Setting(format!("shard {k}/{m} is missing (give every shard's folder)")));
+    }
+    logs.sort_by_key(|(h, _)| h.shard_index);
+    // Whole shards only.
+    let mut rows: Vec<Vec<Vec<u8>>> = Vec::with_capacity(m);
+    for (h, p) in &logs {
+        let mut lines = Vec::new();
+        let n = for_each_row(p, |_, l| {
+            lines.push(l.to_vec());
+            Ok(())
+        })?;
+        if n != h.shard_len() {
+            return Err(StudyError::Setting(format!(
+                "{} holds {n} of the {} samples of shard {}/{m}: finish it first (stiction study ... --resume)",
+                p.display(),
+                h.shard_len(),
+                h.shard_index
+            )));
+        }
+        rows.push(lines);
+    }
+    let mut header = logs[0].0.clone();
+    header.shard_index = 0;
+    header.shard_count = 1;
+    let out = out_dir.join(LOG_NAME);
+    if std::fs::symlink_metadata(&out).is_ok() {
+        return Err(StudyError::Log(format!("{} exists: merge into an empty folder", out.display())));
+    }
+    let mut bytes = header.line().into_bytes();
+    for i in 0..header.samples {
+        bytes.extend_from_slice(&rows[i % m][i / m]);
+    }
+    stiction_units::io::write_atomic(&out, &bytes).map_err(|e| StudyError::Log(e.to_string()))?;
+    Ok(header)
+}

@@ -1,0 +1,248 @@
+//! The summary of a study, computed from its sample log alone (so that a run, a resumed run and a
+//! merge of shards give the same bytes): spreads, counts of reasons, the sensitivity table, and
+//! the files study.json and samples.csv.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::StudyError;
+use crate::log::{self, Header};
+use crate::sensitivity::{self, Sensitivity};
+
+/// The reason codes of a sample without a fit, and what they mean.
+pub const REASONS: [(&str, &str); 7] = [
+    ("no-contact", "no clamp voltage brought the shoe into contact"),
+    ("too-few-slips", "fewer than 2 slip points with L > 0: no eq. 10 line"),
+    ("non-positive-slope", "the eq. 10 line falls: no mu_e,a"),
+    ("degenerate-fit", "the slip points admit no straight line (equal loads)"),
+    ("draw-failed", "an uncertain parameter could not be drawn"),
+    ("invalid-scenario", "a drawn value made the scenario invalid"),
+    ("meter-failed", "the meter could not run on the drawn device"),
+];
+
+/// Summary statistics of one reported quantity over the samples that gave it.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Spread {
+    /// Number of samples with a value.
+    pub count: usize,
+    /// Mean.
+    pub mean: f64,
+    /// Sample standard deviation.
+    pub sd: f64,
+    /// 5th percentile.
+    pub p05: f64,
+    /// Median.
+    pub median: f64,
+    /// 95th percentile.
+    pub p95: f64,
+    /// Smallest value.
+    pub min: f64,
+    /// Largest value.
+    pub max: f64,
+}
+
+impl Spread {
+    /// Statistics of `values` (None when empty). Percentiles by linear interpolation.
+    pub fn of(values: &[f64]) -> Option<Spread> {
+        if values.is_empty() {
+            return None;
+        }
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        Some(Self::of_sorted(&v))
+    }
+
+    fn of_sorted(v: &[f64]) -> Spread {
+        let n = v.len();
+        let mean = v.iter().sum::<f64>() / n as f64;
+        let sd = if n > 1 { (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt() } else { 0.0 };
+        Spread {
+            count: n,
+            mean,
+            sd,
+            p05: percentile(v, 0.05),
+            median: percentile(v, 0.5),
+            p95: percentile(v, 0.95),
+            min: v[0],
+            max: v[n - 1],
+        }
+    }
+}
+
+fn percentile(sorted: &[f64], p: f64) -> f64 {
+    let r = p * (sorted.len() - 1) as f64;
+    let (lo, hi) = (r.floor() as usize, r.ceil() as usize);
+    sorted[lo] + (sorted[hi] - sorted[lo]) * (r - lo as f64)
+}
+
+/// The settings as study.json reports them.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ConfigSummary {
+    /// Samples of the whole study.
+    pub samples: usize,
+    /// Base seed.
+    pub seed: u64,
+    /// Each sample its own surface.
+    pub vary_surface: bool,
+    /// This piece: "K/M" ("0/1" for a whole study).
+    pub shard: String,
+    /// How voltages were reduced.
+    pub calibration: crate::Calibration,
+    /// How slips were followed.
+    pub slip_path: stiction_meter::SlipPath,
+}
+
+/// The nominal reduction.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ReductionSummary {
+    /// a_clamp, N/V^2.
+    pub a_clamp_n_per_v2: f64,
+    /// a_pull, N/V^2.
+    pub a_pull_n_per_v2: f64,
+    /// F_spring, N.
+    pub spring_force_n: f64,
+}
+
+/// study.json.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct StudySummary {
+    /// The scenario file.
+    pub scenario: String,
+    /// Its fingerprint (after --set).
+    pub scenario_hash: String,
+    /// The settings.
+    pub config: ConfigSummary,
+    /// Samples in the log.
+    pub samples_done: usize,
+    /// Samples with an eq. 10 fit.
+    pub with_fit: usize,
+    /// Samples that ran but gave no fit (reasons in `reasons`).
+    pub without_fit: usize,
+    /// Samples that failed (drawing, the scenario or the meter; reasons in `reasons`).
+    pub failed: usize,
+    /// Count of each reason code (see samples.csv's `reason` and `detail` columns).
+    pub reasons: BTreeMap<String, usize>,
+    /// The nominal conversion every sample's voltages were reduced with.
+    pub reduction: ReductionSummary,
+    /// Spread of mu_e,a.
+    pub mu_apparent: Option<Spread>,
+    /// Spread of F_a0, N.
+    pub apparent_adhesion_force_n: Option<Spread>,
+    /// Which input explains how much of the spread.
+    pub sensitivity: Sensitivity,
+}
+
+/// What the figures need besides the summary.
+pub struct FigureData {
+    /// mu_e,a of every sample with a fit, sorted.
+    pub mu_sorted: Vec<f64>,
+    /// (F_a0 N, mu_e,a) of the first 20000 samples with a fit.
+    pub scatter: Vec<(f64, f64)>,
+}
+
+const SCATTER_POINTS: usize = 20_000;
+
+fn parse_exact(s: &str) -> f64 {
+    s.parse().unwrap_or(f64::NAN)
+}
+
+/// Reads the log at `path` and summarises it; `csv`: also collect the samples.csv bytes.
+pub fn summarize(path: &Path, mut csv: Option<&mut Vec<u8>>) -> Result<(StudySummary, FigureData), StudyError> {
+    let header: Header = log::read_header(path)?;
+    if let Some(c) = csv.as_deref_mut() {
+        c.extend_from_slice(&log::column_line(&header)?);
+    }
+    let (mut mus, mut fas, mut xs, mut scatter) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut reasons: BTreeMap<String, usize> = BTreeMap::new();
+    let (mut failed, mut without) = (0, 0);
+    let done = log::for_each_row(path, |row, line| {
+        if let Some(c) = csv.as_deref_mut() {
+            c.extend_from_slice(line);
+        }
+        match (row.mu_apparent, row.apparent_adhesion_force_n) {
+            (Some(mu), Some(fa)) if row.reason.is_empty() => {
+                mus.push(mu);
+                fas.push(fa);
+                xs.push(row.draws);
+                if scatter.len() < SCATTER_POINTS {
+                    scatter.push((fa, mu));
+                }
+            }
+            _ => {
+                let reason = if row.reason.is_empty() { "unknown".to_string() } else { row.reason };
+                if ["draw-failed", "invalid-scenario", "meter-failed"].contains(&reason.as_str()) {
+                    failed += 1;
+                } else {
+                    without += 1;
+                }
+                *reasons.entry(reason).or_default() += 1;
+            }
+        }
+        Ok(())
+    })?;
+    let names: Vec<String> = header.parameters.iter().map(|(p, _)| p.clone()).collect();
+    let sens = sensitivity::table(&names, &xs, &mus, &fas, header.vary_surface);
+    drop(xs);
+    let fa_spread = Spread::of(&fas);
+    drop(fas);
+    mus.sort_by(f64::total_cmp);
+    let summary = StudySummary {
+        scenario: header.scenario.clone(),
+        scenario_hash: header.scenario_hash.clone(),
+        config: ConfigSummary {
+            samples: header.samples,
+            seed: header.seed,
+            vary_surface: header.vary_surface,
+            shard: format!("{}/{}", header.shard_index, header.shard_count),
+            calibration: header.calibration,
+            slip_path: header.slip_path,
+        },
+        samples_done: done,
+        with_fit: mus.len(),
+        without_fit: without,
+        failed,
+        reasons,
+        reduction: ReductionSummary {
+            a_clamp_n_per_v2: parse_exact(&header.reduction[0]),
+            a_pull_n_per_v2: parse_exact(&header.reduction[1]),
+            spring_force_n: parse_exact(&header.reduction[2]),
+        },
+        mu_apparent: (!mus.is_empty()).then(|| Spread::of_sorted(&mus)),
+        apparent_adhesion_force_n: fa_spread,
+        sensitivity: sens,
+    };
+    Ok((summary, FigureData { mu_sorted: mus, scatter }))
+}
+
+/// Summarises the log in `dir` and writes study.json and samples.csv there (atomically).
+pub fn finalize(dir: &Path) -> Result<(StudySummary, FigureData), StudyError> {
+    let path = dir.join(log::LOG_NAME);
+    let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+    let mut csv = Vec::with_capacity(size as usize + 1024);
+    let (summary, fig) = summarize(&path, Some(&mut csv))?;
+    let json = serde_json::to_string_pretty(&summary).map_err(|e| StudyError::Log(e.to_string()))? + "\n";
+    let write = |name: &str, bytes: &[u8]| {
+        stiction_units::io::write_atomic(&dir.join(name), bytes).map_err(|e| StudyError::Log(e.to_string()))
+    };
+    write("samples.csv", &csv)?;
+    drop(csv);
+    write("study.json", json.as_bytes())?;
+    Ok((summary, fig))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spread_percentiles_interpolate() {
+        let s = Spread::of(&[4.0, 1.0, 3.0, 2.0, 5.0]).unwrap();
+        assert_eq!((s.count, s.min, s.max, s.median), (5, 1.0, 5.0, 3.0));
+        assert!((s.mean - 3.0).abs() < 1e-15);
+        assert!((s.sd - 2.5f64.sqrt()).abs() < 1e-15);
+        assert!((s.p05 - 1.2).abs() < 1e-12 && (s.p95 - 4.8).abs() < 1e-12);
+        assert!(Spread::of(&[]).is_none());
+    }
+}
