@@ -205,7 +205,7 @@ pub fn fit_eq10(
     let fa0_ci = fieller(a, b, line.var_intercept, line.var_slope, line.cov, t).map(|[lo, hi]| {
         [nominal.a_clamp_n_per_v2 * lo + nominal.spring_force_n, nominal.a_clamp_n_per_v2 * hi + nominal.spring_force_n]
     });
-    let mu_ci = (mu > 0.0).then(|| [mu - t * mu_se, mu + t * mu_se]);
+    let mu_ci = (mu > 0.0).then_some([mu - t * mu_se, mu + t * mu_se]);
 
     // The calibration Monte Carlo: stream 0 joint (with regression draws), streams 1-3 one source.
     let mut joint_mu = Vec::with_capacity(draws);

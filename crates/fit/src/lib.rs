@@ -13,6 +13,10 @@
 //! [`analyse`] runs all of it on a data set and a scenario and returns the report behind
 //! `stiction fit --json`.
 
+// Comparisons are written `!(x > 0.0)` on purpose: they are true for NaN too, so a NaN is
+// rejected by the same test as a non-positive value.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -446,23 +450,31 @@ fn join_names(names: &[String]) -> String {
     }
 }
 
-/// The shear strength that makes `kind`'s friction `s A_r(L)` best match (least squares over
-/// `loads_n`) the eq. 10 line `mu (F_a0 + L)`: the paper's summary numbers turned into s.
-pub fn shear_strength_from_line(
+/// The paper's way from eq. 10 to s, over a whole load range: the shear strength for which the
+/// eq. 10 line fitted to `kind`'s friction `s A_r(L)` over `loads_n` (least squares, as the lab
+/// fits the measured points) has the slope `mu`; returns `(s, F_a0 of that model line)` (Pa, N).
+/// (The slope at a single load, the paper's 3 uN, is
+/// [`stiction_contact::discrete::DiscreteModel::shear_strength_for_slope`].) `F_f` is proportional
+/// to s, so s = mu / (slope of A_r against L), and the model's F_a0 does not depend on s.
+pub fn shear_strength_for_eq10_slope(
     ctx: &ModelContext,
     kind: ModelKind,
     mu: f64,
-    adhesion_force_n: f64,
     loads_n: &[f64],
-) -> Result<f64, FitError> {
+) -> Result<(f64, f64), FitError> {
     let mut m = ctx.build(kind, None, None)?;
     let parts = ctx.parts(&mut m, loads_n);
-    let (mut sxx, mut sxy) = (0.0, 0.0);
+    let mut pts = Vec::with_capacity(loads_n.len());
     for (p, &l) in parts.iter().zip(loads_n) {
         let (g, h) = p.clone().map_err(|e| FitError::Model { model: kind.name(), message: e })?;
-        let y = mu * (adhesion_force_n + l) - h;
-        sxx += g * g;
-        sxy += g * y;
+        if h != 0.0 {
+            return Err(FitError::Setting(
+                "this needs the shear-area or plastic slip criterion (no s-independent part)".into(),
+            ));
+        }
+        pts.push((l, g));
     }
-    Ok(sxy / sxx)
+    let line = stats::fit_line(&pts)
+        .ok_or_else(|| FitError::TooFewRows("need at least three loads to fit the model's eq. 10 line".into()))?;
+    Ok((mu / line.slope, line.intercept / line.slope))
 }

@@ -214,12 +214,7 @@ fn print_summary(r: &FitReport) {
 }
 
 /// Long-format CSV of the series behind a chart: series, x, y, y_low, y_high.
-fn chart_csv(
-    path: &Path,
-    x_name: &str,
-    y_name: &str,
-    rows: &[(String, f64, f64, Option<f64>, Option<f64>)],
-) -> CliResult {
+fn chart_csv(path: &Path, x_name: &str, y_name: &str, rows: &[CsvRow]) -> CliResult {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(["series", x_name, y_name, &format!("{y_name}_low"), &format!("{y_name}_high")])?;
     let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:e}"));
@@ -236,13 +231,17 @@ fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> CliResult {
     Ok(())
 }
 
-type CsvRows = Vec<(String, f64, f64, Option<f64>, Option<f64>)>;
+/// One row of a figure's CSV: series, x, y, y_low, y_high.
+type CsvRow = (String, f64, f64, Option<f64>, Option<f64>);
+type CsvRows = Vec<CsvRow>;
+/// Repeats of one (device, clamp voltage): pull voltage and its SD.
+type Groups = BTreeMap<(String, u64), Vec<(f64, Option<f64>)>>;
 
 fn write_figures(dir: &Path, data: &Dataset, r: &FitReport) -> CliResult {
     let red = r.reduction;
     // Data grouped by (device, V_clamp): mean V_pull^2 and its error bar (SD of the repeats, or
     // 2 V sd from the column).
-    let mut groups: BTreeMap<(String, u64), Vec<(f64, Option<f64>)>> = BTreeMap::new();
+    let mut groups: Groups = BTreeMap::new();
     let rejected: std::collections::BTreeSet<u64> = r.rows_rejected.iter().map(|x| x.line).collect();
     for row in data.rows.iter().filter(|row| !rejected.contains(&row.line)) {
         groups.entry((row.device.clone(), row.v_clamp_v.to_bits())).or_default().push((row.v_pull_v, row.v_pull_sd_v));
