@@ -1,6 +1,9 @@
 //! Benchmarks of `stiction fit`: the discrete and GW fits, the explicit solver with a 100-surface
 //! band, and reading 1e6 data rows. Numbers in docs/performance.md.
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use std::hint::black_box;
 use std::path::Path;
 
