@@ -101,7 +101,7 @@ impl Free {
 pub struct Param {
     /// Best estimate, SI.
     pub value: f64,
-    /// 95 % profile-likelihood interval (shear strength only; null for the nuisance parameters).
+    /// 95 % profile-likelihood interval (the other free parameters minimised at each trial value).
     pub ci95: Option<[f64; 2]>,
     /// Why the interval is null or one-sided, when it is.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -456,6 +456,92 @@ pub fn fit_model(
             Some(bounds).filter(|b| b[1].is_finite())
         }
     };
+    // Profile-likelihood intervals of the free nuisance parameters (in their fitted coordinates,
+    // ln(R / R0) and F_spring in uN), the other one and s minimised at each trial value.
+    let bounds_of = |j: usize| -> (f64, f64) { if free.radius && j == 0 { (-4.6, 4.6) } else { (0.0, f_max * 1e6) } };
+    let mut nuisance_ci: Vec<(Option<[f64; 2]>, Option<String>)> = Vec::new();
+    for j in 0..theta.len() {
+        let Some(q) = q else {
+            nuisance_ci.push((None, Some("no interval: too few degrees of freedom for the noise level".into())));
+            continue;
+        };
+        let (lo_b, hi_b) = bounds_of(j);
+        let excess = |t: f64, source: &mut Source| -> f64 {
+            let mut th = theta.clone();
+            th[j] = t;
+            let v = if theta.len() == 1 {
+                objective(&th, None, source)
+            } else {
+                let o = 1 - j;
+                let mut f1 = |x: &[f64]| {
+                    let mut t2 = th.clone();
+                    t2[o] = x[0];
+                    objective(&t2, None, source)
+                };
+                nelder_mead(&mut f1, &[theta[o]], &[steps[o]], 200).1
+            };
+            (v - rss) / sigma2 - q
+        };
+        let mut ends = [f64::NAN; 2];
+        let mut open = false;
+        for (side, dir) in [-1.0f64, 1.0].into_iter().enumerate() {
+            let limit = if dir < 0.0 { lo_b } else { hi_b };
+            let mut inner = theta[j];
+            let mut outer = theta[j] + dir * steps[j] * 0.25;
+            let mut found = false;
+            for _ in 0..40 {
+                if (outer - limit) * dir >= 0.0 {
+                    outer = limit;
+                }
+                if excess(outer, source) > 0.0 {
+                    found = true;
+                    break;
+                }
+                if outer == limit {
+                    break;
+                }
+                inner = outer;
+                outer = theta[j] + 2.0 * (outer - theta[j]);
+            }
+            if !found {
+                ends[side] = limit;
+                open = true;
+                continue;
+            }
+            for _ in 0..40 {
+                let mid = 0.5 * (inner + outer);
+                if excess(mid, source) > 0.0 {
+                    outer = mid;
+                } else {
+                    inner = mid;
+                }
+                if (outer - inner).abs() < 1e-6 {
+                    break;
+                }
+            }
+            ends[side] = 0.5 * (inner + outer);
+        }
+        let to_si = |t: f64| if free.radius && j == 0 { r0 * t.exp() } else { t * 1e-6 };
+        nuisance_ci.push((
+            Some([to_si(ends[0]), to_si(ends[1])]),
+            open.then(|| {
+                "the 95 % profile level is not reached within the parameter bounds: the interval ends at the bound"
+                    .to_string()
+            }),
+        ));
+    }
+    if let Some(e) = error.borrow_mut().take() {
+        return Err(e);
+    }
+    let mut nuisance_iter = nuisance_ci.into_iter();
+    let radius_param = free.radius.then(|| {
+        let (ci95, note) = nuisance_iter.next().unwrap_or((None, None));
+        Param { value: r_best, ci95, note }
+    });
+    let spring_param = free.spring.then(|| {
+        let (ci95, note) = nuisance_iter.next().unwrap_or((None, None));
+        Param { value: f_best, ci95, note }
+    });
     // Curve and band on the grid, at the best nuisance (and the interval ends' for the band).
     let grid_parts = source.parts(ctx, r_best, f_best, grid_v2)?;
     let mut band_parts: Vec<(f64, Vec<Parts>)> = Vec::new();
@@ -514,8 +600,8 @@ pub fn fit_model(
         name,
         free: free_names,
         shear_strength_pa: Param { value: s_hat, ci95, note },
-        summit_radius_m: free.radius.then_some(Param { value: r_best, ci95: None, note: None }),
-        spring_force_n: free.spring.then_some(Param { value: f_best, ci95: None, note: None }),
+        summit_radius_m: radius_param,
+        spring_force_n: spring_param,
         chi2,
         dof,
         p_value,

@@ -144,7 +144,8 @@ fn calibration_interval_matches_the_paper() {
 }
 
 /// Free F_spring: data at the nominal spring force are fitted with F_spring free; the fitted
-/// spring force is within 0.3 uN of the truth and the profile interval of s covers 1.4 GPa.
+/// spring force is within 0.3 uN of the truth, its profile interval covers the truth, and the
+/// profile interval of s covers 1.4 GPa.
 #[test]
 fn free_spring_force_is_recovered() {
     let sc = scenario("tas2000-discrete.json");
@@ -158,6 +159,9 @@ fn free_spring_force_is_recovered() {
     let [lo, hi] = m.shear_strength_pa.ci95.unwrap();
     eprintln!("F_spring {f:.4e}, s {:.4e} [{lo:.4e}, {hi:.4e}]", m.shear_strength_pa.value);
     assert!((f - 7e-6).abs() < 0.3e-6, "F_spring {f}");
+    let [flo, fhi] = m.spring_force_n.as_ref().unwrap().ci95.unwrap();
+    eprintln!("F_spring 95 % [{flo:.4e}, {fhi:.4e}]");
+    assert!(flo < 7e-6 && 7e-6 < fhi && fhi - flo < 2e-6, "[{flo}, {fhi}]");
     assert!(lo <= 1.4e9 && 1.4e9 <= hi);
     // The free parameter widens the interval compared with s alone.
     let r1 = fit_rows(&rows, &sc, &cheap(&[ModelKind::Discrete(3)]));

@@ -189,6 +189,9 @@ fn print_summary(r: &FitReport) {
             m.aic,
             m.delta_aic.map_or("n/a".into(), |d| format!("{d:.2}"))
         );
+        if let Some(note) = &m.shear_strength_pa.note {
+            println!("  {:<18} s: {note}", "");
+        }
         if let Some(rough) = &m.roughness {
             println!(
                 "  {:<18} roughness: s over {} surfaces, 95 % {} GPa",
@@ -198,10 +201,10 @@ fn print_summary(r: &FitReport) {
             );
         }
         if let Some(rr) = &m.summit_radius_m {
-            println!("  {:<18} R = {:.3} um", "", rr.value * 1e6);
+            println!("  {:<18} R = {:.3} um, 95 % {} um", "", rr.value * 1e6, ci(rr.ci95, 1e6));
         }
         if let Some(f) = &m.spring_force_n {
-            println!("  {:<18} F_spring = {:.3} uN", "", f.value * 1e6);
+            println!("  {:<18} F_spring = {:.3} uN, 95 % {} uN", "", f.value * 1e6, ci(f.ci95, 1e6));
         }
     }
     for f in &r.models_failed {
