@@ -41,6 +41,8 @@ enum Command {
     Study(cmd::study::Args),
     /// Combine the output folders of a study's shards into the outputs one run would have written.
     Merge(cmd::merge::Args),
+    /// Fit measured voltages: eq. 10 with regression and calibration intervals, s per contact model, ranked.
+    Fit(cmd::fit::Args),
     /// Check a scenario file (and --set overrides) and print it in SI units, or print the format's JSON Schema.
     Scenario(cmd::scenario::Args),
 }
@@ -58,6 +60,7 @@ fn main() -> ExitCode {
         Command::Scenario(a) => cmd::scenario::run(a),
         Command::Study(a) => cmd::study::run(a),
         Command::Merge(a) => cmd::merge::run(a),
+        Command::Fit(a) => cmd::fit::run(a),
     };
     output::flush_stdout();
     match result {

@@ -3,6 +3,7 @@
 pub mod actuator;
 pub mod contact;
 pub mod discrete;
+pub mod fit;
 pub mod gw;
 pub mod merge;
 pub mod plot;

@@ -1,0 +1,348 @@
+//! `stiction fit`: measured friction-meter voltages against physics (eq. 10 with regression and
+//! calibration uncertainty; maximum-likelihood shear strength per contact model; ranked models).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use stiction_fit::{Dataset, FitOptions, FitReport, Free, ModelKind, read_voltages, synth};
+use stiction_plot::{Chart, Series};
+use stiction_scenario::Scenario;
+use stiction_units::io::write_atomic;
+use stiction_units::{Constraint, Dimension};
+
+use crate::output::{CliResult, ensure_dir, print_json, quantity};
+
+/// Fit measured (V_clamp, V_pull) data: eq. 10 with regression and calibration intervals, and the
+/// shear strength s of each contact model by maximum likelihood, ranked by AIC.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The measured voltages: CSV with columns v_clamp_v, v_pull_v [, v_pull_sd_v, device]
+    /// (default: the scenario's `measured.voltages_csv`).
+    pub data: Option<PathBuf>,
+    /// The scenario of the device (actuators, spring, surface, material, contact law).
+    #[arg(long)]
+    pub scenario: PathBuf,
+    /// Models to fit, comma-separated: discrete-nN, gw-dmt, explicit, explicit-ensemble.
+    #[arg(long, default_value = "discrete-n1,discrete-n2,discrete-n3,gw-dmt,explicit,explicit-ensemble")]
+    pub models: String,
+    /// Free parameters: s, optionally R and F_spring (s,R,F_spring).
+    #[arg(long, default_value = "s")]
+    pub free: String,
+    /// Surface realisations of the explicit ensemble (its band).
+    #[arg(long, default_value_t = 100)]
+    pub surfaces: usize,
+    /// Calibration Monte Carlo draws.
+    #[arg(long, default_value_t = 4000)]
+    pub draws: usize,
+    /// Seed of the calibration Monte Carlo (and of --synthesize).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Write report.json, the figures (SVG, PNG) and their data (CSV) to this folder.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Override a scenario field (repeatable).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+    /// Print one JSON object on stdout instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+    /// Instead of fitting: run the scenario's virtual meter at its clamp voltages and write a
+    /// labelled synthetic data file here (with --noise and --repeats).
+    #[arg(long, value_name = "FILE.csv")]
+    pub synthesize: Option<PathBuf>,
+    /// Gaussian noise SD on the synthetic pull voltage ("0.3 V").
+    #[arg(long, default_value = "0.3 V", value_parser = quantity(Dimension::Voltage, Constraint::NonNegative))]
+    pub noise: f64,
+    /// Repeats per clamp voltage in the synthetic file.
+    #[arg(long, default_value_t = 3)]
+    pub repeats: usize,
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> CliResult {
+    let scenario = Scenario::load(&args.scenario, &args.sets)?;
+    let json = Scenario::load_json(&args.scenario, &args.sets)?;
+    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    if let Some(out) = &args.synthesize {
+        return synthesize(&args, &scenario, &base, out);
+    }
+    let data_path = match (&args.data, &scenario.measured) {
+        (Some(p), _) => p.clone(),
+        (None, Some(m)) => base.join(&m.voltages_csv),
+        (None, None) => return Err("missing DATA.csv (the scenario has no `measured` section either)".into()),
+    };
+    let data = read_voltages(&data_path)?;
+    let options = FitOptions {
+        models: ModelKind::parse_list(&args.models)?,
+        free: Free::parse(&args.free)?,
+        surfaces: args.surfaces,
+        calibration_draws: args.draws,
+        seed: args.seed,
+        ..FitOptions::default()
+    };
+    let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options)?;
+    if let Some(dir) = &args.out {
+        ensure_dir(dir)?;
+        write_atomic(&dir.join("report.json"), serde_json::to_string_pretty(&report)?.as_bytes())?;
+        write_figures(dir, &data, &report)?;
+    }
+    if args.json {
+        return print_json(&report);
+    }
+    print_summary(&report);
+    if let Some(dir) = &args.out {
+        println!(
+            "\nwrote {}/report.json and fit-vpull2, fit-friction-load, fit-residuals (.svg, .png, .csv)",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliResult {
+    let meter = scenario.meter.as_ref().ok_or("the scenario has no `meter` section")?;
+    let voltages = meter.clamp_voltages.voltages();
+    let rows = synth::from_meter(scenario, base, &voltages, args.repeats, args.noise, args.seed)?;
+    let s = scenario.material.as_ref().map_or(f64::NAN, |m| m.shear_strength);
+    let comment = format!(
+        "SYNTHETIC DATA made by stiction itself, not a measurement.\n\
+         Virtual meter of {} (contact model {:?}, s = {}), {} repeats per clamp voltage,\n\
+         Gaussian noise SD {} V added to each pull voltage (ChaCha8 seed {}).\n\
+         Command: stiction fit --scenario {} --synthesize {} --noise \"{} V\" --repeats {} --seed {}",
+        args.scenario.display(),
+        scenario.contact_or_default().model,
+        stiction_units::format_quantity(s, Dimension::Pressure),
+        args.repeats,
+        args.noise,
+        args.seed,
+        args.scenario.display(),
+        out.display(),
+        args.noise,
+        args.repeats,
+        args.seed
+    );
+    let text = synth::to_csv(&rows, &comment)?;
+    write_atomic(out, text.as_bytes())?;
+    println!("wrote {} ({} rows, synthetic)", out.display(), rows.len());
+    Ok(())
+}
+
+fn ci(c: Option<[f64; 2]>, scale: f64) -> String {
+    c.map_or("n/a".into(), |[a, b]| format!("[{:.3}, {:.3}]", a * scale, b * scale))
+}
+
+fn print_summary(r: &FitReport) {
+    println!("data: {} ({} rows used, {} rejected)", r.data, r.rows_used, r.rows_rejected.len());
+    for rej in r.rows_rejected.iter().take(10) {
+        println!("  rejected line {}: {}", rej.line, rej.reason);
+    }
+    if r.rows_rejected.len() > 10 {
+        println!("  ... {} more (see --json)", r.rows_rejected.len() - 10);
+    }
+    let (mu, fa) = (&r.mu_apparent, &r.apparent_adhesion_force_n);
+    println!("\neq. 10 (nominal a_clamp, a_pull, F_spring):");
+    println!(
+        "  mu_e,a = {:.3} +/- {:.3} (regression), 95 %: {} regression, {} with calibration",
+        mu.value,
+        mu.stderr.unwrap_or(f64::NAN),
+        ci(mu.ci95, 1.0),
+        ci(mu.ci95_with_calibration, 1.0)
+    );
+    println!(
+        "  F_a0   = {:.3} uN +/- {:.3} (regression), 95 %: {} uN regression (Fieller), {} uN with calibration",
+        fa.value * 1e6,
+        fa.stderr.unwrap_or(f64::NAN) * 1e6,
+        ci(fa.ci95, 1e6),
+        ci(fa.ci95_with_calibration, 1e6)
+    );
+    let shares = |m: &BTreeMap<String, f64>| {
+        m.iter().map(|(k, v)| format!("{k} {:.1} %", 100.0 * v)).collect::<Vec<_>>().join(", ")
+    };
+    println!("  variance shares of mu_e,a: {}", shares(&r.variance_shares.mu_apparent));
+    println!("  variance shares of F_a0:   {}", shares(&r.variance_shares.apparent_adhesion_force_n));
+    for d in &r.devices {
+        match &d.eq10 {
+            Some(f) => println!(
+                "  device {:>8}: mu_e,a {:.3} {}, F_a0 {:.3} uN ({} rows)",
+                d.device,
+                f.mu_apparent.value,
+                ci(f.mu_apparent.ci95, 1.0),
+                f.apparent_adhesion_force_n.value * 1e6,
+                d.rows_used
+            ),
+            None => println!("  device {:>8}: {}", d.device, d.note.clone().unwrap_or_default()),
+        }
+    }
+    println!("\n{}", r.noise_note);
+    println!(
+        "\n  {:<18} {:>10} {:>24} {:>9} {:>4} {:>9} {:>7}",
+        "model", "s (GPa)", "95 % (GPa)", "chi2", "dof", "AIC", "dAIC"
+    );
+    for m in &r.models {
+        println!(
+            "  {:<18} {:>10.4} {:>24} {:>9.2} {:>4} {:>9.2} {:>7}",
+            m.name,
+            m.shear_strength_pa.value / 1e9,
+            ci(m.shear_strength_pa.ci95, 1e-9),
+            m.chi2,
+            m.dof,
+            m.aic,
+            m.delta_aic.map_or("n/a".into(), |d| format!("{d:.2}"))
+        );
+        if let Some(note) = &m.shear_strength_pa.note {
+            println!("  {:<18} s: {note}", "");
+        }
+        if let Some(rough) = &m.roughness {
+            println!(
+                "  {:<18} roughness: s over {} surfaces, 95 % {} GPa",
+                "",
+                rough.surfaces,
+                ci(rough.shear_strength_ci95_pa, 1e-9)
+            );
+        }
+        if let Some(rr) = &m.summit_radius_m {
+            println!("  {:<18} R = {:.3} um, 95 % {} um", "", rr.value * 1e6, ci(rr.ci95, 1e6));
+        }
+        if let Some(f) = &m.spring_force_n {
+            println!("  {:<18} F_spring = {:.3} uN, 95 % {} uN", "", f.value * 1e6, ci(f.ci95, 1e6));
+        }
+    }
+    for f in &r.models_failed {
+        println!("  {:<18} failed: {}", f.name, f.reason);
+    }
+    println!();
+    for s in &r.model_selection {
+        println!("{s}");
+    }
+}
+
+/// Long-format CSV of the series behind a chart: series, x, y, y_low, y_high.
+fn chart_csv(path: &Path, x_name: &str, y_name: &str, rows: &[CsvRow]) -> CliResult {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(["series", x_name, y_name, &format!("{y_name}_low"), &format!("{y_name}_high")])?;
+    let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:e}"));
+    for (s, x, y, lo, hi) in rows {
+        w.write_record([s.clone(), format!("{x:e}"), format!("{y:e}"), opt(*lo), opt(*hi)])?;
+    }
+    write_atomic(path, &w.into_inner().map_err(|e| e.to_string())?)?;
+    Ok(())
+}
+
+fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> CliResult {
+    chart.write_svg(&dir.join(format!("{stem}.svg")))?;
+    chart.write_png(&dir.join(format!("{stem}.png")))?;
+    Ok(())
+}
+
+/// One row of a figure's CSV: series, x, y, y_low, y_high.
+type CsvRow = (String, f64, f64, Option<f64>, Option<f64>);
+type CsvRows = Vec<CsvRow>;
+/// Repeats of one (device, clamp voltage): pull voltage and its SD.
+type Groups = BTreeMap<(String, u64), Vec<(f64, Option<f64>)>>;
+
+fn write_figures(dir: &Path, data: &Dataset, r: &FitReport) -> CliResult {
+    let red = r.reduction;
+    // Data grouped by (device, V_clamp): mean V_pull^2 and its error bar (SD of the repeats, or
+    // 2 V sd from the column).
+    let mut groups: Groups = BTreeMap::new();
+    let rejected: std::collections::BTreeSet<u64> = r.rows_rejected.iter().map(|x| x.line).collect();
+    for row in data.rows.iter().filter(|row| !rejected.contains(&row.line)) {
+        groups.entry((row.device.clone(), row.v_clamp_v.to_bits())).or_default().push((row.v_pull_v, row.v_pull_sd_v));
+    }
+    let mut pts = Vec::new();
+    let mut errs = Vec::new();
+    for ((_, bits), g) in &groups {
+        let x = f64::from_bits(*bits).powi(2);
+        let ys: Vec<f64> = g.iter().map(|(v, _)| v * v).collect();
+        let n = ys.len() as f64;
+        let m = ys.iter().sum::<f64>() / n;
+        let err = if ys.len() > 1 {
+            (ys.iter().map(|y| (y - m).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
+        } else {
+            g[0].1.map_or(0.0, |sd| 2.0 * g[0].0 * sd)
+        };
+        pts.push((x, m));
+        errs.push(err);
+    }
+    let mut rows: CsvRows =
+        pts.iter().zip(&errs).map(|(p, e)| ("data".to_string(), p.0, p.1, Some(p.1 - e), Some(p.1 + e))).collect();
+    let mut fig5 = Chart::new(
+        "Pull voltage at slip against clamp voltage (measured, with each model's fit)",
+        "V_clamp^2 (V^2)",
+        "V_pull^2 (V^2)",
+    )
+    .with(Series::markers("data (mean, error bar: SD of repeats)", pts.clone()).with_y_err(errs.clone()));
+    let best = r.models.first().map(|m| m.name.clone());
+    let mut bands = Vec::new();
+    for m in &r.models {
+        let line: Vec<(f64, f64)> =
+            m.curve.iter().filter_map(|c| c.v_pull_sq_v2.map(|y| (c.v_clamp_sq_v2, y))).collect();
+        let s_gpa = m.shear_strength_pa.value / 1e9;
+        fig5 = fig5.with(Series::line(format!("{} (s = {s_gpa:.3} GPa)", m.name), line));
+        for c in &m.curve {
+            if let Some(y) = c.v_pull_sq_v2 {
+                rows.push((m.name.clone(), c.v_clamp_sq_v2, y, c.band_v2.map(|b| b[0]), c.band_v2.map(|b| b[1])));
+            }
+        }
+        if m.roughness.is_some() || (Some(&m.name) == best.as_ref() && r.models.iter().all(|o| o.roughness.is_none())) {
+            let what = if m.roughness.is_some() { "roughness band 95 %" } else { "95 % band of s" };
+            // One closed outline: along the low edge, back along the high edge.
+            let mut band: Vec<(f64, f64)> =
+                m.curve.iter().filter_map(|c| c.band_v2.map(|b| (c.v_clamp_sq_v2, b[0]))).collect();
+            band.extend(m.curve.iter().rev().filter_map(|c| c.band_v2.map(|b| (c.v_clamp_sq_v2, b[1]))));
+            if !band.is_empty() {
+                bands.push(Series::dashed(format!("{} {what}", m.name), band));
+            }
+        }
+    }
+    for b in bands {
+        fig5 = fig5.with(b);
+    }
+    write_chart(dir, "fit-vpull2", &fig5)?;
+    chart_csv(&dir.join("fit-vpull2.csv"), "v_clamp_sq_v2", "v_pull_sq_v2", &rows)?;
+
+    // F_f against L (uN), the paper's Fig. 7 view.
+    let to_l = |x: f64| (red.a_clamp_n_per_v2 * x - red.spring_force_n) * 1e6;
+    let to_f = |y: f64| red.a_pull_n_per_v2 * y * 1e6;
+    let fl: Vec<(f64, f64)> = pts.iter().map(|p| (to_l(p.0), to_f(p.1))).collect();
+    let fe: Vec<f64> = errs.iter().map(|e| red.a_pull_n_per_v2 * e * 1e6).collect();
+    let mut rows: CsvRows =
+        fl.iter().zip(&fe).map(|(p, e)| ("data".to_string(), p.0, p.1, Some(p.1 - e), Some(p.1 + e))).collect();
+    let mu = r.mu_apparent.value;
+    let fa0 = r.apparent_adhesion_force_n.value * 1e6;
+    let (l0, l1) = fl.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+    let eq10_line = vec![(l0.min(0.0), mu * (fa0 + l0.min(0.0))), (l1, mu * (fa0 + l1))];
+    for p in &eq10_line {
+        rows.push(("eq10".into(), p.0, p.1, None, None));
+    }
+    let mut fig7 = Chart::new("Friction against load (nominal reduction)", "L (uN)", "F_f (uN)")
+        .with(Series::markers("data", fl).with_y_err(fe))
+        .with(Series::dashed(format!("eq. 10: mu_e,a = {mu:.3}, F_a0 = {fa0:.2} uN"), eq10_line));
+    for m in &r.models {
+        let line: Vec<(f64, f64)> =
+            m.curve.iter().filter_map(|c| c.v_pull_sq_v2.map(|y| (c.load_n * 1e6, to_f(y)))).collect();
+        for (c, p) in m.curve.iter().zip(&line) {
+            rows.push((m.name.clone(), p.0, p.1, c.band_v2.map(|b| to_f(b[0])), c.band_v2.map(|b| to_f(b[1]))));
+        }
+        fig7 = fig7.with(Series::line(m.name.clone(), line));
+    }
+    write_chart(dir, "fit-friction-load", &fig7)?;
+    chart_csv(&dir.join("fit-friction-load.csv"), "load_un", "friction_un", &rows)?;
+
+    // Residuals.
+    let mut rows: CsvRows = Vec::new();
+    let mut fig =
+        Chart::new("Residuals of each model's best fit", "V_clamp^2 (V^2)", "V_pull^2 measured - model (V^2)");
+    let (x0, x1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+    fig = fig.with(Series::dashed("zero", vec![(x0, 0.0), (x1, 0.0)]));
+    for m in r.models.iter().filter(|m| m.comparable) {
+        let p: Vec<(f64, f64)> = m.residuals.iter().map(|(_, x, res)| (*x, *res)).collect();
+        for (line, x, res) in &m.residuals {
+            rows.push((format!("{} (line {line})", m.name), *x, *res, None, None));
+        }
+        fig = fig.with(Series::markers(m.name.clone(), p));
+    }
+    write_chart(dir, "fit-residuals", &fig)?;
+    chart_csv(&dir.join("fit-residuals.csv"), "v_clamp_sq_v2", "residual_v2", &rows)?;
+    Ok(())
+}
