@@ -30,6 +30,8 @@ pub enum SurfaceSource {
     Generated,
     /// Read from the CSV file `csv_path` (columns x_m, y_m, height_m, radius_m).
     Csv,
+    /// Found on a patch of a measured height map (`height_map` and/or `counter_height_map`).
+    HeightMap,
 }
 
 /// How a second rough face (`counter_face`) is combined with the first.
@@ -150,6 +152,14 @@ pub struct SurfaceSpec {
     #[serde(default, deserialize_with = "stiction_units::de::opt_length_positive")]
     #[schemars(with = "Option<stiction_units::QuantityInput>")]
     pub pair_reach: Option<f64>,
+    /// With `source` = "height_map": the wall's measured height map, whose patch under the shoe
+    /// gives the summits (see `stiction_topography::HeightMapSpec`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_map: Option<stiction_topography::HeightMapSpec>,
+    /// With `source` = "height_map": the shoe face's height map (heights towards the wall); with
+    /// `height_map` as well, the two patches are added (composite surface).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub counter_height_map: Option<stiction_topography::HeightMapSpec>,
 }
 
 impl SurfaceSpec {
@@ -181,7 +191,13 @@ impl SurfaceSpec {
     /// Builds the surface: generates it or reads the CSV file (relative `csv_path` resolved
     /// against `base_dir`, normally the scenario file's folder).
     pub fn build(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
+        if self.source != SurfaceSource::HeightMap && (self.height_map.is_some() || self.counter_height_map.is_some()) {
+            return Err(SurfaceError::Spec(
+                "`height_map` and `counter_height_map` are only allowed when `source` is \"height_map\"".into(),
+            ));
+        }
         match self.source {
+            SurfaceSource::HeightMap => crate::height_map::build(self, base_dir),
             SurfaceSource::Csv => {
                 let path = self
                     .csv_path

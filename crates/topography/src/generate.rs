@@ -1,10 +1,12 @@
 //! Gaussian random height maps by FFT filtering of white noise.
 //!
-//! White noise `n` (one standard normal per pixel, drawn in row-major order from
-//! `ChaCha8Rng::seed_from_u64(seed)`) is transformed, multiplied by `W(f) = sqrt(S(|f|))` and
-//! transformed back: `z = IDFT(W DFT(n))`. The map is periodic, Gaussian and isotropic with the
-//! PSD shape `S`, scaled so that the expected mean square height is `rms_height^2`
-//! (`sum_f W^2 = N rms^2`, the DC bin set to 0 so the map's mean is 0). The transforms use the
+//! The spectrum of filtered white noise, `W(f) DFT(n)` with `W(f) = sqrt(S(|f|))`, is drawn
+//! directly: a complex Gaussian per frequency pair `(k, -k)` with `X_-k = conj(X_k)` (standard
+//! normals from `ChaCha8Rng::seed_from_u64(seed)`, in the order of the frequency grid), and
+//! transformed back: `z = IDFT(X)`, real. The map is periodic, Gaussian and isotropic with the PSD
+//! shape `S`, scaled so that the expected mean square height is `rms_height^2`
+//! (`sum_f W^2 = N rms^2`, the DC bin set to 0 so the map's mean is 0). One inverse transform,
+//! no forward one. The transforms use the
 //! portable scalar FFT, so a seed gives the same bytes on every machine and thread count.
 //!
 //! Spectra (`f` = 1/wavelength):
@@ -161,20 +163,34 @@ pub fn generate(spec: &GeneratorSpec) -> Result<HeightMap, TopographyError> {
             format!("a spectrum with power between the map's frequencies 1/{} m and Nyquist", nx.max(ny) as f64 * d),
         ));
     }
-    // W^2 = N rms^2 S / sum S; the inverse DFT's 1/N is folded in: W / N.
-    let k = (n as f64 * spec.rms_height_m * spec.rms_height_m / total).sqrt() / n as f64;
+    // A Hermitian spectrum drawn directly: X_k = sqrt(N) W_k (a + i b)/sqrt(2) and X_-k = conj(X_k)
+    // (a, b standard normal), X_k = sqrt(N) W_k a where k = -k; then E|X_k|^2 = N W_k^2, as for
+    // the DFT of white noise filtered by W, and the inverse DFT is real. With W^2 = N rms^2 S / sum S
+    // and the inverse DFT's 1/N folded in, the factor is sqrt(N rms^2 / sum S) / sqrt(N).
+    let k = (spec.rms_height_m * spec.rms_height_m / total).sqrt();
     let mut rng = ChaCha8Rng::seed_from_u64(spec.seed);
-    let noise: Vec<Complex64> = (0..n)
-        .map(|_| {
-            let v: f64 = StandardNormal.sample(&mut rng);
-            Complex64::new(v, 0.0)
-        })
-        .collect();
-    let mut spec_t = fft::forward_2d(noise, nx, ny, true);
-    for (c, w) in spec_t.iter_mut().zip(&weights) {
-        *c *= w.sqrt() * k;
+    let mut spectrum = vec![Complex64::new(0.0, 0.0); n];
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    for kx in 0..nx {
+        let mx = (nx - kx) % nx;
+        for ky in 0..ny {
+            let my = (ny - ky) % ny;
+            let (i, m) = (kx * ny + ky, mx * ny + my);
+            if m < i {
+                continue; // drawn with its mirror
+            }
+            let w = weights[i].sqrt() * k;
+            let a: f64 = StandardNormal.sample(&mut rng);
+            if m == i {
+                spectrum[i] = Complex64::new(w * a, 0.0);
+            } else {
+                let b: f64 = StandardNormal.sample(&mut rng);
+                spectrum[i] = Complex64::new(w * a * half, w * b * half);
+                spectrum[m] = spectrum[i].conj();
+            }
+        }
     }
     drop(weights);
-    let grid = fft::inverse_2d(spec_t, nx, ny, true);
+    let grid = fft::inverse_2d(spectrum, nx, ny, true);
     HeightMap::new(nx, ny, d, d, grid.into_iter().map(|c| c.re).collect())
 }

@@ -9,6 +9,7 @@
 //! * preparation ([`prepare`]): levelling, Gaussian short- and long-wavelength cut-offs;
 //! * summits ([`find_summits`]): 8-neighbour maxima with their curvature;
 //! * statistics ([`statistics`], [`radial_psd`], [`autocorrelation`]) and Nayak's predictions;
+//! * scenario sources ([`HeightMapSpec`]): a map's patch under the shoe, stated or random per seed;
 //! * a generator of Gaussian random maps ([`generate`]): Gaussian ACF or self-affine PSD, seeded.
 //!
 //! All quantities are SI (metres) inside.
@@ -19,6 +20,7 @@ mod generate;
 mod map;
 mod prep;
 mod read;
+mod spec;
 mod stats;
 mod summits;
 
@@ -30,6 +32,7 @@ pub use read::{
     BINARY_INPUT_LIMIT_BYTES, MapFormat, MapInfo, MapMetadata, MetaSource, NpyDtype, TEXT_INPUT_LIMIT_BYTES,
     parse_length_unit, read_file, read_gsf, read_npy, read_text_grid, read_xyz,
 };
+pub use spec::{HeightMapSpec, Patch, PatchSummits, choose_patch, patch_summits};
 pub use stats::{
     Autocorrelation, Nayak, Psd, PsdWindow, Statistics, SummitStats, autocorrelation, radial_psd, statistics,
     summit_stats,

@@ -145,13 +145,13 @@ fn level_polynomial(map: &mut HeightMap, degree: usize) -> Result<f64, Topograph
     let scale = |i: usize, n: usize| if n > 1 { 2.0 * i as f64 / (n - 1) as f64 - 1.0 } else { 0.0 };
     let powers = |u: f64| -> [f64; 4] { [1.0, u, u * u, u * u * u] };
     let ux: Vec<[f64; 4]> = (0..nx).map(|i| powers(scale(i, nx))).collect();
-    let mut ata = DMatrix::<f64>::zeros(nt, nt);
-    let mut atz = DVector::<f64>::zeros(nt);
-    let mut phi = vec![0.0; nt];
+    // Normal equations in plain arrays (at most 10 terms), upper triangle.
+    let mut ata_a = [0.0f64; 100];
+    let mut atz_a = [0.0f64; 10];
+    let mut phi = [0.0f64; 10];
     let mut count = 0usize;
     for iy in 0..ny {
         let vy = powers(scale(iy, ny));
-        // Row sums first (valid pixels of this row), then the outer product once per pixel.
         for (ix, &z) in map.row(iy).iter().enumerate() {
             if z.is_nan() {
                 continue;
@@ -161,11 +161,19 @@ fn level_polynomial(map: &mut HeightMap, degree: usize) -> Result<f64, Topograph
                 phi[k] = ux[ix][a] * vy[b];
             }
             for r in 0..nt {
-                atz[r] += phi[r] * z;
+                atz_a[r] += phi[r] * z;
                 for c in r..nt {
-                    ata[(r, c)] += phi[r] * phi[c];
+                    ata_a[r * 10 + c] += phi[r] * phi[c];
                 }
             }
+        }
+    }
+    let mut ata = DMatrix::<f64>::zeros(nt, nt);
+    let mut atz = DVector::<f64>::zeros(nt);
+    for r in 0..nt {
+        atz[r] = atz_a[r];
+        for c in r..nt {
+            ata[(r, c)] = ata_a[r * 10 + c];
         }
     }
     if count < nt {

@@ -151,22 +151,35 @@ fn generator_gives_what_was_asked_and_the_same_bytes_for_a_seed() {
     assert_eq!(generate(&spec).unwrap(), map);
     assert_ne!(generate(&GeneratorSpec { seed: 4, ..spec }).unwrap(), map);
 
-    // Self-affine: the PSD slope between the roll-off and the cut-off is -2(1 + H) (+- 0.05).
+    // Self-affine: the PSD slope between the roll-off and the cut-off is -2(1 + H) (+- 0.05; the
+    // PSD is averaged over 4 seeds, which leaves a fitted-slope scatter of about 0.015).
     for hurst in [0.5, 0.8] {
-        let map = generate(&GeneratorSpec {
-            spectrum: Spectrum::SelfAffine {
-                hurst,
-                rolloff_wavelength_m: 64.0 * D,
-                short_cutoff_wavelength_m: Some(8.0 * D),
-                long_cutoff_wavelength_m: None,
-            },
-            ..spec
-        })
-        .unwrap();
-        let slope = fit_slope(&radial_psd(&map, PsdWindow::None), 1.0 / (40.0 * D), 1.0 / (10.0 * D));
+        let mut mean_psd: Option<Psd> = None;
+        for seed in 0..4 {
+            let map = generate(&GeneratorSpec {
+                spectrum: Spectrum::SelfAffine {
+                    hurst,
+                    rolloff_wavelength_m: 64.0 * D,
+                    short_cutoff_wavelength_m: Some(8.0 * D),
+                    long_cutoff_wavelength_m: None,
+                },
+                seed,
+                ..spec
+            })
+            .unwrap();
+            let rms = statistics(&map, &Summits::default()).rms_height_m;
+            assert!((rms / 10e-9 - 1.0).abs() < 0.05, "rms {rms}");
+            let psd = radial_psd(&map, PsdWindow::None);
+            mean_psd = Some(match mean_psd {
+                None => psd,
+                Some(mut m) => {
+                    m.psd_m4.iter_mut().zip(&psd.psd_m4).for_each(|(a, b)| *a += b);
+                    m
+                }
+            });
+        }
+        let slope = fit_slope(&mean_psd.unwrap(), 1.0 / (40.0 * D), 1.0 / (10.0 * D));
         assert!((slope + 2.0 * (1.0 + hurst)).abs() < 0.05, "H = {hurst}: slope {slope}");
-        let rms = statistics(&map, &Summits::default()).rms_height_m;
-        assert!((rms / 10e-9 - 1.0).abs() < 0.05, "rms {rms}");
     }
 }
 
@@ -193,7 +206,7 @@ fn generator_output_is_pinned_byte_for_byte() {
             h = h.wrapping_mul(0x0000_0100_0000_01b3);
         }
     }
-    assert_eq!(format!("{h:016x}"), "3d9adfc437b13f37");
+    assert_eq!(format!("{h:016x}"), "d341077a4a16cec3");
 }
 
 #[test]
