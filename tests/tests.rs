@@ -6,3 +6,4 @@ mod util;
 mod bad_inputs;
 mod models;
 mod scenarios;
+mod topography;

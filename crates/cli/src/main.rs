@@ -41,6 +41,8 @@ enum Command {
     Study(cmd::study::Args),
     /// Check a scenario file (and --set overrides) and print it in SI units, or print the format's JSON Schema.
     Scenario(cmd::scenario::Args),
+    /// A measured height map (AFM, profiler): levelling, cut-offs, summits, statistics beside Nayak's predictions, figures.
+    Topography(cmd::topography::Args),
 }
 
 fn main() -> ExitCode {
@@ -55,6 +57,7 @@ fn main() -> ExitCode {
         Command::Plot(a) => cmd::plot::run(a),
         Command::Scenario(a) => cmd::scenario::run(a),
         Command::Study(a) => cmd::study::run(a),
+        Command::Topography(a) => cmd::topography::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -345,7 +345,7 @@ impl HeightMap {
             self.ny(),
             self.nx()
         );
-        while (10 + header.len() + 1) % 64 != 0 {
+        while !(10 + header.len() + 1).is_multiple_of(64) {
             header.push(' ');
         }
         header.push('\n');

@@ -182,3 +182,23 @@ fn malformed_files_give_clear_errors() {
     let e = err(read_xyz("0 0 1\n1 0 1\n0 1\n", "p.xyz", &xyz));
     assert!(e.contains("line 3"), "{e}");
 }
+
+#[test]
+fn bundled_example_map_is_the_generators_output() {
+    // data/topography-example/README.md: the exact generator call (examples/make_example_map.rs).
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/topography-example/wall.gsf");
+    let shipped = std::fs::read(&path).unwrap();
+    let map = generate(&GeneratorSpec {
+        nx: 640,
+        ny: 200,
+        pixel_size_m: 40e-9,
+        rms_height_m: 20e-9,
+        spectrum: Spectrum::GaussianAcf { correlation_length_m: 0.2e-6 },
+        seed: 2000,
+    })
+    .unwrap();
+    assert!(
+        shipped == map.to_gsf_bytes(),
+        "regenerate with `cargo run --release -p stiction-topography --example make_example_map`"
+    );
+}
