@@ -9,3 +9,4 @@ mod models;
 mod scenarios;
 mod standalone;
 mod study;
+mod topography;

@@ -45,6 +45,8 @@ enum Command {
     Fit(cmd::fit::Args),
     /// Check a scenario file (and --set overrides) and print it in SI units, or print the format's JSON Schema.
     Scenario(cmd::scenario::Args),
+    /// A measured height map (AFM, profiler): levelling, cut-offs, summits, statistics beside Nayak's predictions, figures.
+    Topography(cmd::topography::Args),
 }
 
 fn main() -> ExitCode {
@@ -61,6 +63,7 @@ fn main() -> ExitCode {
         Command::Study(a) => cmd::study::run(a),
         Command::Merge(a) => cmd::merge::run(a),
         Command::Fit(a) => cmd::fit::run(a),
+        Command::Topography(a) => cmd::topography::run(a),
     };
     output::flush_stdout();
     match result {

@@ -17,6 +17,9 @@ use std::path::{Path, PathBuf};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+mod map;
+pub use map::ImageMap;
+
 /// How a series is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SeriesStyle {

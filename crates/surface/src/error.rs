@@ -37,6 +37,9 @@ pub enum SurfaceError {
         /// What is wrong.
         message: String,
     },
+    /// A height map could not be read, prepared or cut.
+    #[error("height map: {0}")]
+    HeightMap(#[from] stiction_topography::TopographyError),
     /// A file could not be opened, read or written.
     #[error("{path}: {message}")]
     Io {

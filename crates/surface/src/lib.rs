@@ -11,6 +11,8 @@
 //!   explicitly, shoe summits meeting wall summits ([`generate_two_face`]),
 //! * reports sample statistics to compare with the requested parameters ([`Surface::stats`]),
 //! * writes and reads CSV (`x_m,y_m,height_m,radius_m`, SI) so measured summit lists can be used,
+//! * finds summits on a patch of a measured height map (`source` = "height_map", via
+//!   `stiction-topography`),
 //! * and describes all of this for scenario files ([`SurfaceSpec`]).
 //!
 //! All quantities are SI (metres, m^-2).
@@ -18,6 +20,7 @@
 mod csv_io;
 mod error;
 mod generate;
+mod height_map;
 mod spec;
 mod surface;
 

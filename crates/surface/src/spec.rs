@@ -30,6 +30,8 @@ pub enum SurfaceSource {
     Generated,
     /// Read from the CSV file `csv_path` (columns x_m, y_m, height_m, radius_m).
     Csv,
+    /// Found on a patch of a measured height map (`height_map` and/or `counter_height_map`).
+    HeightMap,
 }
 
 /// How a second rough face (`counter_face`) is combined with the first.
@@ -156,6 +158,12 @@ pub struct SurfaceSpec {
     /// generated. Raise it when the machine has the memory.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_summits: Option<u64>,
+    /// With `source` = "height_map": the wall's measured height map, whose patch under the shoe
+    /// gives the summits (see `stiction_topography::HeightMapSpec`).
+    pub height_map: Option<stiction_topography::HeightMapSpec>,
+    /// With `source` = "height_map": the shoe face's height map (heights towards the wall); with
+    /// `height_map` as well, the two patches are added (composite surface).
+    pub counter_height_map: Option<stiction_topography::HeightMapSpec>,
 }
 
 /// The default of `surface.max_summits`.
@@ -291,7 +299,13 @@ impl SurfaceSpec {
     /// against `base_dir`, normally the scenario file's folder).
     pub fn build(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
         self.check().map_err(|(field, message)| SurfaceError::Spec(format!("`{field}`: {message}")))?;
+        if self.source != SurfaceSource::HeightMap && (self.height_map.is_some() || self.counter_height_map.is_some()) {
+            return Err(SurfaceError::Spec(
+                "`height_map` and `counter_height_map` are only allowed when `source` is \"height_map\"".into(),
+            ));
+        }
         match self.source {
+            SurfaceSource::HeightMap => crate::height_map::build(self, base_dir),
             SurfaceSource::Csv => {
                 let path = self
                     .csv_path

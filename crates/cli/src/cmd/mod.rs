@@ -11,3 +11,4 @@ pub mod run;
 pub mod scenario;
 pub mod study;
 pub mod surface;
+pub mod topography;

@@ -1,0 +1,420 @@
+//! `stiction topography`: a measured height map in, its summits and statistics out.
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+use stiction_plot::{Chart, ImageMap, Series};
+use stiction_scenario::Scenario;
+use stiction_surface::{Radii, Surface};
+use stiction_topography::{
+    HeightMap, Levelling, MapFormat, MapInfo, MapMetadata, Nayak, Preparation, PreparationReport, PsdWindow,
+    Statistics, Summits, find_summits, parse_length_unit, prepare, radial_psd, read_file, statistics,
+};
+use stiction_units::io::write_atomic;
+use stiction_units::{Constraint, Dimension};
+
+use crate::output::{CliResult, ensure_dir, print_json, print_table, quantity};
+
+/// Read a measured height map (AFM, optical profiler): level it, filter it, find its summits
+/// (8-neighbour maxima, curvature -(z_xx + z_yy)/2) and print the statistics beside Nayak's
+/// random-process predictions; with --scenario, the GW parameters and the adhesion parameter theta
+/// for the scenario's material.
+///
+/// Formats: .npy (float32/64), .gsf (Gwyddion simple field), .xyz (x y z points on a grid), any
+/// other extension a text/CSV grid (Gwyddion's ASCII export header gives the pixel size and unit).
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The height-map file.
+    pub file: PathBuf,
+    /// File format: npy, text, gsf or xyz (default: from the extension).
+    #[arg(long, value_parser = |s: &str| s.parse::<MapFormat>())]
+    pub format: Option<MapFormat>,
+    /// Pixel size, when the file does not state it: "10 nm".
+    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    pub pixel_size: Option<f64>,
+    /// Pixel size along y, if it differs from --pixel-size.
+    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    pub pixel_size_y: Option<f64>,
+    /// Unit of the file's heights, when the file does not state it: "nm", "um", "m".
+    #[arg(long, value_name = "U", value_parser = |s: &str| parse_length_unit(s))]
+    pub height_unit: Option<f64>,
+    /// Unit of the x and y coordinates of an xyz point list: "um".
+    #[arg(long, value_name = "U", value_parser = |s: &str| parse_length_unit(s))]
+    pub xy_unit: Option<f64>,
+    /// Levelling: none, mean, plane, poly2, poly3.
+    #[arg(long, default_value = "plane", value_parser = |s: &str| s.parse::<Levelling>())]
+    pub level: Levelling,
+    /// Short-wavelength cut-off (Gaussian low-pass, 50 % at this wavelength): "40 nm".
+    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    pub cutoff: Option<f64>,
+    /// Long-wavelength cut-off (Gaussian high-pass, 50 % at this wavelength): "5 um".
+    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    pub long_cutoff: Option<f64>,
+    /// Write the summits as CSV (x_m,y_m,height_m,radius_m: readable by a scenario with "source": "csv").
+    #[arg(long, value_name = "OUT.csv")]
+    pub summits: Option<PathBuf>,
+    /// Write figures (PNG) with their data (CSV) and statistics.json to this folder.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// A scenario whose material gives the GW parameters' adhesion parameter theta.
+    #[arg(long, value_name = "SCENARIO.json")]
+    pub scenario: Option<PathBuf>,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// GW parameters of the map and the adhesion parameter.
+#[derive(Serialize)]
+struct Gw {
+    /// eta: the counted summit density, m^-2.
+    summit_density_per_m2: f64,
+    /// sigma: the counted summit height SD, m.
+    summit_sd_m: Option<f64>,
+    /// R: the counted mean summit radius, m.
+    summit_radius_m: Option<f64>,
+    /// theta (eq. 9) with the scenario's material; null with the reason in `theta_note`.
+    adhesion_parameter_theta: Option<f64>,
+    theta_note: String,
+}
+
+#[derive(Serialize)]
+struct Output {
+    file: String,
+    format: MapFormat,
+    read: MapInfo,
+    preparation: PreparationReport,
+    summit_count: usize,
+    summit_density_per_m2: f64,
+    summit_height_sd_m: Option<f64>,
+    summit_height_mean_m: Option<f64>,
+    summit_radius_mean_m: Option<f64>,
+    summit_radius_median_m: Option<f64>,
+    summit_curvature_mean_per_m: Option<f64>,
+    rms_height_m: f64,
+    rms_slope: f64,
+    rms_curvature_per_m: f64,
+    autocorrelation_length_m: Option<f64>,
+    nayak: Option<Nayak>,
+    gw: Gw,
+    statistics: Statistics,
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> CliResult {
+    let meta = MapMetadata {
+        pixel_size_x_m: args.pixel_size,
+        pixel_size_y_m: args.pixel_size_y,
+        height_unit_m: args.height_unit,
+        xy_unit_m: args.xy_unit,
+    };
+    let (raw, info) = read_file(&args.file, args.format, &meta)?;
+    let prep = Preparation { levelling: args.level, short_cutoff_m: args.cutoff, long_cutoff_m: args.long_cutoff };
+    let (map, report) = prepare(&raw, &prep)?;
+    drop(raw);
+    let summits = find_summits(&map);
+    let st = statistics(&map, &summits);
+    let gw = gw_of(&st, args.scenario.as_deref())?;
+    let out = Output {
+        file: args.file.display().to_string(),
+        format: info.format,
+        read: info,
+        preparation: report,
+        summit_count: st.summits.count,
+        summit_density_per_m2: st.summits.density_per_m2,
+        summit_height_sd_m: st.summits.height_sd_m,
+        summit_height_mean_m: st.summits.height_mean_m,
+        summit_radius_mean_m: st.summits.radius_mean_m,
+        summit_radius_median_m: st.summits.radius_median_m,
+        summit_curvature_mean_per_m: st.summits.curvature_mean_per_m,
+        rms_height_m: st.rms_height_m,
+        rms_slope: st.rms_slope,
+        rms_curvature_per_m: st.rms_curvature_per_m,
+        autocorrelation_length_m: st.autocorrelation_length_m,
+        nayak: st.nayak,
+        gw,
+        statistics: st,
+    };
+    if let Some(path) = &args.summits {
+        write_summit_csv(&map, &summits, path)?;
+        eprintln!("wrote {} summits to {}", summits.len(), path.display());
+    }
+    if let Some(dir) = &args.out {
+        ensure_dir(dir)?;
+        write_summit_csv(&map, &summits, &dir.join("summits.csv"))?;
+        write_atomic(&dir.join("statistics.json"), (serde_json::to_string_pretty(&out)? + "\n").as_bytes())?;
+        figures(&map, &summits, &report, dir)?;
+        eprintln!("wrote figures, their data and statistics.json to {}", dir.display());
+    }
+    if args.json {
+        return print_json(&out);
+    }
+    print_table_of(&out);
+    Ok(())
+}
+
+fn gw_of(st: &Statistics, scenario: Option<&Path>) -> Result<Gw, Box<dyn std::error::Error>> {
+    let s = &st.summits;
+    let (sd, r) = (s.height_sd_m, s.radius_mean_m);
+    let (theta, note) = match scenario {
+        None => (None, "no --scenario: theta needs a material (compliance, work of adhesion)".to_string()),
+        Some(path) => {
+            let sc = Scenario::load(path, &[])?;
+            let m = sc.require_material().map_err(|e| format!("{}: {e}", path.display()))?;
+            match (sd, r) {
+                (Some(sd), Some(r)) if sd > 0.0 => {
+                    match stiction_contact::gw::adhesion_parameter(sd, r, m.compliance_per_pa(), m.work_of_adhesion)? {
+                        Some(t) => (Some(t), format!("material of {}", path.display())),
+                        None => (None, "work of adhesion 0: theta is infinite (no adhesion)".into()),
+                    }
+                }
+                _ => (None, "fewer than 2 summits: no summit height SD".into()),
+            }
+        }
+    };
+    Ok(Gw {
+        summit_density_per_m2: s.density_per_m2,
+        summit_sd_m: sd,
+        summit_radius_m: r,
+        adhesion_parameter_theta: theta,
+        theta_note: note,
+    })
+}
+
+fn opt(v: Option<f64>, scale: f64, unit: &str) -> String {
+    v.map_or("n/a".into(), |v| format!("{:.4} {unit}", v * scale))
+}
+
+fn print_table_of(o: &Output) {
+    let st = &o.statistics;
+    let n = o.nayak.as_ref();
+    let nay = |f: &dyn Fn(&Nayak) -> Option<f64>, scale: f64, unit: &str| {
+        n.and_then(f).map_or(String::new(), |v| format!("   (Nayak {:.4} {unit})", v * scale))
+    };
+    let cut = |v: Option<f64>| v.map_or("none".into(), |v| format!("{:.4} um", v * 1e6));
+    print_table(
+        &format!("Height map {} ({})", o.file, o.format.name()),
+        &[
+            (
+                "grid",
+                format!(
+                    "{} x {} pixels of {:.4} nm x {:.4} nm, {} missing",
+                    st.nx,
+                    st.ny,
+                    st.dx_m * 1e9,
+                    st.dy_m * 1e9,
+                    st.missing_pixels
+                ),
+            ),
+            ("levelling", format!("{:?}", o.preparation.levelling).to_lowercase()),
+            (
+                "short, long cut-off",
+                format!("{}, {}", cut(o.preparation.short_cutoff_m), cut(o.preparation.long_cutoff_m)),
+            ),
+            ("RMS height", format!("{:.4} nm", o.rms_height_m * 1e9)),
+            ("RMS slope", format!("{:.4}", o.rms_slope)),
+            ("RMS curvature", format!("{:.4} 1/um", o.rms_curvature_per_m * 1e-6)),
+            ("autocorrelation length", opt(o.autocorrelation_length_m, 1e6, "um")),
+            ("bandwidth alpha", n.map_or("n/a".into(), |n| format!("{:.3}", n.bandwidth_alpha))),
+            ("summits", format!("{}", o.summit_count)),
+            (
+                "summit density",
+                format!(
+                    "{:.4e} m^-2{}",
+                    o.summit_density_per_m2,
+                    n.map_or(String::new(), |n| format!("   (Nayak {:.4e} m^-2)", n.summit_density_per_m2))
+                ),
+            ),
+            (
+                "summit height SD",
+                format!("{}{}", opt(o.summit_height_sd_m, 1e9, "nm"), nay(&|n| n.summit_height_sd_m, 1e9, "nm")),
+            ),
+            (
+                "summit height mean",
+                format!(
+                    "{}{}",
+                    opt(o.summit_height_mean_m, 1e9, "nm"),
+                    nay(&|n| Some(n.summit_height_mean_m), 1e9, "nm")
+                ),
+            ),
+            (
+                "summit curvature mean",
+                format!(
+                    "{}{}",
+                    opt(o.summit_curvature_mean_per_m, 1e-6, "1/um"),
+                    nay(&|n| Some(n.summit_curvature_mean_per_m), 1e-6, "1/um")
+                ),
+            ),
+            ("summit radius mean", opt(o.summit_radius_mean_m, 1e6, "um")),
+            ("summit radius median", opt(o.summit_radius_median_m, 1e6, "um")),
+            (
+                "GW theta (eq. 9)",
+                o.gw.adhesion_parameter_theta
+                    .map_or(format!("n/a ({})", o.gw.theta_note), |t| format!("{t:.4} ({})", o.gw.theta_note)),
+            ),
+        ],
+    );
+}
+
+/// Summits as the CSV scenarios read (x_m, y_m, height_m, radius_m over the map's area).
+fn write_summit_csv(map: &HeightMap, s: &Summits, path: &Path) -> CliResult {
+    let (lx, ly) = (map.length_x_m(), map.length_y_m());
+    let xs = s.ix.iter().map(|&i| ((f64::from(i) + 0.5) * map.dx_m()) as f32).collect();
+    let ys = s.iy.iter().map(|&i| ((f64::from(i) + 0.5) * map.dy_m()) as f32).collect();
+    let radii = (0..s.len()).map(|i| s.radius_m(i)).collect();
+    let surface = Surface::new(lx, ly, xs, ys, s.height_m.clone(), Radii::PerSummit(radii))?;
+    let mut bytes = Vec::new();
+    surface.write_csv(&mut bytes)?;
+    write_atomic(path, &bytes)?;
+    Ok(())
+}
+
+fn write_csv_rows(path: &Path, header: &[&str], rows: impl Iterator<Item = Vec<f64>>) -> CliResult {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header)?;
+    for r in rows {
+        w.write_record(r.iter().map(|v| v.to_string()))?;
+    }
+    write_atomic(path, &w.into_inner().map_err(|e| e.to_string())?)?;
+    Ok(())
+}
+
+/// Histogram (lower edge, upper edge, count) of `v` in `bins` equal bins over [lo, hi].
+fn histogram(v: &[f64], lo: f64, hi: f64, bins: usize) -> Vec<(f64, f64, usize)> {
+    let w = (hi - lo) / bins as f64;
+    let mut c = vec![0usize; bins];
+    for &x in v {
+        if x >= lo && x <= hi && w > 0.0 {
+            c[(((x - lo) / w) as usize).min(bins - 1)] += 1;
+        }
+    }
+    (0..bins).map(|k| (lo + k as f64 * w, lo + (k + 1) as f64 * w, c[k])).collect()
+}
+
+fn steps(h: &[(f64, f64, usize)], scale: f64) -> Vec<(f64, f64)> {
+    h.iter().flat_map(|&(a, b, c)| [(a * scale, c as f64), (b * scale, c as f64)]).collect()
+}
+
+fn figures(map: &HeightMap, s: &Summits, report: &PreparationReport, dir: &Path) -> CliResult {
+    // Height map, block-averaged to at most 400 x 400 cells, with the summits.
+    let block = map.nx().max(map.ny()).div_ceil(400).max(1);
+    let (cx, cy) = (map.nx().div_ceil(block), map.ny().div_ceil(block));
+    let mut cells = vec![f64::NAN; cx * cy];
+    for by in 0..cy {
+        for bx in 0..cx {
+            let (mut sum, mut n) = (0.0, 0);
+            for iy in by * block..((by + 1) * block).min(map.ny()) {
+                for ix in bx * block..((bx + 1) * block).min(map.nx()) {
+                    let z = map.at(ix, iy);
+                    if !z.is_nan() {
+                        sum += z;
+                        n += 1;
+                    }
+                }
+            }
+            if n > 0 {
+                cells[by * cx + bx] = sum / n as f64 * 1e9;
+            }
+        }
+    }
+    let (xmax, ymax) = (map.length_x_m() * 1e6, map.length_y_m() * 1e6);
+    let markers: Vec<(f64, f64)> = (0..s.len())
+        .map(|i| ((f64::from(s.ix[i]) + 0.5) * map.dx_m() * 1e6, (f64::from(s.iy[i]) + 0.5) * map.dy_m() * 1e6))
+        .collect();
+    ImageMap {
+        title: format!(
+            "Height map ({} summits{})",
+            s.len(),
+            if block > 1 { format!(", drawn in {block} x {block} blocks") } else { String::new() }
+        ),
+        x_label: "x (um)".into(),
+        y_label: "y (um)".into(),
+        value_label: "height (nm)".into(),
+        nx: cx,
+        ny: cy,
+        values: cells.clone(),
+        x_max: xmax,
+        y_max: ymax,
+        markers: if s.len() <= 5000 { markers } else { Vec::new() },
+    }
+    .write_png(&dir.join("height_map.png"))?;
+    let bw = block as f64;
+    write_csv_rows(
+        &dir.join("height_map.csv"),
+        &["x_um", "y_um", "height_nm"],
+        (0..cy).flat_map(|by| {
+            let cells = &cells;
+            (0..cx).map(move |bx| {
+                vec![
+                    (bx as f64 + 0.5) * bw * map.dx_m() * 1e6,
+                    (by as f64 + 0.5) * bw * map.dy_m() * 1e6,
+                    cells[by * cx + bx],
+                ]
+            })
+        }),
+    )?;
+
+    // PSD with the cut-offs.
+    let psd = radial_psd(map, PsdWindow::Hann);
+    let pts: Vec<(f64, f64)> = psd.f_per_m.iter().zip(&psd.psd_m4).map(|(f, p)| (f * 1e-6, *p)).collect();
+    let mut chart =
+        Chart::new("Radially averaged PSD (Hann window)", "spatial frequency 1/wavelength (1/um)", "PSD C (m^4)")
+            .with(Series::line("map", pts.clone()));
+    chart.x_log = true;
+    chart.y_log = true;
+    let (ylo, yhi) =
+        pts.iter().filter(|p| p.1 > 0.0).fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    for (name, cut) in
+        [("short-wavelength cut-off", report.short_cutoff_m), ("long-wavelength cut-off", report.long_cutoff_m)]
+    {
+        if let Some(l) = cut {
+            chart = chart.with(Series::dashed(name, vec![(1e-6 / l, ylo), (1e-6 / l, yhi)]));
+        }
+    }
+    chart.write_png(&dir.join("psd.png"))?;
+    write_csv_rows(
+        &dir.join("psd.csv"),
+        &["f_per_m", "wavelength_m", "psd_m4", "dft_bins"],
+        psd.f_per_m.iter().zip(&psd.psd_m4).zip(&psd.bins).map(|((f, p), b)| vec![*f, 1.0 / f, *p, f64::from(*b)]),
+    )?;
+
+    // Summit height and radius histograms.
+    if s.len() >= 2 {
+        let (lo, hi) = s.height_m.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| (a.min(h), b.max(h)));
+        let bins = (s.len() as f64).sqrt().clamp(5.0, 60.0) as usize;
+        let hh = histogram(&s.height_m, lo, hi, bins);
+        Chart::new(
+            format!("Summit heights ({} summits)", s.len()),
+            "summit height above the mean plane (nm)",
+            "summits per bin",
+        )
+        .with(Series::line("", steps(&hh, 1e9)))
+        .write_png(&dir.join("summit_heights.png"))?;
+        write_csv_rows(
+            &dir.join("summit_heights.csv"),
+            &["height_lo_m", "height_hi_m", "count"],
+            hh.iter().map(|&(a, b, c)| vec![a, b, c as f64]),
+        )?;
+        let mut radii: Vec<f64> = (0..s.len()).map(|i| s.radius_m(i)).collect();
+        radii.sort_by(f64::total_cmp);
+        let p99 = radii[((radii.len() - 1) as f64 * 0.99) as usize];
+        let rh = histogram(&radii, 0.0, p99, bins);
+        Chart::new(
+            format!(
+                "Summit radii 1/kappa ({} summits; {} above the 99th percentile not shown)",
+                s.len(),
+                radii.len() - rh.iter().map(|b| b.2).sum::<usize>()
+            ),
+            "summit radius (um)",
+            "summits per bin",
+        )
+        .with(Series::line("", steps(&rh, 1e6)))
+        .write_png(&dir.join("summit_radii.png"))?;
+        write_csv_rows(
+            &dir.join("summit_radii.csv"),
+            &["radius_lo_m", "radius_hi_m", "count"],
+            rh.iter().map(|&(a, b, c)| vec![a, b, c as f64]),
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,131 @@
+//! A height map drawn as a colour image with markers (summits) and a colour bar.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use crate::PlotError;
+
+/// A grid of values drawn as an image, with optional markers.
+#[derive(Clone, Debug, Default)]
+pub struct ImageMap {
+    /// Title above the image.
+    pub title: String,
+    /// x axis label.
+    pub x_label: String,
+    /// y axis label.
+    pub y_label: String,
+    /// Label of the colour bar.
+    pub value_label: String,
+    /// Columns.
+    pub nx: usize,
+    /// Rows (row 0 at the bottom, y = 0).
+    pub ny: usize,
+    /// Values row-major (`iy * nx + ix`); NaN is drawn grey.
+    pub values: Vec<f64>,
+    /// The image covers `[0, x_max] x [0, y_max]` in axis units.
+    pub x_max: f64,
+    /// See `x_max`.
+    pub y_max: f64,
+    /// Marker positions in axis units.
+    pub markers: Vec<(f64, f64)>,
+}
+
+/// A perceptually ordered colour map (viridis, 5 anchors, linear between them), `t` in [0, 1].
+fn viridis(t: f64) -> RGBColor {
+    const A: [(f64, f64, f64); 5] =
+        [(68., 1., 84.), (59., 82., 139.), (33., 145., 140.), (94., 201., 98.), (253., 231., 37.)];
+    let t = t.clamp(0.0, 1.0) * 4.0;
+    let i = (t.floor() as usize).min(3);
+    let f = t - i as f64;
+    let c = |a: f64, b: f64| (a + (b - a) * f).round() as u8;
+    RGBColor(c(A[i].0, A[i + 1].0), c(A[i].1, A[i + 1].1), c(A[i].2, A[i + 1].2))
+}
+
+impl ImageMap {
+    /// Writes the image as PNG (1200 x 900 px, or narrower for tall maps).
+    pub fn write_png(&self, path: &Path) -> Result<(), PlotError> {
+        let backend_err =
+            |e: &dyn std::fmt::Display| PlotError::Backend { path: path.display().to_string(), message: e.to_string() };
+        let finite: Vec<f64> = self.values.iter().copied().filter(|v| v.is_finite()).collect();
+        if finite.is_empty() || self.nx == 0 || self.ny == 0 || self.values.len() != self.nx * self.ny {
+            return Err(PlotError::Empty { title: self.title.clone() });
+        }
+        let lo = finite.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = finite.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let span = if hi > lo { hi - lo } else { 1.0 };
+        let aspect = (self.y_max / self.x_max).clamp(0.05, 20.0);
+        let (w, h) = (1200u32, ((1000.0 * aspect) as u32 + 160).clamp(300, 1400));
+        let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| backend_err(&e))?;
+        let (main, bar) = root.split_horizontally(w - 170);
+        let mut chart = ChartBuilder::on(&main)
+            .caption(&self.title, ("sans-serif", 22))
+            .margin(14)
+            .x_label_area_size(52)
+            .y_label_area_size(70)
+            .build_cartesian_2d(0.0..self.x_max, 0.0..self.y_max)
+            .map_err(|e| backend_err(&e))?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(&self.x_label)
+            .y_desc(&self.y_label)
+            .label_style(("sans-serif", 15))
+            .axis_desc_style(("sans-serif", 17))
+            .draw()
+            .map_err(|e| backend_err(&e))?;
+        let (cx, cy) = (self.x_max / self.nx as f64, self.y_max / self.ny as f64);
+        chart
+            .draw_series((0..self.ny).flat_map(|iy| {
+                (0..self.nx).map(move |ix| {
+                    let v = self.values[iy * self.nx + ix];
+                    let color = if v.is_finite() { viridis((v - lo) / span) } else { RGBColor(160, 160, 160) };
+                    let (x0, y0) = (ix as f64 * cx, iy as f64 * cy);
+                    Rectangle::new([(x0, y0), (x0 + cx, y0 + cy)], color.filled())
+                })
+            }))
+            .map_err(|e| backend_err(&e))?;
+        if !self.markers.is_empty() {
+            chart
+                .draw_series(
+                    self.markers.iter().map(|&p| Circle::new(p, 3, RGBColor(0xd6, 0x27, 0x28).stroke_width(1))),
+                )
+                .map_err(|e| backend_err(&e))?
+                .label("summits")
+                .legend(|(x, y)| Circle::new((x + 10, y), 4, RGBColor(0xd6, 0x27, 0x28).stroke_width(2)));
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK.mix(0.4))
+                .label_font(("sans-serif", 15))
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()
+                .map_err(|e| backend_err(&e))?;
+        }
+        // Colour bar.
+        let mut cb = ChartBuilder::on(&bar)
+            .margin_top(50)
+            .margin_bottom(66)
+            .margin_right(10)
+            .y_label_area_size(80)
+            .caption(&self.value_label, ("sans-serif", 15))
+            .build_cartesian_2d(0.0..1.0, lo..lo + span)
+            .map_err(|e| backend_err(&e))?;
+        cb.configure_mesh()
+            .disable_mesh()
+            .disable_x_axis()
+            .y_label_formatter(&|v| format!("{v:.3}"))
+            .label_style(("sans-serif", 14))
+            .draw()
+            .map_err(|e| backend_err(&e))?;
+        let steps = 200;
+        cb.draw_series((0..steps).map(|k| {
+            let (a, b) = (lo + span * k as f64 / steps as f64, lo + span * (k + 1) as f64 / steps as f64);
+            Rectangle::new([(0.0, a), (1.0, b)], viridis(k as f64 / (steps - 1) as f64).filled())
+        }))
+        .map_err(|e| backend_err(&e))?;
+        root.present().map_err(|e| backend_err(&e))?;
+        Ok(())
+    }
+}

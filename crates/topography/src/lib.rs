@@ -1,0 +1,40 @@
+//! stiction-topography: measured and generated height maps, their summits and statistics.
+//!
+//! A researcher's measured topography (an AFM scan of a sidewall, an optical profiler map) enters
+//! stiction here:
+//!
+//! * [`HeightMap`]: a regular grid of heights in metres (NaN = missing pixel), the hand-over type;
+//! * readers ([`read_file`]): NumPy `.npy`, text/CSV grids with Gwyddion's ASCII export header,
+//!   Gwyddion `.gsf`, x-y-z point lists; metadata from the file, else from [`MapMetadata`];
+//! * preparation ([`prepare`]): levelling, Gaussian short- and long-wavelength cut-offs;
+//! * summits ([`find_summits`]): 8-neighbour maxima with their curvature;
+//! * statistics ([`statistics`], [`radial_psd`], [`autocorrelation`]) and Nayak's predictions;
+//! * scenario sources ([`HeightMapSpec`]): a map's patch under the shoe, stated or random per seed;
+//! * a generator of Gaussian random maps ([`generate`]): Gaussian ACF or self-affine PSD, seeded.
+//!
+//! All quantities are SI (metres) inside.
+
+mod error;
+mod fft;
+mod generate;
+mod map;
+mod prep;
+mod read;
+mod spec;
+mod stats;
+mod summits;
+
+pub use error::TopographyError;
+pub use generate::{GeneratorSpec, Spectrum, generate};
+pub use map::{HeightMap, MAX_PIXELS, check_grid_size};
+pub use prep::{Levelling, Preparation, PreparationReport, prepare};
+pub use read::{
+    BINARY_INPUT_LIMIT_BYTES, MapFormat, MapInfo, MapMetadata, MetaSource, NpyDtype, TEXT_INPUT_LIMIT_BYTES,
+    parse_length_unit, read_file, read_gsf, read_npy, read_text_grid, read_xyz,
+};
+pub use spec::{HeightMapSpec, Patch, PatchSummits, choose_patch, patch_summits};
+pub use stats::{
+    Autocorrelation, Nayak, Psd, PsdWindow, Statistics, SummitStats, autocorrelation, radial_psd, statistics,
+    summit_stats,
+};
+pub use summits::{Summits, find_summits, find_summits_in};

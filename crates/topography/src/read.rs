@@ -1,0 +1,731 @@
+//! Readers (and writers) of height-map files: NumPy `.npy`, text/CSV grids (with Gwyddion's ASCII
+//! export header), Gwyddion simple field `.gsf`, and x-y-z point lists on a regular grid.
+//!
+//! Metadata (pixel size, height unit) comes from the file where the format has it, else from
+//! [`MapMetadata`] (command-line flags or scenario fields); where both give a value they must agree
+//! (relative difference <= 1e-6), and where neither does, the error says what is missing and how
+//! to give it. Sizes are checked against [`crate::MAX_PIXELS`] before a grid is allocated.
+//!
+//! The `.npy` header is parsed by hand (about 60 lines): the format is a fixed magic, a length and
+//! a Python dict literal with three keys (NumPy's NEP 1), and the maintained crates that read it
+//! (`npyz`, `ndarray-npy`) bring an array library or a generic reader framework for that.
+
+use std::path::Path;
+use std::str::FromStr;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use stiction_units::{Dimension, parse_quantity};
+
+use crate::map::check_grid_size;
+use crate::{HeightMap, MAX_PIXELS, TopographyError};
+
+/// Size limit of a text input file (grid or point list): 1 GiB.
+pub const TEXT_INPUT_LIMIT_BYTES: u64 = 1 << 30;
+/// Size limit of a binary input file: [`MAX_PIXELS`] float64 values and 1 MiB of header.
+pub const BINARY_INPUT_LIMIT_BYTES: u64 = MAX_PIXELS * 8 + (1 << 20);
+
+/// A height-map file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum MapFormat {
+    /// NumPy `.npy`: a 2-D float32 or float64 array, C or Fortran order; rows are y.
+    Npy,
+    /// A text grid: one row of heights per line, separated by commas, semicolons, tabs or spaces;
+    /// `#` lines may carry Gwyddion's ASCII export header (`Width`, `Height`, `Value units`).
+    Text,
+    /// Gwyddion simple field `.gsf` (float32 heights with `XRes`, `YRes`, `XReal`, `YReal`,
+    /// `XYUnits`, `ZUnits`).
+    Gsf,
+    /// x y z points (one per line) on a regular grid, in any order; absent points are missing.
+    Xyz,
+}
+
+impl MapFormat {
+    /// The format a file name suggests: `.npy`, `.gsf`, `.xyz`, else a text grid (`.csv`, `.txt`,
+    /// `.asc`, `.dat`, ...).
+    pub fn from_path(path: &Path) -> MapFormat {
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+            Some("npy") => MapFormat::Npy,
+            Some("gsf") => MapFormat::Gsf,
+            Some("xyz") => MapFormat::Xyz,
+            _ => MapFormat::Text,
+        }
+    }
+
+    /// The format's name as in scenario files and flags.
+    pub fn name(self) -> &'static str {
+        match self {
+            MapFormat::Npy => "npy",
+            MapFormat::Text => "text",
+            MapFormat::Gsf => "gsf",
+            MapFormat::Xyz => "xyz",
+        }
+    }
+}
+
+impl FromStr for MapFormat {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "npy" => Ok(MapFormat::Npy),
+            "text" | "csv" => Ok(MapFormat::Text),
+            "gsf" => Ok(MapFormat::Gsf),
+            "xyz" => Ok(MapFormat::Xyz),
+            _ => Err(format!("unknown height-map format `{s}`: expected npy, text, gsf or xyz")),
+        }
+    }
+}
+
+/// Metadata given outside the file (flags, scenario fields), SI.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MapMetadata {
+    /// Pixel size along x \[m\].
+    pub pixel_size_x_m: Option<f64>,
+    /// Pixel size along y \[m\] (default: the x pixel size).
+    pub pixel_size_y_m: Option<f64>,
+    /// Metres per height unit of the file's numbers (1e-9 for heights in nm).
+    pub height_unit_m: Option<f64>,
+    /// Metres per unit of the x and y coordinates of a point list (xyz only).
+    pub xy_unit_m: Option<f64>,
+}
+
+/// Where a piece of metadata came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MetaSource {
+    /// The file's header.
+    File,
+    /// A flag or scenario field.
+    Given,
+    /// Both, and they agree.
+    FileAndGiven,
+}
+
+/// What a reader found besides the heights.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MapInfo {
+    /// The format read.
+    pub format: MapFormat,
+    /// Where the pixel size came from.
+    pub pixel_size_from: MetaSource,
+    /// Where the height unit came from.
+    pub height_unit_from: MetaSource,
+    /// Metres per height unit of the file.
+    pub height_unit_m: f64,
+    /// Pixels without a height (NaN in the file, or absent from a point list).
+    pub missing_pixels: usize,
+}
+
+/// Parses a length unit such as `"nm"`, `"um"`, `"µm"`, `"m"` or a scale such as `"10 nm"` into
+/// metres per unit.
+pub fn parse_length_unit(text: &str) -> Result<f64, String> {
+    let t = text.trim();
+    let q = if t.starts_with(|c: char| c.is_alphabetic()) { format!("1 {t}") } else { t.to_string() };
+    let v = parse_quantity(&q, Dimension::Length).map_err(|e| format!("unit {text:?}: {e}"))?;
+    if v > 0.0 { Ok(v) } else { Err(format!("unit {text:?} must be a positive length")) }
+}
+
+fn resolve(
+    origin: &str,
+    from_file: Option<f64>,
+    given: Option<f64>,
+    what: &str,
+    how: &str,
+) -> Result<(f64, MetaSource), TopographyError> {
+    match (from_file, given) {
+        (Some(f), Some(g)) => {
+            if (f - g).abs() <= 1e-6 * f.abs().max(g.abs()) {
+                Ok((f, MetaSource::FileAndGiven))
+            } else {
+                Err(TopographyError::invalid(
+                    what,
+                    format!("{g} m (given)"),
+                    format!("the value in {origin}, {f} m (remove the flag or field, or fix the file)"),
+                ))
+            }
+        }
+        (Some(f), None) => Ok((f, MetaSource::File)),
+        (None, Some(g)) => Ok((g, MetaSource::Given)),
+        (None, None) => Err(TopographyError::MissingMetadata {
+            origin: origin.to_string(),
+            missing: format!("the {what} (the file does not state it): {how}"),
+        }),
+    }
+}
+
+const PIXEL_HOW: &str = "give it with --pixel-size (e.g. \"10 nm\") or the scenario field `pixel_size`";
+const UNIT_HOW: &str = "give it with --height-unit (e.g. \"nm\") or the scenario field `height_unit`";
+
+/// Resolves the pixel sizes (x, y) and height unit and builds the map.
+#[allow(clippy::too_many_arguments)] // one private helper shared by the four readers
+fn finish(
+    origin: &str,
+    format: MapFormat,
+    nx: usize,
+    ny: usize,
+    file_dx: Option<f64>,
+    file_dy: Option<f64>,
+    file_unit: Option<f64>,
+    meta: &MapMetadata,
+    mut heights: Vec<f64>,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let (dx, src_x) = resolve(origin, file_dx, meta.pixel_size_x_m, "pixel size", PIXEL_HOW)?;
+    let given_dy = meta.pixel_size_y_m.or(meta.pixel_size_x_m);
+    let (dy, _) = resolve(origin, file_dy.or(file_dx), given_dy, "pixel size along y", PIXEL_HOW)?;
+    let (unit, src_u) = resolve(origin, file_unit, meta.height_unit_m, "height unit", UNIT_HOW)?;
+    let mut missing = 0;
+    if unit != 1.0 {
+        for h in &mut heights {
+            *h *= unit;
+        }
+    }
+    for h in &heights {
+        if h.is_nan() {
+            missing += 1;
+        } else if h.is_infinite() {
+            return Err(TopographyError::format(origin, 0, "a height overflows to infinity in SI units"));
+        }
+    }
+    if missing == heights.len() {
+        return Err(TopographyError::format(origin, 0, "every pixel is missing (NaN)"));
+    }
+    let map = HeightMap::new(nx, ny, dx, dy, heights).map_err(|e| TopographyError::format(origin, 0, e.to_string()))?;
+    Ok((
+        map,
+        MapInfo {
+            format,
+            pixel_size_from: src_x,
+            height_unit_from: src_u,
+            height_unit_m: unit,
+            missing_pixels: missing,
+        },
+    ))
+}
+
+/// Reads a height-map file: `format` or, if `None`, the format its extension suggests
+/// ([`MapFormat::from_path`]); the file goes through [`stiction_units::io::read_input`] (regular
+/// files only, size limit checked before reading).
+pub fn read_file(
+    path: &Path,
+    format: Option<MapFormat>,
+    meta: &MapMetadata,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let format = format.unwrap_or_else(|| MapFormat::from_path(path));
+    let origin = path.display().to_string();
+    match format {
+        MapFormat::Npy => read_npy(&stiction_units::io::read_input(path, BINARY_INPUT_LIMIT_BYTES)?, &origin, meta),
+        MapFormat::Gsf => read_gsf(&stiction_units::io::read_input(path, BINARY_INPUT_LIMIT_BYTES)?, &origin, meta),
+        MapFormat::Text => {
+            read_text_grid(&stiction_units::io::read_input_text(path, TEXT_INPUT_LIMIT_BYTES)?, &origin, meta)
+        }
+        MapFormat::Xyz => read_xyz(&stiction_units::io::read_input_text(path, TEXT_INPUT_LIMIT_BYTES)?, &origin, meta),
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// .npy
+
+/// Element type of a `.npy` file this crate reads or writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NpyDtype {
+    /// IEEE float32 (`<f4`).
+    F32,
+    /// IEEE float64 (`<f8`).
+    F64,
+}
+
+/// The value of `key` in a `.npy` header dict: the text after `'key':` up to the next `,` or `}`
+/// at nesting depth 0 (a tuple's commas are inside parentheses).
+fn npy_field<'a>(header: &'a str, key: &str) -> Option<&'a str> {
+    let start = header.find(&format!("'{key}'")).or_else(|| header.find(&format!("\"{key}\"")))?;
+    let rest = &header[start + key.len() + 2..];
+    let rest = rest.trim_start().strip_prefix(':')?.trim_start();
+    let mut depth = 0i32;
+    for (i, c) in rest.char_indices() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth -= 1,
+            ',' | '}' if depth == 0 => return Some(rest[..i].trim()),
+            _ => {}
+        }
+    }
+    Some(rest.trim())
+}
+
+/// Reads a `.npy` file's bytes: a 2-D array (rows = y) of float32 or float64, little or big
+/// endian, C or Fortran order. `.npy` has no pixel size or unit: both come from `meta`.
+pub fn read_npy(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let bad = |m: String| TopographyError::format(origin, 0, m);
+    if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
+        return Err(bad("not a NumPy .npy file (no \\x93NUMPY magic at the start)".into()));
+    }
+    let (header_len, header_start) = match bytes[6] {
+        1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10usize),
+        2 | 3 if bytes.len() >= 12 => (u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize, 12),
+        v => return Err(bad(format!(".npy format version {v} is not supported (expected 1, 2 or 3)"))),
+    };
+    let data_start = header_start
+        .checked_add(header_len)
+        .filter(|&e| e <= bytes.len())
+        .ok_or_else(|| bad(format!("the header length {header_len} runs past the end of the file")))?;
+    let header =
+        std::str::from_utf8(&bytes[header_start..data_start]).map_err(|_| bad("the .npy header is not text".into()))?;
+    let descr = npy_field(header, "descr").ok_or_else(|| bad(format!("no 'descr' in the header {header:?}")))?;
+    let descr = descr.trim_matches(|c| c == '\'' || c == '"');
+    let (little, size) = match descr {
+        "<f8" | "=f8" => (true, 8),
+        ">f8" => (false, 8),
+        "<f4" | "=f4" => (true, 4),
+        ">f4" => (false, 4),
+        other => {
+            return Err(bad(format!(
+                "dtype '{other}' is not supported: expected float32 or float64 ('<f4', '<f8', '>f4', '>f8')"
+            )));
+        }
+    };
+    let fortran = match npy_field(header, "fortran_order") {
+        Some("False") => false,
+        Some("True") => true,
+        other => return Err(bad(format!("'fortran_order' is {other:?}: expected True or False"))),
+    };
+    let shape_text = npy_field(header, "shape").ok_or_else(|| bad(format!("no 'shape' in the header {header:?}")))?;
+    let dims: Vec<u64> = shape_text
+        .trim_matches(|c| c == '(' || c == ')')
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse::<u64>().map_err(|_| bad(format!("shape {shape_text} is not a tuple of integers"))))
+        .collect::<Result<_, _>>()?;
+    let [ny, nx] = dims[..] else {
+        return Err(bad(format!("shape {shape_text}: expected a 2-D array (rows, columns)")));
+    };
+    check_grid_size(origin, nx, ny)?;
+    let (nx, ny) = (nx as usize, ny as usize);
+    let data = &bytes[data_start..];
+    if data.len() != nx * ny * size {
+        return Err(bad(format!(
+            "{} data bytes after the header, expected {nx} x {ny} x {size} = {}",
+            data.len(),
+            nx * ny * size
+        )));
+    }
+    let value = |k: usize| -> f64 {
+        let b = &data[k * size..(k + 1) * size];
+        if size == 8 {
+            let a: [u8; 8] = b.try_into().unwrap_or_default();
+            if little { f64::from_le_bytes(a) } else { f64::from_be_bytes(a) }
+        } else {
+            let a: [u8; 4] = b.try_into().unwrap_or_default();
+            f64::from(if little { f32::from_le_bytes(a) } else { f32::from_be_bytes(a) })
+        }
+    };
+    let mut heights = Vec::with_capacity(nx * ny);
+    if fortran {
+        for iy in 0..ny {
+            heights.extend((0..nx).map(|ix| value(ix * ny + iy)));
+        }
+    } else {
+        heights.extend((0..nx * ny).map(value));
+    }
+    finish(origin, MapFormat::Npy, nx, ny, None, None, None, meta, heights)
+}
+
+impl HeightMap {
+    /// The map as `.npy` bytes (heights in metres, version 1.0 header), float32 or float64, C or
+    /// Fortran order.
+    pub fn to_npy_bytes(&self, dtype: NpyDtype, fortran_order: bool) -> Vec<u8> {
+        let descr = match dtype {
+            NpyDtype::F32 => "<f4",
+            NpyDtype::F64 => "<f8",
+        };
+        let mut header = format!(
+            "{{'descr': '{descr}', 'fortran_order': {}, 'shape': ({}, {}), }}",
+            if fortran_order { "True" } else { "False" },
+            self.ny(),
+            self.nx()
+        );
+        while !(10 + header.len() + 1).is_multiple_of(64) {
+            header.push(' ');
+        }
+        header.push('\n');
+        let mut out = b"\x93NUMPY\x01\x00".to_vec();
+        out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+        out.extend_from_slice(header.as_bytes());
+        let (nx, ny) = (self.nx(), self.ny());
+        let order: Box<dyn Iterator<Item = f64>> = if fortran_order {
+            Box::new((0..nx).flat_map(move |ix| (0..ny).map(move |iy| self.at(ix, iy))))
+        } else {
+            Box::new(self.heights_m().iter().copied())
+        };
+        for h in order {
+            match dtype {
+                NpyDtype::F32 => out.extend_from_slice(&(h as f32).to_le_bytes()),
+                NpyDtype::F64 => out.extend_from_slice(&h.to_le_bytes()),
+            }
+        }
+        out
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Text grid
+
+fn parse_cell(text: &str) -> Option<f64> {
+    let t = text.trim();
+    if t.is_empty() || t.eq_ignore_ascii_case("nan") {
+        return Some(f64::NAN);
+    }
+    t.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+/// Reads a text grid: one row of heights per line (the first line is row 0, y = 0), separated by
+/// commas, semicolons, tabs or runs of spaces; empty cells and `NaN` are missing pixels. Lines
+/// starting with `#` are comments; Gwyddion's ASCII export header lines `# Width: 5.000 µm`,
+/// `# Height: 5.000 µm` (the map's physical size along x and y) and `# Value units: m` give the
+/// pixel size and height unit.
+pub fn read_text_grid(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let (mut width, mut height, mut unit) = (None, None, None);
+    let mut first_data: Option<&str> = None;
+    for (k, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if let Some(c) = t.strip_prefix('#') {
+            if let Some((key, value)) = c.split_once(':') {
+                let parse_len = |v: &str| {
+                    parse_quantity(v.trim(), Dimension::Length).map_err(|e| {
+                        TopographyError::format(origin, k as u64 + 1, format!("header `{}`: {e}", key.trim()))
+                    })
+                };
+                match key.trim().to_ascii_lowercase().as_str() {
+                    "width" => width = Some(parse_len(value)?),
+                    "height" => height = Some(parse_len(value)?),
+                    "value units" => {
+                        unit = Some(parse_length_unit(value).map_err(|e| {
+                            TopographyError::format(
+                                origin,
+                                k as u64 + 1,
+                                format!("header `Value units`: {e} (heights must be lengths)"),
+                            )
+                        })?)
+                    }
+                    _ => {}
+                }
+            }
+        } else if !t.is_empty() && first_data.is_none() {
+            first_data = Some(t);
+        }
+    }
+    let first = first_data.ok_or_else(|| TopographyError::format(origin, 0, "no data line"))?;
+    let delimiter = [b',', b';', b'\t'].into_iter().find(|d| first.as_bytes().contains(d));
+    let mut heights: Vec<f64> = Vec::new();
+    let mut nx = 0usize;
+    let mut ny = 0usize;
+    let mut push_row = |line: u64, cells: &mut dyn Iterator<Item = &str>| -> Result<(), TopographyError> {
+        let before = heights.len();
+        for (c, cell) in cells.enumerate() {
+            let v = parse_cell(cell).ok_or_else(|| {
+                TopographyError::format(
+                    origin,
+                    line,
+                    format!("column {}: `{}` is not a finite number (or NaN / empty for a missing pixel)", c + 1, cell),
+                )
+            })?;
+            if heights.len() as u64 >= MAX_PIXELS {
+                return Err(TopographyError::TooLarge {
+                    origin: origin.into(),
+                    nx: nx.max(c + 1) as u64,
+                    ny: ny as u64 + 1,
+                    limit: MAX_PIXELS,
+                });
+            }
+            heights.push(v);
+        }
+        let n = heights.len() - before;
+        if ny == 0 {
+            nx = n;
+        } else if n != nx {
+            return Err(TopographyError::format(
+                origin,
+                line,
+                format!("{n} values, but the first data row has {nx}: every row of a grid must have the same length"),
+            ));
+        }
+        ny += 1;
+        Ok(())
+    };
+    match delimiter {
+        Some(d) => {
+            let mut r = csv::ReaderBuilder::new()
+                .has_headers(false)
+                .delimiter(d)
+                .trim(csv::Trim::All)
+                .flexible(true)
+                .comment(Some(b'#'))
+                .from_reader(text.as_bytes());
+            let mut rec = csv::StringRecord::new();
+            loop {
+                match r.read_record(&mut rec) {
+                    Ok(false) => break,
+                    Ok(true) => {}
+                    Err(e) => {
+                        let line = e.position().map_or(0, |p| p.line());
+                        return Err(TopographyError::format(origin, line, e.to_string()));
+                    }
+                }
+                let line = rec.position().map_or(0, |p| p.line());
+                if rec.iter().all(|c| c.is_empty()) {
+                    continue;
+                }
+                // A trailing delimiter makes an empty last cell; drop it.
+                let mut cells: Vec<&str> = rec.iter().collect();
+                if cells.len() > 1 && cells.last() == Some(&"") {
+                    cells.pop();
+                }
+                push_row(line, &mut cells.into_iter())?;
+            }
+        }
+        None => {
+            for (k, line) in text.lines().enumerate() {
+                let t = line.trim();
+                if t.is_empty() || t.starts_with('#') {
+                    continue;
+                }
+                push_row(k as u64 + 1, &mut t.split_whitespace())?;
+            }
+        }
+    }
+    check_grid_size(origin, nx as u64, ny as u64)?;
+    let dx = width.map(|w| w / nx as f64);
+    let dy = height.map(|h| h / ny as f64);
+    finish(origin, MapFormat::Text, nx, ny, dx, dy, unit, meta, heights)
+}
+
+impl HeightMap {
+    /// The map as a tab-separated text grid in metres with Gwyddion's ASCII export header
+    /// (`# Width`, `# Height` in m, `# Value units: m`); NaN for missing pixels. Numbers use the
+    /// shortest text that reads back to the same value.
+    pub fn to_text_grid(&self) -> String {
+        let mut s = String::with_capacity(self.nx() * self.ny() * 24 + 128);
+        s.push_str("# Channel: Height\n");
+        s.push_str(&format!("# Width: {} m\n# Height: {} m\n# Value units: m\n", self.length_x_m(), self.length_y_m()));
+        for iy in 0..self.ny() {
+            for (ix, h) in self.row(iy).iter().enumerate() {
+                if ix > 0 {
+                    s.push('\t');
+                }
+                s.push_str(&h.to_string());
+            }
+            s.push('\n');
+        }
+        s
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gwyddion simple field
+
+/// Reads a Gwyddion simple field (`.gsf`): the line `Gwyddion Simple Field 1.0`, `Key = Value`
+/// lines (`XRes`, `YRes` required; `XReal`, `YReal` the physical size in `XYUnits`, `ZUnits` the
+/// height unit), NUL padding to a multiple of 4 bytes, then `XRes * YRes` little-endian float32.
+/// A missing `XReal` or `ZUnits` must come from `meta`.
+pub fn read_gsf(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let bad = |line: u64, m: String| TopographyError::format(origin, line, m);
+    const MAGIC: &[u8] = b"Gwyddion Simple Field 1.0";
+    if !bytes.starts_with(MAGIC) {
+        return Err(bad(1, "not a Gwyddion simple field (expected `Gwyddion Simple Field 1.0`)".into()));
+    }
+    let nul = bytes
+        .iter()
+        .position(|&b| b == 0)
+        .ok_or_else(|| bad(0, "no NUL padding after the header: the file is truncated".into()))?;
+    let header = std::str::from_utf8(&bytes[..nul]).map_err(|_| bad(0, "the header is not UTF-8 text".into()))?;
+    let data_start = nul + (4 - nul % 4);
+    if data_start > bytes.len() || bytes[nul..data_start].iter().any(|&b| b != 0) {
+        return Err(bad(0, "the header must be followed by 1 to 4 NUL bytes up to a multiple of 4".into()));
+    }
+    let mut keys = std::collections::HashMap::new();
+    for (k, line) in header.lines().enumerate().skip(1) {
+        let t = line.trim();
+        if t.is_empty() {
+            continue;
+        }
+        let (key, value) =
+            t.split_once('=').ok_or_else(|| bad(k as u64 + 1, format!("`{t}` is not a `Key = Value` line")))?;
+        keys.insert(key.trim().to_string(), (k as u64 + 1, value.trim().to_string()));
+    }
+    let res = |name: &str| -> Result<u64, TopographyError> {
+        let (line, v) = keys.get(name).ok_or_else(|| bad(0, format!("`{name}` is missing from the header")))?;
+        v.parse::<u64>().map_err(|_| bad(*line, format!("`{name} = {v}`: expected a positive integer")))
+    };
+    let (nx, ny) = (res("XRes")?, res("YRes")?);
+    check_grid_size(origin, nx, ny)?;
+    let (nx, ny) = (nx as usize, ny as usize);
+    let xy_unit = match keys.get("XYUnits") {
+        Some((line, u)) => parse_length_unit(u).map_err(|e| bad(*line, format!("`XYUnits`: {e}")))?,
+        None => 1.0,
+    };
+    let real = |name: &str, n: usize| -> Result<Option<f64>, TopographyError> {
+        match keys.get(name) {
+            None => Ok(None),
+            Some((line, v)) => {
+                let x: f64 = v.parse().map_err(|_| bad(*line, format!("`{name} = {v}`: expected a number")))?;
+                if x.is_finite() && x > 0.0 {
+                    Ok(Some(x * xy_unit / n as f64))
+                } else {
+                    Err(bad(*line, format!("`{name} = {v}`: expected a finite size > 0")))
+                }
+            }
+        }
+    };
+    let (dx, dy) = (real("XReal", nx)?, real("YReal", ny)?);
+    let unit = match keys.get("ZUnits") {
+        Some((line, u)) => Some(parse_length_unit(u).map_err(|e| bad(*line, format!("`ZUnits`: {e}")))?),
+        None => None,
+    };
+    let data = &bytes[data_start..];
+    if data.len() != nx * ny * 4 {
+        return Err(bad(0, format!("{} data bytes, expected XRes x YRes x 4 = {}", data.len(), nx * ny * 4)));
+    }
+    let heights = data.chunks_exact(4).map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]]))).collect();
+    finish(origin, MapFormat::Gsf, nx, ny, dx, dy, unit, meta, heights)
+}
+
+impl HeightMap {
+    /// The map as a Gwyddion simple field (float32 heights in metres, sizes in metres).
+    pub fn to_gsf_bytes(&self) -> Vec<u8> {
+        let header = format!(
+            "Gwyddion Simple Field 1.0\nXRes = {}\nYRes = {}\nXReal = {}\nYReal = {}\nXYUnits = m\nZUnits = m\nTitle = stiction\n",
+            self.nx(),
+            self.ny(),
+            self.length_x_m(),
+            self.length_y_m()
+        );
+        let mut out = header.into_bytes();
+        let pad = 4 - out.len() % 4;
+        out.extend(std::iter::repeat_n(0u8, pad));
+        for h in self.heights_m() {
+            out.extend_from_slice(&(*h as f32).to_le_bytes());
+        }
+        out
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// x-y-z point lists
+
+/// Sorted distinct values and the grid step; errors if they are not evenly spaced (relative
+/// tolerance 1e-6 of the step).
+fn grid_axis(origin: &str, name: &str, values: &[f64]) -> Result<(f64, f64, usize), TopographyError> {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    if v.len() < 2 {
+        return Err(TopographyError::format(origin, 0, format!("only {} distinct {name} value(s)", v.len())));
+    }
+    let step = (v[v.len() - 1] - v[0]) / (v.len() - 1) as f64;
+    for (k, w) in v.windows(2).enumerate() {
+        if ((w[1] - w[0]) - step).abs() > 1e-6 * step {
+            return Err(TopographyError::format(
+                origin,
+                0,
+                format!(
+                    "the {name} coordinates are not on a regular grid: {} follows {} (step {}), expected the step {step} (value {} of {})",
+                    w[1],
+                    w[0],
+                    w[1] - w[0],
+                    k + 2,
+                    v.len()
+                ),
+            ));
+        }
+    }
+    Ok((v[0], step, v.len()))
+}
+
+/// Reads an x-y-z point list: one point per line (`x y z`, separated by spaces, tabs, commas or
+/// semicolons; `#` lines are comments; a first line that is not numeric is taken as a header), on a
+/// regular grid in any order; grid points absent from the file are missing pixels. The unit of x
+/// and y comes from `meta.xy_unit_m` (the pixel size is the grid step), the height unit from
+/// `meta.height_unit_m`.
+pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let xy_unit = meta.xy_unit_m.ok_or_else(|| TopographyError::MissingMetadata {
+        origin: origin.into(),
+        missing:
+            "the unit of the x and y coordinates: give it with --xy-unit (e.g. \"um\") or the scenario field `xy_unit`"
+                .into(),
+    })?;
+    if meta.pixel_size_x_m.is_some() || meta.pixel_size_y_m.is_some() {
+        return Err(TopographyError::invalid(
+            "pixel_size",
+            "given",
+            "no pixel size for an x-y-z list: the grid step of its coordinates is the pixel size (give `xy_unit`)",
+        ));
+    }
+    let mut pts: Vec<[f64; 3]> = Vec::new();
+    let mut first = true;
+    for (k, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let cells: Vec<&str> =
+            t.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|s| !s.is_empty()).collect();
+        let nums: Option<Vec<f64>> = cells.iter().map(|c| c.parse::<f64>().ok()).collect();
+        let Some(nums) = nums else {
+            if first {
+                first = false;
+                continue; // a header line such as `x,y,z`
+            }
+            return Err(TopographyError::format(origin, k as u64 + 1, format!("`{t}` is not three numbers x y z")));
+        };
+        first = false;
+        if nums.len() != 3 || !nums[0].is_finite() || !nums[1].is_finite() || nums[2].is_infinite() {
+            return Err(TopographyError::format(
+                origin,
+                k as u64 + 1,
+                format!("`{t}`: expected three numbers x y z (finite x, y; z finite or NaN)"),
+            ));
+        }
+        if pts.len() as u64 >= MAX_PIXELS {
+            return Err(TopographyError::format(origin, k as u64 + 1, format!("more than {MAX_PIXELS} points")));
+        }
+        pts.push([nums[0], nums[1], nums[2]]);
+    }
+    let xs: Vec<f64> = pts.iter().map(|p| p[0]).collect();
+    let (x0, sx, nx) = grid_axis(origin, "x", &xs)?;
+    drop(xs);
+    let ys: Vec<f64> = pts.iter().map(|p| p[1]).collect();
+    let (y0, sy, ny) = grid_axis(origin, "y", &ys)?;
+    drop(ys);
+    check_grid_size(origin, nx as u64, ny as u64)?;
+    let mut heights = vec![f64::NAN; nx * ny];
+    let mut seen = vec![false; nx * ny];
+    for p in &pts {
+        let ix = ((p[0] - x0) / sx).round() as usize;
+        let iy = ((p[1] - y0) / sy).round() as usize;
+        let k = iy * nx + ix;
+        if seen[k] {
+            return Err(TopographyError::format(origin, 0, format!("the point ({}, {}) appears twice", p[0], p[1])));
+        }
+        seen[k] = true;
+        heights[k] = p[2];
+    }
+    let meta2 = MapMetadata { pixel_size_x_m: None, pixel_size_y_m: None, ..*meta };
+    finish(origin, MapFormat::Xyz, nx, ny, Some(sx * xy_unit), Some(sy * xy_unit), None, &meta2, heights)
+}
+
+impl HeightMap {
+    /// The map as an x-y-z list (`x y z` per line, all in metres; x = ix dx, y = iy dy), missing
+    /// pixels left out.
+    pub fn to_xyz_text(&self) -> String {
+        let mut s = String::from("x_m y_m z_m\n");
+        for iy in 0..self.ny() {
+            for (ix, h) in self.row(iy).iter().enumerate() {
+                if !h.is_nan() {
+                    s.push_str(&format!("{} {} {}\n", ix as f64 * self.dx_m(), iy as f64 * self.dy_m(), h));
+                }
+            }
+        }
+        s
+    }
+}

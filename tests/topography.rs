@@ -1,0 +1,95 @@
+//! `stiction topography` on the bundled example map, and the friction meter on a height-map scenario.
+
+use crate::util::{num, stiction, stiction_json, temp_dir};
+
+#[test]
+fn topography_reports_the_contract_keys_beside_nayak() {
+    let v = stiction_json(&[
+        "topography",
+        "data/topography-example/wall.gsf",
+        "--scenario",
+        "scenarios/tas2000.json",
+        "--json",
+    ]);
+    for key in [
+        "summit_count",
+        "summit_density_per_m2",
+        "summit_height_sd_m",
+        "summit_radius_mean_m",
+        "rms_height_m",
+        "rms_slope",
+    ] {
+        assert!(v.get(key).is_some_and(|x| x.is_number()), "no `{key}` in {v}");
+    }
+    let nayak = &v["nayak"];
+    // The map was generated with a 0.2 um Gaussian correlation length at 40 nm pixels (README):
+    // Nayak's density 4.6e12 m^-2; counted and predicted agree within 10 % (5 pixels per length).
+    let (count, pred) = (num(&v, "summit_density_per_m2"), num(nayak, "summit_density_per_m2"));
+    assert!((count / pred - 1.0).abs() < 0.1, "{count} vs Nayak {pred}");
+    assert!((pred / 4.6e12 - 1.0).abs() < 0.15, "{pred}");
+    assert!((num(&v, "rms_height_m") / 20e-9 - 1.0).abs() < 0.1);
+    assert!(num(&v["gw"], "adhesion_parameter_theta") > 0.0);
+}
+
+#[test]
+fn topography_writes_summits_figures_and_their_data() {
+    let dir = temp_dir("topography");
+    let csv = dir.join("s.csv");
+    let out = stiction(&[
+        "topography",
+        "data/topography-example/wall.gsf",
+        "--cutoff",
+        "80 nm",
+        "--summits",
+        csv.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.starts_with("x_m,y_m,height_m,radius_m\n") && text.lines().count() > 100);
+    for f in [
+        "height_map.png",
+        "height_map.csv",
+        "psd.png",
+        "psd.csv",
+        "summit_heights.png",
+        "summit_heights.csv",
+        "summit_radii.png",
+        "summit_radii.csv",
+        "statistics.json",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("0.0800 um"), "the cut-off is stated: {stdout}");
+}
+
+#[test]
+fn a_npy_without_pixel_size_says_what_is_missing() {
+    let dir = temp_dir("topography-npy");
+    let p = dir.join("m.npy");
+    let mut b = b"\x93NUMPY\x01\x00".to_vec();
+    let mut h = "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 3), }".to_string();
+    while !(10 + h.len() + 1).is_multiple_of(64) {
+        h.push(' ');
+    }
+    h.push('\n');
+    b.extend_from_slice(&(h.len() as u16).to_le_bytes());
+    b.extend_from_slice(h.as_bytes());
+    for k in 0..9 {
+        b.extend_from_slice(&f64::from(k).to_le_bytes());
+    }
+    std::fs::write(&p, b).unwrap();
+    let out = stiction(&["topography", p.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("missing metadata") && err.contains("--pixel-size"), "{err}");
+}
+
+#[test]
+fn the_meter_runs_on_a_height_map_scenario() {
+    let v = stiction_json(&["run", "scenarios/tas2000-height-map.json", "--json"]);
+    let mu = num(&v, "mu_apparent");
+    assert!(mu.is_finite() && mu > 0.0, "mu_e,a = {mu}");
+}
