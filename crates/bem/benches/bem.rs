@@ -2,6 +2,9 @@
 //! short cut-off 4 dx, seed 1), load p = 0.05 E* h'_rms (A/A0 about 0.12), tolerance 1e-6, cold
 //! start (uniform pressure). `cargo bench -p stiction-bem --bench bem`.
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
