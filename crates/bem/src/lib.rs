@@ -328,7 +328,8 @@ pub struct ContactSolution {
     pub contact_fraction: f64,
     /// Real contact area `A_r`, m^2.
     pub contact_area_m2: f64,
-    /// Points in the cohesive zone (gap below the range, contact included), as a fraction.
+    /// Points in the cohesive zone (gap below the range, contact included), as a fraction (0
+    /// without adhesion).
     pub cohesive_fraction: f64,
     /// Number of contact patches (periodic 4-connected components).
     pub patches: usize,
@@ -618,8 +619,7 @@ impl BemSolver {
         let contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
         let gap: Vec<f64> =
             out.complementary.iter().zip(&contact).map(|(g, &c)| if c { 0.0 } else { g.max(0.0) }).collect();
-        let nc = contact.iter().filter(|&&c| c).count();
-        Ok(self.finish(p, gap, contact, nc, out.iterations, 1, out.residual))
+        Ok(self.finish(p, gap, contact, 0, out.iterations, 1, out.residual))
     }
 
     /// Non-adhesive contact under mean-gap control: `mean(g) = mean_gap_m` (m, > 0) (the dual

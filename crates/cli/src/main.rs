@@ -39,6 +39,8 @@ enum Command {
     Plot(cmd::plot::Args),
     /// Monte Carlo over a scenario's uncertain parameters and surface realisations: the spread of mu_e,a and F_a0.
     Study(cmd::study::Args),
+    /// FFT boundary-element contact (optionally Maugis-Dugdale adhesive) on a generated self-affine rough surface.
+    Bem(cmd::bem::Args),
     /// Check a scenario file (and --set overrides) and print it in SI units, or print the format's JSON Schema.
     Scenario(cmd::scenario::Args),
 }
@@ -55,6 +57,7 @@ fn main() -> ExitCode {
         Command::Plot(a) => cmd::plot::run(a),
         Command::Scenario(a) => cmd::scenario::run(a),
         Command::Study(a) => cmd::study::run(a),
+        Command::Bem(a) => cmd::bem::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
