@@ -68,6 +68,10 @@ pub struct Args {
     /// Relative tolerance of the constrained conjugate gradient.
     #[arg(long, default_value_t = 1e-6)]
     pub tolerance: f64,
+    /// Also solve the summit (asperity) model on the same grid at the same loads: independent Hertz summits,
+    /// no elastic interaction; adds its contact fraction and the ratio A_BEM/A_asperity to the curve.
+    #[arg(long)]
+    pub compare_asperity: bool,
     /// Folder for the fields (CSV, PNG heat maps of the last state) and the curves (CSV, PNG).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -90,6 +94,8 @@ struct Point {
     elastic_energy_j_per_m2: f64,
     iterations: usize,
     residual: f64,
+    asperity_contact_fraction: Option<f64>,
+    area_ratio_bem_over_asperity: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -177,7 +183,8 @@ pub fn run(args: Args) -> CliResult {
             states.push(s);
         }
     }
-    let points: Vec<Point> = states
+    let summits = if args.compare_asperity { stiction_bem::asperity::summits(&heights, grid) } else { Vec::new() };
+    let mut points: Vec<Point> = states
         .iter()
         .map(|s| Point {
             mean_pressure_pa: s.mean_pressure_pa,
@@ -191,8 +198,18 @@ pub fn run(args: Args) -> CliResult {
             elastic_energy_j_per_m2: s.elastic_energy_j_per_m2,
             iterations: s.iterations,
             residual: s.residual,
+            asperity_contact_fraction: None,
+            area_ratio_bem_over_asperity: None,
         })
         .collect();
+    if args.compare_asperity {
+        for p in points.iter_mut().filter(|p| p.load_n > 0.0) {
+            let st = stiction_bem::asperity::at_load(&summits, args.e_star, p.load_n)?;
+            let frac = st.contact_area_m2 / grid.area_m2();
+            p.asperity_contact_fraction = Some(frac);
+            p.area_ratio_bem_over_asperity = Some(p.contact_fraction / frac);
+        }
+    }
     let pull_off_n = law.map(|_| points.iter().map(|p| p.load_n).fold(0.0, f64::min));
     let out = Output {
         grid,
@@ -243,14 +260,15 @@ pub fn run(args: Args) -> CliResult {
     );
     for p in &out.points {
         println!(
-            "  {:>12} {:>12} {:>12} {:>10.5} {:>8} {:>12} {:>6}",
+            "  {:>12} {:>12} {:>12} {:>10.5} {:>8} {:>12} {:>6} {:>10}",
             q(p.mean_pressure_pa, Dimension::Pressure),
             q(p.load_n, Dimension::Force),
             q(p.mean_gap_m, Dimension::Length),
             p.contact_fraction,
             p.patches,
             p.friction_n.map_or("-".into(), |f| q(f, Dimension::Force)),
-            p.iterations
+            p.iterations,
+            p.area_ratio_bem_over_asperity.map_or("-".into(), |r| format!("{r:.3}"))
         );
     }
     if let Some(f) = out.pull_off_n {
@@ -308,6 +326,14 @@ fn write_outputs(dir: &Path, out: &Output, last: &ContactSolution, heights: &[f6
             .with(Series::line("BEM", gap.clone()))
             .with(Series::markers("solved", gap))
             .write_png(&dir.join("load_gap.png"))?;
+        let ratio: Vec<(f64, f64)> =
+            pts.iter().filter_map(|p| p.area_ratio_bem_over_asperity.map(|r| (p.mean_pressure_pa * 1e-6, r))).collect();
+        if ratio.len() > 1 {
+            Chart::new("Real contact area: BEM / asperity model", "Mean pressure (MPa)", "A_r(BEM) / A_r(asperity)")
+                .with(Series::line("BEM / independent Hertz summits", ratio.clone()))
+                .with(Series::markers("solved", ratio))
+                .write_png(&dir.join("area_ratio.png"))?;
+        }
     }
     Ok(())
 }
