@@ -4,5 +4,6 @@
 mod util;
 
 mod bad_inputs;
+mod bem;
 mod models;
 mod scenarios;
