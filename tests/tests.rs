@@ -5,6 +5,7 @@ mod util;
 
 mod bad_inputs;
 mod hardening;
+mod bem;
 mod models;
 mod scenarios;
 mod standalone;

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod actuator;
+pub mod bem;
 pub mod contact;
 pub mod discrete;
 pub mod fit;

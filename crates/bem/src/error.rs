@@ -1,0 +1,64 @@
+//! Errors of the boundary-element solver.
+
+use thiserror::Error;
+
+/// Errors of the boundary-element solver (bad input or no convergence).
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum BemError {
+    /// A grid dimension out of range.
+    #[error("grid {nx} x {ny}: expected 2 <= nx, ny and nx * ny <= {limit} points")]
+    GridSize {
+        /// Columns.
+        nx: usize,
+        /// Rows.
+        ny: usize,
+        /// The limit on the number of points.
+        limit: usize,
+    },
+    /// The height field's length does not match the grid.
+    #[error("height field has {len} values, expected nx * ny = {expected}")]
+    HeightLength {
+        /// Values given.
+        len: usize,
+        /// Values expected.
+        expected: usize,
+    },
+    /// A height is not finite.
+    #[error("height at index {index} is {value}, expected a finite number (m)")]
+    HeightValue {
+        /// Row-major index.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A scalar input out of range.
+    #[error("{name} = {value}: expected {expected}")]
+    Value {
+        /// The input's name.
+        name: &'static str,
+        /// The value.
+        value: f64,
+        /// What was expected.
+        expected: &'static str,
+    },
+    /// The iteration did not reach the tolerance.
+    #[error("{what} did not converge in {iterations} iterations (residual {residual:e}, tolerance {tolerance:e})")]
+    NoConvergence {
+        /// Which iteration.
+        what: &'static str,
+        /// Iterations done.
+        iterations: usize,
+        /// Last residual.
+        residual: f64,
+        /// Tolerance asked for.
+        tolerance: f64,
+    },
+}
+
+pub(crate) fn check_positive(name: &'static str, value: f64, expected: &'static str) -> Result<f64, BemError> {
+    if value.is_finite() && value > 0.0 { Ok(value) } else { Err(BemError::Value { name, value, expected }) }
+}
+
+pub(crate) fn check_nonnegative(name: &'static str, value: f64, expected: &'static str) -> Result<f64, BemError> {
+    if value.is_finite() && value >= 0.0 { Ok(value) } else { Err(BemError::Value { name, value, expected }) }
+}
