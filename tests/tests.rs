@@ -4,8 +4,8 @@
 mod util;
 
 mod bad_inputs;
-mod hardening;
 mod bem;
+mod hardening;
 mod models;
 mod scenarios;
 mod standalone;

@@ -235,11 +235,11 @@ pub fn run(args: Args) -> CliResult {
         print_transients(args.transients.as_deref(), r);
     }
     if let Some(sw) = &summary.transient_switches {
-        println!("\nTransient model ingredients (mean |rel. error| pull-in, release; mean signed)");
+        crate::outln!("\nTransient model ingredients (mean |rel. error| pull-in, release; mean signed)");
         let pct = |v: Option<f64>| v.map_or("     -".to_string(), |x| format!("{:6.1}", 100.0 * x));
         let signed = |v: Option<f64>| v.map_or("     -".to_string(), |x| format!("{:+6.1}", 100.0 * x));
         for s in sw {
-            println!(
+            crate::outln!(
                 "  {:<52} {} % {} %   ({} %, {} %){}",
                 s.switch,
                 pct(s.pull_in_time_mean_abs_rel_error),
@@ -325,17 +325,23 @@ pub fn hysteresis_chart(
 }
 
 fn print_transients(path: Option<&Path>, r: &TransientReport) {
-    println!(
+    crate::outln!(
         "\nPull-in and release times against {} ({} points)",
         path.map_or(String::new(), |p| p.display().to_string()),
         r.points.len()
     );
-    println!(
+    crate::outln!(
         "  {:>8}  {:<8} {:>7}  {:>10} {:>8}  {:>10}  {:>7}",
-        "L_f (um)", "event", "V", "meas (us)", "SD (us)", "model (us)", "err"
+        "L_f (um)",
+        "event",
+        "V",
+        "meas (us)",
+        "SD (us)",
+        "model (us)",
+        "err"
     );
     for p in &r.points {
-        println!(
+        crate::outln!(
             "  {:>8.2}  {:<8} {:>7.1}  {:>10.2} {:>8.2}  {:>10}  {:>7}{}",
             p.finger_length_m * 1e6,
             p.event.name(),
@@ -347,9 +353,9 @@ fn print_transients(path: Option<&Path>, r: &TransientReport) {
             p.no_prediction.as_ref().map_or(String::new(), |why| format!("  ({why})"))
         );
     }
-    println!("\n  {:<8} {:>8}  {:>10} {:>10} {:>10}", "event", "L_f (um)", "mean|err|", "mean err", "RMSE (us)");
+    crate::outln!("\n  {:<8} {:>8}  {:>10} {:>10} {:>10}", "event", "L_f (um)", "mean|err|", "mean err", "RMSE (us)");
     for e in &r.errors {
-        println!(
+        crate::outln!(
             "  {:<8} {:>8}  {:>9.1}% {:>9.1}% {:>10.2}{}",
             e.event.name(),
             e.finger_length_m.map_or("all".to_string(), |l| format!("{:.2}", l * 1e6)),

@@ -254,12 +254,18 @@ pub fn run(args: Args) -> CliResult {
             ),
         ],
     );
-    println!(
+    crate::outln!(
         "  {:>12} {:>12} {:>12} {:>10} {:>8} {:>12} {:>6}",
-        "p_mean", "load", "mean gap", "A/A0", "patches", "friction", "iter"
+        "p_mean",
+        "load",
+        "mean gap",
+        "A/A0",
+        "patches",
+        "friction",
+        "iter"
     );
     for p in &out.points {
-        println!(
+        crate::outln!(
             "  {:>12} {:>12} {:>12} {:>10.5} {:>8} {:>12} {:>6} {:>10}",
             q(p.mean_pressure_pa, Dimension::Pressure),
             q(p.load_n, Dimension::Force),
@@ -272,7 +278,7 @@ pub fn run(args: Args) -> CliResult {
         );
     }
     if let Some(f) = out.pull_off_n {
-        println!("  pull-off (most tensile load on the path): {}", q(f, Dimension::Force));
+        crate::outln!("  pull-off (most tensile load on the path): {}", q(f, Dimension::Force));
     }
     Ok(())
 }

@@ -91,7 +91,7 @@ pub fn run(args: Args) -> CliResult {
     }
     print_summary(&report);
     if let Some(dir) = &args.out {
-        println!(
+        crate::outln!(
             "\nwrote {}/report.json and fit-vpull2, fit-friction-load, fit-residuals (.svg, .png, .csv)",
             dir.display()
         );
@@ -123,7 +123,7 @@ fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliR
     );
     let text = synth::to_csv(&rows, &comment)?;
     write_atomic(out, text.as_bytes())?;
-    println!("wrote {} ({} rows, synthetic)", out.display(), rows.len());
+    crate::outln!("wrote {} ({} rows, synthetic)", out.display(), rows.len());
     Ok(())
 }
 
@@ -132,23 +132,23 @@ fn ci(c: Option<[f64; 2]>, scale: f64) -> String {
 }
 
 fn print_summary(r: &FitReport) {
-    println!("data: {} ({} rows used, {} rejected)", r.data, r.rows_used, r.rows_rejected.len());
+    crate::outln!("data: {} ({} rows used, {} rejected)", r.data, r.rows_used, r.rows_rejected.len());
     for rej in r.rows_rejected.iter().take(10) {
-        println!("  rejected line {}: {}", rej.line, rej.reason);
+        crate::outln!("  rejected line {}: {}", rej.line, rej.reason);
     }
     if r.rows_rejected.len() > 10 {
-        println!("  ... {} more (see --json)", r.rows_rejected.len() - 10);
+        crate::outln!("  ... {} more (see --json)", r.rows_rejected.len() - 10);
     }
     let (mu, fa) = (&r.mu_apparent, &r.apparent_adhesion_force_n);
-    println!("\neq. 10 (nominal a_clamp, a_pull, F_spring):");
-    println!(
+    crate::outln!("\neq. 10 (nominal a_clamp, a_pull, F_spring):");
+    crate::outln!(
         "  mu_e,a = {:.3} +/- {:.3} (regression), 95 %: {} regression, {} with calibration",
         mu.value,
         mu.stderr.unwrap_or(f64::NAN),
         ci(mu.ci95, 1.0),
         ci(mu.ci95_with_calibration, 1.0)
     );
-    println!(
+    crate::outln!(
         "  F_a0   = {:.3} uN +/- {:.3} (regression), 95 %: {} uN regression (Fieller), {} uN with calibration",
         fa.value * 1e6,
         fa.stderr.unwrap_or(f64::NAN) * 1e6,
@@ -158,11 +158,11 @@ fn print_summary(r: &FitReport) {
     let shares = |m: &BTreeMap<String, f64>| {
         m.iter().map(|(k, v)| format!("{k} {:.1} %", 100.0 * v)).collect::<Vec<_>>().join(", ")
     };
-    println!("  variance shares of mu_e,a: {}", shares(&r.variance_shares.mu_apparent));
-    println!("  variance shares of F_a0:   {}", shares(&r.variance_shares.apparent_adhesion_force_n));
+    crate::outln!("  variance shares of mu_e,a: {}", shares(&r.variance_shares.mu_apparent));
+    crate::outln!("  variance shares of F_a0:   {}", shares(&r.variance_shares.apparent_adhesion_force_n));
     for d in &r.devices {
         match &d.eq10 {
-            Some(f) => println!(
+            Some(f) => crate::outln!(
                 "  device {:>8}: mu_e,a {:.3} {}, F_a0 {:.3} uN ({} rows)",
                 d.device,
                 f.mu_apparent.value,
@@ -170,16 +170,22 @@ fn print_summary(r: &FitReport) {
                 f.apparent_adhesion_force_n.value * 1e6,
                 d.rows_used
             ),
-            None => println!("  device {:>8}: {}", d.device, d.note.clone().unwrap_or_default()),
+            None => crate::outln!("  device {:>8}: {}", d.device, d.note.clone().unwrap_or_default()),
         }
     }
-    println!("\n{}", r.noise_note);
-    println!(
+    crate::outln!("\n{}", r.noise_note);
+    crate::outln!(
         "\n  {:<18} {:>10} {:>24} {:>9} {:>4} {:>9} {:>7}",
-        "model", "s (GPa)", "95 % (GPa)", "chi2", "dof", "AIC", "dAIC"
+        "model",
+        "s (GPa)",
+        "95 % (GPa)",
+        "chi2",
+        "dof",
+        "AIC",
+        "dAIC"
     );
     for m in &r.models {
-        println!(
+        crate::outln!(
             "  {:<18} {:>10.4} {:>24} {:>9.2} {:>4} {:>9.2} {:>7}",
             m.name,
             m.shear_strength_pa.value / 1e9,
@@ -190,10 +196,10 @@ fn print_summary(r: &FitReport) {
             m.delta_aic.map_or("n/a".into(), |d| format!("{d:.2}"))
         );
         if let Some(note) = &m.shear_strength_pa.note {
-            println!("  {:<18} s: {note}", "");
+            crate::outln!("  {:<18} s: {note}", "");
         }
         if let Some(rough) = &m.roughness {
-            println!(
+            crate::outln!(
                 "  {:<18} roughness: s over {} surfaces, 95 % {} GPa",
                 "",
                 rough.surfaces,
@@ -201,18 +207,18 @@ fn print_summary(r: &FitReport) {
             );
         }
         if let Some(rr) = &m.summit_radius_m {
-            println!("  {:<18} R = {:.3} um, 95 % {} um", "", rr.value * 1e6, ci(rr.ci95, 1e6));
+            crate::outln!("  {:<18} R = {:.3} um, 95 % {} um", "", rr.value * 1e6, ci(rr.ci95, 1e6));
         }
         if let Some(f) = &m.spring_force_n {
-            println!("  {:<18} F_spring = {:.3} uN, 95 % {} uN", "", f.value * 1e6, ci(f.ci95, 1e6));
+            crate::outln!("  {:<18} F_spring = {:.3} uN, 95 % {} uN", "", f.value * 1e6, ci(f.ci95, 1e6));
         }
     }
     for f in &r.models_failed {
-        println!("  {:<18} failed: {}", f.name, f.reason);
+        crate::outln!("  {:<18} failed: {}", f.name, f.reason);
     }
-    println!();
+    crate::outln!();
     for s in &r.model_selection {
-        println!("{s}");
+        crate::outln!("{s}");
     }
 }
 

@@ -240,7 +240,7 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
         return print_json(summary);
     }
     let c = &summary.config;
-    println!(
+    crate::outln!(
         "Monte Carlo study of {} ({} samples{}, seed {})",
         scenario.display(),
         summary.samples_done,
@@ -248,7 +248,7 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
         c.seed
     );
     let show = |name: &str, s: &Option<stiction_study::Spread>, scale: f64, unit: &str| match s {
-        Some(s) => println!(
+        Some(s) => crate::outln!(
             "  {name:<28} mean {:.3}{unit} sd {:.3}{unit}  5-95 %: {:.3}..{:.3}{unit}  (n = {})",
             s.mean * scale,
             s.sd * scale,
@@ -256,31 +256,35 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
             s.p95 * scale,
             s.count
         ),
-        None => println!("  {name:<28} no sample gave a value"),
+        None => crate::outln!("  {name:<28} no sample gave a value"),
     };
     show("mu_e,a (paper 0.7 +/- 0.3)", &summary.mu_apparent, 1.0, "");
     show("F_a0 (paper 2.0 +/- 1.3 uN)", &summary.apparent_adhesion_force_n, 1e6, " uN");
     if !summary.reasons.is_empty() {
-        println!(
+        crate::outln!(
             "  samples without a fit ({} ran without one, {} failed), by reason:",
-            summary.without_fit, summary.failed
+            summary.without_fit,
+            summary.failed
         );
         for (code, n) in &summary.reasons {
             let what = stiction_study::summary::REASONS.iter().find(|r| r.0 == code).map_or("", |r| r.1);
-            println!("    {n:>8}  {code}: {what}");
+            crate::outln!("    {n:>8}  {code}: {what}");
         }
     }
     let s = &summary.sensitivity;
     if s.samples >= 20 {
-        println!("  share of the variance (first-order Sobol index; Spearman rho), {} samples with a fit:", s.samples);
-        println!("    {:<48} {:>16} {:>16}", "input", "mu_e,a", "F_a0");
+        crate::outln!(
+            "  share of the variance (first-order Sobol index; Spearman rho), {} samples with a fit:",
+            s.samples
+        );
+        crate::outln!("    {:<48} {:>16} {:>16}", "input", "mu_e,a", "F_a0");
         let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
         for r in &s.inputs {
             let cell = |a: Option<f64>, b: Option<f64>| match b {
                 Some(_) => format!("{} ({})", f(a), f(b)),
                 None => f(a),
             };
-            println!(
+            crate::outln!(
                 "    {:<48} {:>16} {:>16}",
                 r.input,
                 cell(r.mu_first_order, r.mu_spearman),
