@@ -5,6 +5,7 @@ mod util;
 
 mod bad_inputs;
 mod bem;
+mod figures;
 mod hardening;
 mod models;
 mod scenarios;

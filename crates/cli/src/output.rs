@@ -235,10 +235,15 @@ impl OutputSet {
         Ok(())
     }
 
-    /// Adds a chart, SVG or PNG by the name's extension.
+    /// Adds a chart, SVG or PNG by the name's extension, and (once per stem) the plotted data as CSV
+    /// beside it (`fig7.svg` -> `fig7.csv`, units in the column names).
     pub fn add_chart(&mut self, name: &str, chart: &stiction_plot::Chart) -> CliResult {
         let path = self.claim(name)?;
         crate::cmd::plot::render_chart(chart, &path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
+        let data_name = stiction_plot::data_path(Path::new(name)).display().to_string();
+        if data_name != name && !self.files.contains(&data_name) {
+            self.add_bytes(&data_name, chart.data_csv().as_bytes())?;
+        }
         Ok(())
     }
 

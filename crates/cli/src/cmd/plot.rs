@@ -78,6 +78,8 @@ pub fn write_chart(chart: &Chart, path: &Path) -> CliResult {
         render_chart(chart, &tmp).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         let bytes = std::fs::read(&tmp).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         stiction_units::io::write_atomic(path, &bytes)?;
+        // The plotted numbers beside the figure, so it can be re-plotted in another tool.
+        stiction_units::io::write_atomic(&stiction_plot::data_path(path), chart.data_csv().as_bytes())?;
         Ok(())
     })();
     let _ = std::fs::remove_file(&tmp);

@@ -293,9 +293,10 @@ fn fig5_chart(r: &MeterResult, scenario: &Scenario, base: &Path) -> Result<Chart
         .collect();
     Ok(Chart::new(
         format!("Fig. 5 (virtual): pull voltage at slip, {} contact model", r.contact_model),
-        "clamp voltage squared V_clamp^2 (V^2)",
-        "pull voltage squared at slip V_pull^2 (V^2)",
+        "clamp voltage squared V_clamp² (V²)",
+        "pull voltage squared at slip V_pull² (V²)",
     )
+    .keys("v_clamp_squared_v2", "v_pull_squared_v2")
     .with(Series::markers("virtual measurement", pts))
     .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete)))
 }
@@ -313,7 +314,8 @@ fn fig7_chart(
     let max_load = r.points.iter().map(|p| p.load_n).fold(0.0, f64::max).max(1e-6) * 1.1;
     let meas: Vec<(f64, f64)> =
         r.points.iter().filter_map(|p| p.friction_n.map(|f| (p.load_n * 1e6, f * 1e6))).collect();
-    let mut chart = Chart::new("Fig. 7: static friction against load", "clamp load L (uN)", "friction force F_f (uN)")
+    let mut chart = Chart::new("Fig. 7: static friction against load", "clamp load L (µN)", "friction force F_f (µN)")
+        .keys("load_un", "friction_un")
         .with(Series::markers(format!("virtual meter ({})", r.contact_model), meas));
     // The contact model's own curve s A_r(L), from its pull-off where it has one.
     if let ContactModel::Explicit(solver) = meter.contact_model() {
