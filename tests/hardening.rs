@@ -277,3 +277,24 @@ fn killed_runs_leave_complete_outputs_or_none() {
         assert!(leftovers.is_empty(), "case {case}: leftovers {leftovers:?}");
     }
 }
+
+/// A full standard error (`2>/dev/full`) never turns an error into a panic (exit 101): the message
+/// is dropped and the exit status still says what happened (issue 9).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_stderr_keeps_the_exit_status() {
+    use std::process::{Command, Stdio};
+    let full = || Stdio::from(std::fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full"));
+    let status = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_stiction"))
+            .args(args)
+            .current_dir(crate::util::root())
+            .stdout(Stdio::null())
+            .stderr(full())
+            .status()
+            .expect("run stiction")
+            .code()
+    };
+    assert_eq!(status(&["scenario", "no-such-scenario.json"]), Some(2));
+    assert_eq!(status(&["gw", "--theta", "15", "--load-star", "0"]), Some(0));
+}

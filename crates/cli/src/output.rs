@@ -25,6 +25,16 @@ macro_rules! outln {
     };
 }
 
+/// `eprintln!` for the subcommands, without its panic when standard error is closed or full: a
+/// message that cannot be shown is dropped (the exit status still tells the caller).
+#[macro_export]
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 /// Writes `args` and a newline to standard output. On a closed pipe the program ends quietly
 /// with status 0 (the reader has all it wanted); on any other error with a message and status 2.
 pub fn write_stdout(args: fmt::Arguments) {

@@ -167,7 +167,7 @@ pub fn run(args: Args) -> CliResult {
             write_transients(&mut set, report)?;
         }
         set.commit()?;
-        eprintln!("wrote {}", dir.display());
+        crate::errln!("wrote {}", dir.display());
     }
     if args.json {
         return print_json(&summary);

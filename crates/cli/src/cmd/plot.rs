@@ -114,7 +114,7 @@ pub fn run(args: Args) -> CliResult {
         }
     };
     write_chart(&chart, &args.out)?;
-    eprintln!("wrote {}", args.out.display());
+    crate::errln!("wrote {}", args.out.display());
     Ok(())
 }
 

@@ -142,7 +142,7 @@ impl Progress {
             let now = Instant::now();
             if now.duration_since(g.1) >= Duration::from_secs(5) {
                 g.1 = now;
-                eprintln!("{}", self.line(done, now.duration_since(g.0)));
+                crate::errln!("{}", self.line(done, now.duration_since(g.0)));
             }
         }
     }
@@ -153,7 +153,7 @@ impl Progress {
         }
         if let Some(p) = &self.plain {
             let g = p.lock().unwrap_or_else(|e| e.into_inner());
-            eprintln!("{}", self.line(done, g.0.elapsed()));
+            crate::errln!("{}", self.line(done, g.0.elapsed()));
         }
     }
 }

@@ -50,7 +50,7 @@ pub fn run(args: Args) -> CliResult {
     }
     if let Some(path) = &args.csv {
         surface.write_csv_file(path)?;
-        eprintln!("wrote {} summits to {}", surface.len(), path.display());
+        crate::errln!("wrote {} summits to {}", surface.len(), path.display());
     }
     let out = Output {
         stats: surface.stats(),

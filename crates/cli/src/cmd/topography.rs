@@ -137,14 +137,14 @@ pub fn run(args: Args) -> CliResult {
     };
     if let Some(path) = &args.summits {
         write_summit_csv(&map, &summits, path)?;
-        eprintln!("wrote {} summits to {}", summits.len(), path.display());
+        crate::errln!("wrote {} summits to {}", summits.len(), path.display());
     }
     if let Some(dir) = &args.out {
         ensure_dir(dir)?;
         write_summit_csv(&map, &summits, &dir.join("summits.csv"))?;
         write_atomic(&dir.join("statistics.json"), (serde_json::to_string_pretty(&out)? + "\n").as_bytes())?;
         figures(&map, &summits, &report, dir)?;
-        eprintln!("wrote figures, their data and statistics.json to {}", dir.display());
+        crate::errln!("wrote figures, their data and statistics.json to {}", dir.display());
     }
     if args.json {
         return print_json(&out);
