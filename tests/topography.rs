@@ -93,3 +93,35 @@ fn the_meter_runs_on_a_height_map_scenario() {
     let mu = num(&v, "mu_apparent");
     assert!(mu.is_finite() && mu > 0.0, "mu_e,a = {mu}");
 }
+
+/// A scenario's surface may be a grid generated in the scenario (`height_map.generated`). With the
+/// seed and parameters that made the bundled map, it gives the same summits as the map file: the
+/// same count, and heights and radii equal to the file's float32 rounding (relative 1e-6). Another
+/// seed gives another wall.
+#[test]
+fn a_generated_grid_in_a_scenario_matches_the_bundled_map_it_reproduces() {
+    let file = stiction_json(&["surface", "scenarios/tas2000-height-map.json", "--json"]);
+    let generated = stiction_json(&["surface", "scenarios/tas2000-generated-grid.json", "--json"]);
+    assert_eq!(file["stats"]["count"], generated["stats"]["count"]);
+    assert!(generated["stats"]["count"].as_u64().unwrap() > 100);
+    for key in ["height_mean_m", "height_sd_m", "radius_mean_m", "radius_sd_m"] {
+        let (a, b) = (num(&file["stats"], key), num(&generated["stats"], key));
+        assert!((a - b).abs() <= 1e-6 * a.abs(), "{key}: file {a} vs generated {b}");
+    }
+    let other =
+        stiction_json(&["surface", "scenarios/tas2000-generated-grid.json", "--set", "surface.seed=7", "--json"]);
+    assert_ne!(other["stats"]["height_mean_m"], generated["stats"]["height_mean_m"]);
+}
+
+#[test]
+fn a_height_map_needs_exactly_one_of_file_and_generated() {
+    for (set, expect) in [
+        ("surface.height_map.file=\"../data/topography-example/wall.gsf\"", "not both"),
+        ("surface.height_map.generated.hurst=0.8", "not both"),
+    ] {
+        let out = stiction(&["surface", "scenarios/tas2000-generated-grid.json", "--set", set]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{set}: {err}");
+        assert!(err.contains(expect), "{set}: {err}");
+    }
+}

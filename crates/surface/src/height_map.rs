@@ -35,7 +35,7 @@ pub(crate) fn build(spec: &SurfaceSpec, base_dir: &Path) -> Result<Surface, Surf
     let mut faces = Vec::new();
     for (map_spec, stream) in [(&spec.height_map, WALL_STREAM), (&spec.counter_height_map, SHOE_STREAM)] {
         if let Some(m) = map_spec {
-            let (map, _, _) = m.load(base_dir)?;
+            let (map, _) = m.build_map(base_dir, spec.seed)?;
             let patch = m.patch(&map, l, w, spec.seed, stream)?;
             faces.push((map, patch));
         }

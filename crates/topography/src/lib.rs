@@ -32,7 +32,7 @@ pub use read::{
     BINARY_INPUT_LIMIT_BYTES, MapFormat, MapInfo, MapMetadata, MetaSource, NpyDtype, TEXT_INPUT_LIMIT_BYTES,
     parse_length_unit, read_file, read_gsf, read_npy, read_text_grid, read_xyz,
 };
-pub use spec::{HeightMapSpec, Patch, PatchSummits, choose_patch, patch_summits};
+pub use spec::{GeneratedMapSpec, HeightMapSpec, Patch, PatchSummits, choose_patch, patch_summits};
 pub use stats::{
     Autocorrelation, Nayak, Psd, PsdWindow, Statistics, SummitStats, autocorrelation, radial_psd, statistics,
     summit_stats,
