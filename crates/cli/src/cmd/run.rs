@@ -139,11 +139,11 @@ fn print_summary(o: &RunOutput) {
     match (r.mu_apparent, r.apparent_adhesion_force_n, &r.fit) {
         (Some(mu), Some(fa0), Some(fit)) => {
             crate::outln!(
-                "  apparent friction coefficient mu_e,a = {mu:.3} +/- {:.3}  (eq. 10; paper measured 0.7 +/- 0.3)",
+                "  apparent friction coefficient mu_e,a = {mu:.3} +/- {:.3}  (eq. 10; +/- is the regression's standard error only, without the calibration: `stiction fit` gives both; the paper's device measured 0.7 +/- 0.3)",
                 fit.slope_se
             );
             crate::outln!(
-                "  apparent zero-load adhesion F_a0    = {:.3} uN  (paper measured 2.0 +/- 1.3 uN)",
+                "  apparent zero-load adhesion F_a0    = {:.3} uN  (the paper's device measured 2.0 +/- 1.3 uN)",
                 fa0 * 1e6
             );
             crate::outln!("  fit over {} points with L > 0, R^2 = {:.4}", fit.points, fit.r_squared);
