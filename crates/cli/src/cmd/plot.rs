@@ -53,37 +53,23 @@ pub fn chart_format(path: &Path) -> Result<&'static str, String> {
     }
 }
 
-/// Renders a chart to `path` (a fresh file; SVG or PNG by extension). Not atomic by itself: used
-/// inside a staging folder ([`crate::output::OutputSet`]) or by [`write_chart`].
+/// Renders a chart to `path` (SVG or PNG by extension; any other is an error naming it). The plot
+/// crate writes it atomically and never through a symbolic link.
 pub fn render_chart(chart: &Chart, path: &Path) -> CliResult {
-    match chart_format(path)? {
-        "png" => chart.write_png(path)?,
-        _ => chart.write_svg(path)?,
-    }
+    chart_format(path)?;
+    chart.write(path)?;
     Ok(())
 }
 
-/// Writes a chart to `path` as SVG, or PNG by extension, atomically: rendered to a temporary
-/// file in the same folder, then put in place with [`stiction_units::io::write_atomic`] (which
-/// refuses a symbolic link). Errors name the path.
+/// Writes a chart to `path` as SVG, or PNG by extension, with the plotted numbers as CSV beside it
+/// (so it can be re-plotted in another tool); both files atomically. Errors name the path.
 pub fn write_chart(chart: &Chart, path: &Path) -> CliResult {
-    let format = chart_format(path)?;
+    chart_format(path)?;
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         crate::output::ensure_dir(dir)?;
     }
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.render-{}.{format}", std::process::id()));
-    let result = (|| -> CliResult {
-        render_chart(chart, &tmp).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        let bytes = std::fs::read(&tmp).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        stiction_units::io::write_atomic(path, &bytes)?;
-        // The plotted numbers beside the figure, so it can be re-plotted in another tool.
-        stiction_units::io::write_atomic(&stiction_plot::data_path(path), chart.data_csv().as_bytes())?;
-        Ok(())
-    })();
-    let _ = std::fs::remove_file(&tmp);
-    result
+    chart.write_with_data(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    Ok(())
 }
 
 /// Runs the subcommand.

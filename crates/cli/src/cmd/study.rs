@@ -319,21 +319,6 @@ fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
     Ok(())
 }
 
-/// Draws a chart to a temporary file and moves its bytes into place atomically.
-fn write_chart_atomic(chart: &Chart, path: &Path) -> CliResult {
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let tmp = path.with_file_name(format!(
-        ".{name}.render-{}.{}",
-        std::process::id(),
-        if name.ends_with(".png") { "png" } else { "svg" }
-    ));
-    crate::cmd::plot::write_chart(chart, &tmp)?;
-    let bytes = std::fs::read(&tmp);
-    let _ = std::fs::remove_file(&tmp);
-    stiction_units::io::write_atomic(path, &bytes?)?;
-    Ok(())
-}
-
 fn write_figures(summary: &StudySummary, fig: &FigureData, dir: &Path) -> CliResult {
     // A figure without data is left out (a shard or a tiny study may have no fit or too few
     // samples for the sensitivity table, which needs 20 with a fit).
@@ -344,8 +329,9 @@ fn write_figures(summary: &StudySummary, fig: &FigureData, dir: &Path) -> CliRes
         ("sensitivity", has_sens, sensitivity_chart(summary)),
     ];
     for (name, _, chart) in charts.iter().filter(|c| c.1) {
-        write_chart_atomic(chart, &dir.join(format!("{name}.svg")))?;
-        write_chart_atomic(chart, &dir.join(format!("{name}.png")))?;
+        // The plot crate writes each file atomically; the data go beside them below.
+        crate::cmd::plot::render_chart(chart, &dir.join(format!("{name}.svg")))?;
+        crate::cmd::plot::render_chart(chart, &dir.join(format!("{name}.png")))?;
     }
     // The data beside the figures.
     let mut cdf = String::from("mu_apparent [1],cumulative_fraction [1]\n");
