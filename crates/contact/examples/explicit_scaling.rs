@@ -6,6 +6,9 @@
 //! summit of the solver, peak RSS in MB from /proc/self/status when available).
 //! With `--csv PATH` the lines are also appended to PATH (header written when it is new); the
 //! figures are drawn from that file by `--example explicit_figures -- scaling`.
+//! With `--repeat K` the whole curve (reset, pull-off search, 100 points) is solved K times and the
+//! CPU columns are the medians over the K runs (the thread CPU clock ticks in steps of a few ms);
+//! each run's `curve_cpu_s` (pull-off + 100 points) is printed to stderr.
 
 use std::time::Instant;
 
@@ -31,10 +34,24 @@ fn thread_cpu_s() -> Option<f64> {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let csv = args.iter().position(|a| a == "--csv").and_then(|k| args.get(k + 1)).map(std::path::PathBuf::from);
-    let sizes: Vec<f64> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    let sizes: Vec<f64> = args
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k == 0 || args[k - 1] != "--repeat")
+        .filter_map(|(_, a)| a.parse().ok())
+        .collect();
     // --flat: the flat shoe (approach only) instead of the tilt-free one.
     let mode = if args.iter().any(|a| a == "--flat") { ShoeMode::Flat } else { ShoeMode::TiltFree };
     let sizes = if sizes.is_empty() { vec![1e4, 1e5, 1e6] } else { sizes };
+    let repeat: usize = args
+        .iter()
+        .position(|a| a == "--repeat")
+        .and_then(|k| args.get(k + 1))
+        .map_or(1, |v| v.parse().expect("--repeat K"));
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        if v.is_empty() { None } else { Some(0.5 * (v[(v.len() - 1) / 2] + v[v.len() / 2])) }
+    };
     let points = 100;
     let header = "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb,cpu_s_per_point,pull_off_cpu_s";
     println!("{header}");
@@ -61,20 +78,32 @@ fn main() {
         let l_max = 0.1 * m * r.sqrt() * sigma.powf(1.5) / d;
         let cfg = SolverConfig { detail: Detail::Summary, mode, ..Default::default() };
         let mut solver = ExplicitSolver::new(surface, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver");
-        let t = Instant::now();
-        let cpu_po = thread_cpu_s();
-        let po = solver.pull_off(0.0, 1e-6).expect("pull-off");
-        let po_s = t.elapsed().as_secs_f64();
-        let po_cpu = cpu_po.and_then(|c0| Some(thread_cpu_s()? - c0));
-        let loads: Vec<f64> =
-            (0..points).map(|k| po.load_n + (l_max - po.load_n) * k as f64 / (points - 1) as f64).collect();
-        let t = Instant::now();
-        let cpu0 = thread_cpu_s();
-        let sweep = solver.sweep(&loads, Branch::Loading).expect("sweep");
-        let cpu_per = cpu0.and_then(|c0| Some((thread_cpu_s()? - c0) / points as f64));
+        let (mut po_cpus, mut pt_cpus) = (Vec::new(), Vec::new());
+        let (mut po_s, mut per, mut sweep) = (0.0, 0.0, None);
+        for _ in 0..repeat.max(1) {
+            solver.reset();
+            let t = Instant::now();
+            let cpu_po = thread_cpu_s();
+            let po = solver.pull_off(0.0, 1e-6).expect("pull-off");
+            po_s = t.elapsed().as_secs_f64();
+            let po_cpu = cpu_po.and_then(|c0| Some(thread_cpu_s()? - c0));
+            let loads: Vec<f64> =
+                (0..points).map(|k| po.load_n + (l_max - po.load_n) * k as f64 / (points - 1) as f64).collect();
+            let t = Instant::now();
+            let cpu0 = thread_cpu_s();
+            sweep = Some(solver.sweep(&loads, Branch::Loading).expect("sweep"));
+            let cpu_per = cpu0.and_then(|c0| Some((thread_cpu_s()? - c0) / points as f64));
+            per = t.elapsed().as_secs_f64() / points as f64;
+            if let (Some(a), Some(b)) = (po_cpu, cpu_per) {
+                eprintln!("summits {m:.0}: curve_cpu_s {:.4}", a + b * points as f64);
+                po_cpus.push(a);
+                pt_cpus.push(b);
+            }
+        }
+        let sweep = sweep.expect("at least one run");
+        let (po_cpu, cpu_per) = (median(po_cpus), median(pt_cpus));
         let its: usize = sweep.points.iter().map(|p| p.iterations).sum();
         let its = its as f64 / points as f64;
-        let per = t.elapsed().as_secs_f64() / points as f64;
         let last = sweep.points.last().map_or(0, |e| e.contacts);
         let line = format!(
             "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{},{},{}",
