@@ -9,6 +9,8 @@
 //! With `--repeat K` the whole curve (reset, pull-off search, 100 points) is solved K times and the
 //! CPU columns are the medians over the K runs (the thread CPU clock ticks in steps of a few ms);
 //! each run's `curve_cpu_s` (pull-off + 100 points) is printed to stderr.
+//! `--exact`: without the two shortcuts of the Newton iteration (`ExplicitSolver::set_shortcuts`).
+//! `--dump PATH`: the last curve's points (pull-off first) with every digit, for comparisons.
 
 use std::time::Instant;
 
@@ -37,12 +39,14 @@ fn main() {
     let sizes: Vec<f64> = args
         .iter()
         .enumerate()
-        .filter(|(k, _)| *k == 0 || args[k - 1] != "--repeat")
+        .filter(|(k, _)| *k == 0 || (args[k - 1] != "--repeat" && args[k - 1] != "--dump"))
         .filter_map(|(_, a)| a.parse().ok())
         .collect();
     // --flat: the flat shoe (approach only) instead of the tilt-free one.
     let mode = if args.iter().any(|a| a == "--flat") { ShoeMode::Flat } else { ShoeMode::TiltFree };
     let sizes = if sizes.is_empty() { vec![1e4, 1e5, 1e6] } else { sizes };
+    let exact = args.iter().any(|a| a == "--exact");
+    let dump = args.iter().position(|a| a == "--dump").and_then(|k| args.get(k + 1)).map(std::path::PathBuf::from);
     let repeat: usize = args
         .iter()
         .position(|a| a == "--repeat")
@@ -53,7 +57,7 @@ fn main() {
         if v.is_empty() { None } else { Some(0.5 * (v[(v.len() - 1) / 2] + v[v.len() / 2])) }
     };
     let points = 100;
-    let header = "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb,cpu_s_per_point,pull_off_cpu_s";
+    let header = "summits,gen_s,pull_off_s,points,s_per_point,newton_iterations_per_point,contacts_at_max,bytes_per_summit,peak_rss_mb,cpu_s_per_point,pull_off_cpu_s,passes_per_point,scanned_per_point,cpu_ns_per_scanned_summit";
     println!("{header}");
     let mut out = csv.map(|p| {
         let new = !p.exists();
@@ -78,21 +82,26 @@ fn main() {
         let l_max = 0.1 * m * r.sqrt() * sigma.powf(1.5) / d;
         let cfg = SolverConfig { detail: Detail::Summary, mode, ..Default::default() };
         let mut solver = ExplicitSolver::new(surface, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver");
+        solver.set_shortcuts(!exact);
         let (mut po_cpus, mut pt_cpus) = (Vec::new(), Vec::new());
-        let (mut po_s, mut per, mut sweep) = (0.0, 0.0, None);
+        let (mut po_s, mut per, mut sweep, mut work, mut po_eq) = (0.0, 0.0, None, (0, 0), None);
         for _ in 0..repeat.max(1) {
             solver.reset();
             let t = Instant::now();
             let cpu_po = thread_cpu_s();
             let po = solver.pull_off(0.0, 1e-6).expect("pull-off");
             po_s = t.elapsed().as_secs_f64();
+            po_eq = Some(po.clone());
             let po_cpu = cpu_po.and_then(|c0| Some(thread_cpu_s()? - c0));
             let loads: Vec<f64> =
                 (0..points).map(|k| po.load_n + (l_max - po.load_n) * k as f64 / (points - 1) as f64).collect();
             let t = Instant::now();
             let cpu0 = thread_cpu_s();
+            let w0 = solver.work();
             sweep = Some(solver.sweep(&loads, Branch::Loading).expect("sweep"));
             let cpu_per = cpu0.and_then(|c0| Some((thread_cpu_s()? - c0) / points as f64));
+            let w1 = solver.work();
+            work = (w1.passes - w0.passes, w1.summits_scanned - w0.summits_scanned);
             per = t.elapsed().as_secs_f64() / points as f64;
             if let (Some(a), Some(b)) = (po_cpu, cpu_per) {
                 eprintln!("summits {m:.0}: curve_cpu_s {:.4}", a + b * points as f64);
@@ -101,16 +110,42 @@ fn main() {
             }
         }
         let sweep = sweep.expect("at least one run");
+        if let (Some(path), Some(po)) = (&dump, &po_eq) {
+            let mut text = String::from(
+                "load_n,separation_m,tilt_x_rad,tilt_y_rad,contacts,real_area_m2,elastic_load_n,force_residual_n,moment_residual_x_n_m,moment_residual_y_n_m,max_pressure_pa,iterations\n",
+            );
+            for e in std::iter::once(po).chain(&sweep.points) {
+                text += &format!(
+                    "{:.17e},{:.17e},{:.17e},{:.17e},{},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{}\n",
+                    e.load_n,
+                    e.separation_m,
+                    e.tilt_x_rad,
+                    e.tilt_y_rad,
+                    e.contacts,
+                    e.real_area_m2,
+                    e.elastic_load_n,
+                    e.force_residual_n,
+                    e.moment_residual_x_n_m,
+                    e.moment_residual_y_n_m,
+                    e.max_pressure_pa,
+                    e.iterations
+                );
+            }
+            std::fs::write(path, text).expect("write dump");
+        }
         let (po_cpu, cpu_per) = (median(po_cpus), median(pt_cpus));
         let its: usize = sweep.points.iter().map(|p| p.iterations).sum();
         let its = its as f64 / points as f64;
         let last = sweep.points.last().map_or(0, |e| e.contacts);
         let line = format!(
-            "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{},{},{}",
+            "{m:.0},{gen_s:.3},{po_s:.4},{points},{per:.3e},{its:.1},{last},{:.2},{},{},{},{:.2},{:.0},{}",
             solver.bytes_per_summit(),
             peak_rss_mb().map_or("n/a".into(), |v| format!("{v:.0}")),
             cpu_per.map_or("n/a".into(), |v| format!("{v:.3e}")),
-            po_cpu.map_or("n/a".into(), |v| format!("{v:.4}"))
+            po_cpu.map_or("n/a".into(), |v| format!("{v:.4}")),
+            work.0 as f64 / points as f64,
+            work.1 as f64 / points as f64,
+            cpu_per.map_or("n/a".into(), |v| format!("{:.2}", v * points as f64 / work.1 as f64 * 1e9))
         );
         println!("{line}");
         if let Some(f) = out.as_mut() {

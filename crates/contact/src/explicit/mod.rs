@@ -60,4 +60,6 @@ pub mod table1;
 mod types;
 
 pub use solver::ExplicitSolver;
-pub use types::{Detail, Equilibrium, ShoeMode, SolveError, SolverConfig, SummitContact, Sweep, SweepEvent};
+pub use types::{
+    Detail, Equilibrium, ShoeMode, SolveError, SolverConfig, SummitContact, Sweep, SweepEvent, WorkCounters,
+};

@@ -186,6 +186,16 @@ pub enum SweepEvent {
     },
 }
 
+/// Work counters of an [`crate::explicit::ExplicitSolver`] (diagnostics for performance
+/// measurements, see [`crate::explicit::ExplicitSolver::work`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct WorkCounters {
+    /// Evaluation passes over the summits.
+    pub passes: u64,
+    /// Summits scanned by those passes, summed over the passes.
+    pub summits_scanned: u64,
+}
+
 /// Result of a load sweep.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Sweep {

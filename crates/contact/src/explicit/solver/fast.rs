@@ -10,9 +10,12 @@
 //! A block is processed in three stages, each a simple loop over the 64 summits that the compiler
 //! vectorises on its own:
 //! 1. map: interference, contact radius (the square roots, all independent of each other, so
-//!    their latency overlaps), force, activity; results go to small arrays on the stack (L1);
-//! 2. force sums: P, P u, P v, |P|, z+, elastic load, largest z+, summits over the hardness;
-//! 3. stiffness sums (tilt-free only): k, k u, k v, k u^2, k u v, k v^2 (a flat shoe uses k only).
+//!    their latency overlaps), force, activity, the smallest |z| (how far the plane may move
+//!    before any summit changes its contact state); results go to small arrays on the stack (L1);
+//! 2. force sums: P, P u, P v, |P|, z+, elastic load, largest z+ (and where), summits over the
+//!    hardness; the count and the sums of u and v of the summits with z > 0 (the area is linear
+//!    in the pose: `pi R sum z+`);
+//! 3. stiffness sums: k, k u, k v, and (tilt free only) k u^2, k u v, k v^2.
 //!
 //! Splitting the stages keeps each loop's accumulators in registers (one pass with all 16 sums
 //! spilled them to the stack) and breaks the square-root-to-add dependency chain. Every sum has
@@ -23,7 +26,7 @@
 //! `a * b + c` into a fused multiply-add and the square root, f32 -> f64 conversion, comparisons
 //! and selections are exact in IEEE 754, so both versions give the same bits (tested).
 
-use super::{Eval, Geom, State};
+use super::{Eval, Geom, Linear, State};
 
 /// Lanes of the partial sums.
 const W: usize = 4;
@@ -44,6 +47,10 @@ pub(crate) struct Kernel {
     pub allow_touch: bool,
     /// Contact radius above which q0 exceeds the hardness \[m\] (infinite without one).
     pub a_hard: f64,
+    /// The interference of that contact radius, `a_hard^2 / R` \[m\] (infinite without one).
+    pub z_hard: f64,
+    /// Also collect what a Newton step without a pass needs ([`super::Linear`]).
+    pub lin: bool,
 }
 
 #[derive(Clone, Copy)]
@@ -55,7 +62,19 @@ struct Acc {
     zc: [f64; W],
     el: [f64; W],
     zmax: [f64; W],
+    /// (u, v) of the summit with the largest z+ in each lane.
+    umax: [f64; W],
+    vmax: [f64; W],
     over: [f64; W],
+    /// Smallest z of the summits in contact with z >= 0 (how far the plane may approach... recede
+    /// before one of them releases), smallest |z| of the others (before one touches).
+    gap_in: [f64; W],
+    gap_out: [f64; W],
+    /// Smallest |z - z_hard| of the summits in contact (hardness only).
+    hgap: [f64; W],
+    /// Sums of u and v over the summits with z > 0 (the area's linearisation).
+    su: [f64; W],
+    sv: [f64; W],
     k: [f64; W],
     ku: [f64; W],
     kv: [f64; W],
@@ -67,7 +86,30 @@ struct Acc {
 impl Acc {
     fn zero() -> Self {
         let z = [0.0; W];
-        Self { p: z, pu: z, pv: z, pabs: z, zc: z, el: z, zmax: z, over: z, k: z, ku: z, kv: z, kuu: z, kuv: z, kvv: z }
+        let inf = [f64::INFINITY; W];
+        Self {
+            p: z,
+            pu: z,
+            pv: z,
+            pabs: z,
+            zc: z,
+            el: z,
+            zmax: z,
+            umax: z,
+            vmax: z,
+            over: z,
+            gap_in: inf,
+            gap_out: inf,
+            hgap: inf,
+            su: z,
+            sv: z,
+            k: z,
+            ku: z,
+            kv: z,
+            kuu: z,
+            kuv: z,
+            kvv: z,
+        }
     }
 }
 
@@ -97,7 +139,7 @@ const MIXED: u8 = 2;
 /// (Indexed lanes on purpose: the fixed lane layout is what the compiler vectorises.)
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn block<const M: u8, const TILT: bool, const HARD: bool>(
+fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
     acc: &mut Acc,
     buf: &mut Buf,
     xs: &[f32; B],
@@ -111,6 +153,7 @@ fn block<const M: u8, const TILT: bool, const HARD: bool>(
     // Counts as f64 lanes (exact below 2^53): mixing integer lanes into the float code costs packing.
     let mut touches = [0.0f64; W];
     let mut rels = [0.0f64; W];
+    let (mut gap_in, mut gap_out) = (acc.gap_in, acc.gap_out);
     // Stage 1: map.
     for grp in 0..B / W {
         for l in 0..W {
@@ -128,6 +171,15 @@ fn block<const M: u8, const TILT: bool, const HARD: bool>(
             let act = mem || (k.allow_touch && pos);
             touches[l] += if !mem && k.allow_touch && pos { 1.0 } else { 0.0 };
             rels[l] += if mem && z < 0.0 { 1.0 } else { 0.0 };
+            if LIN {
+                // (Selects, then a plain minimum: this form vectorises.)
+                let za = z.abs();
+                let stays = act && z >= 0.0;
+                let gi = if stays { za } else { f64::INFINITY };
+                let go = if stays { f64::INFINITY } else { za };
+                gap_in[l] = if gi < gap_in[l] { gi } else { gap_in[l] };
+                gap_out[l] = if go < gap_out[l] { go } else { gap_out[l] };
+            }
             let zc = if z > 0.0 { z } else { 0.0 };
             let a = (k.radius * zc).sqrt();
             let el = a * zc * k.inv_d;
@@ -138,6 +190,8 @@ fn block<const M: u8, const TILT: bool, const HARD: bool>(
             as_[j] = if act { a } else { 0.0 };
         }
     }
+    acc.gap_in = gap_in;
+    acc.gap_out = gap_out;
     let touches: f64 = touches.iter().sum();
     let counts = Counts { touches: touches as u32, releases: rels.iter().sum::<f64>() as u32 };
     if M == NONE && touches == 0.0 {
@@ -155,9 +209,19 @@ fn block<const M: u8, const TILT: bool, const HARD: bool>(
             acc.pabs[l] += p.abs();
             acc.zc[l] += zcs[j];
             acc.el[l] += as_[j] * zcs[j] * k.inv_d;
-            acc.zmax[l] = if zcs[j] > acc.zmax[l] { zcs[j] } else { acc.zmax[l] };
+            let zc = zcs[j];
+            let top = zc > acc.zmax[l];
+            acc.zmax[l] = if top { zc } else { acc.zmax[l] };
             if HARD {
                 acc.over[l] += if as_[j] > k.a_hard { 1.0 } else { 0.0 };
+            }
+            if LIN {
+                acc.umax[l] = if top { us[j] } else { acc.umax[l] };
+                acc.vmax[l] = if top { vs[j] } else { acc.vmax[l] };
+                if HARD {
+                    let dh = if zc > 0.0 { (zc - k.z_hard).abs() } else { f64::INFINITY };
+                    acc.hgap[l] = if dh < acc.hgap[l] { dh } else { acc.hgap[l] };
+                }
             }
         }
     }
@@ -167,11 +231,19 @@ fn block<const M: u8, const TILT: bool, const HARD: bool>(
             let j = grp * W + l;
             let kk = 1.5 * as_[j] * k.inv_d;
             acc.k[l] += kk;
+            if TILT || LIN {
+                acc.ku[l] += kk * us[j];
+                acc.kv[l] += kk * vs[j];
+            }
+            if LIN {
+                // (Here rather than in stage 2, whose accumulators fill the registers.)
+                let pos = zcs[j] > 0.0;
+                acc.su[l] += if pos { us[j] } else { 0.0 };
+                acc.sv[l] += if pos { vs[j] } else { 0.0 };
+            }
             if TILT {
                 let ku = kk * us[j];
                 let kv = kk * vs[j];
-                acc.ku[l] += ku;
-                acc.kv[l] += kv;
                 acc.kuu[l] += ku * us[j];
                 acc.kuv[l] += ku * vs[j];
                 acc.kvv[l] += kv * vs[j];
@@ -182,7 +254,7 @@ fn block<const M: u8, const TILT: bool, const HARD: bool>(
 }
 
 #[inline(always)]
-fn block_dispatch<const TILT: bool, const HARD: bool>(
+fn block_dispatch<const TILT: bool, const HARD: bool, const LIN: bool>(
     acc: &mut Acc,
     buf: &mut Buf,
     xs: &[f32; B],
@@ -192,9 +264,9 @@ fn block_dispatch<const TILT: bool, const HARD: bool>(
     k: &Kernel,
 ) -> Counts {
     match word {
-        u64::MAX => block::<ALL, TILT, HARD>(acc, buf, xs, ys, hs, word, k),
-        0 => block::<NONE, TILT, HARD>(acc, buf, xs, ys, hs, word, k),
-        _ => block::<MIXED, TILT, HARD>(acc, buf, xs, ys, hs, word, k),
+        u64::MAX => block::<ALL, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
+        0 => block::<NONE, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
+        _ => block::<MIXED, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
     }
 }
 
@@ -210,7 +282,7 @@ struct Totals {
 /// The loop over the blocks `0..end`, compiled once per instruction set by `pulp` (inlined into
 /// its dispatch).
 #[inline(always)]
-fn pass<const TILT: bool, const HARD: bool>(
+fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
     g: &Geom,
     st: &State,
     k: &Kernel,
@@ -238,7 +310,7 @@ fn pass<const TILT: bool, const HARD: bool>(
         let ys: &[f32; B] = g.ys[r.clone()].try_into().expect("block");
         let hs: &[f64; B] = g.hs[r].try_into().expect("block");
         let word = st.member[blk];
-        let c = block_dispatch::<TILT, HARD>(&mut acc, &mut buf, xs, ys, hs, word, k);
+        let c = block_dispatch::<TILT, HARD, LIN>(&mut acc, &mut buf, xs, ys, hs, word, k);
         if c.touches > 0 {
             push_touches(xs, ys, hs, word, blk * B, k, touch);
         }
@@ -253,7 +325,7 @@ fn pass<const TILT: bool, const HARD: bool>(
         ys[..len].copy_from_slice(&g.ys[base..]);
         hs[..len].copy_from_slice(&g.hs[base..]);
         let word = st.member[full];
-        let c = block_dispatch::<TILT, HARD>(&mut acc, &mut buf, &xs, &ys, &hs, word, k);
+        let c = block_dispatch::<TILT, HARD, LIN>(&mut acc, &mut buf, &xs, &ys, &hs, word, k);
         if c.touches > 0 {
             push_touches(&xs, &ys, &hs, word, base, k, touch);
         }
@@ -279,11 +351,15 @@ impl pulp::WithSimd for PassOp<'_> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> Totals {
         let PassOp { g, st, k, end, touch, tilt, hard } = self;
-        match (tilt, hard) {
-            (true, false) => pass::<true, false>(g, st, k, end, touch),
-            (true, true) => pass::<true, true>(g, st, k, end, touch),
-            (false, false) => pass::<false, false>(g, st, k, end, touch),
-            (false, true) => pass::<false, true>(g, st, k, end, touch),
+        match (tilt, hard, k.lin) {
+            (true, false, false) => pass::<true, false, false>(g, st, k, end, touch),
+            (true, true, false) => pass::<true, true, false>(g, st, k, end, touch),
+            (false, false, false) => pass::<false, false, false>(g, st, k, end, touch),
+            (false, true, false) => pass::<false, true, false>(g, st, k, end, touch),
+            (true, false, true) => pass::<true, false, true>(g, st, k, end, touch),
+            (true, true, true) => pass::<true, true, true>(g, st, k, end, touch),
+            (false, false, true) => pass::<false, false, true>(g, st, k, end, touch),
+            (false, true, true) => pass::<false, true, true>(g, st, k, end, touch),
         }
     }
 }
@@ -309,7 +385,15 @@ pub(crate) fn evaluate_with(
     let (p, pu, pv) = (s(&acc.p), s(&acc.pu), s(&acc.pv));
     let (kk, ku, kv, kuu, kuv, kvv) = (s(&acc.k), s(&acc.ku), s(&acc.kv), s(&acc.kuu), s(&acc.kuv), s(&acc.kvv));
     let ell = 1.0 / k.inv_ell;
-    let zmax = acc.zmax.iter().copied().fold(0.0, f64::max);
+    // Largest z+ and where (ties: the first lane), smallest gaps.
+    let mut top = 0;
+    for l in 1..W {
+        if acc.zmax[l] > acc.zmax[top] {
+            top = l;
+        }
+    }
+    let zmax = acc.zmax[top];
+    let min = |v: &[f64; W]| v.iter().copied().fold(f64::INFINITY, |m, x| if x < m { x } else { m });
     // Largest contact radius: sqrt is monotone, so this is the largest of the summits' radii.
     let amax = (k.radius * zmax).sqrt();
     let mut ev = Eval {
@@ -326,6 +410,14 @@ pub(crate) fn evaluate_with(
         moment_x: pu * ell,
         moment_y: pv * ell,
         release_words: Some(t.release_words.unwrap_or((1, 0))),
+        lin: k.lin.then(|| Linear {
+            gap_in: min(&acc.gap_in),
+            gap_out: min(&acc.gap_out),
+            hard_gap: min(&acc.hgap),
+            k_uv: [s(&acc.ku), s(&acc.kv)],
+            area_uv: [s(&acc.su), s(&acc.sv)],
+            z_max: [zmax, acc.umax[top], acc.vmax[top]],
+        }),
     };
     if !tilt {
         ev.g[1] = 0.0;
