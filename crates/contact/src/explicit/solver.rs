@@ -97,6 +97,10 @@ struct State {
     /// The last (up to) three equilibria (load, pose) of successive solves, oldest first.
     history: [(f64, [f64; 3]); 3],
     history_len: usize,
+    /// Sums of (x - x0) and (y - y0) over the members \[m\] (kept by [`State::join`] and
+    /// [`State::leave`]; the area's linearisation in [`linear_step`]).
+    member_dx: f64,
+    member_dy: f64,
 }
 
 impl State {
@@ -117,6 +121,22 @@ impl State {
             self.member[i >> 6] &= !(1 << (i & 63));
             self.members -= 1;
             self.generation += 1;
+        }
+    }
+    /// [`State::set`], keeping the members' coordinate sums.
+    fn join(&mut self, g: &Geom, i: usize) {
+        if !self.is_member(i) {
+            self.set(i);
+            self.member_dx += f64::from(g.xs[i]) - g.load_point.0;
+            self.member_dy += f64::from(g.ys[i]) - g.load_point.1;
+        }
+    }
+    /// [`State::clear`], keeping the members' coordinate sums.
+    fn leave(&mut self, g: &Geom, i: usize) {
+        if self.is_member(i) {
+            self.clear(i);
+            self.member_dx -= f64::from(g.xs[i]) - g.load_point.0;
+            self.member_dy -= f64::from(g.ys[i]) - g.load_point.1;
         }
     }
 }
@@ -157,11 +177,6 @@ struct Linear {
     hard_gap: f64,
     /// sum k u, sum k v (the flat shoe's Hessian holds only sum k).
     k_uv: [f64; 2],
-    /// Sums of u and v over the summits with z > 0: `sum z+` changes by
-    /// `-(n dq0 + su dq1 + sv dq2)` under a step dq that changes no contact (n contacts).
-    area_uv: [f64; 2],
-    /// Largest z+ and its (u, v).
-    z_max: [f64; 3],
 }
 
 enum LawImpl {
@@ -329,6 +344,8 @@ impl ExplicitSolver {
             cache: None,
             history: [(0.0, [0.0; 3]); 3],
             history_len: 0,
+            member_dx: 0.0,
+            member_dy: 0.0,
         };
         let mut s = Self { geom, law, params, imp, config, state, scratch: Vec::new(), adhesion_ref, height_range };
         s.reset();
@@ -340,6 +357,8 @@ impl ExplicitSolver {
     pub fn reset(&mut self) {
         let n = self.geom.hs.len();
         self.state.history_len = 0;
+        self.state.member_dx = 0.0;
+        self.state.member_dy = 0.0;
         self.state.member.iter_mut().for_each(|w| *w = 0);
         self.state.members = 0;
         self.state.bound = 0;
@@ -347,7 +366,7 @@ impl ExplicitSolver {
         let top = match self.geom.support {
             Some(k) => {
                 for i in 0..k {
-                    self.state.set(i);
+                    self.state.join(&self.geom, i);
                 }
                 self.geom.hs[k - 1]
             }
@@ -812,6 +831,7 @@ fn tilt_basis(lp: (f64, f64), ell: f64) -> [[f64; 3]; 3] {
 /// potential energy restricted to the members plus the summits touching at `q` (collected in
 /// `touch`), and the members below their release interference.
 #[inline(never)]
+#[allow(clippy::too_many_arguments)]
 fn evaluate<L: LawEval + ?Sized>(
     g: &Geom,
     law: &L,
@@ -952,7 +972,7 @@ fn release<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &mut State, ev: &mut Eval
             let i = w * 64 + bits.trailing_zeros() as usize;
             bits &= bits - 1;
             if interference(g, law, &q, i) < law.z_rel(i) {
-                st.clear(i);
+                st.leave(g, i);
                 let p = law.p_rel(i);
                 let (x, y) = (f64::from(g.xs[i]), f64::from(g.ys[i]));
                 let phi = g.phi_at(x, y);
@@ -1022,16 +1042,16 @@ fn linear_step<L: LawEval + ?Sized>(
     }
     let nd = g.ndof;
     let mut gl = ev.g;
-    for j in 0..nd {
-        for k in 0..nd {
-            gl[j] += ev.h[j][k] * dq[k];
-        }
+    for (gj, hj) in gl.iter_mut().zip(&ev.h).take(nd) {
+        *gj += hj.iter().zip(dq).take(nd).map(|(h, d)| h * d).sum::<f64>();
     }
     // Every contact has z > 0 here (|z| >= gap > 0 and no member is past release).
     let n = ev.contacts as f64;
     let rem = 0.5 * m * m * n * 0.75 * radius.sqrt() * inv_d / (lin.gap_in - fall).sqrt();
     let phi_max = [1.0, x0.abs().max((g.length - x0).abs()) * inv_ell, y0.abs().max((g.width - y0).abs()) * inv_ell];
-    if (0..nd).any(|j| !(gl[j].abs() + rem * phi_max[j] <= 0.5 * tol)) {
+    let worst =
+        (0..nd).map(|j| gl[j].abs() + rem * phi_max[j]).fold(0.0f64, |m, v| if v > m || v.is_nan() { v } else { m });
+    if worst.is_nan() || worst > 0.5 * tol {
         return false;
     }
     let [d0, d1, d2] = *dq;
@@ -1047,19 +1067,26 @@ fn linear_step<L: LawEval + ?Sized>(
     // (sum |P_i| is only the tolerance's scale: it moves by at most sum k m, relative ~1e-7 here.)
     ev.moment_x += dpu * ell;
     ev.moment_y += dpv * ell;
-    let [su, sv] = lin.area_uv;
+    // Area pi R sum z+ over the contacts (all members, all with z > 0): linear in the pose, with
+    // the members' coordinate sums kept by the contact set.
+    let (su, sv) = (st.member_dx * inv_ell, st.member_dy * inv_ell);
     ev.area -= std::f64::consts::PI * radius * (n * d0 + su * d1 + sv * d2);
-    let [zmax, umax, vmax] = lin.z_max;
-    let zmax = (zmax - (d0 + d1 * umax + d2 * vmax)).max(0.0);
-    ev.q0_max = 1.5 * (radius * zmax).sqrt() * inv_d / (std::f64::consts::PI * radius);
-    ev.lin = Some(Linear {
-        gap_in: lin.gap_in - fall,
-        gap_out: lin.gap_out - rise,
-        hard_gap: lin.hard_gap - m,
-        z_max: [zmax, umax, vmax],
-        ..lin
-    });
+    ev.lin = Some(Linear { gap_in: lin.gap_in - fall, gap_out: lin.gap_out - rise, hard_gap: lin.hard_gap - m, ..lin });
     st.q = [st.q[0] + d0, st.q[1] + d1, st.q[2] + d2];
+    // Largest interference at the new pose, exactly as a pass computes it: z_i <= h_i - w_min and
+    // the heights descend, so only the first few summits can hold it.
+    let (a, b, c) = g.plane(&st.q);
+    let wmin = a + (b * g.length).min(0.0) + (c * g.width).min(0.0);
+    let mut zmax = 0.0f64;
+    for i in 0..n_summits {
+        if g.hs[i] - wmin <= zmax {
+            break;
+        }
+        if st.is_member(i) {
+            zmax = zmax.max(interference(g, law, &st.q, i));
+        }
+    }
+    ev.q0_max = 1.5 * (radius * zmax).sqrt() * inv_d / (std::f64::consts::PI * radius);
     true
 }
 
@@ -1182,7 +1209,7 @@ fn equilibrate<L: LawEval + ?Sized>(
         _ => evaluate(g, law, st, &st.q, load, !fixed, true, touch),
     };
     for &i in touch.iter() {
-        st.set(i as usize);
+        st.join(g, i as usize);
     }
     let result = iterate(g, law, st, touch, load, cfg, adhesion_ref, height_range, &mut ev, predict);
     st.cache = match result {
@@ -1287,7 +1314,7 @@ fn iterate<L: LawEval + ?Sized>(
                     st.q = [st.q[0] + dq[0], st.q[1] + dq[1], st.q[2] + dq[2]];
                     *ev = evaluate(g, law, st, &st.q, load, true, true, touch);
                     for &i in touch.iter() {
-                        st.set(i as usize);
+                        st.join(g, i as usize);
                     }
                     it += 1;
                     continue;
@@ -1373,7 +1400,7 @@ fn iterate<L: LawEval + ?Sized>(
         st.q = qt;
         *ev = evt;
         for &i in touch.iter() {
-            st.set(i as usize);
+            st.join(g, i as usize);
         }
         if alpha == 1.0 && capped {
             st.tau = (2.0 * st.tau).min(tau_max);
@@ -1499,26 +1526,122 @@ mod tests {
             let a_hard = s.geom.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
             // A pose slightly off the equilibrium (members past release, summits touching).
             let q = [s.state.q[0] - 1e-9, s.state.q[1] + 4e-9, s.state.q[2] - 4e-9];
-            let k = fast::Kernel {
-                q,
-                x0,
-                y0,
-                inv_ell,
-                radius,
-                inv_d,
-                c0: two_pi_dgamma * radius,
-                allow_touch: true,
-                a_hard,
-                z_hard: a_hard * a_hard / radius,
-                lin: true,
+            for lin in [false, true] {
+                let k = fast::Kernel {
+                    q,
+                    x0,
+                    y0,
+                    inv_ell,
+                    radius,
+                    inv_d,
+                    c0: two_pi_dgamma * radius,
+                    allow_touch: true,
+                    a_hard,
+                    z_hard: a_hard * a_hard / radius,
+                    lin,
+                };
+                let end = s.geom.hs.len();
+                let (mut t1, mut t2) = (Vec::new(), Vec::new());
+                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &k, end, 0.1, &mut t1);
+                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &k, end, 0.1, &mut t2);
+                assert!(e1.contacts > 100 && e1.releases > 0 && !t1.is_empty(), "{e1:?}");
+                assert_eq!(e1.lin.is_some(), lin);
+                assert_eq!(format!("{e1:?}"), format!("{e2:?}"), "{mode:?}");
+                assert_eq!(t1, t2);
+            }
+        }
+    }
+
+    /// A solver for `summits` summits of the Table 1 statistics (4:1 face).
+    fn table1_solver(summits: f64, mode: ShoeMode, hardness_pa: Option<f64>) -> ExplicitSolver {
+        let width = (summits / 4e12 / 4.0).sqrt();
+        let layout =
+            Layout { apparent_length_m: 4.0 * width, apparent_width_m: width, placement: Placement::Poisson, seed: 3 };
+        let surface = generate(&layout, &FaceParams::gaussian_fixed(4e12, 0.04e-6, 0.5e-6)).expect("surface");
+        let cfg = SolverConfig { mode, hardness_pa, detail: Detail::Summary, ..Default::default() };
+        ExplicitSolver::new(surface, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver")
+    }
+
+    /// Load at L* = 0.1 (eq. 5c) for `m` summits of the Table 1 statistics \[N\].
+    fn load_star_01(m: usize) -> f64 {
+        0.1 * m as f64 * 0.5e-6f64.sqrt() * 0.04e-6f64.powf(1.5) / 9.1e-12
+    }
+
+    /// After every solve of a loading curve (pull-off, then 40 points to L* = 0.1), a fresh pass at
+    /// the final pose confirms what the solve reported, also where its last Newton step was a
+    /// linear one (no pass): the same contacts (no summit touching, none past release), force
+    /// and moment residuals below the tolerance (the remainder bound of `linear_step` holds),
+    /// real area and elastic load equal to rounding, the largest pressure and the count over the
+    /// hardness exactly. Tilt free, flat, and tilt free with a hardness.
+    #[test]
+    fn linear_steps_agree_with_a_pass_at_the_final_pose() {
+        for (mode, hardness) in [(ShoeMode::TiltFree, None), (ShoeMode::Flat, None), (ShoeMode::TiltFree, Some(3e9))] {
+            let mut s = table1_solver(3e4, mode, hardness);
+            let po = s.pull_off(0.0, 1e-6).expect("pull-off").load_n;
+            let l_max = load_star_01(s.len());
+            let mut linear = 0;
+            for k in 0..40 {
+                let load = po + (l_max - po) * f64::from(k) / 39.0;
+                let passes = s.work().passes;
+                let eq = s.solve(load).expect("solve");
+                linear += usize::from(s.work().passes - passes < eq.iterations as u64);
+                let law =
+                    HertzDmt { inv_d: 1.0 / 9.1e-12, two_pi_dgamma: 0.2 * std::f64::consts::PI, radii: &s.geom.radii };
+                let mut touch = Vec::new();
+                let ev = evaluate(&s.geom, &law, &s.state, &s.state.q, load, true, true, &mut touch);
+                let scale = load.abs().max(ev.force_abs).max(s.adhesion_ref);
+                let tol = s.config.relative_tolerance * scale;
+                assert!(touch.is_empty() && ev.releases == 0, "{mode:?} point {k}: contact set changed");
+                assert_eq!(ev.contacts, eq.contacts, "{mode:?} point {k}");
+                assert!(ev.g[..s.geom.ndof].iter().all(|g| g.abs() <= tol), "{mode:?} point {k}: {:?} > {tol:e}", ev.g);
+                let ell = 1.0 / s.geom.uv.expect("fast pass").2;
+                for (a, b, what) in [
+                    (eq.force_residual_n, load - ev.force, "force residual"),
+                    (eq.moment_residual_x_n_m / ell, ev.moment_x / ell, "moment x"),
+                    (eq.moment_residual_y_n_m / ell, ev.moment_y / ell, "moment y"),
+                    (eq.elastic_load_n, ev.elastic, "elastic load"),
+                ] {
+                    assert!((a - b).abs() <= tol, "{mode:?} point {k}: {what} {a:e} against {b:e}");
+                }
+                assert!((eq.real_area_m2 - ev.area).abs() <= 1e-12 * ev.area, "{mode:?} point {k}: area");
+                assert_eq!(eq.max_pressure_pa, ev.q0_max, "{mode:?} point {k}");
+                assert_eq!(eq.summits_over_elastic_limit, ev.over_limit, "{mode:?} point {k}");
+            }
+            // The shortcut is taken on most points of the curve.
+            assert!(linear >= 20, "{mode:?}: {linear} linear last steps of 40");
+        }
+    }
+
+    /// The shortcuts (extrapolated first step, linear last step) change the equilibria of a loading
+    /// curve only within the solver tolerance: same contact counts at every point, elastic load
+    /// within 1e-9 of the load scale, separation within that load over the contact stiffness; and
+    /// off, the iteration takes every step with a pass (more passes).
+    #[test]
+    fn shortcuts_change_the_curve_only_within_the_tolerance() {
+        for mode in [ShoeMode::TiltFree, ShoeMode::Flat] {
+            let run = |shortcuts: bool| {
+                let mut s = table1_solver(3e4, mode, None);
+                s.set_shortcuts(shortcuts);
+                let po = s.pull_off(0.0, 1e-6).expect("pull-off").load_n;
+                let l_max = load_star_01(s.len());
+                let loads: Vec<f64> = (0..40).map(|k| po + (l_max - po) * f64::from(k) / 39.0).collect();
+                let sweep = s.sweep(&loads, Branch::Loading).expect("sweep");
+                (sweep.points, s.work().passes)
             };
-            let end = s.geom.hs.len();
-            let (mut t1, mut t2) = (Vec::new(), Vec::new());
-            let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &k, end, 0.1, &mut t1);
-            let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &k, end, 0.1, &mut t2);
-            assert!(e1.contacts > 100 && e1.releases > 0 && !t1.is_empty(), "{e1:?}");
-            assert_eq!(format!("{e1:?}"), format!("{e2:?}"), "{mode:?}");
-            assert_eq!(t1, t2);
+            let (fast, fast_passes) = run(true);
+            let (exact, exact_passes) = run(false);
+            assert!(fast_passes < exact_passes, "{mode:?}: {fast_passes} passes against {exact_passes}");
+            for (k, (a, b)) in fast.iter().zip(&exact).enumerate() {
+                let scale = a.load_n.abs().max(b.elastic_load_n).max(2.0 * std::f64::consts::PI * 0.1 * 0.5e-6);
+                assert_eq!(a.contacts, b.contacts, "{mode:?} point {k}");
+                assert!((a.elastic_load_n - b.elastic_load_n).abs() <= 1e-9 * scale, "{mode:?} point {k}: {a:?} {b:?}");
+                // Separation: the load scale's tolerance over the stiffness (> 1e3 N/m here); the
+                // area pi R sum z+ moves by at most pi R n times that.
+                let sep_tol = 1e-9 * scale / 1e3;
+                assert!((a.separation_m - b.separation_m).abs() <= sep_tol, "{mode:?} point {k}");
+                let area_tol = 1e-8 * b.real_area_m2 + std::f64::consts::PI * 0.5e-6 * b.contacts as f64 * sep_tol;
+                assert!((a.real_area_m2 - b.real_area_m2).abs() <= area_tol, "{mode:?} point {k}: {a:?} {b:?}");
+            }
         }
     }
 

@@ -12,9 +12,7 @@
 //! 1. map: interference, contact radius (the square roots, all independent of each other, so
 //!    their latency overlaps), force, activity, the smallest |z| (how far the plane may move
 //!    before any summit changes its contact state); results go to small arrays on the stack (L1);
-//! 2. force sums: P, P u, P v, |P|, z+, elastic load, largest z+ (and where), summits over the
-//!    hardness; the count and the sums of u and v of the summits with z > 0 (the area is linear
-//!    in the pose: `pi R sum z+`);
+//! 2. force sums: P, P u, P v, |P|, z+, elastic load, largest z+, summits over the hardness;
 //! 3. stiffness sums: k, k u, k v, and (tilt free only) k u^2, k u v, k v^2.
 //!
 //! Splitting the stages keeps each loop's accumulators in registers (one pass with all 16 sums
@@ -62,9 +60,6 @@ struct Acc {
     zc: [f64; W],
     el: [f64; W],
     zmax: [f64; W],
-    /// (u, v) of the summit with the largest z+ in each lane.
-    umax: [f64; W],
-    vmax: [f64; W],
     over: [f64; W],
     /// Smallest z of the summits in contact with z >= 0 (how far the plane may approach... recede
     /// before one of them releases), smallest |z| of the others (before one touches).
@@ -72,9 +67,6 @@ struct Acc {
     gap_out: [f64; W],
     /// Smallest |z - z_hard| of the summits in contact (hardness only).
     hgap: [f64; W],
-    /// Sums of u and v over the summits with z > 0 (the area's linearisation).
-    su: [f64; W],
-    sv: [f64; W],
     k: [f64; W],
     ku: [f64; W],
     kv: [f64; W],
@@ -95,14 +87,10 @@ impl Acc {
             zc: z,
             el: z,
             zmax: z,
-            umax: z,
-            vmax: z,
             over: z,
             gap_in: inf,
             gap_out: inf,
             hgap: inf,
-            su: z,
-            sv: z,
             k: z,
             ku: z,
             kv: z,
@@ -210,18 +198,13 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
             acc.zc[l] += zcs[j];
             acc.el[l] += as_[j] * zcs[j] * k.inv_d;
             let zc = zcs[j];
-            let top = zc > acc.zmax[l];
-            acc.zmax[l] = if top { zc } else { acc.zmax[l] };
+            acc.zmax[l] = if zc > acc.zmax[l] { zc } else { acc.zmax[l] };
             if HARD {
                 acc.over[l] += if as_[j] > k.a_hard { 1.0 } else { 0.0 };
             }
-            if LIN {
-                acc.umax[l] = if top { us[j] } else { acc.umax[l] };
-                acc.vmax[l] = if top { vs[j] } else { acc.vmax[l] };
-                if HARD {
-                    let dh = if zc > 0.0 { (zc - k.z_hard).abs() } else { f64::INFINITY };
-                    acc.hgap[l] = if dh < acc.hgap[l] { dh } else { acc.hgap[l] };
-                }
+            if LIN && HARD {
+                let dh = if zc > 0.0 { (zc - k.z_hard).abs() } else { f64::INFINITY };
+                acc.hgap[l] = if dh < acc.hgap[l] { dh } else { acc.hgap[l] };
             }
         }
     }
@@ -234,12 +217,6 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
             if TILT || LIN {
                 acc.ku[l] += kk * us[j];
                 acc.kv[l] += kk * vs[j];
-            }
-            if LIN {
-                // (Here rather than in stage 2, whose accumulators fill the registers.)
-                let pos = zcs[j] > 0.0;
-                acc.su[l] += if pos { us[j] } else { 0.0 };
-                acc.sv[l] += if pos { vs[j] } else { 0.0 };
             }
             if TILT {
                 let ku = kk * us[j];
@@ -385,14 +362,7 @@ pub(crate) fn evaluate_with(
     let (p, pu, pv) = (s(&acc.p), s(&acc.pu), s(&acc.pv));
     let (kk, ku, kv, kuu, kuv, kvv) = (s(&acc.k), s(&acc.ku), s(&acc.kv), s(&acc.kuu), s(&acc.kuv), s(&acc.kvv));
     let ell = 1.0 / k.inv_ell;
-    // Largest z+ and where (ties: the first lane), smallest gaps.
-    let mut top = 0;
-    for l in 1..W {
-        if acc.zmax[l] > acc.zmax[top] {
-            top = l;
-        }
-    }
-    let zmax = acc.zmax[top];
+    let zmax = acc.zmax.iter().copied().fold(0.0, f64::max);
     let min = |v: &[f64; W]| v.iter().copied().fold(f64::INFINITY, |m, x| if x < m { x } else { m });
     // Largest contact radius: sqrt is monotone, so this is the largest of the summits' radii.
     let amax = (k.radius * zmax).sqrt();
@@ -415,8 +385,6 @@ pub(crate) fn evaluate_with(
             gap_out: min(&acc.gap_out),
             hard_gap: min(&acc.hgap),
             k_uv: [s(&acc.ku), s(&acc.kv)],
-            area_uv: [s(&acc.su), s(&acc.sv)],
-            z_max: [zmax, acc.umax[top], acc.vmax[top]],
         }),
     };
     if !tilt {
