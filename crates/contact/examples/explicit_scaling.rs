@@ -11,6 +11,10 @@
 //! each run's `curve_cpu_s` (pull-off + 100 points) is printed to stderr.
 //! `--exact`: without the two shortcuts of the Newton iteration (`ExplicitSolver::set_shortcuts`).
 //! `--dump PATH`: the last curve's points (pull-off first) with every digit, for comparisons.
+//! `--stream`: also the memory reference, printed to stderr: thread CPU per summit of a plain
+//! read of the summit arrays (x, y f32 and height f64: the 16 B a pass reads per summit, summed in
+//! 4 lanes so the loop vectorises), over the whole surface and over its first 10 % (about the
+//! prefix a pass scans on this curve), repeated until about 2e8 summits were read.
 
 use std::time::Instant;
 
@@ -31,6 +35,29 @@ fn thread_cpu_s() -> Option<f64> {
     let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
     let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
     Some(ns * 1e-9)
+}
+
+/// Sum of x + y + h over the summits (4 lanes): a plain read of the 16 B per summit.
+fn stream(xs: &[f32], ys: &[f32], hs: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 4];
+    for ((x, y), h) in xs.chunks_exact(4).zip(ys.chunks_exact(4)).zip(hs.chunks_exact(4)) {
+        for l in 0..4 {
+            acc[l] += f64::from(x[l]) + f64::from(y[l]) + h[l];
+        }
+    }
+    acc.iter().sum()
+}
+
+/// Thread CPU per summit of [`stream`] over the first `n` summits \[ns\].
+fn stream_ns(xs: &[f32], ys: &[f32], hs: &[f64], n: usize) -> Option<f64> {
+    let reps = (2e8 / n as f64).ceil().max(1.0) as usize;
+    let c0 = thread_cpu_s()?;
+    let mut total = 0.0;
+    for _ in 0..reps {
+        total += stream(std::hint::black_box(&xs[..n]), &ys[..n], &hs[..n]);
+    }
+    std::hint::black_box(total);
+    Some((thread_cpu_s()? - c0) / (reps * n) as f64 * 1e9)
 }
 
 fn main() {
@@ -78,6 +105,13 @@ fn main() {
         let surface = generate(&layout, &FaceParams::gaussian_fixed(eta, sigma, r)).expect("surface");
         let gen_s = t.elapsed().as_secs_f64();
         let m = surface.len() as f64;
+        if args.iter().any(|a| a == "--stream") {
+            let (xs, ys, hs) = (surface.xs_m(), surface.ys_m(), surface.heights_m());
+            let all = stream_ns(xs, ys, hs, xs.len());
+            let prefix = stream_ns(xs, ys, hs, xs.len() / 10);
+            let f = |v: Option<f64>| v.map_or("n/a".into(), |v| format!("{v:.3}"));
+            eprintln!("summits {m:.0}: stream_ns_per_summit all {} first_10_percent {}", f(all), f(prefix));
+        }
         // L* = D L / (eta A_a R^1/2 sigma^3/2) = 0.1 (eq. 5c).
         let l_max = 0.1 * m * r.sqrt() * sigma.powf(1.5) / d;
         let cfg = SolverConfig { detail: Detail::Summary, mode, ..Default::default() };
