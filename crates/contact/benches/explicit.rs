@@ -9,13 +9,15 @@
 //! * `explicit/table1_md_lognormal_new`: building that solver (sorting check and the tables).
 //! * `explicit/curve_1e6_tilt_free`: 1e6 summits, tilt free, DMT: pull-off search plus a 100-point
 //!   loading curve from pull-off to L* = 0.1 (floor 0.5 s in all).
+//! * `explicit/curve_1e6_flat`: the same curve for a flat shoe (the GW situation; `contact --sweep
+//!   --mode flat`).
 //!
 //! `cargo bench -p stiction-contact --bench explicit`
 
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_main};
-use stiction_contact::explicit::{Detail, ExplicitSolver, SolverConfig};
+use stiction_contact::explicit::{Detail, ExplicitSolver, ShoeMode, SolverConfig};
 use stiction_contact::single::{AdhesionLaw, AsperityParams, Branch};
 use stiction_surface::{FaceParams, Layout, Placement, RadiusDistribution, Surface, generate};
 
@@ -33,7 +35,11 @@ fn load_star_01(m: usize) -> f64 {
 }
 
 fn solver(s: Surface, detail: Detail) -> ExplicitSolver {
-    let cfg = SolverConfig { detail, ..Default::default() };
+    solver_mode(s, detail, ShoeMode::TiltFree)
+}
+
+fn solver_mode(s: Surface, detail: Detail, mode: ShoeMode) -> ExplicitSolver {
+    let cfg = SolverConfig { detail, mode, ..Default::default() };
     ExplicitSolver::new(s, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver")
 }
 
@@ -111,6 +117,14 @@ pub(crate) fn bench(c: &mut Criterion) {
             big.reset();
             let po = big.pull_off(0.0, 1e-6).expect("pull-off").load_n;
             big.sweep(&loads(po, load_star_01(m6), 100), Branch::Loading).expect("sweep")
+        })
+    });
+    let mut flat = solver_mode(surface(1e6, 1), Detail::Summary, ShoeMode::Flat);
+    g.bench_function("curve_1e6_flat", |b| {
+        b.iter(|| {
+            flat.reset();
+            let po = flat.pull_off(0.0, 1e-6).expect("pull-off").load_n;
+            flat.sweep(&loads(po, load_star_01(m6), 100), Branch::Loading).expect("sweep")
         })
     });
     g.finish();
