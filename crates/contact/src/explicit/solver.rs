@@ -437,8 +437,8 @@ impl ExplicitSolver {
     /// solve extrapolated from the last three equilibria, and the last step applied by
     /// linearisation without a confirming pass when no summit can change its contact state
     /// (docs/explicit-solver.md, "Passes per load point"). Off, every step is confirmed by a pass
-    /// and the first step is the Newton step: the iteration before these shortcuts, bit for bit.
-    /// For comparisons and tests; the results agree to the solver tolerance.
+    /// and the first step is the Newton step, as before these shortcuts. For comparisons and
+    /// tests; the equilibria agree to the solver tolerance.
     pub fn set_shortcuts(&mut self, on: bool) {
         self.geom.shortcuts = on;
     }
