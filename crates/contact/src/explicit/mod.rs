@@ -33,6 +33,12 @@
 //!   `relative_tolerance` (default 1e-9) of the load scale max(|L|, sum|P_i|, 2 pi dgamma R)
 //!   and S is consistent; otherwise [`SolveError::NotConverged`] is returned, never a silent result.
 //!
+//! * Along a load path the first step of a solve is the quadratic extrapolation of the last three
+//!   equilibria (when it agrees with the Newton step to 10 %), and the last step is applied without
+//!   a pass when the previous pass proves that no summit can change its contact state within it
+//!   and bounds the linearisation error below half the tolerance (fast pass only; about 2 passes
+//!   per load point instead of 3; [`ExplicitSolver::set_shortcuts`] turns both off).
+//!
 //! Every accepted step lowers the energy, releases lower it further, so the result is a local
 //! minimum reached by descent from the previous state: successive solves follow the load path
 //! (jump-in on loading, release and pull-off on unloading, JKR/MD hysteresis per summit). Touching
