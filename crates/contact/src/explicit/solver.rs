@@ -993,19 +993,22 @@ fn release<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &mut State, ev: &mut Eval
 /// Applies the Newton step `dq` (plane movement `mv` over the apparent area) without a pass over
 /// the summits when that is exact to within half the tolerance `tol`, and returns whether it did.
 ///
-/// The last evaluation `ev` (a fast pass at the current pose, its contact set consistent: no
-/// member past release) knows the smallest |z| of every summit (`gap`). If the plane moves by
-/// m < gap / 2 nowhere does a summit touch, release or cross the hardness limit, so the contact set
-/// and every count stay; each contact's force changes by `k dz + 1/2 P''(xi) dz^2` with
-/// |dz| <= m and, for Hertz/DMT, `P'' = 3/4 R^1/2 / (D xi^1/2)`, xi >= gap - m. The gradient
-/// after the step is therefore `g + H dq` (exact linearisation, the sums of `ev`) up to at most
-/// `1/2 m^2 n P''(gap - m) max|phi_j|` per row (n contacts). When that bound plus `|g + H dq|`
-/// is below `tol / 2` the step is applied with the linearised totals: force and elastic load
-/// by `-H dq`, the moments likewise, the real area exactly (`pi R sum z+` is linear in the pose
-/// for a fixed contact set), the largest pressure from the moved largest interference. The
-/// residuals of such a result are the linearised ones; the true ones differ by at most the bound.
-/// It saves the pass that only confirmed the last Newton step (one of three per load point on
-/// large surfaces).
+/// The last evaluation `ev` (a fast pass at the current pose with its statistics, the contact set
+/// consistent: no member past release) knows the smallest z of the contacts (`gap_in`), the
+/// smallest |z| of all other summits (`gap_out`) and of |z - z_hard| of the contacts. If z falls
+/// nowhere by more than `gap_in / 2`, rises nowhere by `gap_out` and moves by less than the
+/// hardness gap (the plane's change is linear: its extremes are at the corners), no summit
+/// touches, releases or crosses the hardness limit, so the contact set and every count stay; each
+/// contact's force changes by `k dz + 1/2 P''(xi) dz^2` with |dz| <= m and, for Hertz/DMT,
+/// `P'' = 3/4 R^1/2 / (D xi^1/2)`, `xi >= gap_in - fall`. The gradient after the step is therefore
+/// `g + H dq` (exact linearisation, the sums of `ev`) up to at most
+/// `1/2 m^2 n P''(gap_in - fall) max|phi_j|` per row (n contacts). When that bound plus
+/// `|g + H dq|` is below `tol / 2` the step is applied: force, elastic load and moments by
+/// `-H dq`, the real area exactly (`pi R sum z+` is linear in the pose for a fixed contact set; the
+/// set keeps its members' coordinate sums), the largest pressure from the largest interference
+/// rescanned at the new pose. The residuals of such a result are the linearised ones; the true
+/// ones differ by at most the bound. It saves the pass that only confirmed the last Newton step
+/// (one of three per load point on large surfaces).
 fn linear_step<L: LawEval + ?Sized>(
     g: &Geom,
     law: &L,
