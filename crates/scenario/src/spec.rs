@@ -119,6 +119,7 @@ pub enum ShoeMode {
     /// A fixed number of contacts (`contacts`), for comparison with eq. 12.
     Fixed,
 }
+stiction_units::display_serde_name!(ContactModel, ShoeMode);
 
 /// Contact law and model.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema, PartialEq)]

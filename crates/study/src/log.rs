@@ -63,8 +63,8 @@ impl Header {
             ("--samples", self.samples.to_string(), other.samples.to_string()),
             ("--seed", self.seed.to_string(), other.seed.to_string()),
             ("--fixed-surface", (!self.vary_surface).to_string(), (!other.vary_surface).to_string()),
-            ("--calibration", format!("{:?}", self.calibration), format!("{:?}", other.calibration)),
-            ("--slip-path", format!("{:?}", self.slip_path), format!("{:?}", other.slip_path)),
+            ("--calibration", self.calibration.to_string(), other.calibration.to_string()),
+            ("--slip-path", self.slip_path.to_string(), other.slip_path.to_string()),
             ("uncertain parameters", format!("{:?}", self.parameters), format!("{:?}", other.parameters)),
         ];
         checks.into_iter().find(|(_, a, b)| a != b).map(|(what, a, b)| format!("{what}: {a} vs {b}"))

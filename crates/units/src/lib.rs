@@ -30,6 +30,35 @@ pub mod io;
 mod uncertain;
 pub use uncertain::{Distribution, ScalarInput, UncertainInput, nominal_from_json};
 
+/// The name serde gives a value: for a unit enum variant the string the scenario files and every
+/// JSON output spell it with (`"maugis-dugdale"`, `"tilt"`); anything else its compact JSON.
+///
+/// Text output uses the same names as JSON through [`display_serde_name!`](crate::display_serde_name),
+/// so each enum is spelled one way everywhere and the spelling lives only in its serde attributes.
+pub fn serde_name<T: Serialize + ?Sized>(value: &T) -> String {
+    match serde_json::to_value(value) {
+        Ok(serde_json::Value::String(s)) => s,
+        Ok(other) => other.to_string(),
+        Err(e) => format!("<{e}>"),
+    }
+}
+
+/// Implements `Display` for enums with their serde names (see [`serde_name`]):
+/// `stiction_units::display_serde_name!(AdhesionLaw, Branch);` makes `AdhesionLaw::MaugisDugdale`
+/// print as `maugis-dugdale`, as it is written in a scenario file and in JSON.
+#[macro_export]
+macro_rules! display_serde_name {
+    ($($t:ty),+ $(,)?) => {
+        $(
+            impl ::std::fmt::Display for $t {
+                fn fmt(&self, f: &mut ::std::fmt::Formatter<'_>) -> ::std::fmt::Result {
+                    f.write_str(&$crate::serde_name(self))
+                }
+            }
+        )+
+    };
+}
+
 /// Exponents of the base dimensions (metre, kilogram, second, ampere) of a unit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct DimensionVector(pub [i8; 4]);
@@ -208,12 +237,17 @@ impl QuantityError {
             Constraint::Positive => "positive ",
             Constraint::NonNegative => "non-negative ",
         };
+        // "a positive length", "a non-negative area": the sign goes after the article.
+        let what = match (sign, dim.description().split_once(' ')) {
+            ("", _) | (_, None) => dim.description().to_string(),
+            (_, Some((_article, noun))) => format!("a {sign}{noun}"),
+        };
         let si = dim.si_unit();
         let bare = if si.is_empty() { "a number".to_string() } else { format!("a number in {si}") };
         QuantityError {
             value: value.into(),
             problem: problem.into(),
-            expected: format!("{sign}{} such as {} (or {bare})", dim.description(), dim.example()),
+            expected: format!("{what} such as {} (or {bare})", dim.example()),
         }
     }
 }
@@ -238,5 +272,31 @@ impl fmt::Display for QuantityInput {
             QuantityInput::Text(t) => write!(f, "{t}"),
             QuantityInput::Uncertain(u) => write!(f, "{u:?}"),
         }
+    }
+}
+
+#[cfg(test)]
+mod name_tests {
+    use super::*;
+
+    /// Text and JSON spell an enum the same way, the way a scenario file writes it.
+    #[test]
+    fn display_is_the_serde_name() {
+        assert_eq!(Distribution::Lognormal.to_string(), "lognormal");
+        assert_eq!(serde_json::to_string(&Distribution::Lognormal).unwrap(), "\"lognormal\"");
+        let back: Distribution = serde_json::from_str(&format!("\"{}\"", Distribution::Uniform)).unwrap();
+        assert_eq!(back, Distribution::Uniform);
+        assert_eq!(serde_name(&3), "3");
+    }
+
+    /// "expected a positive length", not "expected positive a length".
+    #[test]
+    fn expected_reads_as_english() {
+        let e = parse_quantity_checked("-0.5 um", Dimension::Length, Constraint::Positive).unwrap_err();
+        assert!(e.to_string().contains("expected a positive length such as"), "{e}");
+        let e = parse_quantity_checked("-1 um^2", Dimension::Area, Constraint::NonNegative).unwrap_err();
+        assert!(e.to_string().contains("expected a non-negative area such as"), "{e}");
+        let e = parse_quantity_checked("1 N", Dimension::Length, Constraint::Finite).unwrap_err();
+        assert!(e.to_string().contains("expected a length such as"), "{e}");
     }
 }

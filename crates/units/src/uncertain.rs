@@ -29,6 +29,7 @@ pub enum Distribution {
     /// Uniform on `[min, max]`, or on `value +/- sd * sqrt(3)` (same SD) when no bounds are given.
     Uniform,
 }
+crate::display_serde_name!(Distribution);
 
 /// A value with an uncertainty. A nominal run uses `value`; a Monte Carlo study draws from
 /// `distribution` with standard deviation `sd` (or between `min` and `max` for a uniform one).

@@ -121,7 +121,7 @@ pub fn run(args: Args) -> CliResult {
         if args.json {
             return print_json(&result);
         }
-        crate::outln!("Load sweep on {} summits, mode {:?}, law {:?}", solver.len(), c.mode, c.law);
+        crate::outln!("Load sweep on {} summits, mode {}, law {}", solver.len(), c.mode, c.law);
         crate::outln!(
             "  {:>10} {:>12} {:>10} {:>10} {:>8} {:>12} {:>11} {:>11}",
             "L (uN)",
@@ -157,7 +157,7 @@ pub fn run(args: Args) -> CliResult {
         return print_json(&eq);
     }
     print_table(
-        &format!("Explicit contact on {} summits ({:?}, {:?})", solver.len(), c.mode, c.law),
+        &format!("Explicit contact on {} summits (mode {}, law {})", solver.len(), c.mode, c.law),
         &rows(&eq, material.hardness),
     );
     if args.summits {

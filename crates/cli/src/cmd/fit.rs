@@ -106,7 +106,7 @@ fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliR
     let s = scenario.material.as_ref().map_or(f64::NAN, |m| m.shear_strength);
     let comment = format!(
         "SYNTHETIC DATA made by stiction itself, not a measurement.\n\
-         Virtual meter of {} (contact model {:?}, s = {}), {} repeats per clamp voltage,\n\
+         Virtual meter of {} (contact model {}, s = {}), {} repeats per clamp voltage,\n\
          Gaussian noise SD {} V added to each pull voltage (ChaCha8 seed {}).\n\
          Command: stiction fit --scenario {} --synthesize {} --noise \"{} V\" --repeats {} --seed {}",
         args.scenario.display(),

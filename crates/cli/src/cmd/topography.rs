@@ -206,7 +206,7 @@ fn print_table_of(o: &Output) {
                     st.missing_pixels
                 ),
             ),
-            ("levelling", format!("{:?}", o.preparation.levelling).to_lowercase()),
+            ("levelling", o.preparation.levelling.to_string()),
             (
                 "short, long cut-off",
                 format!("{}, {}", cut(o.preparation.short_cutoff_m), cut(o.preparation.long_cutoff_m)),
