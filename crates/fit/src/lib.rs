@@ -181,12 +181,19 @@ pub fn calibration_sources(
     device: &stiction_meter::Reduction,
 ) -> Result<[CalibrationSource; 3], FitError> {
     let get = |name: &str, path: &str, nominal: f64| -> Result<CalibrationSource, FitError> {
+        let unit = if name == "spring_force" { "N" } else { "N/V^2" };
         let mut v = json;
         for key in path.split('.') {
             v = match v.get(key) {
                 Some(x) => x,
                 None => {
-                    return Ok(CalibrationSource { name: name.into(), path: path.into(), nominal, uncertainty: None });
+                    return Ok(CalibrationSource {
+                        name: name.into(),
+                        path: path.into(),
+                        nominal,
+                        unit,
+                        uncertainty: None,
+                    });
                 }
             };
         }
@@ -198,7 +205,7 @@ pub fn calibration_sources(
                 .filter(|u| u.sd.is_some() || u.min.is_some()),
                 _ => None,
             };
-        Ok(CalibrationSource { name: name.into(), path: path.into(), nominal, uncertainty })
+        Ok(CalibrationSource { name: name.into(), path: path.into(), nominal, unit, uncertainty })
     };
     Ok([
         get("a_clamp", "actuators.clamp.conversion_factor", device.a_clamp_n_per_v2)?,

@@ -12,8 +12,10 @@ use crate::{Meter, MeterError, Reduction};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MeasuredSlip {
     /// Clamp voltage, V.
+    #[serde(rename = "v_clamp_v")]
     pub v_clamp: f64,
     /// Pull voltage at slip, V.
+    #[serde(rename = "v_pull_v")]
     pub v_pull: f64,
 }
 
@@ -99,11 +101,14 @@ pub const MAX_MEASURED_VOLTAGE_V: f64 = stiction_scenario::MAX_VOLTAGE_V;
 /// One measured slip beside the virtual meter at the same clamp voltage.
 #[derive(Debug, Clone, Serialize)]
 pub struct ComparedPoint {
-    /// Clamp voltage, V.
+    /// Clamp voltage, V (JSON `v_clamp_v`).
+    #[serde(rename = "v_clamp_v")]
     pub v_clamp: f64,
-    /// Measured pull voltage at slip, V.
+    /// Measured pull voltage at slip, V (JSON `v_pull_measured_v`).
+    #[serde(rename = "v_pull_measured_v")]
     pub v_pull_measured: f64,
-    /// Virtual pull voltage at slip, V (None: no contact or no slip in the model).
+    /// Virtual pull voltage at slip, V (None: no contact or no slip in the model; JSON `v_pull_model_v`).
+    #[serde(rename = "v_pull_model_v")]
     pub v_pull_model: Option<f64>,
     /// Measured friction and load reduced with the nominal factors, N.
     pub friction_measured_n: f64,

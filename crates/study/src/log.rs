@@ -84,17 +84,19 @@ impl Header {
     }
 }
 
-/// The column names of samples.csv: units in every name.
+/// The column names of samples.csv: the unit at the end of every name that holds a quantity
+/// (`name_unit`, as every other CSV and JSON key: `apparent_adhesion_force_n`,
+/// `surface.summit_radius_m`); pure numbers and counts have none.
 pub fn columns(header: &Header) -> Vec<String> {
     let mut c = vec![
-        "sample [index]".to_string(),
-        "mu_apparent [1]".into(),
-        "apparent_adhesion_force [N]".into(),
-        "mean_contacts [count]".into(),
+        "sample".to_string(),
+        "mu_apparent".into(),
+        "apparent_adhesion_force_n".into(),
+        "mean_contacts".into(),
     ];
-    c.extend(header.parameters.iter().map(|(p, u)| format!("{p} [{u}]")));
-    c.push("reason [code]".into());
-    c.push("detail [text]".into());
+    c.extend(header.parameters.iter().map(|(p, u)| stiction_units::key_with_unit(p, u)));
+    c.push("reason".into());
+    c.push("detail".into());
     c
 }
 

@@ -43,6 +43,43 @@ pub fn serde_name<T: Serialize + ?Sized>(value: &T) -> String {
     }
 }
 
+/// The suffix that names an SI unit in a JSON key or CSV column (`name_unit`, as `load_n`,
+/// `real_area_m2`): "N/V^2" -> "n_per_v2", "m^-2" -> "per_m2", "1/Pa" -> "per_pa",
+/// "N s/m" -> "n_s_per_m"; "" or "1" (a pure number) -> "" (no suffix).
+pub fn unit_key_suffix(si_unit: &str) -> String {
+    let unit = si_unit.trim();
+    if unit.is_empty() || unit == "1" {
+        return String::new();
+    }
+    // Terms with a negative power move behind "per": "m^-2" is "per m^2".
+    let (num, den) = unit.split_once('/').unwrap_or((unit, ""));
+    let mut over: Vec<String> = Vec::new();
+    let mut under: Vec<String> = Vec::new();
+    for term in num.split([' ', '*', '.']).filter(|t| !t.is_empty() && *t != "1") {
+        match term.split_once("^-") {
+            Some((base, power)) => under.push(format!("{base}{power}")),
+            None => over.push(term.replace('^', "")),
+        }
+    }
+    for term in den.split([' ', '*', '.']).filter(|t| !t.is_empty()) {
+        under.push(term.replace('^', ""));
+    }
+    let mut key = over.join("_");
+    if !under.is_empty() {
+        key = if key.is_empty() { format!("per_{}", under.join("_")) } else { format!("{key}_per_{}", under.join("_")) };
+    }
+    key.to_lowercase()
+}
+
+/// `name` with the unit suffix of [`unit_key_suffix`]: ("surface.summit_radius", "m") ->
+/// "surface.summit_radius_m"; a pure number keeps its bare name.
+pub fn key_with_unit(name: &str, si_unit: &str) -> String {
+    match unit_key_suffix(si_unit) {
+        s if s.is_empty() => name.to_string(),
+        s => format!("{name}_{s}"),
+    }
+}
+
 /// Implements `Display` for enums with their serde names (see [`serde_name`]):
 /// `stiction_units::display_serde_name!(AdhesionLaw, Branch);` makes `AdhesionLaw::MaugisDugdale`
 /// print as `maugis-dugdale`, as it is written in a scenario file and in JSON.
@@ -287,6 +324,27 @@ mod name_tests {
         let back: Distribution = serde_json::from_str(&format!("\"{}\"", Distribution::Uniform)).unwrap();
         assert_eq!(back, Distribution::Uniform);
         assert_eq!(serde_name(&3), "3");
+    }
+
+    /// The unit suffixes of keys and columns, as the hand-written keys spell them.
+    #[test]
+    fn unit_suffixes() {
+        for (unit, key) in [
+            ("N", "n"),
+            ("m^2", "m2"),
+            ("N/V^2", "n_per_v2"),
+            ("m^-2", "per_m2"),
+            ("1/Pa", "per_pa"),
+            ("J/m^2", "j_per_m2"),
+            ("N s/m", "n_s_per_m"),
+            ("N/m", "n_per_m"),
+            ("1", ""),
+            ("", ""),
+        ] {
+            assert_eq!(unit_key_suffix(unit), key, "{unit}");
+        }
+        assert_eq!(key_with_unit("surface.summit_radius", "m"), "surface.summit_radius_m");
+        assert_eq!(key_with_unit("meter.slip_mu", "1"), "meter.slip_mu");
     }
 
     /// "expected a positive length", not "expected positive a length".

@@ -298,11 +298,11 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
 fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
     let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
     w.write_record([
-        "input [path]",
-        "mu_first_order_sobol [1]",
-        "fa0_first_order_sobol [1]",
-        "mu_spearman_rho [1]",
-        "fa0_spearman_rho [1]",
+        "input",
+        "mu_first_order_sobol",
+        "fa0_first_order_sobol",
+        "mu_spearman_rho",
+        "fa0_spearman_rho",
     ])?;
     let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
     for r in &summary.sensitivity.inputs {
