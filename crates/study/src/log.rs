@@ -88,12 +88,8 @@ impl Header {
 /// (`name_unit`, as every other CSV and JSON key: `apparent_adhesion_force_n`,
 /// `surface.summit_radius_m`); pure numbers and counts have none.
 pub fn columns(header: &Header) -> Vec<String> {
-    let mut c = vec![
-        "sample".to_string(),
-        "mu_apparent".into(),
-        "apparent_adhesion_force_n".into(),
-        "mean_contacts".into(),
-    ];
+    let mut c =
+        vec!["sample".to_string(), "mu_apparent".into(), "apparent_adhesion_force_n".into(), "mean_contacts".into()];
     c.extend(header.parameters.iter().map(|(p, u)| stiction_units::key_with_unit(p, u)));
     c.push("reason".into());
     c.push("detail".into());

@@ -66,7 +66,8 @@ pub fn unit_key_suffix(si_unit: &str) -> String {
     }
     let mut key = over.join("_");
     if !under.is_empty() {
-        key = if key.is_empty() { format!("per_{}", under.join("_")) } else { format!("{key}_per_{}", under.join("_")) };
+        key =
+            if key.is_empty() { format!("per_{}", under.join("_")) } else { format!("{key}_per_{}", under.join("_")) };
     }
     key.to_lowercase()
 }

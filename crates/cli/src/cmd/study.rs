@@ -297,13 +297,7 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
 
 fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
     let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
-    w.write_record([
-        "input",
-        "mu_first_order_sobol",
-        "fa0_first_order_sobol",
-        "mu_spearman_rho",
-        "fa0_spearman_rho",
-    ])?;
+    w.write_record(["input", "mu_first_order_sobol", "fa0_first_order_sobol", "mu_spearman_rho", "fa0_spearman_rho"])?;
     let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
     for r in &summary.sensitivity.inputs {
         w.write_record([
