@@ -39,3 +39,79 @@ fn enums_have_their_scenario_names_in_text_and_json() {
         assert!(!text.contains(debug), "{debug} in\n{text}");
     }
 }
+
+/// The lines of the table that follows the line containing `title`, up to the next blank line.
+fn table_after<'a>(text: &'a str, title: &str) -> Vec<&'a str> {
+    let mut lines = text.lines().skip_while(|l| !l.contains(title));
+    assert!(lines.next().is_some(), "no `{title}` in\n{text}");
+    lines.take_while(|l| !l.trim().is_empty()).filter(|l| !l.trim_start().starts_with("mean |")).collect()
+}
+
+/// A table whose last column is right-aligned: every line (header too) ends in the same column.
+fn assert_aligned(lines: &[&str], what: &str) {
+    assert!(lines.len() >= 3, "{what}: too few lines: {lines:#?}");
+    let width = lines[0].chars().count();
+    for l in lines {
+        assert_eq!(l.chars().count(), width, "{what}: misaligned line\n{}", lines.join("\n"));
+    }
+}
+
+/// `contact --sweep`: events as sentences, no raw JSON; --help says what --json returns, and it
+/// returns that: an object with `points` and `events`.
+#[test]
+fn contact_sweep_prints_events_as_sentences_and_json_as_documented() {
+    let text = stdout(&["contact", "scenarios/tas2000.json", "--sweep", "1uN:-2uN:4"]);
+    assert!(!text.contains("event:") && !text.contains('{'), "{text}");
+    assert!(text.contains("jump-in at L = 1.0000 uN (point 0): contacts 0 -> 3"), "{text}");
+    assert!(text.contains("pull-off: no equilibrium at L = -1.0000 uN"), "{text}");
+    let table = table_after(&text, "Load sweep on");
+    assert_aligned(&table, "contact sweep");
+    let help = stdout(&["contact", "--help"]);
+    assert!(help.contains(r#"{"points": [one such equilibrium per load"#) && help.contains("\"events\""), "{help}");
+    let j = stiction_json(&["contact", "scenarios/tas2000.json", "--sweep", "1uN:-2uN:4", "--json"]);
+    assert_eq!(j["points"].as_array().map(Vec::len), Some(2), "{j}");
+    let events = j["events"].as_array().expect("events");
+    assert_eq!(events[0]["event"], "jump_in");
+    assert_eq!(events.last().unwrap()["event"], "pull_off");
+}
+
+/// `actuator --sweep` shows its sweep in the text output; the validation and switch tables are aligned.
+#[test]
+fn actuator_sweep_and_switch_tables_are_printed_aligned() {
+    let text = stdout(&["actuator", "scenarios/gca-rauf2022.json", "--sweep", "--sweep-steps", "40"]);
+    assert!(text.contains("Voltage sweep, loading (increasing V): 41 steps"), "{text}");
+    // Pull-in 18.11 V (the summary above) lies inside the printed jump interval.
+    let line = text.lines().find(|l| l.contains("pulls in to the stop between")).expect("pull-in line");
+    let v: Vec<f64> = line.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+    assert!(v.len() == 2 && v[0] < 18.11 && 18.11 < v[1], "{line}");
+    assert!(text.contains("releases from the stop between"), "{text}");
+    // The last column (at stop: yes/no) is text, left-aligned: compare the lines without it.
+    let sweep: Vec<&str> = table_after(&text, "Voltage sweep, unloading")[1..]
+        .iter()
+        .map(|l| l.rsplit_once("  ").map_or(*l, |(head, _)| head))
+        .collect();
+    assert_aligned(&sweep, "sweep");
+    let text = stdout(&[
+        "actuator",
+        "scenarios/gca-rauf2022.json",
+        "--validate",
+        "data/gca-pullin-release/measured.csv",
+        "--switches",
+        // The quasi-static protocol: the same tables in 3 s instead of 20 s.
+        "--set",
+        r#"actuators.gca.pull_in_protocol="quasi_static""#,
+    ]);
+    assert_aligned(&table_after(&text, "Validation against"), "validation");
+    assert_aligned(&table_after(&text, "Physics switches"), "switches");
+}
+
+/// The meter's table: one aligned column per quantity, units in the titles.
+#[test]
+fn run_table_is_aligned() {
+    let text = stdout(&["run", "scenarios/tas2000.json"]);
+    let mut lines = text.lines().skip_while(|l| !l.contains("V_clamp (V)"));
+    let table: Vec<&str> = lines.by_ref().take_while(|l| !l.trim().is_empty()).collect();
+    assert!(table.len() >= 10, "{text}");
+    // Without notes every line ends at the last numeric column.
+    assert_aligned(&table[1..], "run");
+}

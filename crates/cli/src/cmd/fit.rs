@@ -174,47 +174,41 @@ fn print_summary(r: &FitReport) {
         }
     }
     crate::outln!("\n{}", r.noise_note);
-    crate::outln!(
-        "\n  {:<18} {:>10} {:>24} {:>9} {:>4} {:>9} {:>7}",
-        "model",
-        "s (GPa)",
-        "95 % (GPa)",
-        "chi2",
-        "dof",
-        "AIC",
-        "dAIC"
-    );
+    crate::outln!();
+    let mut t = crate::output::TextTable::new(&["model", "s (GPa)", "95 % (GPa)", "chi2", "dof", "AIC", "dAIC"]);
     for m in &r.models {
-        crate::outln!(
-            "  {:<18} {:>10.4} {:>24} {:>9.2} {:>4} {:>9.2} {:>7}",
-            m.name,
-            m.shear_strength_pa.value / 1e9,
+        t.row(vec![
+            m.name.clone(),
+            format!("{:.4}", m.shear_strength_pa.value / 1e9),
             ci(m.shear_strength_pa.ci95, 1e-9),
-            m.chi2,
-            m.dof,
-            m.aic,
-            m.delta_aic.map_or("n/a".into(), |d| format!("{d:.2}"))
-        );
+            format!("{:.2}", m.chi2),
+            m.dof.to_string(),
+            format!("{:.2}", m.aic),
+            m.delta_aic.map_or("n/a".into(), |d| format!("{d:.2}")),
+        ]);
+    }
+    t.print("  ");
+    for m in &r.models {
+        let name = &m.name;
         if let Some(note) = &m.shear_strength_pa.note {
-            crate::outln!("  {:<18} s: {note}", "");
+            crate::outln!("  {name}: s: {note}");
         }
         if let Some(rough) = &m.roughness {
             crate::outln!(
-                "  {:<18} roughness: s over {} surfaces, 95 % {} GPa",
-                "",
+                "  {name}: roughness: s over {} surfaces, 95 % {} GPa",
                 rough.surfaces,
                 ci(rough.shear_strength_ci95_pa, 1e-9)
             );
         }
         if let Some(rr) = &m.summit_radius_m {
-            crate::outln!("  {:<18} R = {:.3} um, 95 % {} um", "", rr.value * 1e6, ci(rr.ci95, 1e6));
+            crate::outln!("  {name}: R = {:.3} um, 95 % {} um", rr.value * 1e6, ci(rr.ci95, 1e6));
         }
         if let Some(f) = &m.spring_force_n {
-            crate::outln!("  {:<18} F_spring = {:.3} uN, 95 % {} uN", "", f.value * 1e6, ci(f.ci95, 1e6));
+            crate::outln!("  {name}: F_spring = {:.3} uN, 95 % {} uN", f.value * 1e6, ci(f.ci95, 1e6));
         }
     }
     for f in &r.models_failed {
-        crate::outln!("  {:<18} failed: {}", f.name, f.reason);
+        crate::outln!("  {}: failed: {}", f.name, f.reason);
     }
     crate::outln!();
     for s in &r.model_selection {
