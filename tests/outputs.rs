@@ -115,3 +115,45 @@ fn run_table_is_aligned() {
     // Without notes every line ends at the last numeric column.
     assert_aligned(&table[1..], "run");
 }
+
+fn stiction_in(cwd: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_stiction"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("run stiction")
+}
+
+/// A path inside a scenario file is relative to the file's folder; a path typed with --set is
+/// relative to the current directory (docs/scenario.md).
+#[test]
+fn paths_in_files_follow_the_file_and_paths_on_the_command_line_the_current_directory() {
+    let dir = crate::util::temp_dir("paths");
+    let (scen, work) = (dir.join("scen"), dir.join("work"));
+    std::fs::create_dir_all(&scen).unwrap();
+    std::fs::create_dir_all(&work).unwrap();
+    let text = std::fs::read_to_string(crate::util::root().join("scenarios/tas2000-gw.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["measured"] = serde_json::json!({"voltages_csv": "m.csv"});
+    v["meter"].as_object_mut().unwrap().remove("slip_dynamics");
+    std::fs::write(scen.join("s.json"), serde_json::to_string_pretty(&v).unwrap()).unwrap();
+    std::fs::write(scen.join("m.csv"), "v_clamp_v,v_pull_v\n24,27.5\n26,32.0\n28,36.2\n").unwrap();
+    std::fs::write(work.join("m.csv"), "v_clamp_v,v_pull_v\n24,27.5\n25,30\n26,32.0\n28,36.2\n").unwrap();
+    let points = |out: std::process::Output| {
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        j["measured"]["points"].as_array().unwrap().len()
+    };
+    // From the file: scen/m.csv (3 rows), wherever the command runs.
+    assert_eq!(points(stiction_in(&dir, &["run", "scen/s.json", "--json"])), 3);
+    assert_eq!(points(stiction_in(&work, &["run", "../scen/s.json", "--json"])), 3);
+    // From the command line: the m.csv of the current directory, work/m.csv (4 rows).
+    let set = "measured.voltages_csv=m.csv";
+    assert_eq!(points(stiction_in(&work, &["run", "../scen/s.json", "--set", set, "--json"])), 4);
+    // ... and not the scenario's folder: dir/m.csv does not exist, and the error names it.
+    let out = stiction_in(&dir, &["run", "scen/s.json", "--set", set]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    let missing = dir.join("m.csv");
+    assert!(err.contains(missing.to_str().unwrap()), "{err}");
+}

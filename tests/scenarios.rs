@@ -154,7 +154,10 @@ fn measured_voltages_are_reduced_and_compared() {
     std::fs::copy(root().join("scenarios/tas2000.json"), dir.join("s.json")).unwrap();
     std::fs::write(dir.join("m.csv"), "# three slips\nv_clamp_v,v_pull_v\n24,27.5\n26,32.0\n28,36.2\n").unwrap();
     let s = dir.join("s.json");
-    let v = stiction_json(&["run", s.to_str().unwrap(), "--set", r#"measured={"voltages_csv": "m.csv"}"#, "--json"]);
+    // A path given with --set is relative to the current directory (the tests run in the
+    // workspace root), so the temporary files are named by their full paths.
+    let set = |f: &str| format!(r#"measured={{"voltages_csv": {:?}}}"#, dir.join(f).to_str().unwrap());
+    let v = stiction_json(&["run", s.to_str().unwrap(), "--set", &set("m.csv"), "--json"]);
     let m = &v["measured"];
     let pts = m["points"].as_array().unwrap();
     assert_eq!(pts.len(), 3);
@@ -170,7 +173,7 @@ fn measured_voltages_are_reduced_and_compared() {
     assert!((residual - (num(&pts[1], "v_pull_model_v").powi(2) - 32.0f64.powi(2))).abs() < 1e-9);
     // A bad line is named.
     std::fs::write(dir.join("bad.csv"), "v_clamp_v,v_pull_v\n24,27.5\n26,x\n").unwrap();
-    let out = stiction(&["run", s.to_str().unwrap(), "--set", r#"measured={"voltages_csv": "bad.csv"}"#]);
+    let out = stiction(&["run", s.to_str().unwrap(), "--set", &set("bad.csv")]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && stderr.contains("bad.csv, line 3") && stderr.contains("\"x\""), "{stderr}");
 }

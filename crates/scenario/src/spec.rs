@@ -439,6 +439,8 @@ impl MeterSpec {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MeasuredSpec {
-    /// The CSV file, relative to the scenario file.
+    /// The CSV file; a relative path is resolved against the scenario file's folder (given with
+    /// `--set` on the command line: against the current directory).
+    #[schemars(extend("x-stiction-path" = true))]
     pub voltages_csv: PathBuf,
 }
