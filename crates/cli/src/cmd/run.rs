@@ -156,6 +156,12 @@ fn print_summary(o: &RunOutput) {
     }
     if let Some(c) = &o.measured {
         crate::outln!("\n  measured data ({} slips):", c.points.len());
+        for rej in c.rows_rejected.iter().take(10) {
+            crate::outln!("    left out of the eq. 10 fit: line {}: {}", rej.line, rej.reason);
+        }
+        if c.rows_rejected.len() > 10 {
+            crate::outln!("    ... {} more rows left out (see --json)", c.rows_rejected.len() - 10);
+        }
         if let (Some(mu), Some(fa0)) = (c.mu_apparent_measured, c.apparent_adhesion_force_measured_n) {
             crate::outln!(
                 "    measured mu_e,a = {mu:.3}, F_a0 = {:.3} uN (eq. 10 on the measured voltages)",
