@@ -157,3 +157,101 @@ fn paths_in_files_follow_the_file_and_paths_on_the_command_line_the_current_dire
     let missing = dir.join("m.csv");
     assert!(err.contains(missing.to_str().unwrap()), "{err}");
 }
+
+/// `run` (a scenario's `measured` section) and `fit` read measured voltages with one reader: the
+/// same files are accepted, and a bad file gives the same message from both.
+#[test]
+fn run_and_fit_read_measured_voltages_alike() {
+    let dir = crate::util::temp_dir("readers");
+    let text = std::fs::read_to_string(crate::util::root().join("scenarios/tas2000-gw.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["measured"] = serde_json::json!({"voltages_csv": "m.csv"});
+    v["meter"].as_object_mut().unwrap().remove("slip_dynamics");
+    let s = dir.join("s.json");
+    std::fs::write(&s, serde_json::to_string_pretty(&v).unwrap()).unwrap();
+    let m = dir.join("m.csv");
+    let (s, m_arg) = (s.to_str().unwrap(), m.to_str().unwrap());
+    for (csv, needle) in [
+        ("v_clamp_v,v_pull_v,v_pull_v\n30,40,41\n", "appears twice"),
+        ("v_clamp_v,v_pull_v\n30,1e200\n", "at most"),
+        ("v_clamp_v,v_pull_v\n25,30\n26,abc\n", "line 3, column `v_pull_v`: value \"abc\""),
+        ("v_clamp,v_pull\n25,30\n", "gives no unit"),
+        ("v_clamp_v,v_pull_v\n", "no data rows"),
+    ] {
+        std::fs::write(&m, csv).unwrap();
+        let run = stiction(&["run", s]);
+        let fit = stiction(&["fit", m_arg, "--scenario", s, "--models", "discrete-n3"]);
+        let (e_run, e_fit) = (String::from_utf8_lossy(&run.stderr), String::from_utf8_lossy(&fit.stderr));
+        assert_eq!(run.status.code(), Some(2), "{csv:?}: {e_run}");
+        assert_eq!(fit.status.code(), Some(2), "{csv:?}: {e_fit}");
+        assert!(e_run.contains(needle) && e_run.contains(m_arg), "{csv:?}: {e_run}");
+        assert_eq!(e_run, e_fit, "{csv:?}");
+    }
+    // A readable file: rows below first contact (L <= 0 at V_clamp = 10 V) and without slip are
+    // left out of the measured eq. 10 fit with the same reasons in both.
+    std::fs::write(&m, "# comment\nv_clamp_v,v_pull_v,device\n10,5,a\n25,0,a\n24,27.5,a\n26,32,a\n28,36.2,a\n")
+        .unwrap();
+    let run = stiction_json(&["run", s, "--json"]);
+    let fit = stiction_json(&["fit", m_arg, "--scenario", s, "--models", "discrete-n3", "--draws", "100", "--json"]);
+    assert_eq!(run["measured"]["rows_rejected"], fit["rows_rejected"]);
+    let lines: Vec<u64> =
+        fit["rows_rejected"].as_array().unwrap().iter().map(|r| r["line"].as_u64().unwrap()).collect();
+    assert_eq!(lines, [3, 4]);
+    assert_eq!(run["measured"]["points"].as_array().unwrap().len(), 5);
+}
+
+/// `fit --out` and `topography --out` write a whole folder with a manifest, as `run` does: a
+/// second run replaces it, a folder with someone else's files is refused without --force.
+#[test]
+fn fit_and_topography_out_folders_have_a_manifest_and_refuse_foreign_files() {
+    let dir = crate::util::temp_dir("outsets");
+    let fit_out = dir.join("fit");
+    let topo_out = dir.join("topo");
+    let fit = |extra: &[&str]| {
+        let mut a = vec![
+            "fit",
+            "--scenario",
+            "scenarios/tas2000-fit-synthetic.json",
+            "--models",
+            "discrete-n3",
+            "--draws",
+            "100",
+            "--out",
+            fit_out.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        stiction(&a)
+    };
+    let topo = |extra: &[&str]| {
+        let mut a = vec!["topography", "data/topography-example/wall.gsf", "--out", topo_out.to_str().unwrap()];
+        a.extend_from_slice(extra);
+        stiction(&a)
+    };
+    for (what, run, out, expect) in [
+        ("fit", &fit as &dyn Fn(&[&str]) -> std::process::Output, &fit_out, "report.json"),
+        ("topography", &topo, &topo_out, "statistics.json"),
+    ] {
+        let r = run(&[]);
+        assert!(r.status.success(), "{what}: {}", String::from_utf8_lossy(&r.stderr));
+        let manifest: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("manifest.json")).unwrap()).unwrap();
+        assert_eq!(manifest["command"], what);
+        let files: Vec<&str> = manifest["files"].as_array().unwrap().iter().map(|f| f.as_str().unwrap()).collect();
+        assert!(files.contains(&expect), "{what}: {files:?}");
+        let mut present: Vec<String> =
+            std::fs::read_dir(out).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+        present.sort();
+        let mut listed: Vec<String> = files.iter().map(|f| f.to_string()).chain(["manifest.json".into()]).collect();
+        listed.sort();
+        assert_eq!(present, listed, "{what}: the folder holds exactly the listed files");
+        // A second run replaces the folder; a foreign file makes it refuse, unless --force.
+        assert!(run(&[]).status.success());
+        std::fs::write(out.join("notes.txt"), "mine").unwrap();
+        let r = run(&[]);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{what}: {err}");
+        assert!(err.contains("notes.txt") && err.contains("--force"), "{what}: {err}");
+        assert!(run(&["--force"]).status.success());
+        assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "mine");
+    }
+}

@@ -318,6 +318,34 @@ impl OutputSet {
         Ok(())
     }
 
+    /// The staging folder, for a writer that takes a folder (the figures of `fit` and
+    /// `topography`); [`OutputSet::adopt_staged`] then adds what it wrote.
+    pub fn staging_dir(&self) -> &Path {
+        &self.staging
+    }
+
+    /// Adds every file written straight into the staging folder that is not listed yet (in name
+    /// order). Hidden files (leftovers of an atomic write) are removed, folders refused.
+    pub fn adopt_staged(&mut self) -> CliResult {
+        let mut names = Vec::new();
+        for e in std::fs::read_dir(&self.staging).map_err(|e| io_err("list", &self.staging, e))? {
+            let e = e.map_err(|e| io_err("list", &self.staging, e))?;
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with('.') {
+                let _ = std::fs::remove_file(e.path());
+            } else if !e.file_type().is_ok_and(|t| t.is_file()) {
+                return Err(format!("internal: {} in an output folder is not a file", e.path().display()).into());
+            } else if !self.files.contains(&name) {
+                names.push(name);
+            }
+        }
+        names.sort();
+        for name in names {
+            self.claim(&name)?;
+        }
+        Ok(())
+    }
+
     /// Writes the manifest and puts the folder in place.
     pub fn commit(mut self) -> CliResult {
         let manifest = Manifest { tool: "stiction".into(), command: self.command.clone(), files: self.files.clone() };

@@ -4,13 +4,13 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use stiction_fit::{Dataset, FitOptions, FitReport, Free, ModelKind, read_voltages, synth};
+use stiction_fit::{Dataset, FitOptions, FitReport, Free, ModelKind, read_measured_voltages, synth};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 use stiction_units::io::write_atomic;
 use stiction_units::{Constraint, Dimension};
 
-use crate::output::{CliResult, ensure_dir, print_json, quantity};
+use crate::output::{CliResult, OutputSet, print_json, quantity};
 
 /// Fit measured (V_clamp, V_pull) data: eq. 10 with regression and calibration intervals, and the
 /// shear strength s of each contact model by maximum likelihood, ranked by AIC.
@@ -37,9 +37,14 @@ pub struct Args {
     /// Seed of the calibration Monte Carlo (and of --synthesize).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Write report.json, the figures (SVG, PNG) and their data (CSV) to this folder.
+    /// Write report.json, the figures (SVG, PNG) and their data (CSV) to this folder, with a
+    /// manifest.json; the folder is replaced as a whole.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write into an --out folder that holds files not from an earlier stiction run (they are
+    /// left alone; the earlier run's files are replaced or removed).
+    #[arg(long)]
+    pub force: bool,
     /// Override a scenario field (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
@@ -71,7 +76,12 @@ pub fn run(args: Args) -> CliResult {
         (None, Some(m)) => base.join(&m.voltages_csv),
         (None, None) => return Err("missing DATA.csv (the scenario has no `measured` section either)".into()),
     };
-    let data = read_voltages(&data_path)?;
+    let data = read_measured_voltages(&data_path)?;
+    // Check the output folder before the work, so a refusal comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "fit", args.force)?),
+        None => None,
+    };
     let options = FitOptions {
         models: ModelKind::parse_list(&args.models)?,
         free: Free::parse(&args.free)?,
@@ -81,10 +91,12 @@ pub fn run(args: Args) -> CliResult {
         ..FitOptions::default()
     };
     let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options)?;
-    if let Some(dir) = &args.out {
-        ensure_dir(dir)?;
-        write_atomic(&dir.join("report.json"), serde_json::to_string_pretty(&report)?.as_bytes())?;
-        write_figures(dir, &data, &report)?;
+    if let Some(mut set) = outputs {
+        set.add_bytes("report.json", (serde_json::to_string_pretty(&report)? + "\n").as_bytes())?;
+        let staging = set.staging_dir().to_path_buf();
+        write_figures(&staging, &data, &report)?;
+        set.adopt_staged()?;
+        set.commit()?;
     }
     if args.json {
         return print_json(&report);
@@ -92,7 +104,7 @@ pub fn run(args: Args) -> CliResult {
     print_summary(&report);
     if let Some(dir) = &args.out {
         crate::outln!(
-            "\nwrote {}/report.json and fit-vpull2, fit-friction-load, fit-residuals (.svg, .png, .csv)",
+            "\nwrote {}/report.json, fit-vpull2, fit-friction-load, fit-residuals (.svg, .png, .csv), manifest.json",
             dir.display()
         );
     }
