@@ -62,8 +62,8 @@ fn assert_aligned(lines: &[&str], what: &str) {
 fn contact_sweep_prints_events_as_sentences_and_json_as_documented() {
     let text = stdout(&["contact", "scenarios/tas2000.json", "--sweep", "1uN:-2uN:4"]);
     assert!(!text.contains("event:") && !text.contains('{'), "{text}");
-    assert!(text.contains("jump-in at L = 1.0000 uN (point 0): contacts 0 -> 3"), "{text}");
-    assert!(text.contains("pull-off: no equilibrium at L = -1.0000 uN"), "{text}");
+    assert!(text.contains("jump_in at L = 1.0000 uN (point 0): contacts 0 -> 3"), "{text}");
+    assert!(text.contains("pull_off: no equilibrium at L = -1.0000 uN"), "{text}");
     let table = table_after(&text, "Load sweep on");
     assert_aligned(&table, "contact sweep");
     let help = stdout(&["contact", "--help"]);

@@ -91,7 +91,7 @@ pub fn select_rows<'a>(rows: &'a [Row], reduction: &Reduction) -> (Vec<&'a Row>,
     let mut rejected = Vec::new();
     for r in rows {
         let load = reduction.a_clamp_n_per_v2 * r.v_clamp_v * r.v_clamp_v - reduction.spring_force_n;
-        if !(load > 0.0) {
+        if load.is_nan() || load <= 0.0 {
             rejected.push(Rejected {
                 line: r.line,
                 reason: format!(

@@ -186,18 +186,19 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
-/// A sweep event as a sentence (the JSON has the same fields).
+/// A sweep event as a sentence, named as in the JSON (`jump_in`, `release`, `pull_off`), with the
+/// same fields.
 fn event_line(ev: &SweepEvent) -> String {
     let un = |f: f64| format!("{:.4} uN", f * 1e6);
     match ev {
         SweepEvent::JumpIn { point, load_n, contacts_before, contacts_after } => {
-            format!("jump-in at L = {} (point {point}): contacts {contacts_before} -> {contacts_after}", un(*load_n))
+            format!("jump_in at L = {} (point {point}): contacts {contacts_before} -> {contacts_after}", un(*load_n))
         }
         SweepEvent::Release { point, load_n, contacts_before, contacts_after } => {
             format!("release at L = {} (point {point}): contacts {contacts_before} -> {contacts_after}", un(*load_n))
         }
         SweepEvent::PullOff { load_n, last_stable_load_n } => format!(
-            "pull-off: no equilibrium at L = {} (the shoe comes off); the last stable load was {}; the sweep stops",
+            "pull_off: no equilibrium at L = {} (the shoe comes off); the last stable load was {}; the sweep stops",
             un(*load_n),
             un(*last_stable_load_n)
         ),
