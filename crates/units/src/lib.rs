@@ -308,7 +308,7 @@ impl fmt::Display for QuantityInput {
         match self {
             QuantityInput::Number(x) => write!(f, "{x}"),
             QuantityInput::Text(t) => write!(f, "{t}"),
-            QuantityInput::Uncertain(u) => write!(f, "{u:?}"),
+            QuantityInput::Uncertain(u) => write!(f, "{u}"),
         }
     }
 }
@@ -325,6 +325,14 @@ mod name_tests {
         let back: Distribution = serde_json::from_str(&format!("\"{}\"", Distribution::Uniform)).unwrap();
         assert_eq!(back, Distribution::Uniform);
         assert_eq!(serde_name(&3), "3");
+        // An uncertain parameter in an error: as written, not as a Rust value.
+        let u: UncertainInput =
+            serde_json::from_str(r#"{"value": "0.5 um", "sd": "0.3 um", "min": "0.6 um", "max": 7e-7}"#).unwrap();
+        let e = u.nominal(Dimension::Length, Constraint::Positive).unwrap_err().to_string();
+        assert!(
+            e.starts_with(r#""{value: 0.5 um, sd: 0.3 um, distribution: normal, min: 0.6 um, max: 0.0000007}": value"#),
+            "{e}"
+        );
     }
 
     /// The unit suffixes of keys and columns, as the hand-written keys spell them.
