@@ -45,7 +45,7 @@ fn bad_flags_name_the_flag_value_and_expectation() {
                 "--load",
                 "3 uN",
             ],
-            &["--radius", "0.5 N", "is a force", "expected positive a length"],
+            &["--radius", "0.5 N", "is a force", "expected a positive length"],
         ),
         (
             &[

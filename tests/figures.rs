@@ -14,8 +14,8 @@ fn fig5_data_csv_holds_the_plotted_points_of_results_json() {
         .as_array()
         .unwrap()
         .iter()
-        .filter(|p| p["v_pull_sq"].is_number())
-        .map(|p| (p["v_clamp_sq"].as_f64().unwrap(), p["v_pull_sq"].as_f64().unwrap()))
+        .filter(|p| p["v_pull_sq_v2"].is_number())
+        .map(|p| (p["v_clamp_sq_v2"].as_f64().unwrap(), p["v_pull_sq_v2"].as_f64().unwrap()))
         .collect();
     assert!(points.len() >= 3, "too few points in results.json: {}", points.len());
     let text = std::fs::read_to_string(dir.join("fig5.csv")).unwrap();

@@ -142,9 +142,9 @@ fn measured_csvs_one_row_duplicate_column_huge_voltage() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains("no eq. 10 fit of the measured data") && stdout.contains("at least 3"), "{stdout}");
     for (csv, needle) in [
-        ("v_clamp_v,v_pull_v,v_pull_v\n30,40,41\n", "appears 2 times"),
+        ("v_clamp_v,v_pull_v,v_pull_v\n30,40,41\n", "appears twice"),
         ("v_clamp_v,v_pull_v\n30,1e200\n", "line 2"),
-        ("v_clamp_v,v_pull_v\n", "no data lines"),
+        ("v_clamp_v,v_pull_v\n", "no data rows"),
     ] {
         let s = scenario_with_measured(&dir, csv);
         let out = stiction(&["run", &s]);

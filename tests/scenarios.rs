@@ -13,12 +13,12 @@ fn the_paper_experiment_lands_within_the_measured_values() {
     let points = v["points"].as_array().expect("points");
     assert!(points.len() >= 5);
     for p in points {
-        for key in ["v_clamp", "v_pull", "load_n", "friction_n", "real_area_m2", "contacts"] {
+        for key in ["v_clamp_v", "v_pull_v", "load_n", "friction_n", "real_area_m2", "contacts"] {
             assert!(p.get(key).is_some(), "point lacks `{key}`: {p}");
         }
     }
     // The pull force at slip is at least the friction capacity and less than one voltage step above it.
-    for p in points.iter().filter(|p| !p["v_pull"].is_null()) {
+    for p in points.iter().filter(|p| !p["v_pull_v"].is_null()) {
         let f = num(p, "friction_n");
         let cap = num(p, "friction_capacity_n");
         assert!(f >= cap && f < cap * 1.02 + 1e-9, "F_pull {f} vs capacity {cap}");
@@ -111,7 +111,7 @@ fn the_gca_actuator_matches_measured_hardware() {
     assert!(num(r, "release_mean_abs_rel_error") <= 0.10, "{r}");
     let points = r["points"].as_array().unwrap();
     assert_eq!(points.len(), 9);
-    for key in ["finger_length_m", "pull_in_v_measured", "pull_in_v_model", "release_v_measured", "release_v_model"] {
+    for key in ["finger_length_m", "pull_in_measured_v", "pull_in_model_v", "release_measured_v", "release_model_v"] {
         assert!(points[0].get(key).is_some(), "lacks {key}");
     }
     for key in [
@@ -154,7 +154,10 @@ fn measured_voltages_are_reduced_and_compared() {
     std::fs::copy(root().join("scenarios/tas2000.json"), dir.join("s.json")).unwrap();
     std::fs::write(dir.join("m.csv"), "# three slips\nv_clamp_v,v_pull_v\n24,27.5\n26,32.0\n28,36.2\n").unwrap();
     let s = dir.join("s.json");
-    let v = stiction_json(&["run", s.to_str().unwrap(), "--set", r#"measured={"voltages_csv": "m.csv"}"#, "--json"]);
+    // A path given with --set is relative to the current directory (the tests run in the
+    // workspace root), so the temporary files are named by their full paths.
+    let set = |f: &str| format!(r#"measured={{"voltages_csv": {:?}}}"#, dir.join(f).to_str().unwrap());
+    let v = stiction_json(&["run", s.to_str().unwrap(), "--set", &set("m.csv"), "--json"]);
     let m = &v["measured"];
     let pts = m["points"].as_array().unwrap();
     assert_eq!(pts.len(), 3);
@@ -165,12 +168,12 @@ fn measured_voltages_are_reduced_and_compared() {
     let slope =
         xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>() / xy.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
     assert!((num(m, "mu_apparent_measured") - slope).abs() < 1e-9, "{m}");
-    assert!(num(&pts[0], "v_pull_model") > 0.0);
+    assert!(num(&pts[0], "v_pull_model_v") > 0.0);
     let residual = num(&pts[1], "v_pull_sq_residual_v2");
-    assert!((residual - (num(&pts[1], "v_pull_model").powi(2) - 32.0f64.powi(2))).abs() < 1e-9);
+    assert!((residual - (num(&pts[1], "v_pull_model_v").powi(2) - 32.0f64.powi(2))).abs() < 1e-9);
     // A bad line is named.
     std::fs::write(dir.join("bad.csv"), "v_clamp_v,v_pull_v\n24,27.5\n26,x\n").unwrap();
-    let out = stiction(&["run", s.to_str().unwrap(), "--set", r#"measured={"voltages_csv": "bad.csv"}"#]);
+    let out = stiction(&["run", s.to_str().unwrap(), "--set", &set("bad.csv")]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && stderr.contains("bad.csv, line 3") && stderr.contains("\"x\""), "{stderr}");
 }

@@ -61,8 +61,11 @@ fn threads_and_merged_shards_give_the_bytes_of_one_run() {
     let csv = std::fs::read_to_string(one.join("samples.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert!(header.iter().all(|c| c.ends_with(']')), "{header:?}");
-    let reason_col = header.iter().position(|c| *c == "reason [code]").unwrap();
+    // name_unit, as every other CSV: the drawn parameters end in their SI unit, pure numbers have none.
+    assert_eq!(header[..4], ["sample", "mu_apparent", "apparent_adhesion_force_n", "mean_contacts"], "{header:?}");
+    assert!(header.contains(&"surface.summit_radius_m") && header.contains(&"meter.spring_force_n"), "{header:?}");
+    assert!(header.iter().all(|c| !c.contains('[')), "{header:?}");
+    let reason_col = header.iter().position(|c| *c == "reason").unwrap();
     let mut no_fit = 0;
     for l in lines {
         let f: Vec<&str> = l.split(',').collect();

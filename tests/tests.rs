@@ -8,6 +8,7 @@ mod bem;
 mod figures;
 mod hardening;
 mod models;
+mod outputs;
 mod scenarios;
 mod standalone;
 mod study;

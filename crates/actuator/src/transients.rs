@@ -73,6 +73,7 @@ pub enum TransientEvent {
     #[serde(rename = "release")]
     Release,
 }
+stiction_units::display_serde_name!(TransientEvent);
 
 impl TransientEvent {
     /// `pull-in` or `release`, as in the measured file.

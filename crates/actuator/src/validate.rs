@@ -97,18 +97,24 @@ pub struct ValidationPoint {
     /// Drawn finger length (m).
     pub finger_length_m: f64,
     /// Mean of the measured pull-in repeats (V).
+    #[serde(rename = "pull_in_measured_v")]
     pub pull_in_v_measured: f64,
     /// Sample standard deviation of the pull-in repeats (V), 0 for one repeat.
+    #[serde(rename = "pull_in_spread_v")]
     pub pull_in_v_spread: f64,
     /// Model pull-in voltage (V).
+    #[serde(rename = "pull_in_model_v")]
     pub pull_in_v_model: f64,
     /// `model / measured - 1`.
     pub pull_in_rel_error: f64,
     /// Mean of the measured release repeats (V).
+    #[serde(rename = "release_measured_v")]
     pub release_v_measured: f64,
     /// Sample standard deviation of the release repeats (V), 0 for one repeat.
+    #[serde(rename = "release_spread_v")]
     pub release_v_spread: f64,
     /// Model release voltage (V).
+    #[serde(rename = "release_model_v")]
     pub release_v_model: f64,
     /// `model / measured - 1`.
     pub release_rel_error: f64,

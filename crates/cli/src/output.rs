@@ -83,6 +83,67 @@ pub fn print_table(title: &str, rows: &[(&str, String)]) {
     }
 }
 
+/// A text table with a header line, printed with every column aligned: numbers (and `-`, `n/a`,
+/// signed percentages) to the right, text to the left; two spaces between columns, `indent`
+/// before each line. Built on comfy-table without borders, so a cell of any width (a long
+/// switch name, a NaN) widens its column instead of shifting the rest of the line.
+pub struct TextTable {
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+impl TextTable {
+    /// A table with these column titles (units in brackets: `L (uN)`).
+    pub fn new<S: AsRef<str>>(header: &[S]) -> TextTable {
+        TextTable { header: header.iter().map(|h| h.as_ref().to_string()).collect(), rows: Vec::new() }
+    }
+
+    /// Adds a row (as many cells as titles; missing cells are empty).
+    pub fn row(&mut self, cells: Vec<String>) {
+        self.rows.push(cells);
+    }
+
+    /// The table as lines, each starting with `indent`, without trailing blanks.
+    pub fn lines(&self, indent: &str) -> Vec<String> {
+        use comfy_table::{CellAlignment, ColumnConstraint, ContentArrangement, Table};
+        let numeric = |s: &str| {
+            let t = s.trim().trim_end_matches('%').trim_end();
+            t.is_empty() || t == "-" || t == "n/a" || t.parse::<f64>().is_ok()
+        };
+        let mut t = Table::new();
+        t.load_preset(comfy_table::presets::NOTHING).set_content_arrangement(ContentArrangement::Disabled);
+        t.set_header(self.header.clone());
+        for r in &self.rows {
+            t.add_row(r.clone());
+        }
+        for (k, col) in t.column_iter_mut().enumerate() {
+            let right = self.rows.iter().all(|r| r.get(k).is_none_or(|c| numeric(c)));
+            col.set_cell_alignment(if right { CellAlignment::Right } else { CellAlignment::Left });
+            col.set_padding((0, 2));
+            col.set_constraint(ColumnConstraint::ContentWidth);
+        }
+        // The header follows its column's alignment.
+        let right: Vec<bool> =
+            (0..self.header.len()).map(|k| self.rows.iter().all(|r| r.get(k).is_none_or(|c| numeric(c)))).collect();
+        if let Some(h) = t.header().cloned() {
+            let cells: Vec<comfy_table::Cell> = h
+                .cell_iter()
+                .zip(&right)
+                .map(|(c, r)| c.clone().set_alignment(if *r { CellAlignment::Right } else { CellAlignment::Left }))
+                .collect();
+            t.set_header(cells);
+        }
+        t.lines().map(|l| format!("{indent}{}", l.trim_end())).collect()
+    }
+
+    /// Prints the table on standard output.
+    pub fn print(&self, indent: &str) {
+        for l in self.lines(indent) {
+            crate::outln!("{l}");
+        }
+    }
+}
+
 /// Creates an output folder (and its parents); errors name the folder.
 pub fn ensure_dir(dir: &Path) -> CliResult {
     if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
@@ -253,6 +314,34 @@ impl OutputSet {
         let data_name = stiction_plot::data_path(Path::new(name)).display().to_string();
         if data_name != name && !self.files.contains(&data_name) {
             self.add_bytes(&data_name, chart.data_csv().as_bytes())?;
+        }
+        Ok(())
+    }
+
+    /// The staging folder, for a writer that takes a folder (the figures of `fit` and
+    /// `topography`); [`OutputSet::adopt_staged`] then adds what it wrote.
+    pub fn staging_dir(&self) -> &Path {
+        &self.staging
+    }
+
+    /// Adds every file written straight into the staging folder that is not listed yet (in name
+    /// order). Hidden files (leftovers of an atomic write) are removed, folders refused.
+    pub fn adopt_staged(&mut self) -> CliResult {
+        let mut names = Vec::new();
+        for e in std::fs::read_dir(&self.staging).map_err(|e| io_err("list", &self.staging, e))? {
+            let e = e.map_err(|e| io_err("list", &self.staging, e))?;
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with('.') {
+                let _ = std::fs::remove_file(e.path());
+            } else if !e.file_type().is_ok_and(|t| t.is_file()) {
+                return Err(format!("internal: {} in an output folder is not a file", e.path().display()).into());
+            } else if !self.files.contains(&name) {
+                names.push(name);
+            }
+        }
+        names.sort();
+        for name in names {
+            self.claim(&name)?;
         }
         Ok(())
     }

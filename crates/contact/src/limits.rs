@@ -64,6 +64,7 @@ pub enum ContactRegime {
     /// `p_e > 0.24 H`: significant plastic deformation; the friction coefficient tends to `s/H`.
     Plastic,
 }
+stiction_units::display_serde_name!(ContactRegime);
 
 /// Friction-coefficient bounds of section 3.3.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]

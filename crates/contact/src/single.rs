@@ -98,6 +98,7 @@ pub enum Branch {
     /// Receding: contact persists down to the displacement-controlled pull-off interference.
     Unloading,
 }
+stiction_units::display_serde_name!(AdhesionLaw, Branch);
 
 /// Response of one summit at a prescribed interference ([`summit_response`]).
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]

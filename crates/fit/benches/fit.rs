@@ -8,7 +8,7 @@ use std::hint::black_box;
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use stiction_fit::{FitOptions, ModelKind, analyse, parse_voltages, synth};
+use stiction_fit::{FitOptions, ModelKind, analyse, parse_measured_voltages, synth};
 use stiction_scenario::Scenario;
 
 fn setup(name: &str) -> (Scenario, serde_json::Value, std::path::PathBuf, stiction_fit::Dataset) {
@@ -18,7 +18,7 @@ fn setup(name: &str) -> (Scenario, serde_json::Value, std::path::PathBuf, sticti
     let base = path.parent().unwrap().to_path_buf();
     let volts: Vec<f64> = (0..13).map(|k| 23.0 + 0.5 * k as f64).collect();
     let rows = synth::from_meter(&s, &base, &volts, 3, 0.3, 7).unwrap();
-    let data = parse_voltages(synth::to_csv(&rows, "bench").unwrap().as_bytes(), "bench.csv").unwrap();
+    let data = parse_measured_voltages(synth::to_csv(&rows, "bench").unwrap().as_bytes(), "bench.csv").unwrap();
     (s, j, base, data)
 }
 
@@ -58,7 +58,9 @@ fn read(c: &mut Criterion) {
     std::fs::write(&file, &text).unwrap();
     let mut g = c.benchmark_group("read");
     g.sample_size(10);
-    g.bench_function("1e6_rows", |b| b.iter(|| black_box(stiction_fit::read_voltages(&file).unwrap().rows.len())));
+    g.bench_function("1e6_rows", |b| {
+        b.iter(|| black_box(stiction_fit::read_measured_voltages(&file).unwrap().rows.len()))
+    });
     g.finish();
     let _ = std::fs::remove_dir_all(&dir);
 }

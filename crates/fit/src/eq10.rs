@@ -45,8 +45,12 @@ pub struct CalibrationSource {
     pub name: String,
     /// Where it comes from in the scenario (JSON path).
     pub path: String,
-    /// Nominal value, SI (N/V^2 or N).
+    /// Nominal value in SI units (N/V^2 for a conversion factor, N for the spring force; the unit
+    /// is in `unit`).
+    #[serde(rename = "nominal_si")]
     pub nominal: f64,
+    /// The SI unit of `nominal_si`: "N/V^2" or "N".
+    pub unit: &'static str,
     /// Its uncertainty as written (None: the scenario gives no uncertainty, the value is exact).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub uncertainty: Option<UncertainInput>,

@@ -25,17 +25,18 @@ use serde_json::Value;
 use stiction_scenario::Scenario;
 use stiction_units::UncertainInput;
 
-pub mod data;
 pub mod eq10;
 pub mod mle;
 pub mod models;
 pub mod stats;
 pub mod synth;
 
-pub use data::{Dataset, Row, parse_voltages, read_voltages};
 pub use eq10::{CalibrationSource, Eq10Fit, Estimate, VarianceShares};
 pub use mle::{Free, ModelFit, Noise};
 pub use models::{ModelContext, ModelKind};
+pub use stiction_meter::measured::{
+    Dataset, Rejected, Row, VoltageCsvError, parse_measured_voltages, read_measured_voltages, select_rows,
+};
 
 /// Why a fit cannot be made.
 #[derive(Debug, thiserror::Error)]
@@ -43,18 +44,10 @@ pub enum FitError {
     /// The data file cannot be read.
     #[error(transparent)]
     File(#[from] stiction_units::io::FileError),
-    /// The data file is wrong at a line (and column).
-    #[error("{file}, line {line}{}: {message}", column.as_ref().map(|c| format!(", column `{c}`")).unwrap_or_default())]
-    Data {
-        /// File.
-        file: String,
-        /// Line (1-based).
-        line: u64,
-        /// Column name.
-        column: Option<String>,
-        /// What is wrong and what was expected.
-        message: String,
-    },
+    /// The data file cannot be read or is wrong at a line (and column): the reader of
+    /// `stiction_meter::measured`, shared with `stiction run`.
+    #[error(transparent)]
+    Data(#[from] VoltageCsvError),
     /// Too few usable rows.
     #[error("{0}")]
     TooFewRows(String),
@@ -72,15 +65,6 @@ pub enum FitError {
         /// What went wrong.
         message: String,
     },
-}
-
-/// A row left out, with its line and the reason.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Rejected {
-    /// File line.
-    pub line: u64,
-    /// Why.
-    pub reason: String,
 }
 
 /// Settings of a fit.
@@ -181,12 +165,19 @@ pub fn calibration_sources(
     device: &stiction_meter::Reduction,
 ) -> Result<[CalibrationSource; 3], FitError> {
     let get = |name: &str, path: &str, nominal: f64| -> Result<CalibrationSource, FitError> {
+        let unit = if name == "spring_force" { "N" } else { "N/V^2" };
         let mut v = json;
         for key in path.split('.') {
             v = match v.get(key) {
                 Some(x) => x,
                 None => {
-                    return Ok(CalibrationSource { name: name.into(), path: path.into(), nominal, uncertainty: None });
+                    return Ok(CalibrationSource {
+                        name: name.into(),
+                        path: path.into(),
+                        nominal,
+                        unit,
+                        uncertainty: None,
+                    });
                 }
             };
         }
@@ -198,36 +189,13 @@ pub fn calibration_sources(
                 .filter(|u| u.sd.is_some() || u.min.is_some()),
                 _ => None,
             };
-        Ok(CalibrationSource { name: name.into(), path: path.into(), nominal, uncertainty })
+        Ok(CalibrationSource { name: name.into(), path: path.into(), nominal, unit, uncertainty })
     };
     Ok([
         get("a_clamp", "actuators.clamp.conversion_factor", device.a_clamp_n_per_v2)?,
         get("a_pull", "actuators.pull.conversion_factor", device.a_pull_n_per_v2)?,
         get("spring_force", "meter.spring_force", device.spring_force_n)?,
     ])
-}
-
-/// Splits the rows into used ones (L > 0 with the nominal values, V_pull > 0) and rejected ones.
-pub fn select_rows<'a>(rows: &'a [Row], device: &stiction_meter::Reduction) -> (Vec<&'a Row>, Vec<Rejected>) {
-    let mut used = Vec::with_capacity(rows.len());
-    let mut rejected = Vec::new();
-    for r in rows {
-        let load = device.a_clamp_n_per_v2 * r.v_clamp_v * r.v_clamp_v - device.spring_force_n;
-        if !(load > 0.0) {
-            rejected.push(Rejected {
-                line: r.line,
-                reason: format!(
-                    "below first contact: L = a_clamp V_clamp^2 - F_spring = {} <= 0 with the nominal values",
-                    stiction_units::format_quantity(load, stiction_units::Dimension::Force)
-                ),
-            });
-        } else if r.v_pull_v <= 0.0 {
-            rejected.push(Rejected { line: r.line, reason: "V_pull = 0 V: no slip recorded".into() });
-        } else {
-            used.push(r);
-        }
-    }
-    (used, rejected)
 }
 
 /// The pooled pull-voltage SD of repeated rows (same device, same clamp voltage), V, and its

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde_json::Value;
-use stiction_fit::{FitOptions, FitReport, Free, ModelContext, ModelKind, analyse, parse_voltages, synth};
+use stiction_fit::{FitOptions, FitReport, Free, ModelContext, ModelKind, analyse, parse_measured_voltages, synth};
 use stiction_scenario::Scenario;
 
 fn scenario(name: &str) -> (Scenario, Value, PathBuf) {
@@ -26,7 +26,7 @@ fn cheap(models: &[ModelKind]) -> FitOptions {
 
 fn fit_rows(rows: &[stiction_fit::Row], sc: &(Scenario, Value, PathBuf), opts: &FitOptions) -> FitReport {
     let csv = synth::to_csv(rows, "synthetic").unwrap();
-    let data = parse_voltages(csv.as_bytes(), "synthetic.csv").unwrap();
+    let data = parse_measured_voltages(csv.as_bytes(), "synthetic.csv").unwrap();
     analyse(&data, &sc.0, &sc.1, &sc.2, opts).unwrap()
 }
 
@@ -175,13 +175,13 @@ fn unusable_data_is_an_error_with_lines_and_reasons() {
     let sc = scenario("tas2000-discrete.json");
     let opts = cheap(&[ModelKind::Discrete(3)]);
     // L = 1.4e-8 V^2 - 7e-6 <= 0 below 22.4 V.
-    let d = parse_voltages(b"v_clamp_v,v_pull_v\n10,5\n20,6\n22,7\n", "low.csv").unwrap();
+    let d = parse_measured_voltages(b"v_clamp_v,v_pull_v\n10,5\n20,6\n22,7\n", "low.csv").unwrap();
     let e = analyse(&d, &sc.0, &sc.1, &sc.2, &opts).unwrap_err().to_string();
     assert!(e.contains("all 3 rows are below first contact") && e.contains("line 2"), "{e}");
-    let d = parse_voltages(b"v_clamp_v,v_pull_v\n10,5\n25,30\n26,31\n", "few.csv").unwrap();
+    let d = parse_measured_voltages(b"v_clamp_v,v_pull_v\n10,5\n25,30\n26,31\n", "few.csv").unwrap();
     let e = analyse(&d, &sc.0, &sc.1, &sc.2, &opts).unwrap_err().to_string();
     assert!(e.contains("2 usable row(s) of 3"), "{e}");
-    let d = parse_voltages(b"v_clamp_v,v_pull_v\n20,5\n25,30\n26,31\n27,0\n28,33\n", "mixed.csv").unwrap();
+    let d = parse_measured_voltages(b"v_clamp_v,v_pull_v\n20,5\n25,30\n26,31\n27,0\n28,33\n", "mixed.csv").unwrap();
     let r = analyse(&d, &sc.0, &sc.1, &sc.2, &opts).unwrap();
     assert_eq!(r.rows_used, 3);
     assert_eq!(r.rows_rejected.len(), 2);
@@ -200,7 +200,7 @@ fn devices_get_their_own_line() {
             text.push_str(&format!("{dev},{v},{}\n", (scale * y).sqrt()));
         }
     }
-    let d = parse_voltages(text.as_bytes(), "dev.csv").unwrap();
+    let d = parse_measured_voltages(text.as_bytes(), "dev.csv").unwrap();
     let r = analyse(&d, &sc.0, &sc.1, &sc.2, &cheap(&[ModelKind::Discrete(3)])).unwrap();
     assert_eq!(r.devices.len(), 2);
     let mu_a = r.devices[0].eq10.as_ref().unwrap().mu_apparent.value;

@@ -7,11 +7,14 @@ use serde::Serialize;
 pub struct LineFit {
     /// Slope (for eq. 10: mu_e,a).
     pub slope: f64,
-    /// Intercept (for eq. 10: mu_e,a F_a0, N).
+    /// Intercept (for eq. 10: mu_e,a F_a0, N; JSON `intercept_n`: every LineFit of the meter is
+    /// eq. 10 in newtons).
+    #[serde(rename = "intercept_n")]
     pub intercept: f64,
     /// Standard error of the slope.
     pub slope_se: f64,
-    /// Standard error of the intercept.
+    /// Standard error of the intercept, N (JSON `intercept_se_n`).
+    #[serde(rename = "intercept_se_n")]
     pub intercept_se: f64,
     /// Coefficient of determination R^2.
     pub r_squared: f64,

@@ -70,9 +70,11 @@ pub struct Reduction {
 /// One clamp voltage of the experiment.
 #[derive(Debug, Clone, Serialize)]
 pub struct MeterPoint {
-    /// Clamp voltage, V.
+    /// Clamp voltage, V (JSON `v_clamp_v`).
+    #[serde(rename = "v_clamp_v")]
     pub v_clamp: f64,
-    /// Clamp voltage squared, V^2 (Fig. 5 abscissa).
+    /// Clamp voltage squared, V^2 (Fig. 5 abscissa; JSON `v_clamp_sq_v2`).
+    #[serde(rename = "v_clamp_sq_v2")]
     pub v_clamp_sq: f64,
     /// Whether the shoe touches the wall at this clamp voltage.
     pub in_contact: bool,
@@ -81,9 +83,12 @@ pub struct MeterPoint {
     pub load_n: f64,
     /// The load the device really applies, F_elec(x_c, V) - F_spring, N.
     pub true_load_n: f64,
-    /// Pull voltage at slip, V (None: no slip up to the maximum pull voltage, or no contact).
+    /// Pull voltage at slip, V (None: no slip up to the maximum pull voltage, or no contact;
+    /// JSON `v_pull_v`).
+    #[serde(rename = "v_pull_v")]
     pub v_pull: Option<f64>,
-    /// Pull voltage squared at slip, V^2 (Fig. 5 ordinate).
+    /// Pull voltage squared at slip, V^2 (Fig. 5 ordinate; JSON `v_pull_sq_v2`).
+    #[serde(rename = "v_pull_sq_v2")]
     pub v_pull_sq: Option<f64>,
     /// Friction as the lab reduces it: a_pull V_pull^2 at slip with the nominal a_pull, N.
     pub friction_n: Option<f64>,

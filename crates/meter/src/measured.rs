@@ -1,5 +1,15 @@
-//! Measured (V_clamp, V_pull) pairs from a real friction meter, reduced and compared with the
-//! virtual one.
+//! Measured (V_clamp, V_pull) pairs from a real friction meter: the one reader of
+//! measured-voltage CSVs (`stiction run` with a `measured` section and `stiction fit` read files
+//! through it, so they accept the same files with the same messages), the rows an analysis leaves
+//! out with their reasons, and the comparison with the virtual meter.
+//!
+//! Columns (units in the names): `v_clamp_v` and `v_pull_v` (required), `v_pull_sd_v` (optional,
+//! the standard deviation of each pull voltage, V) and `device` (optional, a label; several devices
+//! in one file each get their own eq. 10 fit in `stiction fit`). Other columns are ignored. A UTF-8
+//! byte-order mark, CRLF line ends, `#` comment lines, quoted fields and blanks around fields are
+//! accepted. A bad cell is an error naming the file, line, column and value; rows that are readable
+//! but cannot be used (below first contact, no slip recorded) are listed by [`select_rows`] with
+//! their line and reason.
 
 use std::path::Path;
 
@@ -8,88 +18,257 @@ use serde::Serialize;
 use crate::fit::LineFit;
 use crate::{Meter, MeterError, Reduction};
 
-/// One measured slip: clamp voltage and pull voltage at the onset of slip, V.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct MeasuredSlip {
+/// Largest measured-voltage CSV read, bytes (512 MiB: about 25 million rows of two voltages).
+pub const MAX_MEASURED_CSV_BYTES: u64 = 512 << 20;
+/// Largest number of data rows accepted.
+pub const MAX_MEASURED_ROWS: usize = 20_000_000;
+
+/// The column names the reader accepts (units in the names: volts).
+pub const ACCEPTED_COLUMNS: [&str; 4] = ["v_clamp_v", "v_pull_v", "v_pull_sd_v", "device"];
+
+/// Why a measured-voltage file cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum VoltageCsvError {
+    /// The file cannot be read (not a regular file, too large, unreadable).
+    #[error(transparent)]
+    File(#[from] stiction_units::io::FileError),
+    /// The file is wrong at a line (and column).
+    #[error("{file}, line {line}{}: {message}", column.as_ref().map(|c| format!(", column `{c}`")).unwrap_or_default())]
+    Data {
+        /// File.
+        file: String,
+        /// Line (1-based).
+        line: u64,
+        /// Column name.
+        column: Option<String>,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+}
+
+/// One measured slip.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Row {
+    /// Line of the file where the row starts (1-based).
+    pub line: u64,
+    /// Device label ("" when the file has no `device` column).
+    pub device: String,
     /// Clamp voltage, V.
-    pub v_clamp: f64,
-    /// Pull voltage at slip, V.
-    pub v_pull: f64,
+    pub v_clamp_v: f64,
+    /// Pull voltage at the onset of slip, V.
+    pub v_pull_v: f64,
+    /// Standard deviation of the pull voltage, V (from the `v_pull_sd_v` column).
+    pub v_pull_sd_v: Option<f64>,
 }
 
-/// Largest measured-voltage CSV read, bytes (256 MiB: about 10 million rows).
-pub const MAX_MEASURED_CSV_BYTES: u64 = 256 << 20;
-
-/// Reads a CSV with the header `v_clamp_v,v_pull_v` (more columns are allowed and ignored; a
-/// `#` starts a comment line). The file must be a regular file of at most
-/// [`MAX_MEASURED_CSV_BYTES`]. Every bad line is an error naming the file, the line and the value.
-pub fn read_measured_voltages(path: &Path) -> Result<Vec<MeasuredSlip>, MeterError> {
-    let text = stiction_units::io::read_input_text(path, MAX_MEASURED_CSV_BYTES)
-        .map_err(|e| MeterError::Measured(e.to_string()))?;
-    parse_measured_voltages(&text, &path.display().to_string())
+/// The rows of a measured-voltage file.
+#[derive(Debug, Clone, Serialize)]
+pub struct Dataset {
+    /// Where the rows came from (file name, for messages).
+    pub source: String,
+    /// The rows in file order.
+    pub rows: Vec<Row>,
+    /// Whether the file has a `v_pull_sd_v` column.
+    pub has_sd: bool,
+    /// Whether the file has a `device` column.
+    pub has_device: bool,
 }
 
-/// Parses the text of a measured-voltage CSV; `source` names it in errors. One pass with the
-/// `csv` crate (quoting, CRLF; a byte-order mark is removed by the file reader): linear in the size.
-pub fn parse_measured_voltages(text: &str, source: &str) -> Result<Vec<MeasuredSlip>, MeterError> {
-    let err = |line: u64, msg: String| MeterError::Measured(format!("{source}, line {line}: {msg}"));
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut r = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .comment(Some(b'#'))
-        .flexible(true)
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let csv_err = |e: csv::Error| {
-        let line = e.position().map_or(0, |p| p.line());
-        err(line, crate::short(&e.to_string()))
-    };
-    let header = r.headers().map_err(csv_err)?.clone();
-    let hline = header.position().map_or(1, |p| p.line());
-    if header.is_empty() || header.iter().all(str::is_empty) {
-        return Err(err(1, "empty file; expected a header `v_clamp_v,v_pull_v`".into()));
-    }
-    let col = |name: &str| -> Result<usize, MeterError> {
-        let found: Vec<usize> = header.iter().enumerate().filter(|(_, n)| *n == name).map(|(i, _)| i).collect();
-        match found.as_slice() {
-            [k] => Ok(*k),
-            [] => Err(err(
-                hline,
-                format!(
-                    "no column `{name}` in the header {}; expected `v_clamp_v,v_pull_v`",
-                    crate::short(&format!("{:?}", header.iter().collect::<Vec<_>>()))
+/// A row left out of an analysis, with its line and the reason.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Rejected {
+    /// File line.
+    pub line: u64,
+    /// Why.
+    pub reason: String,
+}
+
+/// Splits the rows into used ones (L > 0 with the nominal values, V_pull > 0) and rejected ones,
+/// each with its line and reason. `stiction fit` and the comparison of `stiction run` use the
+/// same rule.
+pub fn select_rows<'a>(rows: &'a [Row], reduction: &Reduction) -> (Vec<&'a Row>, Vec<Rejected>) {
+    let mut used = Vec::with_capacity(rows.len());
+    let mut rejected = Vec::new();
+    for r in rows {
+        let load = reduction.a_clamp_n_per_v2 * r.v_clamp_v * r.v_clamp_v - reduction.spring_force_n;
+        if load.is_nan() || load <= 0.0 {
+            rejected.push(Rejected {
+                line: r.line,
+                reason: format!(
+                    "below first contact: L = a_clamp V_clamp^2 - F_spring = {} <= 0 with the nominal values",
+                    stiction_units::format_quantity(load, stiction_units::Dimension::Force)
                 ),
-            )),
-            _ => Err(err(hline, format!("column `{name}` appears {} times; expected it once", found.len()))),
+            });
+        } else if r.v_pull_v <= 0.0 {
+            rejected.push(Rejected { line: r.line, reason: "V_pull = 0 V: no slip recorded".into() });
+        } else {
+            used.push(r);
         }
+    }
+    (used, rejected)
+}
+
+/// Reads a measured-voltage CSV through [`stiction_units::io::read_input`] (regular files only,
+/// at most [`MAX_MEASURED_CSV_BYTES`]).
+pub fn read_measured_voltages(path: &Path) -> Result<Dataset, VoltageCsvError> {
+    let bytes = stiction_units::io::read_input(path, MAX_MEASURED_CSV_BYTES)?;
+    parse_measured_voltages(&bytes, &path.display().to_string())
+}
+
+fn is_voltage_name_without_unit(name: &str) -> bool {
+    let stem = ["v_clamp", "vclamp", "clamp", "v_pull", "vpull", "pull", "v_pull_sd", "pull_sd", "sd"];
+    stem.contains(&name) || (name.starts_with("v_clamp") || name.starts_with("v_pull")) && !name.ends_with("_v")
+}
+
+/// Parses the bytes of a measured-voltage CSV; `source` names it in errors. One pass with the `csv`
+/// crate: linear in the size.
+pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, VoltageCsvError> {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    let empty = |message: String| VoltageCsvError::Data { file: source.into(), line: 1, column: None, message };
+    if bytes.iter().all(|b| b.is_ascii_whitespace()) {
+        return Err(empty(format!(
+            "the file is empty; expected a header line with the columns `v_clamp_v,v_pull_v` (optional {:?})",
+            &ACCEPTED_COLUMNS[2..]
+        )));
+    }
+    // Comment lines (`#` first) are blanked in a copy, byte for byte, so that the byte offsets the
+    // csv crate reports still map to the file's lines (its own line counter skips comments).
+    let mut owned = bytes.to_vec();
+    let mut start = 0;
+    while start < owned.len() {
+        let end = owned[start..].iter().position(|&b| b == b'\n').map_or(owned.len(), |k| start + k);
+        if owned[start] == b'#' {
+            owned[start..end].fill(b' ');
+        }
+        start = end + 1;
+    }
+    let bytes = &owned[..];
+    let mut reader =
+        csv::ReaderBuilder::new().has_headers(false).trim(csv::Trim::All).flexible(true).from_reader(bytes);
+    let mut record = csv::ByteRecord::new();
+    // The csv crate's own line counter skips comment lines, so lines come from byte offsets.
+    let newlines: Vec<usize> = bytes.iter().enumerate().filter(|(_, b)| **b == b'\n').map(|(i, _)| i).collect();
+    // A record's offset may point at the end of the previous line's CRLF: skip line ends first.
+    let line_at = |byte: u64| {
+        let mut b = byte as usize;
+        while b < owned.len() && (owned[b] == b'\n' || owned[b] == b'\r') {
+            b += 1;
+        }
+        1 + newlines.partition_point(|&i| i < b) as u64
     };
-    let (ic, ip) = (col("v_clamp_v")?, col("v_pull_v")?);
-    let mut out = Vec::new();
-    let mut rec = csv::StringRecord::new();
-    while r.read_record(&mut rec).map_err(csv_err)? {
-        let line = rec.position().map_or(0, |p| p.line());
-        if rec.iter().all(str::is_empty) {
+    let line_of = |r: &csv::ByteRecord| r.position().map_or(0, |p| line_at(p.byte()));
+    // The header: the first record that is not blank.
+    let header_line;
+    loop {
+        let more = reader.read_byte_record(&mut record).map_err(|e| csv_error(source, &e))?;
+        if !more {
+            return Err(empty("only comments or blank lines; expected a header `v_clamp_v,v_pull_v`".into()));
+        }
+        if !(record.len() == 1 && record[0].is_empty()) {
+            header_line = line_of(&record);
+            break;
+        }
+    }
+    let header_err =
+        |message: String| VoltageCsvError::Data { file: source.into(), line: header_line, column: None, message };
+    let names: Vec<String> =
+        record.iter().map(|f| String::from_utf8_lossy(f).trim().to_ascii_lowercase()).collect::<Vec<_>>();
+    let mut col = [None::<usize>; 4];
+    for (k, name) in names.iter().enumerate() {
+        if let Some(which) = ACCEPTED_COLUMNS.iter().position(|a| a == name) {
+            if let Some(first) = col[which] {
+                return Err(header_err(format!(
+                    "column `{name}` appears twice (columns {} and {}); each column may appear once",
+                    first + 1,
+                    k + 1
+                )));
+            }
+            col[which] = Some(k);
+        } else if is_voltage_name_without_unit(name) {
+            return Err(header_err(format!(
+                "column `{}` gives no unit; accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
+                crate::short(name)
+            )));
+        }
+    }
+    let (Some(ic), Some(ip)) = (col[0], col[1]) else {
+        let missing: Vec<&str> =
+            [(col[0], "v_clamp_v"), (col[1], "v_pull_v")].iter().filter(|c| c.0.is_none()).map(|c| c.1).collect();
+        return Err(header_err(format!(
+            "missing column(s) {missing:?} in the header {}; accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
+            crate::short(&format!("{names:?}"))
+        )));
+    };
+    let (isd, idev) = (col[2], col[3]);
+    let mut rows = Vec::with_capacity(newlines.len().min(MAX_MEASURED_ROWS));
+    while reader.read_byte_record(&mut record).map_err(|e| csv_error(source, &e))? {
+        if record.len() == 1 && record[0].is_empty() {
             continue;
         }
-        let get = |k: usize, name: &str| -> Result<f64, MeterError> {
-            let raw = rec.get(k).ok_or_else(|| err(line, format!("missing column `{name}` ({} fields)", rec.len())))?;
-            match raw.parse::<f64>() {
-                Ok(v) if v.is_finite() && (0.0..=MAX_MEASURED_VOLTAGE_V).contains(&v) => Ok(v),
-                _ => Err(err(
-                    line,
-                    format!(
-                        "{name} = {:?}: expected a non-negative voltage in V, at most {MAX_MEASURED_VOLTAGE_V:e} V",
-                        crate::short(raw)
-                    ),
-                )),
-            }
+        let line = line_of(&record);
+        if rows.len() >= MAX_MEASURED_ROWS {
+            return Err(VoltageCsvError::Data {
+                file: source.into(),
+                line,
+                column: None,
+                message: format!("more than {MAX_MEASURED_ROWS} data rows; split the file"),
+            });
+        }
+        let cell = |k: usize, name: &str| -> Result<&[u8], VoltageCsvError> {
+            record.get(k).ok_or_else(|| VoltageCsvError::Data {
+                file: source.into(),
+                line,
+                column: Some(name.into()),
+                message: format!("missing: the row has {} field(s), the header {}", record.len(), names.len()),
+            })
         };
-        out.push(MeasuredSlip { v_clamp: get(ic, "v_clamp_v")?, v_pull: get(ip, "v_pull_v")? });
+        let number = |k: usize, name: &str, positive: bool| -> Result<f64, VoltageCsvError> {
+            let raw = cell(k, name)?;
+            let text = std::str::from_utf8(raw).unwrap_or("");
+            let bad = |what: &str| VoltageCsvError::Data {
+                file: source.into(),
+                line,
+                column: Some(name.into()),
+                message: format!("value {:?}: {what}", crate::short(&String::from_utf8_lossy(raw))),
+            };
+            let x: f64 = text.parse().map_err(|_| bad("expected a number in volts"))?;
+            if !x.is_finite() {
+                return Err(bad("expected a finite number in volts (NaN and infinity are not voltages)"));
+            }
+            if positive && x <= 0.0 {
+                return Err(bad("expected a standard deviation > 0 V"));
+            }
+            if x < 0.0 {
+                return Err(bad("expected a voltage >= 0 V (the reduction uses V^2; record magnitudes)"));
+            }
+            if x > MAX_MEASURED_VOLTAGE_V {
+                return Err(bad(&format!("expected a voltage of at most {MAX_MEASURED_VOLTAGE_V:e} V")));
+            }
+            Ok(x)
+        };
+        let v_clamp_v = number(ic, "v_clamp_v", false)?;
+        let v_pull_v = number(ip, "v_pull_v", false)?;
+        let v_pull_sd_v = isd.map(|k| number(k, "v_pull_sd_v", true)).transpose()?;
+        let device = match idev {
+            Some(k) => String::from_utf8_lossy(cell(k, "device")?).into_owned(),
+            None => String::new(),
+        };
+        rows.push(Row { line, device, v_clamp_v, v_pull_v, v_pull_sd_v });
     }
-    if out.is_empty() {
-        return Err(err(hline, "no data lines after the header".into()));
+    if rows.is_empty() {
+        return Err(header_err("no data rows after the header".into()));
     }
-    Ok(out)
+    Ok(Dataset { source: source.into(), rows, has_sd: isd.is_some(), has_device: idev.is_some() })
+}
+
+fn csv_error(source: &str, e: &csv::Error) -> VoltageCsvError {
+    let line = e.position().map(|p| p.line()).unwrap_or(0);
+    VoltageCsvError::Data {
+        file: source.into(),
+        line,
+        column: None,
+        message: format!("not readable as CSV: {}", crate::short(&e.to_string())),
+    }
 }
 
 /// Highest voltage accepted in a measured CSV, V (the scenario's limit, see
@@ -99,11 +278,16 @@ pub const MAX_MEASURED_VOLTAGE_V: f64 = stiction_scenario::MAX_VOLTAGE_V;
 /// One measured slip beside the virtual meter at the same clamp voltage.
 #[derive(Debug, Clone, Serialize)]
 pub struct ComparedPoint {
-    /// Clamp voltage, V.
+    /// Line of the measured file.
+    pub line: u64,
+    /// Clamp voltage, V (JSON `v_clamp_v`).
+    #[serde(rename = "v_clamp_v")]
     pub v_clamp: f64,
-    /// Measured pull voltage at slip, V.
+    /// Measured pull voltage at slip, V (JSON `v_pull_measured_v`).
+    #[serde(rename = "v_pull_measured_v")]
     pub v_pull_measured: f64,
-    /// Virtual pull voltage at slip, V (None: no contact or no slip in the model).
+    /// Virtual pull voltage at slip, V (None: no contact or no slip in the model; JSON `v_pull_model_v`).
+    #[serde(rename = "v_pull_model_v")]
     pub v_pull_model: Option<f64>,
     /// Measured friction and load reduced with the nominal factors, N.
     pub friction_measured_n: f64,
@@ -120,7 +304,10 @@ pub struct Comparison {
     pub points: Vec<ComparedPoint>,
     /// Root mean square of the V_pull^2 residuals over the points the model could give, V^2.
     pub rms_v_pull_sq_residual_v2: Option<f64>,
-    /// Eq. 10 fitted to the measured data (L > 0), as the paper does.
+    /// Rows left out of the measured eq. 10 fit, with their line and reason (the rule of
+    /// [`select_rows`], as in `stiction fit`); the model still runs at their clamp voltages.
+    pub rows_rejected: Vec<Rejected>,
+    /// Eq. 10 fitted to the measured data (rows with L > 0 and V_pull > 0), as the paper does.
     pub measured_fit: Option<LineFit>,
     /// mu_e,a of the measured data.
     pub mu_apparent_measured: Option<f64>,
@@ -135,7 +322,8 @@ pub struct Comparison {
 impl Meter {
     /// Runs the virtual meter at the measured clamp voltages and compares: the pull voltages, and
     /// eq. 10 fitted to the measured data reduced with `reduction` (the lab's nominal values).
-    pub fn compare(&mut self, measured: &[MeasuredSlip], reduction: Reduction) -> Result<Comparison, MeterError> {
+    pub fn compare(&mut self, data: &Dataset, reduction: Reduction) -> Result<Comparison, MeterError> {
+        let measured = &data.rows;
         let limit = self.protocol.max_clamp_voltages.unwrap_or(stiction_scenario::DEFAULT_MAX_CLAMP_VOLTAGES);
         if measured.len() as u64 > limit {
             return Err(MeterError::Measured(format!(
@@ -145,31 +333,36 @@ impl Meter {
                 stiction_scenario::DEFAULT_MAX_CLAMP_VOLTAGES
             )));
         }
-        let voltages: Vec<f64> = measured.iter().map(|m| m.v_clamp).collect();
+        let voltages: Vec<f64> = measured.iter().map(|m| m.v_clamp_v).collect();
         let model = self.run_at(&voltages, &mut |_, _| {})?;
         let mut points = Vec::with_capacity(measured.len());
         for (m, p) in measured.iter().zip(&model.points) {
             let v_pull_model = p.v_pull;
             points.push(ComparedPoint {
-                v_clamp: m.v_clamp,
-                v_pull_measured: m.v_pull,
+                line: m.line,
+                v_clamp: m.v_clamp_v,
+                v_pull_measured: m.v_pull_v,
                 v_pull_model,
-                friction_measured_n: reduction.a_pull_n_per_v2 * m.v_pull * m.v_pull,
-                load_measured_n: reduction.a_clamp_n_per_v2 * m.v_clamp * m.v_clamp - reduction.spring_force_n,
-                v_pull_sq_residual_v2: v_pull_model.map(|v| v * v - m.v_pull * m.v_pull),
+                friction_measured_n: reduction.a_pull_n_per_v2 * m.v_pull_v * m.v_pull_v,
+                load_measured_n: reduction.a_clamp_n_per_v2 * m.v_clamp_v * m.v_clamp_v - reduction.spring_force_n,
+                v_pull_sq_residual_v2: v_pull_model.map(|v| v * v - m.v_pull_v * m.v_pull_v),
             });
         }
         let res: Vec<f64> = points.iter().filter_map(|p| p.v_pull_sq_residual_v2).collect();
         let rms = (!res.is_empty()).then(|| (res.iter().map(|r| r * r).sum::<f64>() / res.len() as f64).sqrt());
-        let pairs: Vec<(f64, f64)> = points
+        let (used, rows_rejected) = select_rows(measured, &reduction);
+        let pairs: Vec<(f64, f64)> = used
             .iter()
-            .filter(|p| p.load_measured_n > 0.0)
-            .map(|p| (p.load_measured_n, p.friction_measured_n))
+            .map(|m| {
+                let load = reduction.a_clamp_n_per_v2 * m.v_clamp_v * m.v_clamp_v - reduction.spring_force_n;
+                (load, reduction.a_pull_n_per_v2 * m.v_pull_v * m.v_pull_v)
+            })
             .collect();
         let (fit, mu, fa0) = crate::fit::eq10(&pairs);
         Ok(Comparison {
             points,
             rms_v_pull_sq_residual_v2: rms,
+            rows_rejected,
             measured_fit: fit,
             mu_apparent_measured: mu,
             apparent_adhesion_force_measured_n: fa0,
@@ -182,28 +375,59 @@ impl Meter {
 mod tests {
     use super::*;
 
+    fn msg(text: &str) -> String {
+        parse_measured_voltages(text.as_bytes(), "m.csv").unwrap_err().to_string()
+    }
+
     #[test]
-    fn reads_voltages_and_names_bad_lines() {
-        let ok = parse_measured_voltages("# fig 5\nv_clamp_v,v_pull_v\n25,30.1\n27, 33.9\n", "m.csv").unwrap();
-        assert_eq!(
-            ok,
-            vec![MeasuredSlip { v_clamp: 25.0, v_pull: 30.1 }, MeasuredSlip { v_clamp: 27.0, v_pull: 33.9 }]
-        );
-        let e = parse_measured_voltages("v_clamp_v,v_pull_v\n25,30\n26,abc\n", "m.csv").unwrap_err().to_string();
-        assert!(e.contains("m.csv, line 3") && e.contains("\"abc\""), "{e}");
-        let e = parse_measured_voltages("clamp,pull\n25,30\n", "m.csv").unwrap_err().to_string();
-        assert!(e.contains("no column `v_clamp_v`"), "{e}");
-        let e = parse_measured_voltages("v_clamp_v,v_pull_v\n25,-3\n", "m.csv").unwrap_err().to_string();
-        assert!(e.contains("line 2") && e.contains("non-negative"), "{e}");
-        assert!(parse_measured_voltages("v_clamp_v,v_pull_v\n", "m.csv").is_err());
-        let e = parse_measured_voltages("v_clamp_v,v_pull_v\n25\n", "m.csv").unwrap_err().to_string();
-        assert!(e.contains("missing column `v_pull_v`"), "{e}");
-        let e = parse_measured_voltages("v_clamp_v,v_pull_v,v_pull_v\n25,1,2\n", "m.csv").unwrap_err().to_string();
-        assert!(e.contains("`v_pull_v` appears 2 times"), "{e}");
-        let e = parse_measured_voltages("v_clamp_v,v_pull_v\n25,1e200\n", "m.csv").unwrap_err().to_string();
+    fn reads_bom_crlf_comments_quotes_and_extra_columns() {
+        let text = "\u{feff}# synthetic\r\nnote,\"v_clamp_v\",v_pull_v,device\r\n\"a, b\",25,30.5,\"d1\"\r\n\r\n# mid\r\nx, 26 ,31,d2\r\n";
+        let d = parse_measured_voltages(text.as_bytes(), "m.csv").unwrap();
+        assert_eq!(d.rows.len(), 2);
+        assert_eq!(d.rows[0], Row { line: 3, device: "d1".into(), v_clamp_v: 25.0, v_pull_v: 30.5, v_pull_sd_v: None });
+        assert_eq!(d.rows[1].line, 6);
+        assert_eq!(d.rows[1].v_clamp_v, 26.0);
+        assert!(d.has_device && !d.has_sd);
+    }
+
+    #[test]
+    fn bad_files_are_errors_naming_line_column_and_value() {
+        assert!(msg("").contains("empty"));
+        assert!(msg("# only a comment\n").contains("header"));
+        assert!(msg("v_clamp_v,v_pull_v\n").contains("no data rows"));
+        let e = msg("v_clamp_v,v_pull_v\n25,30\n26,abc\n");
+        assert!(e.contains("m.csv, line 3") && e.contains("v_pull_v") && e.contains("\"abc\""), "{e}");
+        let e = msg("v_clamp_v,v_pull_v\n25,-3\n");
+        assert!(e.contains("line 2") && e.contains(">= 0"), "{e}");
+        for bad in ["NaN", "inf", "-inf"] {
+            let e = msg(&format!("v_clamp_v,v_pull_v\n{bad},3\n"));
+            assert!(e.contains("finite") && e.contains("v_clamp_v"), "{e}");
+        }
+        let e = msg("v_clamp_v,v_pull_v,v_clamp_v\n1,2,3\n");
+        assert!(e.contains("twice"), "{e}");
+        let e = msg("v_clamp_v,x\n1,2\n");
+        assert!(e.contains("missing column") && e.contains("v_pull_v"), "{e}");
+        let e = msg("v_clamp,v_pull\n1,2\n");
+        assert!(e.contains("gives no unit") && e.contains("v_clamp_v"), "{e}");
+        let e = msg("v_clamp_v,v_pull_v\n25\n");
+        assert!(e.contains("line 2") && e.contains("v_pull_v") && e.contains("missing"), "{e}");
+        let e = msg("v_clamp_v,v_pull_v,v_pull_sd_v\n25,30,0\n");
+        assert!(e.contains("v_pull_sd_v") && e.contains("> 0"), "{e}");
+        let e = msg("v_clamp_v,v_pull_v\n25,1e200\n");
         assert!(e.contains("line 2") && e.contains("at most"), "{e}");
-        // Quoting, CRLF and a BOM as a spreadsheet writes them.
-        let ok = parse_measured_voltages("\u{feff}\"v_clamp_v\",v_pull_v\r\n\"25\",30\r\n", "m.csv").unwrap();
-        assert_eq!(ok, vec![MeasuredSlip { v_clamp: 25.0, v_pull: 30.0 }]);
+    }
+
+    /// The rows an analysis leaves out: L <= 0 with the nominal reduction, or no slip.
+    #[test]
+    fn rows_below_contact_or_without_slip_are_rejected_with_their_line() {
+        let d = parse_measured_voltages(b"v_clamp_v,v_pull_v\n10,5\n25,0\n26,31\n", "m.csv").unwrap();
+        // The paper's reduction: first contact at V_clamp = sqrt(7e-6 / 1.4e-8) = 22.4 V.
+        let red = Reduction { a_clamp_n_per_v2: 1.4e-8, a_pull_n_per_v2: 3.8e-9, spring_force_n: 7e-6 };
+        let (used, rejected) = select_rows(&d.rows, &red);
+        assert_eq!(used.len(), 1);
+        assert_eq!(used[0].line, 4);
+        assert_eq!(rejected.len(), 2);
+        assert!(rejected[0].line == 2 && rejected[0].reason.contains("below first contact"), "{rejected:?}");
+        assert!(rejected[1].line == 3 && rejected[1].reason.contains("no slip"), "{rejected:?}");
     }
 }

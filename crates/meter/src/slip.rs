@@ -38,6 +38,7 @@ pub enum SlipPath {
     /// Energy criterion plus an RK4 integrator (default for studies).
     Light,
 }
+stiction_units::display_serde_name!(SlipPath);
 
 /// The outcome of a slip.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -325,9 +325,9 @@ fn csv_readers_keep_the_contract() {
         let m = mutate_csv(&mut rng, measured);
         run_guarded(
             &format!("measured case {case}: {m:?}"),
-            || match stiction_meter::measured::parse_measured_voltages(&m, "m.csv") {
-                Ok(rows) => {
-                    let ok = rows.iter().all(|r| r.v_clamp.is_finite() && r.v_pull.is_finite());
+            || match stiction_meter::measured::parse_measured_voltages(m.as_bytes(), "m.csv") {
+                Ok(data) => {
+                    let ok = data.rows.iter().all(|r| r.v_clamp_v.is_finite() && r.v_pull_v.is_finite());
                     if ok { Ok(Outcome::Ran) } else { Err("non-finite voltage accepted".into()) }
                 }
                 Err(e) => {

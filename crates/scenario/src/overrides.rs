@@ -4,6 +4,11 @@
 //! against the format's JSON Schema, so a misspelt name is an error that lists the near names.
 //! VALUE is read as JSON when it parses as JSON (`3`, `true`, `"x"`, `[1,2]`, `{"value": ...}`)
 //! and as a string otherwise (`40 nm`).
+//!
+//! A file path in VALUE (a field the schema marks with [`PATH_KEYWORD`], also inside an object
+//! value such as `measured={"voltages_csv": "m.csv"}`) was typed on the command line, so a
+//! relative one is relative to the current directory: it is made absolute here. Paths written in
+//! the scenario file stay relative to the file's folder.
 
 use serde_json::{Map, Value};
 
@@ -27,11 +32,19 @@ pub fn parse_set(set: &str) -> Result<(Vec<String>, Value), ScenarioError> {
     Ok((segments, value))
 }
 
+/// The JSON Schema keyword (`"x-stiction-path": true`) on the fields that hold a file path.
+pub const PATH_KEYWORD: &str = "x-stiction-path";
+
 /// Applies one `PATH=VALUE` override to a scenario's JSON, after checking PATH against the schema.
+/// A relative file path in VALUE is made absolute against the current directory.
 pub fn apply_set(root: &mut Value, set: &str) -> Result<(), ScenarioError> {
-    let (segments, value) = parse_set(set)?;
+    let (segments, mut value) = parse_set(set)?;
     let err = |message: String| ScenarioError::Set { set: set.to_string(), message };
-    check_path(&segments).map_err(err)?;
+    let target = check_path(&segments).map_err(err)?;
+    let cwd = std::env::current_dir()
+        .map_err(|e| err(format!("cannot read the current directory to resolve a relative path: {e}")))?;
+    let defs = Scenario::json_schema().get("$defs").cloned().unwrap_or(Value::Null);
+    absolutize_paths(&mut value, &target, &defs, &cwd);
     let mut node = root;
     for (i, seg) in segments.iter().enumerate() {
         let last = i + 1 == segments.len();
@@ -74,8 +87,48 @@ fn kind(v: &Value) -> &'static str {
     }
 }
 
+/// Makes every relative path in `value` (where a schema node of `nodes` has [`PATH_KEYWORD`])
+/// absolute against `cwd`, walking objects and lists along the schema.
+fn absolutize_paths(value: &mut Value, nodes: &[Value], defs: &Value, cwd: &std::path::Path) {
+    let nodes = expand(nodes, defs);
+    match value {
+        Value::String(s) => {
+            let is_path = nodes.iter().any(|n| n.get(PATH_KEYWORD).and_then(Value::as_bool) == Some(true));
+            if is_path && std::path::Path::new(s.as_str()).is_relative() {
+                *s = cwd.join(s.as_str()).to_string_lossy().into_owned();
+            }
+        }
+        Value::Object(map) => {
+            for (key, v) in map.iter_mut() {
+                let mut child = Vec::new();
+                for n in &nodes {
+                    if let Some(s) = n.get("properties").and_then(|p| p.get(key)) {
+                        child.push(s.clone());
+                    }
+                    if let Some(s @ Value::Object(_)) = n.get("additionalProperties") {
+                        child.push(s.clone());
+                    }
+                }
+                if !child.is_empty() {
+                    absolutize_paths(v, &child, defs, cwd);
+                }
+            }
+        }
+        Value::Array(items) => {
+            let child: Vec<Value> = nodes.iter().filter_map(|n| n.get("items").cloned()).collect();
+            if !child.is_empty() {
+                for v in items {
+                    absolutize_paths(v, &child, defs, cwd);
+                }
+            }
+        }
+        _ => {}
+    }
+}
+
 /// Walks the JSON Schema of [`Scenario`] along `segments`; on a wrong name, lists the near ones.
-fn check_path(segments: &[String]) -> Result<(), String> {
+/// Returns the schema nodes of the target field.
+fn check_path(segments: &[String]) -> Result<Vec<Value>, String> {
     let schema = Scenario::json_schema();
     let defs = schema.get("$defs").cloned().unwrap_or(Value::Null);
     let mut nodes = vec![schema.clone()];
@@ -116,7 +169,7 @@ fn check_path(segments: &[String]) -> Result<(), String> {
         }
         nodes = next;
     }
-    Ok(())
+    Ok(nodes)
 }
 
 /// Resolves `$ref`, `anyOf`, `oneOf` and `allOf` into the plain schema objects they stand for.
@@ -172,6 +225,22 @@ mod tests {
         assert_eq!(v, Value::from(3));
         assert!(parse_set("no-equals").is_err());
         assert!(parse_set("a..b=1").is_err());
+    }
+
+    /// A path typed with --set is relative to the current directory, also inside an object value;
+    /// other strings are left alone.
+    #[test]
+    fn set_paths_are_relative_to_the_current_directory() {
+        let cwd = std::env::current_dir().unwrap();
+        let mut root = serde_json::json!({"surface": {"apparent_length": "20 um"}});
+        apply_set(&mut root, "measured={\"voltages_csv\": \"data/m.csv\"}").unwrap();
+        assert_eq!(root["measured"]["voltages_csv"], cwd.join("data/m.csv").to_string_lossy().as_ref());
+        apply_set(&mut root, "surface.csv_path=s.csv").unwrap();
+        assert_eq!(root["surface"]["csv_path"], cwd.join("s.csv").to_string_lossy().as_ref());
+        apply_set(&mut root, "surface.height_map.file=/abs/map.npy").unwrap();
+        assert_eq!(root["surface"]["height_map"]["file"], "/abs/map.npy");
+        apply_set(&mut root, "surface.summit_sd=40 nm").unwrap();
+        assert_eq!(root["surface"]["summit_sd"], "40 nm");
     }
 
     #[test]

@@ -119,6 +119,7 @@ pub enum ShoeMode {
     /// A fixed number of contacts (`contacts`), for comparison with eq. 12.
     Fixed,
 }
+stiction_units::display_serde_name!(ContactModel, ShoeMode);
 
 /// Contact law and model.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema, PartialEq)]
@@ -438,6 +439,8 @@ impl MeterSpec {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MeasuredSpec {
-    /// The CSV file, relative to the scenario file.
+    /// The CSV file; a relative path is resolved against the scenario file's folder (given with
+    /// `--set` on the command line: against the current directory).
+    #[schemars(extend("x-stiction-path" = true))]
     pub voltages_csv: PathBuf,
 }

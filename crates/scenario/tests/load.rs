@@ -64,7 +64,7 @@ fn errors_name_the_json_path_the_value_and_the_expectation() {
     let base = r#"{"format_version": 1, "material": {"compliance": "9.1e-12 1/Pa", "work_of_adhesion": "0.1 J/m^2", "shear_strength": "1.4 GPa"}}"#;
     assert!(load_str(base, &[]).is_ok());
     let cases: &[(&str, &[&str])] = &[
-        ("material.shear_strength=\"1.4 um\"", &["material.shear_strength", "1.4 um", "expected positive a pressure"]),
+        ("material.shear_strength=\"1.4 um\"", &["material.shear_strength", "1.4 um", "expected a positive pressure"]),
         ("material.hardness=\"-9 GPa\"", &["material.hardness", "negative"]),
         ("material.compliance=\"NaN\"", &["material.compliance", "NaN"]),
         ("material.work_of_adhesion=true", &["material.work_of_adhesion", "neither a number nor a string"]),

@@ -82,6 +82,7 @@ pub enum Calibration {
     /// model is the nominal one); the spring force stays nominal.
     PullIn,
 }
+stiction_units::display_serde_name!(Calibration);
 
 /// Settings of a Monte Carlo study.
 #[derive(Debug, Clone, Serialize)]

@@ -63,8 +63,8 @@ impl Header {
             ("--samples", self.samples.to_string(), other.samples.to_string()),
             ("--seed", self.seed.to_string(), other.seed.to_string()),
             ("--fixed-surface", (!self.vary_surface).to_string(), (!other.vary_surface).to_string()),
-            ("--calibration", format!("{:?}", self.calibration), format!("{:?}", other.calibration)),
-            ("--slip-path", format!("{:?}", self.slip_path), format!("{:?}", other.slip_path)),
+            ("--calibration", self.calibration.to_string(), other.calibration.to_string()),
+            ("--slip-path", self.slip_path.to_string(), other.slip_path.to_string()),
             ("uncertain parameters", format!("{:?}", self.parameters), format!("{:?}", other.parameters)),
         ];
         checks.into_iter().find(|(_, a, b)| a != b).map(|(what, a, b)| format!("{what}: {a} vs {b}"))
@@ -84,17 +84,15 @@ impl Header {
     }
 }
 
-/// The column names of samples.csv: units in every name.
+/// The column names of samples.csv: the unit at the end of every name that holds a quantity
+/// (`name_unit`, as every other CSV and JSON key: `apparent_adhesion_force_n`,
+/// `surface.summit_radius_m`); pure numbers and counts have none.
 pub fn columns(header: &Header) -> Vec<String> {
-    let mut c = vec![
-        "sample [index]".to_string(),
-        "mu_apparent [1]".into(),
-        "apparent_adhesion_force [N]".into(),
-        "mean_contacts [count]".into(),
-    ];
-    c.extend(header.parameters.iter().map(|(p, u)| format!("{p} [{u}]")));
-    c.push("reason [code]".into());
-    c.push("detail [text]".into());
+    let mut c =
+        vec!["sample".to_string(), "mu_apparent".into(), "apparent_adhesion_force_n".into(), "mean_contacts".into()];
+    c.extend(header.parameters.iter().map(|(p, u)| stiction_units::key_with_unit(p, u)));
+    c.push("reason".into());
+    c.push("detail".into());
     c
 }
 

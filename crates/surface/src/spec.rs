@@ -110,8 +110,10 @@ pub struct SurfaceSpec {
     #[serde(default)]
     pub source: SurfaceSource,
     /// CSV file with columns x_m, y_m, height_m, radius_m (SI); relative paths are resolved
-    /// against the scenario file's folder. Only with `source` = "csv".
+    /// against the scenario file's folder (given with `--set` on the command line: against the
+    /// current directory). Only with `source` = "csv".
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("x-stiction-path" = true))]
     pub csv_path: Option<PathBuf>,
     /// "poisson" (default) or "jittered_grid".
     #[serde(default)]

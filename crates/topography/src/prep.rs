@@ -39,6 +39,7 @@ pub enum Levelling {
     /// Subtract the least-squares polynomial of degree 3 in x and y.
     Poly3,
 }
+stiction_units::display_serde_name!(Levelling);
 
 impl Levelling {
     /// Polynomial degree removed, `None` for no levelling.

@@ -64,6 +64,12 @@ impl MapFormat {
     }
 }
 
+impl std::fmt::Display for MapFormat {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 impl FromStr for MapFormat {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {

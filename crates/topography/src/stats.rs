@@ -358,6 +358,7 @@ pub enum PsdWindow {
     #[default]
     Hann,
 }
+stiction_units::display_serde_name!(PsdWindow);
 
 /// The radially averaged power spectral density.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -96,7 +96,7 @@ mod tests {
         let json = r#"{"radius": "-0.5 um"}"#;
         let de = &mut serde_json::Deserializer::from_str(json);
         let err = serde_path_to_error_lite(de);
-        assert!(err.contains("-0.5 um") && err.contains("negative") && err.contains("positive a length"), "{err}");
+        assert!(err.contains("-0.5 um") && err.contains("negative") && err.contains("a positive length"), "{err}");
         let err = serde_json::from_str::<Spec>(r#"{"radius": "0.5 N"}"#).unwrap_err().to_string();
         assert!(err.contains("is a force"), "{err}");
         let err =

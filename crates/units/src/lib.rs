@@ -30,6 +30,73 @@ pub mod io;
 mod uncertain;
 pub use uncertain::{Distribution, ScalarInput, UncertainInput, nominal_from_json};
 
+/// The name serde gives a value: for a unit enum variant the string the scenario files and every
+/// JSON output spell it with (`"maugis-dugdale"`, `"tilt"`); anything else its compact JSON.
+///
+/// Text output uses the same names as JSON through [`display_serde_name!`](crate::display_serde_name),
+/// so each enum is spelled one way everywhere and the spelling lives only in its serde attributes.
+pub fn serde_name<T: Serialize + ?Sized>(value: &T) -> String {
+    match serde_json::to_value(value) {
+        Ok(serde_json::Value::String(s)) => s,
+        Ok(other) => other.to_string(),
+        Err(e) => format!("<{e}>"),
+    }
+}
+
+/// The suffix that names an SI unit in a JSON key or CSV column (`name_unit`, as `load_n`,
+/// `real_area_m2`): "N/V^2" -> "n_per_v2", "m^-2" -> "per_m2", "1/Pa" -> "per_pa",
+/// "N s/m" -> "n_s_per_m"; "" or "1" (a pure number) -> "" (no suffix).
+pub fn unit_key_suffix(si_unit: &str) -> String {
+    let unit = si_unit.trim();
+    if unit.is_empty() || unit == "1" {
+        return String::new();
+    }
+    // Terms with a negative power move behind "per": "m^-2" is "per m^2".
+    let (num, den) = unit.split_once('/').unwrap_or((unit, ""));
+    let mut over: Vec<String> = Vec::new();
+    let mut under: Vec<String> = Vec::new();
+    for term in num.split([' ', '*', '.']).filter(|t| !t.is_empty() && *t != "1") {
+        match term.split_once("^-") {
+            Some((base, power)) => under.push(format!("{base}{power}")),
+            None => over.push(term.replace('^', "")),
+        }
+    }
+    for term in den.split([' ', '*', '.']).filter(|t| !t.is_empty()) {
+        under.push(term.replace('^', ""));
+    }
+    let mut key = over.join("_");
+    if !under.is_empty() {
+        key =
+            if key.is_empty() { format!("per_{}", under.join("_")) } else { format!("{key}_per_{}", under.join("_")) };
+    }
+    key.to_lowercase()
+}
+
+/// `name` with the unit suffix of [`unit_key_suffix`]: ("surface.summit_radius", "m") ->
+/// "surface.summit_radius_m"; a pure number keeps its bare name.
+pub fn key_with_unit(name: &str, si_unit: &str) -> String {
+    match unit_key_suffix(si_unit) {
+        s if s.is_empty() => name.to_string(),
+        s => format!("{name}_{s}"),
+    }
+}
+
+/// Implements `Display` for enums with their serde names (see [`serde_name`]):
+/// `stiction_units::display_serde_name!(AdhesionLaw, Branch);` makes `AdhesionLaw::MaugisDugdale`
+/// print as `maugis-dugdale`, as it is written in a scenario file and in JSON.
+#[macro_export]
+macro_rules! display_serde_name {
+    ($($t:ty),+ $(,)?) => {
+        $(
+            impl ::std::fmt::Display for $t {
+                fn fmt(&self, f: &mut ::std::fmt::Formatter<'_>) -> ::std::fmt::Result {
+                    f.write_str(&$crate::serde_name(self))
+                }
+            }
+        )+
+    };
+}
+
 /// Exponents of the base dimensions (metre, kilogram, second, ampere) of a unit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct DimensionVector(pub [i8; 4]);
@@ -208,12 +275,17 @@ impl QuantityError {
             Constraint::Positive => "positive ",
             Constraint::NonNegative => "non-negative ",
         };
+        // "a positive length", "a non-negative area": the sign goes after the article.
+        let what = match (sign, dim.description().split_once(' ')) {
+            ("", _) | (_, None) => dim.description().to_string(),
+            (_, Some((_article, noun))) => format!("a {sign}{noun}"),
+        };
         let si = dim.si_unit();
         let bare = if si.is_empty() { "a number".to_string() } else { format!("a number in {si}") };
         QuantityError {
             value: value.into(),
             problem: problem.into(),
-            expected: format!("{sign}{} such as {} (or {bare})", dim.description(), dim.example()),
+            expected: format!("{what} such as {} (or {bare})", dim.example()),
         }
     }
 }
@@ -236,7 +308,62 @@ impl fmt::Display for QuantityInput {
         match self {
             QuantityInput::Number(x) => write!(f, "{x}"),
             QuantityInput::Text(t) => write!(f, "{t}"),
-            QuantityInput::Uncertain(u) => write!(f, "{u:?}"),
+            QuantityInput::Uncertain(u) => write!(f, "{u}"),
         }
+    }
+}
+
+#[cfg(test)]
+mod name_tests {
+    use super::*;
+
+    /// Text and JSON spell an enum the same way, the way a scenario file writes it.
+    #[test]
+    fn display_is_the_serde_name() {
+        assert_eq!(Distribution::Lognormal.to_string(), "lognormal");
+        assert_eq!(serde_json::to_string(&Distribution::Lognormal).unwrap(), "\"lognormal\"");
+        let back: Distribution = serde_json::from_str(&format!("\"{}\"", Distribution::Uniform)).unwrap();
+        assert_eq!(back, Distribution::Uniform);
+        assert_eq!(serde_name(&3), "3");
+        // An uncertain parameter in an error: as written, not as a Rust value.
+        let u: UncertainInput =
+            serde_json::from_str(r#"{"value": "0.5 um", "sd": "0.3 um", "min": "0.6 um", "max": 7e-7}"#).unwrap();
+        let e = u.nominal(Dimension::Length, Constraint::Positive).unwrap_err().to_string();
+        assert!(
+            e.starts_with(r#""{value: 0.5 um, sd: 0.3 um, distribution: normal, min: 0.6 um, max: 0.0000007}": value"#),
+            "{e}"
+        );
+    }
+
+    /// The unit suffixes of keys and columns, as the hand-written keys spell them.
+    #[test]
+    fn unit_suffixes() {
+        for (unit, key) in [
+            ("N", "n"),
+            ("m^2", "m2"),
+            ("N/V^2", "n_per_v2"),
+            ("m^-2", "per_m2"),
+            ("1/Pa", "per_pa"),
+            ("J/m^2", "j_per_m2"),
+            ("N s/m", "n_s_per_m"),
+            ("N/m", "n_per_m"),
+            ("1", ""),
+            ("", ""),
+        ] {
+            assert_eq!(unit_key_suffix(unit), key, "{unit}");
+        }
+        assert_eq!(key_with_unit("surface.summit_radius", "m"), "surface.summit_radius_m");
+        assert_eq!(key_with_unit("meter.slip_mu", "1"), "meter.slip_mu");
+    }
+
+    /// "expected a positive length", not "expected positive a length".
+    #[test]
+    fn expected_reads_as_english() {
+        let e = parse_quantity_checked("-0.5 um", Dimension::Length, Constraint::Positive).unwrap_err();
+        assert!(e.to_string().contains("expected a positive length such as"), "{e}");
+        let e = parse_quantity_checked("-1 um^2", Dimension::Area, Constraint::NonNegative).unwrap_err();
+        assert!(e.to_string().contains("expected a non-negative area such as"), "{e}");
+        let e = parse_quantity_checked("1 N", Dimension::Length, Constraint::Finite).unwrap_err();
+        assert!(e.to_string().contains("expected a length such as"), "{e}");
     }
 }

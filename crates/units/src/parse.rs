@@ -364,7 +364,7 @@ mod tests {
         }
         let msg = parse_quantity_checked("-0.5 um", Dimension::Length, Constraint::Positive).unwrap_err().to_string();
         assert!(
-            msg.contains("negative") && msg.contains("positive a length") || msg.contains("expected positive"),
+            msg.contains("negative") && msg.contains("a positive length") || msg.contains("expected a positive"),
             "{msg}"
         );
         assert!(parse_quantity_checked("0 um", Dimension::Length, Constraint::NonNegative).is_ok());

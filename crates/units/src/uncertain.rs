@@ -29,6 +29,7 @@ pub enum Distribution {
     /// Uniform on `[min, max]`, or on `value +/- sd * sqrt(3)` (same SD) when no bounds are given.
     Uniform,
 }
+crate::display_serde_name!(Distribution);
 
 /// A value with an uncertainty. A nominal run uses `value`; a Monte Carlo study draws from
 /// `distribution` with standard deviation `sd` (or between `min` and `max` for a uniform one).
@@ -50,6 +51,34 @@ pub struct UncertainInput {
     /// Upper bound of a uniform distribution.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max: Option<ScalarInput>,
+}
+
+impl std::fmt::Display for ScalarInput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ScalarInput::Number(x) => write!(f, "{x}"),
+            ScalarInput::Text(t) => f.write_str(t),
+        }
+    }
+}
+
+/// As written in a scenario, without JSON quotes: `{value: 0.5 um, sd: 0.3 um, distribution:
+/// lognormal}` (error messages quote it whole).
+impl std::fmt::Display for UncertainInput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{{value: {}", self.value)?;
+        if let Some(sd) = &self.sd {
+            write!(f, ", sd: {sd}")?;
+        }
+        write!(f, ", distribution: {}", self.distribution)?;
+        if let Some(min) = &self.min {
+            write!(f, ", min: {min}")?;
+        }
+        if let Some(max) = &self.max {
+            write!(f, ", max: {max}")?;
+        }
+        f.write_str("}")
+    }
 }
 
 fn scalar_si(s: &ScalarInput, dim: Dimension, constraint: Constraint) -> Result<f64, QuantityError> {
@@ -75,7 +104,7 @@ impl UncertainInput {
             && !(lo <= value && value <= hi)
         {
             return Err(QuantityError::new(
-                format!("{self:?}"),
+                self.to_string(),
                 format!("value {value} is not within [min, max] = [{lo}, {hi}]"),
                 dim,
                 constraint,
@@ -83,7 +112,7 @@ impl UncertainInput {
         }
         if self.distribution == Distribution::Lognormal && value <= 0.0 {
             return Err(QuantityError::new(
-                format!("{self:?}"),
+                self.to_string(),
                 "a lognormal parameter needs a positive value",
                 dim,
                 constraint,

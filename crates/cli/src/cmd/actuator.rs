@@ -11,7 +11,7 @@ use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 use stiction_units::{Constraint, Dimension};
 
-use crate::output::{CliResult, OutputSet, print_json, print_table, q, quantity};
+use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q, quantity};
 
 /// Pull-in, release, conversion factor and stiffness of an actuator array; sweeps; validation against measurements.
 #[derive(clap::Args, Debug)]
@@ -197,34 +197,36 @@ pub fn run(args: Args) -> CliResult {
             ("front gap (as built)", q(summary.front_gap_m, Dimension::Length)),
         ],
     );
+    if let Some(sweep) = &summary.sweep {
+        print_sweep(sweep);
+    }
     if let Some(r) = &summary.validation {
         crate::outln!(
             "\nValidation against {} ({} finger lengths)",
             args.validate.as_ref().map_or(String::new(), |p| p.display().to_string()),
             r.points.len()
         );
-        crate::outln!(
-            "  {:>10}  {:>9} {:>9} {:>8}   {:>9} {:>9} {:>8}",
+        let mut t = TextTable::new(&[
             "L_f (um)",
-            "V_pi meas",
-            "V_pi mod",
-            "err",
-            "V_r meas",
-            "V_r mod",
-            "err"
-        );
+            "pull-in measured (V)",
+            "pull-in model (V)",
+            "error",
+            "release measured (V)",
+            "release model (V)",
+            "error",
+        ]);
         for p in &r.points {
-            crate::outln!(
-                "  {:>10.2}  {:>9.2} {:>9.2} {:>7.1}%   {:>9.2} {:>9.2} {:>7.1}%",
-                p.finger_length_m * 1e6,
-                p.pull_in_v_measured,
-                p.pull_in_v_model,
-                100.0 * p.pull_in_rel_error,
-                p.release_v_measured,
-                p.release_v_model,
-                100.0 * p.release_rel_error
-            );
+            t.row(vec![
+                format!("{:.2}", p.finger_length_m * 1e6),
+                format!("{:.2}", p.pull_in_v_measured),
+                format!("{:.2}", p.pull_in_v_model),
+                format!("{:+.1} %", 100.0 * p.pull_in_rel_error),
+                format!("{:.2}", p.release_v_measured),
+                format!("{:.2}", p.release_v_model),
+                format!("{:+.1} %", 100.0 * p.release_rel_error),
+            ]);
         }
+        t.print("  ");
         crate::outln!(
             "  mean |relative error|: pull-in {:.1} %, release {:.1} %",
             100.0 * r.pull_in_mean_abs_rel_error,
@@ -235,33 +237,48 @@ pub fn run(args: Args) -> CliResult {
         print_transients(args.transients.as_deref(), r);
     }
     if let Some(sw) = &summary.transient_switches {
-        crate::outln!("\nTransient model ingredients (mean |rel. error| pull-in, release; mean signed)");
-        let pct = |v: Option<f64>| v.map_or("     -".to_string(), |x| format!("{:6.1}", 100.0 * x));
-        let signed = |v: Option<f64>| v.map_or("     -".to_string(), |x| format!("{:+6.1}", 100.0 * x));
+        crate::outln!("\nTransient model ingredients, one changed at a time (relative errors of the times)");
+        let pct = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{:.1} %", 100.0 * x));
+        let signed = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{:+.1} %", 100.0 * x));
+        let mut t = TextTable::new(&[
+            "switch",
+            "pull-in mean |err|",
+            "release mean |err|",
+            "pull-in mean err",
+            "release mean err",
+            "not predicted",
+        ]);
         for s in sw {
-            crate::outln!(
-                "  {:<52} {} % {} %   ({} %, {} %){}",
-                s.switch,
+            t.row(vec![
+                s.switch.clone(),
                 pct(s.pull_in_time_mean_abs_rel_error),
                 pct(s.release_time_mean_abs_rel_error),
                 signed(s.pull_in_time_mean_rel_error),
                 signed(s.release_time_mean_rel_error),
-                if s.unpredicted > 0 { format!("  {} points not predicted", s.unpredicted) } else { String::new() }
-            );
+                s.unpredicted.to_string(),
+            ]);
         }
+        t.print("  ");
     }
     if let Some(sw) = &summary.switches {
-        crate::outln!("\nPhysics switches (mean |rel. error| pull-in, release; mean signed)");
+        crate::outln!("\nPhysics switches, one changed at a time (relative errors of the voltages)");
+        let mut t = TextTable::new(&[
+            "switch",
+            "pull-in mean |err|",
+            "release mean |err|",
+            "pull-in mean err",
+            "release mean err",
+        ]);
         for s in sw {
-            crate::outln!(
-                "  {:<36} {:>6.1} % {:>6.1} %   ({:+.1} %, {:+.1} %)",
-                s.switch,
-                100.0 * s.pull_in_mean_abs_rel_error,
-                100.0 * s.release_mean_abs_rel_error,
-                100.0 * s.pull_in_mean_rel_error,
-                100.0 * s.release_mean_rel_error
-            );
+            t.row(vec![
+                s.switch.clone(),
+                format!("{:.1} %", 100.0 * s.pull_in_mean_abs_rel_error),
+                format!("{:.1} %", 100.0 * s.release_mean_abs_rel_error),
+                format!("{:+.1} %", 100.0 * s.pull_in_mean_rel_error),
+                format!("{:+.1} %", 100.0 * s.release_mean_rel_error),
+            ]);
         }
+        t.print("  ");
     }
     Ok(())
 }
@@ -330,40 +347,87 @@ fn print_transients(path: Option<&Path>, r: &TransientReport) {
         path.map_or(String::new(), |p| p.display().to_string()),
         r.points.len()
     );
-    crate::outln!(
-        "  {:>8}  {:<8} {:>7}  {:>10} {:>8}  {:>10}  {:>7}",
-        "L_f (um)",
-        "event",
-        "V",
-        "meas (us)",
-        "SD (us)",
-        "model (us)",
-        "err"
-    );
+    let mut t =
+        TextTable::new(&["L_f (um)", "event", "V (V)", "measured (us)", "SD (us)", "model (us)", "error", "note"]);
     for p in &r.points {
-        crate::outln!(
-            "  {:>8.2}  {:<8} {:>7.1}  {:>10.2} {:>8.2}  {:>10}  {:>7}{}",
-            p.finger_length_m * 1e6,
-            p.event.name(),
-            p.voltage_v,
-            p.measured_mean_s * 1e6,
-            p.measured_sd_s * 1e6,
+        t.row(vec![
+            format!("{:.2}", p.finger_length_m * 1e6),
+            p.event.to_string(),
+            format!("{:.1}", p.voltage_v),
+            format!("{:.2}", p.measured_mean_s * 1e6),
+            format!("{:.2}", p.measured_sd_s * 1e6),
             p.predicted_s.map_or("-".to_string(), |t| format!("{:.2}", t * 1e6)),
-            p.rel_error.map_or("-".to_string(), |e| format!("{:+.1}%", 100.0 * e)),
-            p.no_prediction.as_ref().map_or(String::new(), |why| format!("  ({why})"))
-        );
+            p.rel_error.map_or("-".to_string(), |e| format!("{:+.1} %", 100.0 * e)),
+            p.no_prediction.clone().unwrap_or_default(),
+        ]);
     }
-    crate::outln!("\n  {:<8} {:>8}  {:>10} {:>10} {:>10}", "event", "L_f (um)", "mean|err|", "mean err", "RMSE (us)");
+    t.print("  ");
+    crate::outln!();
+    let mut t = TextTable::new(&["event", "L_f (um)", "mean |err|", "mean err", "RMSE (us)", "not predicted"]);
     for e in &r.errors {
-        crate::outln!(
-            "  {:<8} {:>8}  {:>9.1}% {:>9.1}% {:>10.2}{}",
-            e.event.name(),
+        t.row(vec![
+            e.event.to_string(),
             e.finger_length_m.map_or("all".to_string(), |l| format!("{:.2}", l * 1e6)),
-            100.0 * e.mean_abs_rel_error,
-            100.0 * e.mean_rel_error,
-            e.rmse_s * 1e6,
-            if e.unpredicted > 0 { format!("  ({} not predicted)", e.unpredicted) } else { String::new() }
+            format!("{:.1} %", 100.0 * e.mean_abs_rel_error),
+            format!("{:+.1} %", 100.0 * e.mean_rel_error),
+            format!("{:.2}", e.rmse_s * 1e6),
+            e.unpredicted.to_string(),
+        ]);
+    }
+    t.print("  ");
+}
+
+/// Most rows of each sweep direction in the text output (`--json` and `--out` have every step).
+const SWEEP_TEXT_ROWS: usize = 25;
+
+/// The voltage sweep as text: where the array pulls in and releases, and a table of travel and
+/// forces, thinned to at most [`SWEEP_TEXT_ROWS`] rows per direction (always with the rows on both
+/// sides of a jump).
+fn print_sweep(sweep: &Sweep) {
+    for (title, pts) in [("loading (increasing V)", &sweep.loading), ("unloading (decreasing V)", &sweep.unloading)] {
+        let n = pts.len();
+        if n == 0 {
+            continue;
+        }
+        let jump = pts.windows(2).position(|w| w[0].at_stop != w[1].at_stop);
+        let every = n.div_ceil(SWEEP_TEXT_ROWS).max(1);
+        crate::outln!(
+            "\nVoltage sweep, {title}: {n} steps from {:.3} V to {:.3} V{}",
+            pts[0].voltage_v,
+            pts[n - 1].voltage_v,
+            if every > 1 {
+                format!(", one row in {every} shown (every step in --json and --out)")
+            } else {
+                String::new()
+            }
         );
+        if let Some(k) = jump {
+            let what = if pts[k + 1].at_stop { "pulls in to the stop" } else { "releases from the stop" };
+            crate::outln!("  the array {what} between {:.3} V and {:.3} V", pts[k].voltage_v, pts[k + 1].voltage_v);
+        }
+        let mut t = TextTable::new(&[
+            "V (V)",
+            "travel x (um)",
+            "electrostatic F (uN)",
+            "spring F (uN)",
+            "stop F (uN)",
+            "at stop",
+        ]);
+        for (i, p) in pts.iter().enumerate() {
+            let near_jump = jump.is_some_and(|k| i == k || i == k + 1);
+            if i % every != 0 && i != n - 1 && !near_jump {
+                continue;
+            }
+            t.row(vec![
+                format!("{:.3}", p.voltage_v),
+                format!("{:.4}", p.travel_m * 1e6),
+                format!("{:.4}", p.electrostatic_force_n * 1e6),
+                format!("{:.4}", p.spring_force_n * 1e6),
+                format!("{:.4}", p.stop_force_n * 1e6),
+                if p.at_stop { "yes".into() } else { "no".into() },
+            ]);
+        }
+        t.print("  ");
     }
 }
 

@@ -2,13 +2,13 @@
 
 use std::path::PathBuf;
 
-use stiction_contact::explicit::{Detail, Equilibrium};
+use stiction_contact::explicit::{Detail, Equilibrium, SweepEvent};
 use stiction_contact::single::Branch;
 use stiction_meter::{ContactModel, build_contact_model};
 use stiction_scenario::{ContactModel as ModelKind, Scenario};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
-use crate::output::{CliResult, print_json, print_table, q, quantity};
+use crate::output::{CliResult, TextTable, print_json, print_table, q, quantity};
 
 /// Shoe degrees of freedom.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -44,7 +44,12 @@ pub struct Args {
     /// Also list every summit in contact (interference, load, contact radius, peak pressure).
     #[arg(long)]
     pub summits: bool,
-    /// Print JSON (one object, or an array for a sweep) instead of a table.
+    /// Print JSON instead of a table. With --load: one equilibrium object (load_n, separation_m,
+    /// tilt_x_rad, tilt_y_rad, contacts, contact_indices, real_area_m2, adhesive_load_n,
+    /// friction_capacity_n, max_pressure_pa, residuals, ...). With --sweep: one object
+    /// {"points": [one such equilibrium per load, in sweep order], "events": [{"event": "jump_in" |
+    /// "release" | "pull_off", "point", "load_n", "contacts_before", "contacts_after" (pull_off:
+    /// "load_n", "last_stable_load_n")}]}.
     #[arg(long)]
     pub json: bool,
     /// Override a scenario field (repeatable).
@@ -121,33 +126,35 @@ pub fn run(args: Args) -> CliResult {
         if args.json {
             return print_json(&result);
         }
-        crate::outln!("Load sweep on {} summits, mode {:?}, law {:?}", solver.len(), c.mode, c.law);
-        crate::outln!(
-            "  {:>10} {:>12} {:>10} {:>10} {:>8} {:>12} {:>11} {:>11}",
+        crate::outln!("Load sweep on {} summits, mode {}, law {}", solver.len(), c.mode, c.law);
+        let mut t = TextTable::new(&[
             "L (uN)",
             "d (nm)",
-            "tilt_x",
-            "tilt_y",
+            "tilt x (rad)",
+            "tilt y (rad)",
             "N",
             "A_r (um^2)",
             "F_cap (uN)",
-            "q0 (GPa)"
-        );
+            "q0 (GPa)",
+        ]);
         for e in &result.points {
-            crate::outln!(
-                "  {:>10.4} {:>12.4} {:>10.2e} {:>10.2e} {:>8} {:>12.5e} {:>11.4} {:>11.3}",
-                e.load_n * 1e6,
-                e.separation_m * 1e9,
-                e.tilt_x_rad,
-                e.tilt_y_rad,
-                e.contacts,
-                e.real_area_m2 * 1e12,
-                e.friction_capacity_n * 1e6,
-                e.max_pressure_pa * 1e-9
-            );
+            t.row(vec![
+                format!("{:.4}", e.load_n * 1e6),
+                format!("{:.4}", e.separation_m * 1e9),
+                format!("{:.3e}", e.tilt_x_rad),
+                format!("{:.3e}", e.tilt_y_rad),
+                e.contacts.to_string(),
+                format!("{:.5e}", e.real_area_m2 * 1e12),
+                format!("{:.4}", e.friction_capacity_n * 1e6),
+                format!("{:.3}", e.max_pressure_pa * 1e-9),
+            ]);
+        }
+        t.print("  ");
+        if !result.events.is_empty() {
+            crate::outln!("\n  Events:");
         }
         for ev in &result.events {
-            crate::outln!("  event: {}", serde_json::to_string(ev)?);
+            crate::outln!("    {}", event_line(ev));
         }
         return Ok(());
     }
@@ -157,34 +164,45 @@ pub fn run(args: Args) -> CliResult {
         return print_json(&eq);
     }
     print_table(
-        &format!("Explicit contact on {} summits ({:?}, {:?})", solver.len(), c.mode, c.law),
+        &format!("Explicit contact on {} summits (mode {}, law {})", solver.len(), c.mode, c.law),
         &rows(&eq, material.hardness),
     );
     if args.summits {
-        crate::outln!(
-            "\n  {:>8} {:>10} {:>10} {:>12} {:>11} {:>10} {:>9}",
-            "index",
-            "x (um)",
-            "y (um)",
-            "z (nm)",
-            "P (uN)",
-            "a (nm)",
-            "q0 (GPa)"
-        );
+        crate::outln!();
+        let mut t = TextTable::new(&["index", "x (um)", "y (um)", "z (nm)", "P (uN)", "a (nm)", "q0 (GPa)"]);
         for s in &eq.summits {
-            crate::outln!(
-                "  {:>8} {:>10.4} {:>10.4} {:>12.5} {:>11.5} {:>10.3} {:>9.3}",
-                s.index,
-                s.x_m * 1e6,
-                s.y_m * 1e6,
-                s.interference_m * 1e9,
-                s.load_n * 1e6,
-                s.contact_radius_m * 1e9,
-                s.max_pressure_pa * 1e-9
-            );
+            t.row(vec![
+                s.index.to_string(),
+                format!("{:.4}", s.x_m * 1e6),
+                format!("{:.4}", s.y_m * 1e6),
+                format!("{:.5}", s.interference_m * 1e9),
+                format!("{:.5}", s.load_n * 1e6),
+                format!("{:.3}", s.contact_radius_m * 1e9),
+                format!("{:.3}", s.max_pressure_pa * 1e-9),
+            ]);
         }
+        t.print("  ");
     }
     Ok(())
+}
+
+/// A sweep event as a sentence, named as in the JSON (`jump_in`, `release`, `pull_off`), with the
+/// same fields.
+fn event_line(ev: &SweepEvent) -> String {
+    let un = |f: f64| format!("{:.4} uN", f * 1e6);
+    match ev {
+        SweepEvent::JumpIn { point, load_n, contacts_before, contacts_after } => {
+            format!("jump_in at L = {} (point {point}): contacts {contacts_before} -> {contacts_after}", un(*load_n))
+        }
+        SweepEvent::Release { point, load_n, contacts_before, contacts_after } => {
+            format!("release at L = {} (point {point}): contacts {contacts_before} -> {contacts_after}", un(*load_n))
+        }
+        SweepEvent::PullOff { load_n, last_stable_load_n } => format!(
+            "pull_off: no equilibrium at L = {} (the shoe comes off); the last stable load was {}; the sweep stops",
+            un(*load_n),
+            un(*last_stable_load_n)
+        ),
+    }
 }
 
 fn rows(eq: &Equilibrium, hardness: f64) -> Vec<(&'static str, String)> {

@@ -86,7 +86,7 @@ struct Output {
     interference_m: f64,
     max_pressure_pa: f64,
     tabor_parameter: f64,
-    recommended_law: String,
+    recommended_law: AdhesionLaw,
     #[serde(skip_serializing_if = "Option::is_none")]
     shear_strength_for_target_slope_pa: Option<f64>,
 }
@@ -119,7 +119,7 @@ pub fn run(args: Args) -> CliResult {
         interference_m: at.interference_m,
         max_pressure_pa: at.max_pressure_pa,
         tabor_parameter: params.tabor_parameter(),
-        recommended_law: format!("{:?}", rec.law),
+        recommended_law: rec.law,
         shear_strength_for_target_slope_pa: args
             .target_slope
             .map(|t| model.shear_strength_for_slope(t, args.load))
@@ -129,7 +129,7 @@ pub fn run(args: Args) -> CliResult {
         return print_json(&out);
     }
     let mut rows = vec![
-        ("contacts N, law", format!("{}, {:?}", out.contacts, out.law)),
+        ("contacts N, law", format!("{}, {}", out.contacts, out.law)),
         ("load L", q(out.load_n, Dimension::Force)),
         ("friction F_f = s A_r", q(out.friction_n, Dimension::Force)),
         (

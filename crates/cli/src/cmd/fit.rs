@@ -4,13 +4,13 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use stiction_fit::{Dataset, FitOptions, FitReport, Free, ModelKind, read_voltages, synth};
+use stiction_fit::{Dataset, FitOptions, FitReport, Free, ModelKind, read_measured_voltages, synth};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 use stiction_units::io::write_atomic;
 use stiction_units::{Constraint, Dimension};
 
-use crate::output::{CliResult, ensure_dir, print_json, quantity};
+use crate::output::{CliResult, OutputSet, print_json, quantity};
 
 /// Fit measured (V_clamp, V_pull) data: eq. 10 with regression and calibration intervals, and the
 /// shear strength s of each contact model by maximum likelihood, ranked by AIC.
@@ -37,9 +37,14 @@ pub struct Args {
     /// Seed of the calibration Monte Carlo (and of --synthesize).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Write report.json, the figures (SVG, PNG) and their data (CSV) to this folder.
+    /// Write report.json, the figures (SVG, PNG) and their data (CSV) to this folder, with a
+    /// manifest.json; the folder is replaced as a whole.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write into an --out folder that holds files not from an earlier stiction run (they are
+    /// left alone; the earlier run's files are replaced or removed).
+    #[arg(long)]
+    pub force: bool,
     /// Override a scenario field (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
@@ -71,7 +76,12 @@ pub fn run(args: Args) -> CliResult {
         (None, Some(m)) => base.join(&m.voltages_csv),
         (None, None) => return Err("missing DATA.csv (the scenario has no `measured` section either)".into()),
     };
-    let data = read_voltages(&data_path)?;
+    let data = read_measured_voltages(&data_path)?;
+    // Check the output folder before the work, so a refusal comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "fit", args.force)?),
+        None => None,
+    };
     let options = FitOptions {
         models: ModelKind::parse_list(&args.models)?,
         free: Free::parse(&args.free)?,
@@ -81,10 +91,12 @@ pub fn run(args: Args) -> CliResult {
         ..FitOptions::default()
     };
     let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options)?;
-    if let Some(dir) = &args.out {
-        ensure_dir(dir)?;
-        write_atomic(&dir.join("report.json"), serde_json::to_string_pretty(&report)?.as_bytes())?;
-        write_figures(dir, &data, &report)?;
+    if let Some(mut set) = outputs {
+        set.add_bytes("report.json", (serde_json::to_string_pretty(&report)? + "\n").as_bytes())?;
+        let staging = set.staging_dir().to_path_buf();
+        write_figures(&staging, &data, &report)?;
+        set.adopt_staged()?;
+        set.commit()?;
     }
     if args.json {
         return print_json(&report);
@@ -92,7 +104,7 @@ pub fn run(args: Args) -> CliResult {
     print_summary(&report);
     if let Some(dir) = &args.out {
         crate::outln!(
-            "\nwrote {}/report.json and fit-vpull2, fit-friction-load, fit-residuals (.svg, .png, .csv)",
+            "\nwrote {}/report.json, fit-vpull2, fit-friction-load, fit-residuals (.svg, .png, .csv), manifest.json",
             dir.display()
         );
     }
@@ -106,7 +118,7 @@ fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliR
     let s = scenario.material.as_ref().map_or(f64::NAN, |m| m.shear_strength);
     let comment = format!(
         "SYNTHETIC DATA made by stiction itself, not a measurement.\n\
-         Virtual meter of {} (contact model {:?}, s = {}), {} repeats per clamp voltage,\n\
+         Virtual meter of {} (contact model {}, s = {}), {} repeats per clamp voltage,\n\
          Gaussian noise SD {} V added to each pull voltage (ChaCha8 seed {}).\n\
          Command: stiction fit --scenario {} --synthesize {} --noise \"{} V\" --repeats {} --seed {}",
         args.scenario.display(),
@@ -174,47 +186,41 @@ fn print_summary(r: &FitReport) {
         }
     }
     crate::outln!("\n{}", r.noise_note);
-    crate::outln!(
-        "\n  {:<18} {:>10} {:>24} {:>9} {:>4} {:>9} {:>7}",
-        "model",
-        "s (GPa)",
-        "95 % (GPa)",
-        "chi2",
-        "dof",
-        "AIC",
-        "dAIC"
-    );
+    crate::outln!();
+    let mut t = crate::output::TextTable::new(&["model", "s (GPa)", "95 % (GPa)", "chi2", "dof", "AIC", "dAIC"]);
     for m in &r.models {
-        crate::outln!(
-            "  {:<18} {:>10.4} {:>24} {:>9.2} {:>4} {:>9.2} {:>7}",
-            m.name,
-            m.shear_strength_pa.value / 1e9,
+        t.row(vec![
+            m.name.clone(),
+            format!("{:.4}", m.shear_strength_pa.value / 1e9),
             ci(m.shear_strength_pa.ci95, 1e-9),
-            m.chi2,
-            m.dof,
-            m.aic,
-            m.delta_aic.map_or("n/a".into(), |d| format!("{d:.2}"))
-        );
+            format!("{:.2}", m.chi2),
+            m.dof.to_string(),
+            format!("{:.2}", m.aic),
+            m.delta_aic.map_or("n/a".into(), |d| format!("{d:.2}")),
+        ]);
+    }
+    t.print("  ");
+    for m in &r.models {
+        let name = &m.name;
         if let Some(note) = &m.shear_strength_pa.note {
-            crate::outln!("  {:<18} s: {note}", "");
+            crate::outln!("  {name}: s: {note}");
         }
         if let Some(rough) = &m.roughness {
             crate::outln!(
-                "  {:<18} roughness: s over {} surfaces, 95 % {} GPa",
-                "",
+                "  {name}: roughness: s over {} surfaces, 95 % {} GPa",
                 rough.surfaces,
                 ci(rough.shear_strength_ci95_pa, 1e-9)
             );
         }
         if let Some(rr) = &m.summit_radius_m {
-            crate::outln!("  {:<18} R = {:.3} um, 95 % {} um", "", rr.value * 1e6, ci(rr.ci95, 1e6));
+            crate::outln!("  {name}: R = {:.3} um, 95 % {} um", rr.value * 1e6, ci(rr.ci95, 1e6));
         }
         if let Some(f) = &m.spring_force_n {
-            crate::outln!("  {:<18} F_spring = {:.3} uN, 95 % {} uN", "", f.value * 1e6, ci(f.ci95, 1e6));
+            crate::outln!("  {name}: F_spring = {:.3} uN, 95 % {} uN", f.value * 1e6, ci(f.ci95, 1e6));
         }
     }
     for f in &r.models_failed {
-        crate::outln!("  {:<18} failed: {}", f.name, f.reason);
+        crate::outln!("  {}: failed: {}", f.name, f.reason);
     }
     crate::outln!();
     for s in &r.model_selection {

@@ -98,43 +98,44 @@ fn print_summary(o: &RunOutput) {
         crate::outln!("  {}", o.description);
     }
     crate::outln!("  contact model: {}, F_spring = {:.3} uN", r.contact_model, r.spring_force_n * 1e6);
-    crate::outln!(
-        "\n  {:>8} {:>10} {:>9} {:>9} {:>10} {:>11} {:>8} {:>11} {:>9}",
-        "V_clamp",
+    crate::outln!();
+    let mut t = crate::output::TextTable::new(&[
+        "V_clamp (V)",
         "L (uN)",
-        "V_pull",
-        "V_pull^2",
+        "V_pull (V)",
+        "V_pull^2 (V^2)",
         "F_f (uN)",
         "A_r (um^2)",
         "N",
         "F_adh (uN)",
-        "q0 (GPa)"
-    );
+        "q0 (GPa)",
+        "note",
+    ]);
     for p in &r.points {
         let opt =
             |x: Option<f64>, scale: f64, prec: usize| x.map_or("-".to_string(), |v| format!("{:.prec$}", v * scale));
-        crate::outln!(
-            "  {:>8.2} {:>10.4} {:>9} {:>9} {:>10} {:>11.5} {:>8.0} {:>11.4} {:>9.3}{}",
-            p.v_clamp,
-            p.load_n * 1e6,
+        t.row(vec![
+            format!("{:.2}", p.v_clamp),
+            format!("{:.4}", p.load_n * 1e6),
             opt(p.v_pull, 1.0, 2),
             opt(p.v_pull_sq, 1.0, 1),
             opt(p.friction_n, 1e6, 4),
-            p.real_area_m2 * 1e12,
-            p.contacts,
-            p.adhesive_load_n * 1e6,
-            p.max_pressure_pa * 1e-9,
+            format!("{:.5}", p.real_area_m2 * 1e12),
+            format!("{:.0}", p.contacts),
+            format!("{:.4}", p.adhesive_load_n * 1e6),
+            format!("{:.3}", p.max_pressure_pa * 1e-9),
             if !p.in_contact {
-                "  (no contact)".to_string()
+                "no contact".to_string()
             } else if let Some(e) = &p.error {
-                format!("  (no equilibrium: {e})")
+                format!("no equilibrium: {e}")
             } else if p.v_pull.is_none() {
-                "  (no slip)".to_string()
+                "no slip".to_string()
             } else {
                 String::new()
-            }
-        );
+            },
+        ]);
     }
+    t.print("  ");
     crate::outln!();
     match (r.mu_apparent, r.apparent_adhesion_force_n, &r.fit) {
         (Some(mu), Some(fa0), Some(fit)) => {
@@ -155,6 +156,12 @@ fn print_summary(o: &RunOutput) {
     }
     if let Some(c) = &o.measured {
         crate::outln!("\n  measured data ({} slips):", c.points.len());
+        for rej in c.rows_rejected.iter().take(10) {
+            crate::outln!("    left out of the eq. 10 fit: line {}: {}", rej.line, rej.reason);
+        }
+        if c.rows_rejected.len() > 10 {
+            crate::outln!("    ... {} more rows left out (see --json)", c.rows_rejected.len() - 10);
+        }
         if let (Some(mu), Some(fa0)) = (c.mu_apparent_measured, c.apparent_adhesion_force_measured_n) {
             crate::outln!(
                 "    measured mu_e,a = {mu:.3}, F_a0 = {:.3} uN (eq. 10 on the measured voltages)",

@@ -277,33 +277,26 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
             "  share of the variance (first-order Sobol index; Spearman rho), {} samples with a fit:",
             s.samples
         );
-        crate::outln!("    {:<48} {:>16} {:>16}", "input", "mu_e,a", "F_a0");
         let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
+        let mut t =
+            crate::output::TextTable::new(&["input", "mu_e,a: Sobol", "mu_e,a: rho", "F_a0: Sobol", "F_a0: rho"]);
         for r in &s.inputs {
-            let cell = |a: Option<f64>, b: Option<f64>| match b {
-                Some(_) => format!("{} ({})", f(a), f(b)),
-                None => f(a),
-            };
-            crate::outln!(
-                "    {:<48} {:>16} {:>16}",
-                r.input,
-                cell(r.mu_first_order, r.mu_spearman),
-                cell(r.fa0_first_order, r.fa0_spearman)
-            );
+            t.row(vec![
+                r.input.clone(),
+                f(r.mu_first_order),
+                f(r.mu_spearman),
+                f(r.fa0_first_order),
+                f(r.fa0_spearman),
+            ]);
         }
+        t.print("    ");
     }
     Ok(())
 }
 
 fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
     let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
-    w.write_record([
-        "input [path]",
-        "mu_first_order_sobol [1]",
-        "fa0_first_order_sobol [1]",
-        "mu_spearman_rho [1]",
-        "fa0_spearman_rho [1]",
-    ])?;
+    w.write_record(["input", "mu_first_order_sobol", "fa0_first_order_sobol", "mu_spearman_rho", "fa0_spearman_rho"])?;
     let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
     for r in &summary.sensitivity.inputs {
         w.write_record([

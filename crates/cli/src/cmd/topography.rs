@@ -13,7 +13,7 @@ use stiction_topography::{
 use stiction_units::io::write_atomic;
 use stiction_units::{Constraint, Dimension};
 
-use crate::output::{CliResult, ensure_dir, print_json, print_table, quantity};
+use crate::output::{CliResult, OutputSet, print_json, print_table, quantity};
 
 /// Read a measured height map (AFM, optical profiler): level it, filter it, find its summits
 /// (8-neighbour maxima, curvature -(z_xx + z_yy)/2) and print the statistics beside Nayak's
@@ -53,9 +53,14 @@ pub struct Args {
     /// Write the summits as CSV (x_m,y_m,height_m,radius_m: readable by a scenario with "source": "csv").
     #[arg(long, value_name = "OUT.csv")]
     pub summits: Option<PathBuf>,
-    /// Write figures (PNG) with their data (CSV) and statistics.json to this folder.
+    /// Write figures (PNG) with their data (CSV), summits.csv and statistics.json to this folder,
+    /// with a manifest.json; the folder is replaced as a whole.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Write into an --out folder that holds files not from an earlier stiction run (they are
+    /// left alone; the earlier run's files are replaced or removed).
+    #[arg(long)]
+    pub force: bool,
     /// A scenario whose material gives the GW parameters' adhesion parameter theta.
     #[arg(long, value_name = "SCENARIO.json")]
     pub scenario: Option<PathBuf>,
@@ -108,6 +113,11 @@ pub fn run(args: Args) -> CliResult {
         height_unit_m: args.height_unit,
         xy_unit_m: args.xy_unit,
     };
+    // Check the output folder before the work, so a refusal comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "topography", args.force)?),
+        None => None,
+    };
     let (raw, info) = read_file(&args.file, args.format, &meta)?;
     let prep = Preparation { levelling: args.level, short_cutoff_m: args.cutoff, long_cutoff_m: args.long_cutoff };
     let (map, report) = prepare(&raw, &prep)?;
@@ -135,16 +145,20 @@ pub fn run(args: Args) -> CliResult {
         gw,
         statistics: st,
     };
+    if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
+        set.add_bytes("statistics.json", (serde_json::to_string_pretty(&out)? + "\n").as_bytes())?;
+        let staging = set.staging_dir().to_path_buf();
+        write_summit_csv(&map, &summits, &staging.join("summits.csv"))?;
+        figures(&map, &summits, &report, &staging)?;
+        set.adopt_staged()?;
+        set.commit()?;
+        crate::errln!("wrote figures, their data, summits.csv, statistics.json and manifest.json to {}", dir.display());
+    }
+    // After the --out folder is in place, so a --summits file inside it is not swept away with the
+    // folder's earlier contents.
     if let Some(path) = &args.summits {
         write_summit_csv(&map, &summits, path)?;
         crate::errln!("wrote {} summits to {}", summits.len(), path.display());
-    }
-    if let Some(dir) = &args.out {
-        ensure_dir(dir)?;
-        write_summit_csv(&map, &summits, &dir.join("summits.csv"))?;
-        write_atomic(&dir.join("statistics.json"), (serde_json::to_string_pretty(&out)? + "\n").as_bytes())?;
-        figures(&map, &summits, &report, dir)?;
-        crate::errln!("wrote figures, their data and statistics.json to {}", dir.display());
     }
     if args.json {
         return print_json(&out);
@@ -206,7 +220,7 @@ fn print_table_of(o: &Output) {
                     st.missing_pixels
                 ),
             ),
-            ("levelling", format!("{:?}", o.preparation.levelling).to_lowercase()),
+            ("levelling", o.preparation.levelling.to_string()),
             (
                 "short, long cut-off",
                 format!("{}, {}", cut(o.preparation.short_cutoff_m), cut(o.preparation.long_cutoff_m)),

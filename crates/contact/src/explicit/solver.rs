@@ -563,7 +563,7 @@ impl ExplicitSolver {
                     "loads_n",
                     format!("{} then {}", w[0], w[1]),
                     format!(
-                        "{} loads for a {direction:?} sweep",
+                        "{} loads for a {direction} sweep",
                         if direction == Branch::Loading { "non-decreasing" } else { "non-increasing" }
                     ),
                 ));
