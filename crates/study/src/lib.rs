@@ -222,6 +222,7 @@ impl Study {
                 format!("{:e}", self.reduction.spring_force_n),
             ],
             parameters: self.parameters.clone(),
+            reference: self.nominal.reference.clone(),
         }
     }
 
