@@ -875,7 +875,7 @@ fn ticks(scale: Scale, lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
     let within = |v: &f64| *v >= lo - 1e-9 * span && *v <= hi + 1e-9 * span;
     match scale {
         Scale::Linear => {
-            let step = nice_step(span, 8.0);
+            let step = nice_step(span, 10.0);
             let multiples = |step: f64| -> Vec<f64> {
                 let (a, b) = ((lo / step).ceil() as i64, (hi / step).floor() as i64);
                 if b < a || b - a > 10_000 {
@@ -890,7 +890,7 @@ fn ticks(scale: Scale, lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
             if b - a > 400 {
                 return (Vec::new(), Vec::new());
             }
-            let every = ((hi - lo) / 8.0).ceil().max(1.0) as i64;
+            let every = nice_step(hi - lo, 8.0).max(1.0) as i64;
             let mut bold: Vec<f64> = (a..=b).filter(|k| k.rem_euclid(every) == 0).map(|k| k as f64).collect();
             if hi - lo < 2.2 {
                 for k in a..=b {
@@ -910,7 +910,8 @@ fn ticks(scale: Scale, lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
         }
         Scale::SymLog(c) => {
             let top = scale.from_axis(lo.abs().max(hi.abs()));
-            let (k0, k1) = (c.log10().ceil() as i64, top.log10().ceil() as i64);
+            // Labels from 10 c outwards: c itself sits too close to 0 to be labelled.
+            let (k0, k1) = (c.log10().ceil() as i64 + 1, top.log10().ceil() as i64);
             let mut bold = vec![0.0];
             let mut light = Vec::new();
             let decades = (k1 - k0).clamp(0, 400);
@@ -1080,7 +1081,7 @@ mod tests {
         let (lo, hi) = (sym.to_axis(-0.03), sym.to_axis(1.0));
         let (bold, _) = ticks(sym, lo, hi);
         let labels: Vec<String> = bold.iter().map(|v| tick_label(*v, sym, hi - lo)).collect();
-        assert_eq!(labels, ["−10⁻²", "−10⁻³", "−10⁻⁴", "−10⁻⁵", "0", "10⁻⁵", "10⁻⁴", "10⁻³", "10⁻²", "10⁻¹", "10⁰"]);
+        assert_eq!(labels, ["−10⁻²", "−10⁻³", "−10⁻⁴", "0", "10⁻⁴", "10⁻³", "10⁻²", "10⁻¹", "10⁰"]);
         assert!((sym.from_axis(sym.to_axis(-2e-5)) + 2e-5).abs() < 1e-18);
     }
 
