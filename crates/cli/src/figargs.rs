@@ -117,10 +117,11 @@ pub mod reference {
 
     /// The text line printed by `run` and `study`: values, source and what the +/- is.
     pub fn text(r: &ReferenceSpec) -> String {
-        let values: Vec<String> = [r.mu_text().map(|t| format!("mu_e,a = {t}")), r.adhesion_text().map(|t| format!("F_a0 = {t}"))]
-            .into_iter()
-            .flatten()
-            .collect();
+        let values: Vec<String> =
+            [r.mu_text().map(|t| format!("mu_e,a = {t}")), r.adhesion_text().map(|t| format!("F_a0 = {t}"))]
+                .into_iter()
+                .flatten()
+                .collect();
         let meaning = if r.mu_apparent_uncertainty.is_some() || r.apparent_adhesion_force_uncertainty.is_some() {
             format!("; +/- is the {}", r.uncertainty_meaning)
         } else {

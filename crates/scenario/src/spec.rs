@@ -456,19 +456,11 @@ pub struct ReferenceSpec {
     /// (e.g. "Tas et al., MEMS 2000, section 5").
     pub source: String,
     /// Measured apparent friction coefficient mu_e,a of eq. 10 (dimensionless, > 0).
-    #[serde(
-        default,
-        deserialize_with = "plain_dimensionless_positive",
-        skip_serializing_if = "Option::is_none"
-    )]
+    #[serde(default, deserialize_with = "plain_dimensionless_positive", skip_serializing_if = "Option::is_none")]
     #[schemars(with = "Option<f64>")]
     pub mu_apparent: Option<f64>,
     /// Half-width of the uncertainty of `mu_apparent` (dimensionless, >= 0).
-    #[serde(
-        default,
-        deserialize_with = "plain_dimensionless_nonnegative",
-        skip_serializing_if = "Option::is_none"
-    )]
+    #[serde(default, deserialize_with = "plain_dimensionless_nonnegative", skip_serializing_if = "Option::is_none")]
     #[schemars(with = "Option<f64>")]
     pub mu_apparent_uncertainty: Option<f64>,
     /// Measured apparent zero-load adhesion force F_a0 of eq. 10, N ("2.0 uN").

@@ -118,13 +118,21 @@ fn reference_values_come_from_the_scenario_and_only_from_it() {
     for (reference, path, what) in [
         (r#"{"source": "", "mu_apparent": 0.7}"#, "reference.source", "missing"),
         (r#"{"source": "x"}"#, "reference.mu_apparent", "missing"),
-        (r#"{"source": "x", "mu_apparent": 0.7, "mu_apparent_uncertainty": 0.3}"#, "reference.uncertainty_meaning", "+/-"),
+        (
+            r#"{"source": "x", "mu_apparent": 0.7, "mu_apparent_uncertainty": 0.3}"#,
+            "reference.uncertainty_meaning",
+            "+/-",
+        ),
         (
             r#"{"source": "x", "mu_apparent": 0.7, "apparent_adhesion_force_uncertainty": "1 uN", "uncertainty_meaning": "sd"}"#,
             "reference.apparent_adhesion_force_uncertainty",
             "without",
         ),
-        (r#"{"source": "x", "apparent_adhesion_force": {"value": "2 uN", "sd": "1 uN"}}"#, "reference.apparent_adhesion_force", "plain value"),
+        (
+            r#"{"source": "x", "apparent_adhesion_force": {"value": "2 uN", "sd": "1 uN"}}"#,
+            "reference.apparent_adhesion_force",
+            "plain value",
+        ),
         (r#"{"source": "x", "apparent_adhesion_force": "2 V"}"#, "reference.apparent_adhesion_force", "V"),
         (r#"{"source": "x", "mu_apparent": -0.7}"#, "reference.mu_apparent", "-0.7"),
     ] {

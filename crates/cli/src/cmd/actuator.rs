@@ -299,10 +299,7 @@ fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
         let vmax = sweep.loading.last().map_or(0.0, |p| p.voltage_v);
         chart.note = Some(match (model.stop_travel_m, model.release_voltage_v()) {
             (Some(stop), Ok(release)) if !pi.limited_by_stop => {
-                marks.push(Series::markers(
-                    format!("release: {release:.2} V"),
-                    vec![(release, stop * 1e6)],
-                ));
+                marks.push(Series::markers(format!("release: {release:.2} V"), vec![(release, stop * 1e6)]));
                 format!(
                     "stop at x = {:.3} µm: after pull-in the array rests on it until the voltage falls to the release voltage",
                     stop * 1e6

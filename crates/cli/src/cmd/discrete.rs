@@ -204,8 +204,12 @@ impl Fig7Setup {
             || contact.mode == stiction_scenario::ShoeMode::Fixed;
         let n = if fixed { contact.contacts.unwrap_or(3) } else { 3 };
         let n = u32::try_from(n).map_err(|_| format!("contact.contacts {n}: expected 1, 2 or 3"))?;
-        let model =
-            DiscreteModel::new(n, contact.law, stiction_meter::asperity_params(material, radius), material.shear_strength)?;
+        let model = DiscreteModel::new(
+            n,
+            contact.law,
+            stiction_meter::asperity_params(material, radius),
+            material.shear_strength,
+        )?;
         Ok(Fig7Setup { model, reference: s.reference.clone(), origin: "the scenario".into() })
     }
 }
@@ -262,10 +266,7 @@ pub fn fig7_chart(setup: &Fig7Setup) -> Result<Chart, Box<dyn std::error::Error>
         ),
         curve,
     ))
-    .with(Series::dashed(
-        format!("eq. 10: μ_e,a = {mu:.2} (slope at 3 µN), F_a0 = {:.2} µN", fa0 * 1e6),
-        line,
-    ));
+    .with(Series::dashed(format!("eq. 10: μ_e,a = {mu:.2} (slope at 3 µN), F_a0 = {:.2} µN", fa0 * 1e6), line));
     let mut low = -fa0 * 1e6;
     if let Some(r) = &setup.reference
         && let (Some((a, b)), Some(label)) = (reference::adhesion_range_un(r), reference::adhesion_label(r))

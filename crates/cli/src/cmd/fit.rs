@@ -331,10 +331,7 @@ fn write_figures(dir: &Path, data: &Dataset, r: &FitReport, fig: &FigureArgs) ->
         "friction force F_f (µN)",
     )
     .with(Series::markers("measured (mean, error bar: SD of repeats)", fl).with_y_err(fe))
-    .with(Series::dashed(
-        format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"),
-        eq10_line,
-    ));
+    .with(Series::dashed(format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"), eq10_line));
     fig7.legend = stiction_plot::LegendPosition::LowerRight;
     for (k, m) in r.models.iter().enumerate() {
         let line: Vec<(f64, f64)> =

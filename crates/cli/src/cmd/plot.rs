@@ -113,7 +113,9 @@ pub fn run(args: Args) -> CliResult {
         Figure::Fig2 => fig2(scenario_ref)?,
         Figure::Fig3 => fig3(scenario_ref)?,
         Figure::Fig7 => match scenario_ref {
-            Some((s, base)) => crate::cmd::discrete::fig7_chart(&crate::cmd::discrete::Fig7Setup::of_scenario(s, base)?)?,
+            Some((s, base)) => {
+                crate::cmd::discrete::fig7_chart(&crate::cmd::discrete::Fig7Setup::of_scenario(s, base)?)?
+            }
             None => crate::cmd::discrete::fig7_chart(&crate::cmd::discrete::Fig7Setup::paper())?,
         },
         Figure::Actuator => {
@@ -168,7 +170,9 @@ pub fn fig2(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
             format!("10{}", stiction_plot::superscript(st.log10_n_star.round() as i64))
         };
         if drawable {
-            chart.series.push(Series::markers(format!("this scenario: θ = {}, N* = {n_text}", sig3(t)), vec![(t, st.n_star)]));
+            chart
+                .series
+                .push(Series::markers(format!("this scenario: θ = {}, N* = {n_text}", sig3(t)), vec![(t, st.n_star)]));
             chart.note = Some("θ of the scenario from its σ, R, D and Δγ (eq. 9)".into());
         } else {
             chart.note = Some(format!(
@@ -226,14 +230,25 @@ pub fn fig3(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
 }
 
 /// `n` points of A*(L*) from `from` to `to`, evenly spaced in sign(L*) log10(1 + |L*|/1e-6).
-fn symlog_series(model: &gw::GwModel, from: f64, to: f64, n: usize) -> Result<Vec<(f64, f64)>, Box<dyn std::error::Error>> {
+fn symlog_series(
+    model: &gw::GwModel,
+    from: f64,
+    to: f64,
+    n: usize,
+) -> Result<Vec<(f64, f64)>, Box<dyn std::error::Error>> {
     let c = 1e-6;
     let f = |v: f64| v.signum() * (v.abs() / c).ln_1p();
     let g = |t: f64| t.signum() * c * t.abs().exp_m1();
     let (a, b) = (f(from), f(to));
     let mut out = Vec::with_capacity(n);
     for i in 0..n {
-        let l = if i == 0 { from } else if i + 1 == n { to } else { g(a + (b - a) * i as f64 / (n - 1) as f64) };
+        let l = if i == 0 {
+            from
+        } else if i + 1 == n {
+            to
+        } else {
+            g(a + (b - a) * i as f64 / (n - 1) as f64)
+        };
         out.push((l, model.solve(l)?.a_star));
     }
     Ok(out)
@@ -253,7 +268,22 @@ pub fn sig3(v: f64) -> String {
         let d = a.log10().floor() as i32;
         let decimals = (2 - d).clamp(0, 6) as usize;
         // Round to 3 significant digits also above 1000 (12433 -> 12400).
-        let scale = 10f64.powi((d - 2).max(0));
-        trim(format!("{:.*}", decimals, (v / scale).round() * scale))
+        let v = if d > 2 { (v / 10f64.powi(d - 2)).round() * 10f64.powi(d - 2) } else { v };
+        trim(format!("{:.*}", decimals, v))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sig3;
+
+    #[test]
+    fn three_significant_digits_without_trailing_zeros() {
+        assert_eq!(sig3(2.8), "2.8");
+        assert_eq!(sig3(0.5), "0.5");
+        assert_eq!(sig3(1.4), "1.4");
+        assert_eq!(sig3(12433.0), "12400");
+        assert_eq!(sig3(0.12345), "0.123");
+        assert_eq!(sig3(9.1e-12), "9.1·10⁻¹²");
     }
 }

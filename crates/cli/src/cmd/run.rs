@@ -337,10 +337,15 @@ fn fig5_chart(
             // eq. 10 in voltages: V_pull^2 = (intercept + slope (a_clamp V_clamp^2 - F_spring)) / a_pull.
             let x0 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(f64::INFINITY, f64::min).max(v2_min);
             let x1 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(0.0, f64::max);
-            let y = |x: f64| (fit.intercept + fit.slope * (red.a_clamp_n_per_v2 * x - red.spring_force_n)) / red.a_pull_n_per_v2;
+            let y = |x: f64| {
+                (fit.intercept + fit.slope * (red.a_clamp_n_per_v2 * x - red.spring_force_n)) / red.a_pull_n_per_v2
+            };
             chart.series.push(
-                Series::line(format!("eq. 10 fit of the measured slips: μ_e,a = {:.2}", fit.slope), vec![(x0, y(x0)), (x1, y(x1))])
-                    .with_color(3),
+                Series::line(
+                    format!("eq. 10 fit of the measured slips: μ_e,a = {:.2}", fit.slope),
+                    vec![(x0, y(x0)), (x1, y(x1))],
+                )
+                .with_color(3),
             );
         }
     }
@@ -373,9 +378,7 @@ fn fig7_chart(
     )
     .keys("load_un", "friction_un")
     .with(Series::markers(format!("virtual meter ({}), shoe clamped anew at each load", r.contact_model), meas));
-    let mut notes = vec![
-        "Meter points: the shoe comes down anew at each clamp voltage (meter.reclamp).".to_string(),
-    ];
+    let mut notes = vec!["Meter points: the shoe comes down anew at each clamp voltage (meter.reclamp).".to_string()];
     // The contact model's own curve s A_r(L), from its pull-off where it has one.
     if let ContactModel::Explicit(solver) = meter.contact_model() {
         solver.reset();
@@ -386,7 +389,9 @@ fn fig7_chart(
                 "Solid line: one shoe loaded up from pull-off may rest on another set of summits (below the points)"
                     .into(),
             );
-            notes.push("and jumps where it changes set: static friction depends on the load path (docs/experiment.md).".into());
+            notes.push(
+                "and jumps where it changes set: static friction depends on the load path (docs/experiment.md).".into(),
+            );
         }
     }
     let discrete = crate::cmd::discrete::friction_curve_n3(material, radius, max_load)?;
@@ -412,7 +417,7 @@ fn fig7_chart(
         if let (Some(fit), Some(mu), Some(fa0)) =
             (&c.measured_fit, c.mu_apparent_measured, c.apparent_adhesion_force_measured_n)
         {
-                let line = vec![(-fa0 * 1e6, 0.0), (max_load * 1e6, (fit.intercept + fit.slope * max_load) * 1e6)];
+            let line = vec![(-fa0 * 1e6, 0.0), (max_load * 1e6, (fit.intercept + fit.slope * max_load) * 1e6)];
             chart.series.push(
                 Series::line(
                     format!("eq. 10 fit of the measured slips: μ_e,a = {mu:.2}, F_a0 = {:.2} µN", fa0 * 1e6),

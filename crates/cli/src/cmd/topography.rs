@@ -367,9 +367,12 @@ fn figures(
     // PSD with the cut-offs.
     let psd = radial_psd(map, PsdWindow::Hann);
     let pts: Vec<(f64, f64)> = psd.f_per_m.iter().zip(&psd.psd_m4).map(|(f, p)| (f * 1e-6, *p)).collect();
-    let mut chart =
-        Chart::new("Radially averaged PSD of the height map (Hann window)", "spatial frequency 1/λ (1/µm)", "PSD C (m⁴)")
-            .with(Series::line("map", pts.clone()));
+    let mut chart = Chart::new(
+        "Radially averaged PSD of the height map (Hann window)",
+        "spatial frequency 1/λ (1/µm)",
+        "PSD C (m⁴)",
+    )
+    .with(Series::line("map", pts.clone()));
     chart.x_log = true;
     chart.y_log = true;
     let (ylo, yhi) =
