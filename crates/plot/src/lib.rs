@@ -164,6 +164,8 @@ pub struct Chart {
     pub x_symlog: Option<f64>,
     /// Symmetric-logarithmic y axis with this linear threshold (see `x_symlog`).
     pub y_symlog: Option<f64>,
+    /// Named x ticks (position in data units, label) instead of numbers: a categorical axis.
+    pub x_ticks: Option<Vec<(f64, String)>>,
     /// The data.
     pub series: Vec<Series>,
     /// Optional fixed x range (in data units).
@@ -526,7 +528,11 @@ impl Chart {
         }
         let area = root.split_vertically(top + px(4.0) as i32).1;
         let (xs, ys) = (self.x_scale(), self.y_scale());
-        let (x_bold, x_light) = ticks(xs, x0, x1);
+        let (x_bold, x_light) = match &self.x_ticks {
+            Some(t) => (t.iter().map(|p| self.tx(p.0)).collect(), Vec::new()),
+            None => ticks(xs, x0, x1),
+        };
+        let named = self.x_ticks.clone();
         let (y_bold, y_light) = ticks(ys, y0, y1);
         let mut chart = ChartBuilder::on(&area)
             .margin(px(14.0))
@@ -537,7 +543,13 @@ impl Chart {
                 TickedAxis { lo: y0, hi: y1, bold: y_bold, light: y_light },
             )
             .map_err(|e| backend_err(&e))?;
-        let x_fmt = move |v: &f64| tick_label(*v, xs, x1 - x0);
+        let x_fmt = move |v: &f64| match &named {
+            Some(t) => t
+                .iter()
+                .find(|p| (xs.to_axis(p.0) - v).abs() <= 1e-9 * (x1 - x0).abs())
+                .map_or(String::new(), |p| p.1.clone()),
+            None => tick_label(*v, xs, x1 - x0),
+        };
         let y_fmt = move |v: &f64| tick_label(*v, ys, y1 - y0);
         chart
             .configure_mesh()
@@ -890,7 +902,7 @@ fn ticks(scale: Scale, lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
             if b - a > 400 {
                 return (Vec::new(), Vec::new());
             }
-            let every = nice_step(hi - lo, 8.0).max(1.0) as i64;
+            let every = nice_step(hi - lo, 10.0).max(1.0) as i64;
             let mut bold: Vec<f64> = (a..=b).filter(|k| k.rem_euclid(every) == 0).map(|k| k as f64).collect();
             if hi - lo < 2.2 {
                 for k in a..=b {

@@ -321,7 +321,8 @@ fn write_figures(dir: &Path, data: &Dataset, r: &FitReport, fig: &FigureArgs) ->
     let mu = r.mu_apparent.value;
     let fa0 = r.apparent_adhesion_force_n.value * 1e6;
     let (l0, l1) = fl.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-    let eq10_line = vec![(l0.min(0.0), mu * (fa0 + l0.min(0.0))), (l1, mu * (fa0 + l1))];
+    // From L = -F_a0 (F_f = 0), so the figure shows F_a0 where the line meets the axis.
+    let eq10_line = vec![(-fa0.max(-l0.min(0.0)), mu * (fa0 - fa0.max(-l0.min(0.0)))), (l1, mu * (fa0 + l1))];
     for p in &eq10_line {
         rows.push(("eq10".into(), p.0, p.1, None, None));
     }

@@ -435,16 +435,20 @@ fn sensitivity_chart(summary: &StudySummary) -> Chart {
         let parts: Vec<&str> = s.split('.').collect();
         parts[parts.len().saturating_sub(2)..].join(".")
     };
-    let names: Vec<String> = rows.iter().enumerate().map(|(i, r)| format!("{} {}", i + 1, short(&r.input))).collect();
+    let names: Vec<String> = rows.iter().map(|r| short(&r.input)).collect();
     let series = |off: f64, f: &dyn Fn(&stiction_study::sensitivity::InputShare) -> Option<f64>| -> Vec<(f64, f64)> {
         rows.iter().enumerate().filter_map(|(i, r)| f(r).map(|v| (i as f64 + 1.0 + off, v))).collect()
     };
-    Chart::new(
+    let mut chart = Chart::new(
         format!("Share of the variance by input ({} samples with a fit)", summary.sensitivity.samples),
-        format!("input: {}", names.join(", ")),
+        "input",
         "first-order Sobol index",
     )
     .keys("input_number", "sobol_first_order")
     .with(Series::markers("μ_e,a", series(-0.1, &|r| r.mu_first_order)))
-    .with(Series::markers("F_a0", series(0.1, &|r| r.fa0_first_order)))
+    .with(Series::markers("F_a0", series(0.1, &|r| r.fa0_first_order)));
+    chart.x_ticks = Some(names.iter().enumerate().map(|(i, n)| (i as f64 + 1.0, n.clone())).collect());
+    chart.x_range = Some((0.5, rows.len() as f64 + 0.5));
+    chart.legend = stiction_plot::LegendPosition::UpperRight;
+    chart
 }
