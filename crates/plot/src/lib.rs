@@ -812,7 +812,7 @@ impl Scale {
             Scale::SymLog(c) => v.signum() * (v.abs() / c).ln_1p() / std::f64::consts::LN_10,
         }
     }
-    fn from_axis(self, t: f64) -> f64 {
+    fn to_data(self, t: f64) -> f64 {
         match self {
             Scale::Linear => t,
             Scale::Log => 10f64.powf(t),
@@ -921,7 +921,7 @@ fn ticks(scale: Scale, lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
             (bold, light)
         }
         Scale::SymLog(c) => {
-            let top = scale.from_axis(lo.abs().max(hi.abs()));
+            let top = scale.to_data(lo.abs().max(hi.abs()));
             // Labels from 10 c outwards: c itself sits too close to 0 to be labelled.
             let (k0, k1) = (c.log10().ceil() as i64 + 1, top.log10().ceil() as i64);
             let mut bold = vec![0.0];
@@ -980,7 +980,7 @@ fn tick_label(v: f64, scale: Scale, span: f64) -> String {
             if v.abs() < 1e-9 {
                 "0".into()
             } else {
-                power_label(scale.from_axis(v))
+                power_label(scale.to_data(v))
             }
         }
         Scale::Linear => {
@@ -1094,7 +1094,7 @@ mod tests {
         let (bold, _) = ticks(sym, lo, hi);
         let labels: Vec<String> = bold.iter().map(|v| tick_label(*v, sym, hi - lo)).collect();
         assert_eq!(labels, ["−10⁻²", "−10⁻³", "−10⁻⁴", "0", "10⁻⁴", "10⁻³", "10⁻²", "10⁻¹", "10⁰"]);
-        assert!((sym.from_axis(sym.to_axis(-2e-5)) + 2e-5).abs() < 1e-18);
+        assert!((sym.to_data(sym.to_axis(-2e-5)) + 2e-5).abs() < 1e-18);
     }
 
     #[test]
