@@ -548,9 +548,9 @@ impl Chart {
                 .iter()
                 .find(|p| (xs.to_axis(p.0) - v).abs() <= 1e-9 * (x1 - x0).abs())
                 .map_or(String::new(), |p| p.1.clone()),
-            None => tick_label(*v, xs, x1 - x0),
+            None => tick_label(*v, xs, x0, x1),
         };
-        let y_fmt = move |v: &f64| tick_label(*v, ys, y1 - y0);
+        let y_fmt = move |v: &f64| tick_label(*v, ys, y0, y1);
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
@@ -961,17 +961,33 @@ fn power_label(v: f64) -> String {
     format!("{sign}{}·10{}", (m * 10.0).round() / 10.0, superscript(e as i64))
 }
 
-/// A tick label, one format per axis. Log axis (`v` is log10 of the value): `10ⁿ`, and `2·10ⁿ`,
-/// `5·10ⁿ` between decades on short axes. Symmetric-log axis: `0`, `10ⁿ`, `−10ⁿ`. Linear axis: a
-/// plain number, or `a·10ⁿ` for very large or small values.
-fn tick_label(v: f64, scale: Scale, span: f64) -> String {
+/// A tick label, one format per axis (`lo`, `hi`: the axis range in drawing coordinates). Log
+/// axis (`v` is log10 of the value): `10ⁿ` at decades; on a short axis (under about two decades)
+/// 2 and 5 times a power of ten too, all as plain numbers when the whole axis lies within
+/// 0.001-100000 (`20, 50, 100, 200`), else as `a·10ⁿ`. Symmetric-log axis: `0`, `10ⁿ`, `−10ⁿ`.
+/// Linear axis: plain numbers, or `a·10ⁿ` for very large or small values.
+fn tick_label(v: f64, scale: Scale, lo: f64, hi: f64) -> String {
+    let span = (hi - lo).abs();
     match scale {
         Scale::Log => {
+            let short = span <= 2.2;
+            let plain = short && lo.min(hi) >= -3.0 && lo.max(hi) < 5.0;
             let r = v.round();
-            if (v - r).abs() < 1e-6 {
+            let at_decade = (v - r).abs() < 1e-6;
+            if plain {
+                if !at_decade && !is_2_or_5(v) {
+                    return String::new();
+                }
+                let x = 10f64.powf(v);
+                // Rounded to 4 significant digits: 0.002, 50, 200.
+                let decimals = (3.0 - x.log10().floor()).clamp(0.0, 8.0) as usize;
+                let t = format!("{x:.decimals$}");
+                return if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t };
+            }
+            if at_decade {
                 return format!("10{}", superscript(r as i64));
             }
-            if span > 2.2 {
+            if !short || !is_2_or_5(v) {
                 return String::new();
             }
             power_label(10f64.powf(v))
@@ -994,6 +1010,12 @@ fn tick_label(v: f64, scale: Scale, span: f64) -> String {
             }
         }
     }
+}
+
+/// Whether log10 value `v` is at 2 or 5 times a power of ten.
+fn is_2_or_5(v: f64) -> bool {
+    let m = 10f64.powf(v - v.floor());
+    [2.0f64, 5.0].iter().any(|k| (m - k).abs() < 0.02 * k)
 }
 
 #[cfg(test)]
@@ -1073,18 +1095,23 @@ mod tests {
     #[test]
     fn log_ticks_use_one_format() {
         let log = Scale::Log;
-        assert_eq!(tick_label(-3.0, log, 4.0), "10⁻³");
-        assert_eq!(tick_label(2.0, log, 4.0), "10²");
-        // between decades only on short axes, as a·10ⁿ
-        assert_eq!(tick_label(-4.0 + 2f64.log10(), log, 2.0), "2·10⁻⁴");
-        assert_eq!(tick_label(-4.0 + 2f64.log10(), log, 5.0), "");
-        assert_eq!(tick_label(2.5, Scale::Linear, 10.0), "2.5");
-        assert_eq!(tick_label(-2.5, Scale::Linear, 10.0), "−2.5");
-        assert_eq!(tick_label(3.2e-6, Scale::Linear, 1e-5), "3.2·10⁻⁶");
+        assert_eq!(tick_label(-3.0, log, -4.0, 0.0), "10⁻³");
+        assert_eq!(tick_label(2.0, log, -1.0, 3.0), "10²");
+        // between decades only on short axes: as a·10ⁿ far from 1, else plain numbers
+        assert_eq!(tick_label(-4.0 + 2f64.log10(), log, -5.0, -3.0), "2·10⁻⁴");
+        assert_eq!(tick_label(-4.0 + 2f64.log10(), log, -8.0, -3.0), "");
+        assert_eq!(tick_label(1.0 + 2f64.log10(), log, 1.0, 2.5), "20");
+        assert_eq!(tick_label(2.0, log, 1.0, 2.5), "100");
+        assert_eq!(tick_label(-2.0 + 5f64.log10(), log, -2.1, -0.5), "0.05");
+        assert_eq!(tick_label(2.5, Scale::Linear, 0.0, 10.0), "2.5");
+        assert_eq!(tick_label(-2.5, Scale::Linear, -5.0, 5.0), "−2.5");
+        assert_eq!(tick_label(3.2e-6, Scale::Linear, 0.0, 1e-5), "3.2·10⁻⁶");
         // the chosen ticks of a log axis: decades, and 2, 5 between them on short axes
         let (bold, light) = ticks(log, -1.35, 0.2);
-        let labels: Vec<String> = bold.iter().map(|v| tick_label(*v, log, 1.5)).collect();
-        assert_eq!(labels, ["5·10⁻²", "10⁻¹", "2·10⁻¹", "5·10⁻¹", "10⁰"]);
+        let labels: Vec<String> = bold.iter().map(|v| tick_label(*v, log, -1.35, 0.2)).collect();
+        assert_eq!(labels, ["0.05", "0.1", "0.2", "0.5", "1"]);
+        let labels: Vec<String> = bold.iter().map(|v| tick_label(*v - 5.0, log, -6.35, -4.8)).collect();
+        assert_eq!(labels, ["5·10⁻⁷", "10⁻⁶", "2·10⁻⁶", "5·10⁻⁶", "10⁻⁵"]);
         assert!(light.len() > bold.len());
         let (bold, _) = ticks(log, -6.2, 0.3);
         assert_eq!(bold, [-6.0, -5.0, -4.0, -3.0, -2.0, -1.0, 0.0]);
@@ -1092,7 +1119,7 @@ mod tests {
         let sym = Scale::SymLog(1e-5);
         let (lo, hi) = (sym.to_axis(-0.03), sym.to_axis(1.0));
         let (bold, _) = ticks(sym, lo, hi);
-        let labels: Vec<String> = bold.iter().map(|v| tick_label(*v, sym, hi - lo)).collect();
+        let labels: Vec<String> = bold.iter().map(|v| tick_label(*v, sym, lo, hi)).collect();
         assert_eq!(labels, ["−10⁻²", "−10⁻³", "−10⁻⁴", "0", "10⁻⁴", "10⁻³", "10⁻²", "10⁻¹", "10⁰"]);
         assert!((sym.to_data(sym.to_axis(-2e-5)) + 2e-5).abs() < 1e-18);
     }
