@@ -199,6 +199,7 @@ pub fn fig3(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
     .keys("l_star", "a_star")
     .with_note("each curve starts at its pull-off load (dot): the adhesive branch reaches L* < 0");
     let mut pull_offs = Vec::new();
+    let mut hidden: Vec<String> = Vec::new();
     let mut thetas: Vec<(String, Option<f64>)> = vec![
         ("(1) θ = 10".into(), Some(10.0)),
         ("(2) θ = 15".into(), Some(15.0)),
@@ -217,17 +218,36 @@ pub fn fig3(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
             _ => 1e-6,
         };
         let pts = symlog_series(&model, start, 1.0, 240)?;
-        if let (Some(_), Some(po)) = (theta, model.pull_off()) {
-            pull_offs.push((po.l_star, po.a_star));
+        if let (Some(t), Some(po)) = (theta, model.pull_off()) {
+            if po.a_star >= A_STAR_FLOOR {
+                pull_offs.push((po.l_star, po.a_star));
+            } else {
+                hidden.push(format!(
+                    "θ = {}: pull-off at L* = −10{}, A* = 10{} (below these axes)",
+                    sig3(t),
+                    stiction_plot::superscript(po.log10_abs_l_star.round() as i64),
+                    stiction_plot::superscript(po.a_star.log10().round() as i64)
+                ));
+            }
         }
         chart.series.push(Series::line(label, pts));
     }
     chart.series.push(Series::markers("pull-off (L* = −P_c*)", pull_offs).with_color(5));
+    if !hidden.is_empty() {
+        chart.note = Some(format!("{}\n{}", chart.note.take().unwrap_or_default(), hidden.join("; ")));
+    }
     chart.x_symlog = Some(1e-6);
     chart.y_log = true;
+    // From the GW curve's A* at L* = 1e-6 (about 5e-6) up: a large theta's branch near its
+    // pull-off (A* down to 1e-20) would squash the paper's curves.
+    let top = chart.series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).fold(0.0, f64::max);
+    chart.y_range = Some((A_STAR_FLOOR, top * 1.5));
     chart.legend = LegendPosition::LowerRight;
     Ok(chart)
 }
+
+/// Lowest A* drawn in Fig. 3.
+const A_STAR_FLOOR: f64 = 1e-6;
 
 /// `n` points of A*(L*) from `from` to `to`, evenly spaced in sign(L*) log10(1 + |L*|/1e-6).
 fn symlog_series(
