@@ -464,11 +464,21 @@ pub struct ReferenceSpec {
     #[schemars(with = "Option<f64>")]
     pub mu_apparent_uncertainty: Option<f64>,
     /// Measured apparent zero-load adhesion force F_a0 of eq. 10, N ("2.0 uN").
-    #[serde(default, deserialize_with = "plain_force", skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "plain_force",
+        serialize_with = "force_with_unit",
+        skip_serializing_if = "Option::is_none"
+    )]
     #[schemars(with = "Option<QuantityInput>")]
     pub apparent_adhesion_force: Option<f64>,
     /// Half-width of the uncertainty of `apparent_adhesion_force`, N ("1.3 uN", >= 0).
-    #[serde(default, deserialize_with = "plain_force_nonnegative", skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "plain_force_nonnegative",
+        serialize_with = "force_with_unit",
+        skip_serializing_if = "Option::is_none"
+    )]
     #[schemars(with = "Option<QuantityInput>")]
     pub apparent_adhesion_force_uncertainty: Option<f64>,
     /// What the +/- is, printed with it (e.g. "uncertainty stated by the paper, from the
@@ -488,6 +498,15 @@ fn plain<'de, D: Deserializer<'de>>(d: D, dim: Dimension, constraint: Constraint
     }
     nominal_from_json(&v, dim, constraint).map(Some).map_err(D::Error::custom)
 }
+/// Writes a force as a string with its unit, `"2e-6 N"` (exact, and read back by the same parser),
+/// so that a key without a unit in an output (study.json, the log header) is not ambiguous.
+fn force_with_unit<S: serde::Serializer>(v: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+    match v {
+        Some(v) => s.serialize_str(&format!("{v:e} N")),
+        None => s.serialize_none(),
+    }
+}
+
 fn plain_dimensionless_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
     plain(d, Dimension::Dimensionless, Constraint::Positive)
 }

@@ -106,6 +106,12 @@ fn reference_values_come_from_the_scenario_and_only_from_it() {
     assert_eq!(r.adhesion_text().unwrap(), "2 +/- 1.3 uN");
     assert_eq!(r.mu_text().unwrap(), "0.7 +/- 0.3");
     assert!(r.source.contains("Tas") && !r.uncertainty_meaning.is_empty());
+    // Written back with units in the values (study.json, a study's log header), and read again exactly.
+    let json = serde_json::to_value(&r).unwrap();
+    assert_eq!(json["apparent_adhesion_force"], "2e-6 N");
+    assert_eq!(json["apparent_adhesion_force_uncertainty"], "1.3e-6 N");
+    let back: stiction_scenario::ReferenceSpec = serde_json::from_value(json).unwrap();
+    assert_eq!(back, r);
     // A device of one's own (the synthetic-data scenario) has no reference.
     let s = Scenario::load(&scenarios_dir().join("tas2000-fit-synthetic.json"), &[]).unwrap();
     assert!(s.reference.is_none());
