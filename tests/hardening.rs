@@ -69,7 +69,7 @@ fn flags_that_were_ignored_or_defeated_are_errors() {
             ],
             &["--radius", "beyond"],
         ),
-        (&["plot", "fig2", "--scenario", "scenarios/tas2000.json", "--out", "x.svg"], &["--scenario", "plot actuator"]),
+        (&["plot", "fig2", "--array", "clamp", "--out", "x.svg"], &["--array", "plot actuator"]),
         (&["plot", "fig2", "--out", "p.txt"], &["p.txt", "unknown image extension", ".svg or .png"]),
         (
             &["actuator", "scenarios/tas2000.json", "--array", "clamp", "--sweep", "--sweep-steps", "0"],

@@ -8,6 +8,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod cmd;
+mod figargs;
 mod output;
 
 /// stiction: a virtual MEMS friction meter (static friction in elastic adhesive MEMS contacts).

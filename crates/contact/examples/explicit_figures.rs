@@ -51,7 +51,7 @@ fn scaling() {
     let mut c = Chart::new(
         "Explicit solver: time per load point (tilt free, DMT, L* up to 0.1, one core)",
         "summits N",
-        "time per load point [ms]",
+        "time per load point (ms)",
     )
     .with(Series::line("measured", time))
     .with(Series::dashed("proportional to N", linear));
@@ -63,6 +63,7 @@ fn scaling() {
         .with(Series::line("solver (summits + search + contact set)", bytes))
         .with(Series::markers("peak RSS / N (whole process)", rss))
         .with(Series::dashed("floor 48 B", floor));
+    c.legend = stiction_plot::LegendPosition::UpperRight;
     c.x_log = true;
     c.y_log = true;
     save(&c, "docs/figures/scaling-bytes-per-summit");
@@ -110,8 +111,8 @@ fn table1(seeds: u64) {
     let some: Vec<(f64, f64)> = runs[0].points.iter().map(|p| (p.load_n * 1e6, p.friction_explicit_n * 1e6)).collect();
     let c = Chart::new(
         format!("Table 1 surface, tilt-free shoe (DMT, {seeds} surfaces) vs discrete N = 3 (eq. 12)"),
-        "normal load L [uN]",
-        "friction capacity s A_r [uN]",
+        "normal load L (µN)",
+        "friction capacity s A_r (µN)",
     )
     .with(Series::line("explicit: median", med))
     .with(Series::dashed("explicit: 10 %", p10))
@@ -121,13 +122,15 @@ fn table1(seeds: u64) {
     save(&c, "docs/figures/table1-explicit-vs-discrete");
     let mut c = Chart::new(
         format!("Table 1 surface, tilt-free shoe: summits carrying the shoe ({seeds} surfaces)"),
-        "normal load L [uN]",
-        "surfaces [%]",
+        "normal load L (µN)",
+        "surfaces (%)",
     )
     .with(Series::line("3 contacts (the paper's N = 3)", s3))
     .with(Series::line("4 contacts", s4))
     .with(Series::line("5 or more contacts", s5));
-    c.y_range = Some((0.0, 100.0));
+    // Headroom above 100 % for the legend.
+    c.y_range = Some((0.0, 118.0));
+    c.legend = stiction_plot::LegendPosition::UpperRight;
     let mut po: Vec<f64> = runs.iter().map(|r| r.pull_off_load_n).collect();
     po.sort_by(f64::total_cmp);
     println!(

@@ -15,6 +15,7 @@
 use std::path::{Path, PathBuf};
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
 use plotters::prelude::*;
 
 mod map;
@@ -157,6 +158,14 @@ pub struct Chart {
     pub x_log: bool,
     /// Logarithmic y axis (all y must be positive).
     pub y_log: bool,
+    /// Symmetric-logarithmic x axis with this linear threshold c (data units): drawn at
+    /// sign(x) log10(1 + |x|/c), so that negative and positive values over many decades, and zero,
+    /// are all visible (ticks at 0 and at plus and minus powers of ten).
+    pub x_symlog: Option<f64>,
+    /// Symmetric-logarithmic y axis with this linear threshold (see `x_symlog`).
+    pub y_symlog: Option<f64>,
+    /// Named x ticks (position in data units, label) instead of numbers: a categorical axis.
+    pub x_ticks: Option<Vec<(f64, String)>>,
     /// The data.
     pub series: Vec<Series>,
     /// Optional fixed x range (in data units).
@@ -344,45 +353,96 @@ impl Chart {
         Ok(())
     }
 
+    /// The CSV column names of x and y (with their units).
+    pub fn column_keys(&self) -> (String, String) {
+        (
+            self.x_key.clone().unwrap_or_else(|| column_key(&self.x_label)),
+            self.y_key.clone().unwrap_or_else(|| column_key(&self.y_label)),
+        )
+    }
+
+    /// The data columns after `series` and `style`: x, y, x error, y error, upper y edge, upper x edge.
+    pub fn data_columns(&self) -> [String; 6] {
+        let (xk, yk) = self.column_keys();
+        [xk.clone(), yk.clone(), format!("{xk}_err"), format!("{yk}_err"), format!("{yk}_upper"), format!("{xk}_upper")]
+    }
+
+    /// The plotted numbers of series `s`, one row per point, in the order of [`Chart::data_columns`]
+    /// (None: empty). A span is one row: an x range has x = low and `x_upper` = high, a y range y = low
+    /// and `y_upper` = high.
+    fn rows(s: &Series) -> Vec<[Option<f64>; 6]> {
+        let fin = |v: f64| v.is_finite().then_some(v);
+        s.points
+            .iter()
+            .enumerate()
+            .map(|(i, &(x, y))| {
+                let pick = |v: &Option<Vec<f64>>| v.as_ref().and_then(|v| v.get(i)).copied().and_then(fin);
+                match s.style {
+                    SeriesStyle::XSpan => [fin(x), None, None, None, None, fin(y)],
+                    SeriesStyle::YSpan => [None, fin(x), None, None, fin(y), None],
+                    _ => [fin(x), fin(y), pick(&s.x_err), pick(&s.y_err), pick(&s.upper), None],
+                }
+            })
+            .collect()
+    }
+
     /// The plotted numbers as CSV: one row per point, columns `series`, `style`, x and y with their
-    /// units, and the error bars or band edges where a series has them.
+    /// units, the error bars, band edges and span ends where a series has them
+    /// ([`Chart::data_columns`]).
     pub fn data_csv(&self) -> String {
-        let xk = self.x_key.clone().unwrap_or_else(|| column_key(&self.x_label));
-        let yk = self.y_key.clone().unwrap_or_else(|| column_key(&self.y_label));
         let mut w = csv::Writer::from_writer(Vec::new());
-        let header = [
-            "series".to_string(),
-            "style".into(),
-            xk.clone(),
-            yk.clone(),
-            format!("{xk}_err"),
-            format!("{yk}_err"),
-            format!("{yk}_upper"),
-        ];
+        let mut header = vec!["series".to_string(), "style".into()];
+        header.extend(self.data_columns());
         // Writing to a Vec cannot fail.
         w.write_record(&header).ok();
-        let num = |v: f64| if v.is_finite() { format!("{v}") } else { String::new() };
+        let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
         for s in &self.series {
-            for (i, &(x, y)) in s.points.iter().enumerate() {
-                let pick =
-                    |v: &Option<Vec<f64>>| v.as_ref().and_then(|v| v.get(i)).map(|&e| num(e)).unwrap_or_default();
-                let (x, y, upper) = match s.style {
-                    SeriesStyle::XSpan => (num(x), String::new(), num(y)),
-                    SeriesStyle::YSpan => (String::new(), num(x), num(y)),
-                    _ => (num(x), num(y), pick(&s.upper)),
-                };
-                let row = [s.name.clone(), s.style.name().into(), x, y, pick(&s.x_err), pick(&s.y_err), upper];
-                w.write_record(&row).ok();
+            for row in Self::rows(s) {
+                let mut rec = vec![s.name.clone(), s.style.name().to_string()];
+                rec.extend(row.iter().map(|v| num(*v)));
+                w.write_record(&rec).ok();
             }
         }
         String::from_utf8(w.into_inner().unwrap_or_default()).unwrap_or_default()
     }
 
+    /// The same numbers as [`Chart::data_csv`] as JSON, for results files: `title`, `x_label`,
+    /// `y_label`, and `series`, each with `name`, `style` and one array per column that has a value
+    /// (keys as the CSV columns, with units: `load_un`, `friction_un`, `friction_un_err`, ...;
+    /// null where a point has none).
+    pub fn data_json(&self) -> serde_json::Value {
+        use serde_json::{Value, json};
+        let cols = self.data_columns();
+        let series: Vec<Value> = self
+            .series
+            .iter()
+            .map(|s| {
+                let rows = Self::rows(s);
+                let mut obj = serde_json::Map::new();
+                obj.insert("name".into(), json!(s.name));
+                obj.insert("style".into(), json!(s.style.name()));
+                for (c, key) in cols.iter().enumerate() {
+                    if rows.iter().any(|r| r[c].is_some()) {
+                        obj.insert(key.clone(), Value::Array(rows.iter().map(|r| json!(r[c])).collect()));
+                    }
+                }
+                Value::Object(obj)
+            })
+            .collect();
+        json!({"title": self.title, "x_label": self.x_label, "y_label": self.y_label, "series": series})
+    }
+
     fn tx(&self, x: f64) -> f64 {
-        if self.x_log { x.log10() } else { x }
+        self.x_scale().to_axis(x)
     }
     fn ty(&self, y: f64) -> f64 {
-        if self.y_log { y.log10() } else { y }
+        self.y_scale().to_axis(y)
+    }
+    fn x_scale(&self) -> Scale {
+        Scale::of(self.x_log, self.x_symlog)
+    }
+    fn y_scale(&self) -> Scale {
+        Scale::of(self.y_log, self.y_symlog)
     }
 
     /// The data range after the log transform, padded by 4 %.
@@ -459,27 +519,44 @@ impl Chart {
             .map_err(|e| backend_err(&e))?;
         top += title_h as i32 + px(4.0) as i32;
         if let Some(note) = &self.note {
-            root.draw(&Text::new(note.clone(), (px(14.0) as i32, top), note_font)).map_err(|e| backend_err(&e))?;
-            top += (font * 1.3) as i32;
+            // One text line per `\n`.
+            for line in note.lines() {
+                root.draw(&Text::new(line.to_string(), (px(14.0) as i32, top), note_font.clone()))
+                    .map_err(|e| backend_err(&e))?;
+                top += (font * 1.3) as i32;
+            }
         }
         let area = root.split_vertically(top + px(4.0) as i32).1;
+        let (xs, ys) = (self.x_scale(), self.y_scale());
+        let (x_bold, x_light) = match &self.x_ticks {
+            Some(t) => (t.iter().map(|p| self.tx(p.0)).collect(), Vec::new()),
+            None => ticks(xs, x0, x1),
+        };
+        let named = self.x_ticks.clone();
+        let (y_bold, y_light) = ticks(ys, y0, y1);
         let mut chart = ChartBuilder::on(&area)
             .margin(px(14.0))
             .x_label_area_size(px(52.0))
             .y_label_area_size(px(80.0))
-            .build_cartesian_2d(x0..x1, y0..y1)
+            .build_cartesian_2d(
+                TickedAxis { lo: x0, hi: x1, bold: x_bold, light: x_light },
+                TickedAxis { lo: y0, hi: y1, bold: y_bold, light: y_light },
+            )
             .map_err(|e| backend_err(&e))?;
-        let (x_log, y_log) = (self.x_log, self.y_log);
-        let x_fmt = move |v: &f64| tick_label(*v, x_log, x1 - x0);
-        let y_fmt = move |v: &f64| tick_label(*v, y_log, y1 - y0);
+        let x_fmt = move |v: &f64| match &named {
+            Some(t) => t
+                .iter()
+                .find(|p| (xs.to_axis(p.0) - v).abs() <= 1e-9 * (x1 - x0).abs())
+                .map_or(String::new(), |p| p.1.clone()),
+            None => tick_label(*v, xs, x0, x1),
+        };
+        let y_fmt = move |v: &f64| tick_label(*v, ys, y0, y1);
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
             .y_desc(&self.y_label)
             .x_label_formatter(&x_fmt)
             .y_label_formatter(&y_fmt)
-            .x_labels(if x_log { 40 } else { 10 })
-            .y_labels(if y_log { 40 } else { 10 })
             .label_style(("sans-serif", font))
             .axis_desc_style(("sans-serif", font * 1.13))
             .light_line_style(RGBColor(0xee, 0xee, 0xee))
@@ -711,36 +788,234 @@ pub fn superscript(n: i64) -> String {
         .collect()
 }
 
-/// A tick label. On a log axis (`v` is log10 of the value): `10ⁿ` at whole decades; `2·10ⁿ` and
-/// `5·10ⁿ` between them when the axis spans fewer than three decades; nothing elsewhere. On a linear
-/// axis: a plain number, or `a·10ⁿ` for very large or small values.
-fn tick_label(v: f64, log: bool, span: f64) -> String {
-    if log {
-        let r = v.round();
-        if (v - r).abs() < 1e-6 {
-            return format!("10{}", superscript(r as i64));
-        }
-        if span > 3.0 {
-            return String::new();
-        }
-        let e = v.floor();
-        let m = 10f64.powf(v - e);
-        for k in [2.0f64, 5.0] {
-            if (m - k).abs() < 0.02 * k {
-                return format!("{}·10{}", k as i64, superscript(e as i64));
-            }
-        }
-        String::new()
-    } else {
-        let a = v.abs();
-        if a != 0.0 && !(1e-3..1e5).contains(&a) {
-            let e = a.log10().floor();
-            let m = v / 10f64.powf(e);
-            format!("{}·10{}", (m * 10.0).round() / 10.0, superscript(e as i64))
-        } else {
-            format!("{}", (v * 1e6).round() / 1e6)
+/// How an axis maps data to drawing coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Scale {
+    Linear,
+    Log,
+    /// Symmetric log with linear threshold c: sign(v) log10(1 + |v|/c).
+    SymLog(f64),
+}
+
+impl Scale {
+    fn of(log: bool, symlog: Option<f64>) -> Scale {
+        match (log, symlog) {
+            (true, _) => Scale::Log,
+            (false, Some(c)) if c > 0.0 && c.is_finite() => Scale::SymLog(c),
+            _ => Scale::Linear,
         }
     }
+    fn to_axis(self, v: f64) -> f64 {
+        match self {
+            Scale::Linear => v,
+            Scale::Log => v.log10(),
+            Scale::SymLog(c) => v.signum() * (v.abs() / c).ln_1p() / std::f64::consts::LN_10,
+        }
+    }
+    fn to_data(self, t: f64) -> f64 {
+        match self {
+            Scale::Linear => t,
+            Scale::Log => 10f64.powf(t),
+            Scale::SymLog(c) => t.signum() * c * (10f64.powf(t.abs()) - 1.0),
+        }
+    }
+}
+
+/// A linear axis in drawing coordinates with the tick positions chosen by [`ticks`] (plotters'
+/// own key points know nothing of log or symmetric-log labels).
+struct TickedAxis {
+    lo: f64,
+    hi: f64,
+    bold: Vec<f64>,
+    light: Vec<f64>,
+}
+
+impl Ranged for TickedAxis {
+    type ValueType = f64;
+    type FormatOption = DefaultFormatting;
+    /// As plotters' own f64 axis: linear from `lo` to `hi`.
+    fn map(&self, v: &f64, limit: (i32, i32)) -> i32 {
+        if self.hi == self.lo {
+            return (limit.1 - limit.0) / 2;
+        }
+        let logic = (v - self.lo) / (self.hi - self.lo);
+        let length = limit.1 - limit.0;
+        if length == 0 {
+            return limit.1;
+        }
+        if logic.is_infinite() {
+            return if logic > 0.0 { limit.1 } else { limit.0 };
+        }
+        if length > 0 {
+            limit.0 + (length as f64 * logic + 1e-3).floor() as i32
+        } else {
+            limit.0 + (length as f64 * logic - 1e-3).ceil() as i32
+        }
+    }
+    fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
+        if hint.weight().allow_light_points() { self.light.clone() } else { self.bold.clone() }
+    }
+    fn range(&self) -> std::ops::Range<f64> {
+        self.lo..self.hi
+    }
+}
+
+/// A "nice" tick step (1, 2 or 5 times a power of ten) for about `n` intervals over `span`.
+fn nice_step(span: f64, n: f64) -> f64 {
+    let raw = (span / n).max(f64::MIN_POSITIVE);
+    let e = raw.log10().floor();
+    let base = 10f64.powf(e);
+    let m = raw / base;
+    let k = if m <= 1.0 {
+        1.0
+    } else if m <= 2.0 {
+        2.0
+    } else if m <= 5.0 {
+        5.0
+    } else {
+        10.0
+    };
+    k * base
+}
+
+/// The labelled (bold) and light tick positions of an axis over `[lo, hi]` in axis coordinates.
+/// Linear: multiples of a nice step, light lines at a fifth of it. Log: every decade (every
+/// second or more on long axes), 2 and 5 times a power of ten on axes shorter than about two
+/// decades, light lines at 2..9 times each power. Symmetric log: 0 and plus and minus powers of ten.
+fn ticks(scale: Scale, lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
+    let span = (hi - lo).abs().max(1e-300);
+    let within = |v: &f64| *v >= lo - 1e-9 * span && *v <= hi + 1e-9 * span;
+    match scale {
+        Scale::Linear => {
+            let step = nice_step(span, 10.0);
+            let multiples = |step: f64| -> Vec<f64> {
+                let (a, b) = ((lo / step).ceil() as i64, (hi / step).floor() as i64);
+                if b < a || b - a > 10_000 {
+                    return Vec::new();
+                }
+                (a..=b).map(|k| k as f64 * step).collect()
+            };
+            (multiples(step), multiples(step / 5.0))
+        }
+        Scale::Log => {
+            let (a, b) = (lo.floor() as i64, hi.ceil() as i64);
+            if b - a > 400 {
+                return (Vec::new(), Vec::new());
+            }
+            let every = nice_step(hi - lo, 10.0).max(1.0) as i64;
+            let mut bold: Vec<f64> = (a..=b).filter(|k| k.rem_euclid(every) == 0).map(|k| k as f64).collect();
+            if hi - lo < 2.2 {
+                for k in a..=b {
+                    bold.extend([2.0f64, 5.0].map(|m| k as f64 + m.log10()));
+                }
+            }
+            let mut light = Vec::new();
+            if hi - lo <= 12.0 {
+                for k in a..=b {
+                    light.extend((1..10).map(|m| k as f64 + (m as f64).log10()));
+                }
+            }
+            bold.retain(within);
+            bold.sort_by(f64::total_cmp);
+            light.retain(within);
+            (bold, light)
+        }
+        Scale::SymLog(c) => {
+            let top = scale.to_data(lo.abs().max(hi.abs()));
+            // Labels from 10 c outwards: c itself sits too close to 0 to be labelled.
+            let (k0, k1) = (c.log10().ceil() as i64 + 1, top.log10().ceil() as i64);
+            let mut bold = vec![0.0];
+            let mut light = Vec::new();
+            let decades = (k1 - k0).clamp(0, 400);
+            let every = (decades as f64 / 8.0).ceil().max(1.0) as i64;
+            for k in k0..=k0 + decades {
+                let p = 10f64.powi(k as i32);
+                if (k - k0) % every == 0 {
+                    bold.extend([scale.to_axis(p), scale.to_axis(-p)]);
+                }
+                for m in 2..10 {
+                    light.extend([scale.to_axis(m as f64 * p), scale.to_axis(-(m as f64) * p)]);
+                }
+            }
+            bold.retain(within);
+            bold.sort_by(f64::total_cmp);
+            light.retain(within);
+            (bold, light)
+        }
+    }
+}
+
+/// `10ⁿ` (or `−10ⁿ`) when `v` is a power of ten within rounding, else `a·10ⁿ` with one decimal.
+fn power_label(v: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let sign = if v < 0.0 { "−" } else { "" };
+    let l = v.abs().log10();
+    let e = l.round();
+    if (l - e).abs() < 1e-6 {
+        return format!("{sign}10{}", superscript(e as i64));
+    }
+    let e = l.floor();
+    let m = v.abs() / 10f64.powf(e);
+    format!("{sign}{}·10{}", (m * 10.0).round() / 10.0, superscript(e as i64))
+}
+
+/// A tick label, one format per axis (`lo`, `hi`: the axis range in drawing coordinates). Log
+/// axis (`v` is log10 of the value): `10ⁿ` at decades; on a short axis (under about two decades)
+/// 2 and 5 times a power of ten too, all as plain numbers when the whole axis lies within
+/// 0.001-100000 (`20, 50, 100, 200`), else as `a·10ⁿ`. Symmetric-log axis: `0`, `10ⁿ`, `−10ⁿ`.
+/// Linear axis: plain numbers, or `a·10ⁿ` for very large or small values.
+fn tick_label(v: f64, scale: Scale, lo: f64, hi: f64) -> String {
+    let span = (hi - lo).abs();
+    match scale {
+        Scale::Log => {
+            let short = span <= 2.2;
+            let plain = short && lo.min(hi) >= -3.0 && lo.max(hi) < 5.0;
+            let r = v.round();
+            let at_decade = (v - r).abs() < 1e-6;
+            if plain {
+                if !at_decade && !is_2_or_5(v) {
+                    return String::new();
+                }
+                let x = 10f64.powf(v);
+                // Rounded to 4 significant digits: 0.002, 50, 200.
+                let decimals = (3.0 - x.log10().floor()).clamp(0.0, 8.0) as usize;
+                let t = format!("{x:.decimals$}");
+                return if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t };
+            }
+            if at_decade {
+                return format!("10{}", superscript(r as i64));
+            }
+            if !short || !is_2_or_5(v) {
+                return String::new();
+            }
+            power_label(10f64.powf(v))
+        }
+        Scale::SymLog(_) => {
+            if v.abs() < 1e-9 {
+                "0".into()
+            } else {
+                power_label(scale.to_data(v))
+            }
+        }
+        Scale::Linear => {
+            let a = v.abs();
+            if a != 0.0 && !(1e-3..1e5).contains(&a) {
+                power_label(v)
+            } else {
+                let r = (v * 1e6).round() / 1e6;
+                // No "-0".
+                format!("{}", if r == 0.0 { 0.0 } else { r }).replace('-', "−")
+            }
+        }
+    }
+}
+
+/// Whether log10 value `v` is at 2 or 5 times a power of ten.
+fn is_2_or_5(v: f64) -> bool {
+    let m = 10f64.powf(v - v.floor());
+    [2.0f64, 5.0].iter().any(|k| (m - k).abs() < 0.02 * k)
 }
 
 #[cfg(test)]
@@ -800,26 +1075,53 @@ mod tests {
         let mut lines = text.lines();
         assert_eq!(
             lines.next().unwrap(),
-            "series,style,load_l_un,friction_f_f_un,load_l_un_err,friction_f_f_un_err,friction_f_f_un_upper"
+            "series,style,load_l_un,friction_f_f_un,load_l_un_err,friction_f_f_un_err,friction_f_f_un_upper,load_l_un_upper"
         );
         let rows: Vec<&str> = lines.collect();
         assert_eq!(rows.len(), 10 + 2 + 1);
-        assert_eq!(rows[3], "model,line,3,9,,,");
-        assert_eq!(rows[11], "data,markers,2,3.9,,0.4,");
-        assert_eq!(rows[12], "measured range,y-range,,2,,,5");
+        assert_eq!(rows[3], "model,line,3,9,,,,");
+        assert_eq!(rows[11], "data,markers,2,3.9,,0.4,,");
+        assert_eq!(rows[12], "measured range,y-range,,2,,,5,");
+        // the JSON holds the same numbers under the same keys
+        let json = sample().data_json();
+        let data = &json["series"][1];
+        assert_eq!(data["name"], "data");
+        assert_eq!(data["friction_f_f_un_err"], serde_json::json!([0.3, 0.4]));
+        assert_eq!(json["series"][2]["friction_f_f_un_upper"], serde_json::json!([5.0]));
+        assert!(json["series"][0].get("load_l_un_err").is_none());
         std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]
     fn log_ticks_use_one_format() {
-        assert_eq!(tick_label(-3.0, true, 4.0), "10⁻³");
-        assert_eq!(tick_label(2.0, true, 4.0), "10²");
-        // between decades only 2 and 5 times a power of ten, and only on short axes
-        assert_eq!(tick_label(-4.0 + 2f64.log10(), true, 2.0), "2·10⁻⁴");
-        assert_eq!(tick_label(-4.0 + 2f64.log10(), true, 5.0), "");
-        assert_eq!(tick_label(-0.5, true, 2.0), "");
-        assert_eq!(tick_label(2.5, false, 10.0), "2.5");
-        assert_eq!(tick_label(3.2e-6, false, 1e-5), "3.2·10⁻⁶");
+        let log = Scale::Log;
+        assert_eq!(tick_label(-3.0, log, -4.0, 0.0), "10⁻³");
+        assert_eq!(tick_label(2.0, log, -1.0, 3.0), "10²");
+        // between decades only on short axes: as a·10ⁿ far from 1, else plain numbers
+        assert_eq!(tick_label(-4.0 + 2f64.log10(), log, -5.0, -3.0), "2·10⁻⁴");
+        assert_eq!(tick_label(-4.0 + 2f64.log10(), log, -8.0, -3.0), "");
+        assert_eq!(tick_label(1.0 + 2f64.log10(), log, 1.0, 2.5), "20");
+        assert_eq!(tick_label(2.0, log, 1.0, 2.5), "100");
+        assert_eq!(tick_label(-2.0 + 5f64.log10(), log, -2.1, -0.5), "0.05");
+        assert_eq!(tick_label(2.5, Scale::Linear, 0.0, 10.0), "2.5");
+        assert_eq!(tick_label(-2.5, Scale::Linear, -5.0, 5.0), "−2.5");
+        assert_eq!(tick_label(3.2e-6, Scale::Linear, 0.0, 1e-5), "3.2·10⁻⁶");
+        // the chosen ticks of a log axis: decades, and 2, 5 between them on short axes
+        let (bold, light) = ticks(log, -1.35, 0.2);
+        let labels: Vec<String> = bold.iter().map(|v| tick_label(*v, log, -1.35, 0.2)).collect();
+        assert_eq!(labels, ["0.05", "0.1", "0.2", "0.5", "1"]);
+        let labels: Vec<String> = bold.iter().map(|v| tick_label(*v - 5.0, log, -6.35, -4.8)).collect();
+        assert_eq!(labels, ["5·10⁻⁷", "10⁻⁶", "2·10⁻⁶", "5·10⁻⁶", "10⁻⁵"]);
+        assert!(light.len() > bold.len());
+        let (bold, _) = ticks(log, -6.2, 0.3);
+        assert_eq!(bold, [-6.0, -5.0, -4.0, -3.0, -2.0, -1.0, 0.0]);
+        // symmetric log: 0 and signed powers of ten, both sides visible
+        let sym = Scale::SymLog(1e-5);
+        let (lo, hi) = (sym.to_axis(-0.03), sym.to_axis(1.0));
+        let (bold, _) = ticks(sym, lo, hi);
+        let labels: Vec<String> = bold.iter().map(|v| tick_label(*v, sym, lo, hi)).collect();
+        assert_eq!(labels, ["−10⁻²", "−10⁻³", "−10⁻⁴", "0", "10⁻⁴", "10⁻³", "10⁻²", "10⁻¹", "10⁰"]);
+        assert!((sym.to_data(sym.to_axis(-2e-5)) + 2e-5).abs() < 1e-18);
     }
 
     #[test]

@@ -29,6 +29,10 @@ pub struct ImageMap {
     pub y_max: f64,
     /// Marker positions in axis units.
     pub markers: Vec<(f64, f64)>,
+    /// Image size in pixels (default 1200 wide, the height from the map's aspect ratio).
+    pub size_px: Option<(u32, u32)>,
+    /// Tick label font size in pixels (default 15; the title and labels scale with it).
+    pub font_px: Option<f64>,
 }
 
 /// A perceptually ordered colour map (viridis, 5 anchors, linear between them), `t` in [0, 1].
@@ -55,12 +59,13 @@ impl ImageMap {
         let hi = finite.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let span = if hi > lo { hi - lo } else { 1.0 };
         let aspect = (self.y_max / self.x_max).clamp(0.05, 20.0);
-        let (w, h) = (1200u32, ((1000.0 * aspect) as u32 + 160).clamp(300, 1400));
+        let (w, h) = self.size_px.unwrap_or((1200u32, ((1000.0 * aspect) as u32 + 160).clamp(300, 1400)));
+        let f = self.font_px.unwrap_or(15.0);
         let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| backend_err(&e))?;
-        let (main, bar) = root.split_horizontally(w - 170);
+        let (main, bar) = root.split_horizontally(w.saturating_sub((170.0 * f / 15.0) as u32).max(w / 2));
         let mut chart = ChartBuilder::on(&main)
-            .caption(&self.title, ("sans-serif", 22))
+            .caption(&self.title, ("sans-serif", f * 22.0 / 15.0))
             .margin(14)
             .x_label_area_size(52)
             .y_label_area_size(70)
@@ -71,8 +76,8 @@ impl ImageMap {
             .disable_mesh()
             .x_desc(&self.x_label)
             .y_desc(&self.y_label)
-            .label_style(("sans-serif", 15))
-            .axis_desc_style(("sans-serif", 17))
+            .label_style(("sans-serif", f))
+            .axis_desc_style(("sans-serif", f * 17.0 / 15.0))
             .draw()
             .map_err(|e| backend_err(&e))?;
         let (cx, cy) = (self.x_max / self.nx as f64, self.y_max / self.ny as f64);
@@ -98,7 +103,7 @@ impl ImageMap {
                 .configure_series_labels()
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK.mix(0.4))
-                .label_font(("sans-serif", 15))
+                .label_font(("sans-serif", f))
                 .position(SeriesLabelPosition::UpperRight)
                 .draw()
                 .map_err(|e| backend_err(&e))?;
@@ -109,14 +114,14 @@ impl ImageMap {
             .margin_bottom(66)
             .margin_right(10)
             .y_label_area_size(80)
-            .caption(&self.value_label, ("sans-serif", 15))
+            .caption(&self.value_label, ("sans-serif", f))
             .build_cartesian_2d(0.0..1.0, lo..lo + span)
             .map_err(|e| backend_err(&e))?;
         cb.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
             .y_label_formatter(&|v| format!("{v:.3}"))
-            .label_style(("sans-serif", 14))
+            .label_style(("sans-serif", f * 14.0 / 15.0))
             .draw()
             .map_err(|e| backend_err(&e))?;
         let steps = 200;

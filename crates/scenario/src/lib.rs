@@ -69,6 +69,9 @@ pub struct Scenario {
     /// Measured data to compare with, if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub measured: Option<MeasuredSpec>,
+    /// Measured values of this device to compare with (printed and drawn only when given).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceSpec>,
 }
 
 /// A scenario loading error: where (file and JSON path), what was given and what was expected.
@@ -194,6 +197,9 @@ impl Scenario {
         }
         if let Some(c) = &self.contact {
             c.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+        }
+        if let Some(r) = &self.reference {
+            r.validate().map_err(|(p, msg)| (format!("reference.{p}"), msg))?;
         }
         if let Some(m) = &self.meter {
             m.validate().map_err(|(p, msg)| (format!("meter.{p}"), msg))?;

@@ -444,3 +444,136 @@ pub struct MeasuredSpec {
     #[schemars(extend("x-stiction-path" = true))]
     pub voltages_csv: PathBuf,
 }
+
+/// Measured values to compare the model with (such as the paper's own measurement of the device the
+/// scenario describes). Printed and drawn beside the model's results only when a scenario has this
+/// section: a user's own device gets no paper numbers it was never measured against.
+///
+/// Values are plain quantities (not uncertain-parameter objects: a Monte Carlo study must not draw
+/// them); the uncertainty is a separate half-width, and `uncertainty_meaning` says what it is
+/// (printed with every `+/-`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceSpec {
+    /// Where the values come from, printed and shown in figure legends
+    /// (e.g. "Tas et al., MEMS 2000, section 5").
+    pub source: String,
+    /// Measured apparent friction coefficient mu_e,a of eq. 10 (dimensionless, > 0).
+    #[serde(default, deserialize_with = "plain_dimensionless_positive", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<f64>")]
+    pub mu_apparent: Option<f64>,
+    /// Half-width of the uncertainty of `mu_apparent` (dimensionless, >= 0).
+    #[serde(default, deserialize_with = "plain_dimensionless_nonnegative", skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<f64>")]
+    pub mu_apparent_uncertainty: Option<f64>,
+    /// Measured apparent zero-load adhesion force F_a0 of eq. 10, N ("2.0 uN").
+    #[serde(
+        default,
+        deserialize_with = "plain_force",
+        serialize_with = "force_with_unit",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub apparent_adhesion_force: Option<f64>,
+    /// Half-width of the uncertainty of `apparent_adhesion_force`, N ("1.3 uN", >= 0).
+    #[serde(
+        default,
+        deserialize_with = "plain_force_nonnegative",
+        serialize_with = "force_with_unit",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub apparent_adhesion_force_uncertainty: Option<f64>,
+    /// What the +/- is, printed with it (e.g. "uncertainty stated by the paper, from the
+    /// conversion factors' uncertainty"); required when an uncertainty is given.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub uncertainty_meaning: String,
+}
+
+fn plain<'de, D: Deserializer<'de>>(d: D, dim: Dimension, constraint: Constraint) -> Result<Option<f64>, D::Error> {
+    use serde::de::Error;
+    let v = Value::deserialize(d)?;
+    if v.is_object() {
+        return Err(D::Error::custom(
+            "expected a plain value (a number or a string with a unit), not an uncertain-parameter object: \
+             the uncertainty of a reference value goes in its `..._uncertainty` field",
+        ));
+    }
+    nominal_from_json(&v, dim, constraint).map(Some).map_err(D::Error::custom)
+}
+/// Writes a force as a string with its unit, `"2e-6 N"` (exact, and read back by the same parser),
+/// so that a key without a unit in an output (study.json, the log header) is not ambiguous.
+fn force_with_unit<S: serde::Serializer>(v: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+    match v {
+        Some(v) => s.serialize_str(&format!("{v:e} N")),
+        None => s.serialize_none(),
+    }
+}
+
+fn plain_dimensionless_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    plain(d, Dimension::Dimensionless, Constraint::Positive)
+}
+fn plain_dimensionless_nonnegative<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    plain(d, Dimension::Dimensionless, Constraint::NonNegative)
+}
+fn plain_force<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    plain(d, Dimension::Force, Constraint::Finite)
+}
+fn plain_force_nonnegative<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    plain(d, Dimension::Force, Constraint::NonNegative)
+}
+
+impl ReferenceSpec {
+    /// Cross-field checks: a source, at least one value, an uncertainty only with its value and
+    /// with a meaning. Returns (field, message).
+    pub(crate) fn validate(&self) -> Result<(), (String, String)> {
+        if self.source.trim().is_empty() {
+            return Err(("source".into(), "missing: say where the reference values come from".into()));
+        }
+        if self.mu_apparent.is_none() && self.apparent_adhesion_force.is_none() {
+            return Err((
+                "mu_apparent".into(),
+                "missing: a reference needs `mu_apparent` or `apparent_adhesion_force` (or both)".into(),
+            ));
+        }
+        for (u, v, name) in [
+            (self.mu_apparent_uncertainty, self.mu_apparent, "mu_apparent"),
+            (self.apparent_adhesion_force_uncertainty, self.apparent_adhesion_force, "apparent_adhesion_force"),
+        ] {
+            if u.is_some() && v.is_none() {
+                return Err((format!("{name}_uncertainty"), format!("given without `{name}`")));
+            }
+            if u.is_some() && self.uncertainty_meaning.trim().is_empty() {
+                return Err((
+                    "uncertainty_meaning".into(),
+                    format!(
+                        "missing: `{name}_uncertainty` is given; say what the +/- is (a standard deviation, \
+                         a stated uncertainty, a range of devices, ...)"
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// `value +/- uncertainty` of mu_e,a for text, or `value` alone.
+    pub fn mu_text(&self) -> Option<String> {
+        self.mu_apparent.map(|m| match self.mu_apparent_uncertainty {
+            Some(u) => format!("{m} +/- {u}"),
+            None => format!("{m}"),
+        })
+    }
+
+    /// `value +/- uncertainty uN` of F_a0 for text, or `value uN` alone.
+    pub fn adhesion_text(&self) -> Option<String> {
+        self.apparent_adhesion_force.map(|f| match self.apparent_adhesion_force_uncertainty {
+            Some(u) => format!("{} +/- {} uN", round6(f * 1e6), round6(u * 1e6)),
+            None => format!("{} uN", round6(f * 1e6)),
+        })
+    }
+}
+
+/// Rounds to 6 decimals, so that 2.0e-6 N prints as 2 uN, not 1.9999999999999998.
+fn round6(v: f64) -> f64 {
+    (v * 1e6).round() / 1e6
+}

@@ -92,3 +92,57 @@ fn the_schema_describes_every_top_level_section() {
         assert!(props.contains_key(key), "schema lacks {key}");
     }
 }
+
+/// The `reference` section (issue 14): the paper scenarios carry the paper's measured values in SI;
+/// a scenario without it has none; bad sections are refused with the path.
+#[test]
+fn reference_values_come_from_the_scenario_and_only_from_it() {
+    // Tas et al. 2000, section 5: mu_e,a = 0.7 +/- 0.3, F_a0 = 2.0 +/- 1.3 uN.
+    let s = Scenario::load(&scenarios_dir().join("tas2000.json"), &[]).unwrap();
+    let r = s.reference.expect("the paper scenario carries the paper's measurement");
+    assert_eq!((r.mu_apparent, r.mu_apparent_uncertainty), (Some(0.7), Some(0.3)));
+    assert!((r.apparent_adhesion_force.unwrap() - 2.0e-6).abs() < 1e-18);
+    assert!((r.apparent_adhesion_force_uncertainty.unwrap() - 1.3e-6).abs() < 1e-18);
+    assert_eq!(r.adhesion_text().unwrap(), "2 +/- 1.3 uN");
+    assert_eq!(r.mu_text().unwrap(), "0.7 +/- 0.3");
+    assert!(r.source.contains("Tas") && !r.uncertainty_meaning.is_empty());
+    // Written back with units in the values (study.json, a study's log header), and read again exactly.
+    let json = serde_json::to_value(&r).unwrap();
+    assert_eq!(json["apparent_adhesion_force"], "2e-6 N");
+    assert_eq!(json["apparent_adhesion_force_uncertainty"], "1.3e-6 N");
+    let back: stiction_scenario::ReferenceSpec = serde_json::from_value(json).unwrap();
+    assert_eq!(back, r);
+    // A device of one's own (the synthetic-data scenario) has no reference.
+    let s = Scenario::load(&scenarios_dir().join("tas2000-fit-synthetic.json"), &[]).unwrap();
+    assert!(s.reference.is_none());
+    // --set can add one, in units.
+    let text = std::fs::read_to_string(scenarios_dir().join("tas2000-fit-synthetic.json")).unwrap();
+    let s = load_str(&text, &[r#"reference={"source": "my lab", "apparent_adhesion_force": "3 uN"}"#]).unwrap();
+    assert_eq!(s.reference.unwrap().apparent_adhesion_force, Some(3e-6));
+    // Refused: no source, no value, an uncertainty without meaning or value, an uncertain object.
+    let base = r#"{"format_version": 1, "reference": REF}"#;
+    for (reference, path, what) in [
+        (r#"{"source": "", "mu_apparent": 0.7}"#, "reference.source", "missing"),
+        (r#"{"source": "x"}"#, "reference.mu_apparent", "missing"),
+        (
+            r#"{"source": "x", "mu_apparent": 0.7, "mu_apparent_uncertainty": 0.3}"#,
+            "reference.uncertainty_meaning",
+            "+/-",
+        ),
+        (
+            r#"{"source": "x", "mu_apparent": 0.7, "apparent_adhesion_force_uncertainty": "1 uN", "uncertainty_meaning": "sd"}"#,
+            "reference.apparent_adhesion_force_uncertainty",
+            "without",
+        ),
+        (
+            r#"{"source": "x", "apparent_adhesion_force": {"value": "2 uN", "sd": "1 uN"}}"#,
+            "reference.apparent_adhesion_force",
+            "plain value",
+        ),
+        (r#"{"source": "x", "apparent_adhesion_force": "2 V"}"#, "reference.apparent_adhesion_force", "V"),
+        (r#"{"source": "x", "mu_apparent": -0.7}"#, "reference.mu_apparent", "-0.7"),
+    ] {
+        let err = load_str(&base.replace("REF", reference), &[]).unwrap_err().to_string();
+        assert!(err.contains(path) && err.contains(what), "{reference}: {err}");
+    }
+}

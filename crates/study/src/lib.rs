@@ -223,6 +223,7 @@ impl Study {
                 format!("{:e}", self.reduction.spring_force_n),
             ],
             parameters: self.parameters.clone(),
+            reference: self.nominal.reference.clone(),
         }
     }
 

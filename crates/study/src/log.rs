@@ -51,6 +51,10 @@ pub struct Header {
     pub reduction: [String; 3],
     /// The uncertain parameters `(path, unit)`.
     pub parameters: Vec<(String, String)>,
+    /// The scenario's measured reference values (its `reference` section), carried so that the
+    /// outputs computed from the log alone (resume, merge) can show them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference: Option<stiction_scenario::ReferenceSpec>,
 }
 
 impl Header {

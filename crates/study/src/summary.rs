@@ -132,6 +132,9 @@ pub struct StudySummary {
     pub apparent_adhesion_force_n: Option<Spread>,
     /// Which input explains how much of the spread.
     pub sensitivity: Sensitivity,
+    /// The scenario's measured reference values (its `reference` section), if it has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<stiction_scenario::ReferenceSpec>,
 }
 
 /// What the figures need besides the summary.
@@ -212,6 +215,7 @@ pub fn summarize(path: &Path, mut csv: Option<&mut Vec<u8>>) -> Result<(StudySum
         mu_apparent: (!mus.is_empty()).then(|| Spread::of_sorted(&mus)),
         apparent_adhesion_force_n: fa_spread,
         sensitivity: sens,
+        reference: header.reference.clone(),
     };
     Ok((summary, FigureData { mu_sorted: mus, scatter }))
 }

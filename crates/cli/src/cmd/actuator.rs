@@ -11,6 +11,7 @@ use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 use stiction_units::{Constraint, Dimension};
 
+use crate::figargs::FigureArgs;
 use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q, quantity};
 
 /// Pull-in, release, conversion factor and stiffness of an actuator array; sweeps; validation against measurements.
@@ -54,6 +55,9 @@ pub struct Args {
     /// Override a scenario field (repeatable): --set actuators.gca.undercut="0.3 um".
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
+    /// Figure size and font (with --out).
+    #[command(flatten)]
+    pub fig: FigureArgs,
 }
 
 #[derive(Serialize)]
@@ -154,17 +158,17 @@ pub fn run(args: Args) -> CliResult {
         let mut set = OutputSet::begin(dir, "actuator", args.force)?;
         set.add_bytes("results.json", (serde_json::to_string_pretty(&summary)? + "\n").as_bytes())?;
         if let Some(sweep) = &summary.sweep {
-            let chart = sweep_chart(&name, sweep, &model);
+            let chart = args.fig.apply(sweep_chart(&name, sweep, &model))?;
             set.add_chart("hysteresis.svg", &chart)?;
             set.add_chart("hysteresis.png", &chart)?;
         }
         if let Some(report) = &summary.validation {
-            let chart = validation_chart(report);
+            let chart = args.fig.apply(validation_chart(report))?;
             set.add_chart("validation.svg", &chart)?;
             set.add_chart("validation.png", &chart)?;
         }
         if let Some(report) = &summary.transients {
-            write_transients(&mut set, report)?;
+            write_transients(&mut set, report, &args.fig)?;
         }
         set.commit()?;
         crate::errln!("wrote {}", dir.display());
@@ -283,20 +287,54 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
+/// Travel against voltage on loading and unloading, with the pull-in (and release) points; the
+/// y axis fitted to the drawn travel. Without a stop the array collapses at pull-in and stays
+/// collapsed on unloading (no finite travel to draw): the note says so instead of listing an
+/// empty curve.
 fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
-    let up: Vec<(f64, f64)> =
-        sweep.loading.iter().filter(|p| p.travel_m.is_finite()).map(|p| (p.voltage_v, p.travel_m * 1e6)).collect();
-    let down: Vec<(f64, f64)> =
-        sweep.unloading.iter().filter(|p| p.travel_m.is_finite()).map(|p| (p.voltage_v, p.travel_m * 1e6)).collect();
+    let finite = |v: &[stiction_actuator::SweepPoint]| -> Vec<(f64, f64)> {
+        v.iter().filter(|p| p.travel_m.is_finite()).map(|p| (p.voltage_v, p.travel_m * 1e6)).collect()
+    };
+    let (up, down) = (finite(&sweep.loading), finite(&sweep.unloading));
     let mut chart = Chart::new(
-        format!("Actuator `{name}`: travel against voltage (pull-in and release)"),
+        format!("Actuator `{name}`: travel against voltage, loading and unloading"),
         "voltage V (V)",
-        "travel x (um)",
+        "travel x (µm)",
     )
-    .with(Series::line("loading (increasing V)", up))
-    .with(Series::dashed("unloading (decreasing V)", down));
-    let top = model.stop_travel_m.unwrap_or(model.plates.front_gap_m) * 1e6 * 1.05;
-    chart.y_range = Some((0.0, top));
+    .keys("voltage_v", "travel_um")
+    .with(Series::line("loading (increasing V)", up.clone()));
+    // Without a stop the unloading branch is collapsed down to 0 V: at most its last point is finite.
+    if down.len() >= 2 {
+        chart.series.push(Series::dashed("unloading (decreasing V)", down.clone()));
+    }
+    let mut marks = Vec::new();
+    if let Ok(pi) = model.pull_in() {
+        marks.push(Series::markers(
+            format!("pull-in: {:.2} V at x = {:.3} µm", pi.voltage_v, pi.travel_m * 1e6),
+            vec![(pi.voltage_v, pi.travel_m * 1e6)],
+        ));
+        let vmax = sweep.loading.last().map_or(0.0, |p| p.voltage_v);
+        chart.note = Some(match (model.stop_travel_m, model.release_voltage_v()) {
+            (Some(stop), Ok(release)) if !pi.limited_by_stop => {
+                marks.push(Series::markers(format!("release: {release:.2} V"), vec![(release, stop * 1e6)]));
+                format!(
+                    "stop at x = {:.3} µm: after pull-in the array rests on it until the voltage falls to the release voltage",
+                    stop * 1e6
+                )
+            }
+            (Some(stop), _) => format!("the stop at x = {:.3} µm is reached before pull-in", stop * 1e6),
+            (None, _) => format!(
+                "no stop in the scenario: at pull-in ({:.2} V) the gap closes (collapse, not drawn);\non unloading from \
+                 {vmax:.1} V the array stays collapsed down to 0 V, so there is no unloading curve",
+                pi.voltage_v
+            ),
+        });
+    }
+    let top = up.iter().chain(&down).chain(marks.iter().flat_map(|m| &m.points)).map(|p| p.1).fold(0.0, f64::max);
+    for (k, m) in marks.into_iter().enumerate() {
+        chart.series.push(m.with_color(2 + k));
+    }
+    chart.y_range = Some((0.0, top * 1.08));
     chart
 }
 
@@ -309,7 +347,7 @@ pub fn validation_chart(r: &stiction_actuator::ValidationReport) -> Chart {
             100.0 * r.pull_in_mean_abs_rel_error,
             100.0 * r.release_mean_abs_rel_error
         ),
-        "drawn finger length (um)",
+        "drawn finger length (µm)",
         "voltage (V)",
     )
     .with(
@@ -433,7 +471,7 @@ fn print_sweep(sweep: &Sweep) {
 
 /// `transients.csv` (every point) and one figure per finger length (`transients_L<um>.svg/.png`):
 /// measured mean with the SD of the repeats as error bars, and the model, time against voltage.
-fn write_transients(set: &mut OutputSet, r: &TransientReport) -> CliResult {
+fn write_transients(set: &mut OutputSet, r: &TransientReport, fig: &FigureArgs) -> CliResult {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "finger_length_um",
@@ -465,7 +503,7 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport) -> CliResult {
     lengths.sort_by(f64::total_cmp);
     lengths.dedup();
     for l in lengths {
-        let chart = transient_chart(r, l);
+        let chart = fig.apply(transient_chart(r, l))?;
         let stem = format!("transients_L{:.2}um", l * 1e6);
         set.add_chart(&format!("{stem}.svg"), &chart)?;
         set.add_chart(&format!("{stem}.png"), &chart)?;
@@ -483,13 +521,13 @@ fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
     };
     let mut chart = Chart::new(
         format!(
-            "GCA, {:.2} um fingers: pull-in and release times (mean |err| {} / {})",
+            "GCA, {:.2} µm fingers: pull-in and release times (mean |err| {} / {})",
             length_m * 1e6,
             err(TransientEvent::PullIn),
             err(TransientEvent::Release)
         ),
         "voltage (V): pull-in step / release hold",
-        "time (us)",
+        "time (µs)",
     );
     for (event, label) in [(TransientEvent::PullIn, "pull-in"), (TransientEvent::Release, "release")] {
         let pts: Vec<&stiction_actuator::TransientComparison> =

@@ -169,10 +169,68 @@ pub fn friction_curve_n3(
     Ok(model.friction_curve(pull_off, max_load_n, 200)?.into_iter().map(|(l, f)| (l * 1e6, f * 1e6)).collect())
 }
 
-/// Fig. 7 of the paper: F_f against L for N = 3, R = 0.5 um, s = 1.4 GPa (Table 1), with the
-/// eq. 10 line of slope mu = dF_f/dL at 3 uN through F_f(0).
-pub fn fig7_chart() -> Result<Chart, Box<dyn std::error::Error>> {
-    let model = DiscreteModel::fig7();
+/// What `plot fig7` draws: a discrete model, where its parameters come from, and the reference
+/// values to show.
+pub struct Fig7Setup {
+    /// The model (N, law, summit, s).
+    pub model: DiscreteModel,
+    /// Measured values to draw (the F_a0 band), if any.
+    pub reference: Option<stiction_scenario::ReferenceSpec>,
+    /// Where the parameters come from, for the note.
+    pub origin: String,
+}
+
+impl Fig7Setup {
+    /// The paper's Fig. 7: N = 3, DMT, Table 1, s = 1.4 GPa, with the paper's measured F_a0.
+    pub fn paper() -> Fig7Setup {
+        Fig7Setup {
+            model: DiscreteModel::fig7(),
+            reference: Some(crate::figargs::reference::paper()),
+            origin: "Table 1 and s of the paper".into(),
+        }
+    }
+
+    /// A scenario's material, model summit radius, contact law and number of contacts (the
+    /// scenario's `contact.contacts` for the discrete model or a fixed shoe, else the paper's 3),
+    /// with its `reference` section if it has one.
+    pub fn of_scenario(
+        s: &stiction_scenario::Scenario,
+        base: &std::path::Path,
+    ) -> Result<Fig7Setup, Box<dyn std::error::Error>> {
+        let material = s.require_material()?;
+        let radius = stiction_meter::model_summit_radius_m(s.require_surface()?, base)?;
+        let contact = s.contact_or_default();
+        let fixed = contact.model == stiction_scenario::ContactModel::Discrete
+            || contact.mode == stiction_scenario::ShoeMode::Fixed;
+        let n = if fixed { contact.contacts.unwrap_or(3) } else { 3 };
+        let n = u32::try_from(n).map_err(|_| format!("contact.contacts {n}: expected 1, 2 or 3"))?;
+        let model = DiscreteModel::new(
+            n,
+            contact.law,
+            stiction_meter::asperity_params(material, radius),
+            material.shear_strength,
+        )?;
+        Ok(Fig7Setup { model, reference: s.reference.clone(), origin: "the scenario".into() })
+    }
+}
+
+/// The user-facing name of a single-asperity law.
+pub fn law_name(law: AdhesionLaw) -> &'static str {
+    match law {
+        AdhesionLaw::Hertz => "Hertz",
+        AdhesionLaw::Dmt => "DMT",
+        AdhesionLaw::Jkr => "JKR",
+        AdhesionLaw::MaugisDugdale => "Maugis-Dugdale",
+    }
+}
+
+/// Fig. 7 of the paper: F_f against L for the discrete model (default N = 3, R = 0.5 µm,
+/// s = 1.4 GPa, DMT: Table 1), with the eq. 10 line of slope mu = dF_f/dL at 3 µN through F_f(0)
+/// and the measured F_a0 as a band at L = -F_a0 (where eq. 10's line meets F_f = 0).
+pub fn fig7_chart(setup: &Fig7Setup) -> Result<Chart, Box<dyn std::error::Error>> {
+    use crate::cmd::plot::sig3;
+    use crate::figargs::reference;
+    let model = &setup.model;
     let pull_off = model.pull_off_load_n()?;
     let curve: Vec<(f64, f64)> =
         model.friction_curve(pull_off, 15e-6, 300)?.into_iter().map(|(l, f)| (l * 1e6, f * 1e6)).collect();
@@ -180,15 +238,48 @@ pub fn fig7_chart() -> Result<Chart, Box<dyn std::error::Error>> {
     let f0 = model.at_load(0.0)?.friction_n;
     let fa0 = f0 / mu;
     let line = vec![(-fa0 * 1e6, 0.0), (15.0, (f0 + mu * 15e-6) * 1e6)];
+    let p = &model.params;
     let mut chart = Chart::new(
-        "Fig. 7: friction against load, discrete model N = 3 (eq. 12)",
-        "applied load L (uN)",
-        "friction force F_f (uN)",
+        format!(
+            "Fig. 7: friction against load, discrete model N = {}, {} (eq. 12)",
+            model.contacts,
+            law_name(model.law)
+        ),
+        "applied load L (µN)",
+        "friction force F_f (µN)",
     )
-    .with(Series::line("N = 3, R = 0.5 um, s = 1.4 GPa, DMT", curve))
-    .with(Series::dashed(format!("eq. 10: mu_e,a = {mu:.2} (slope at 3 uN), F_a0 = {:.2} uN", fa0 * 1e6), line))
-    .with(Series::line("paper, measured: F_a0 = 2.0 +/- 1.3 uN (the range on L < 0)", vec![(-3.3, 0.05), (-0.7, 0.05)]))
-    .with(Series::markers("", vec![(-2.0, 0.05)]));
+    .keys("load_un", "friction_un")
+    .with_note(format!(
+        "R = {} µm, s = {} GPa, Δγ = {} J/m², D = {} 1/Pa ({})",
+        sig3(p.radius_m * 1e6),
+        sig3(model.shear_strength_pa / 1e9),
+        sig3(p.work_of_adhesion_j_per_m2),
+        sig3(p.compliance_per_pa),
+        setup.origin
+    ))
+    .with(Series::line(
+        format!(
+            "F_f = s A_r, N = {}, R = {} µm, s = {} GPa",
+            model.contacts,
+            sig3(p.radius_m * 1e6),
+            sig3(model.shear_strength_pa / 1e9)
+        ),
+        curve,
+    ))
+    .with(Series::dashed(format!("eq. 10: μ_e,a = {mu:.2} (slope at 3 µN), F_a0 = {:.2} µN", fa0 * 1e6), line));
+    let mut low = -fa0 * 1e6;
+    if let Some(r) = &setup.reference
+        && let (Some((a, b)), Some(label)) = (reference::adhesion_range_un(r), reference::adhesion_label(r))
+    {
+        // At L = -F_a0, where eq. 10's line meets F_f = 0: the measured range of -F_a0.
+        chart.series.push(Series::x_range(format!("{label}, at L = −F_a0"), -b, -a).with_color(2));
+        low = low.min(-b);
+        if let Some(n) = reference::meaning_note(r) {
+            chart.note = Some(format!("{}\n{n}", chart.note.take().unwrap_or_default()));
+        }
+    }
+    chart.legend = stiction_plot::LegendPosition::LowerRight;
     chart.y_range = Some((0.0, (f0 + mu * 15e-6) * 1e6 * 1.05));
+    chart.x_range = Some((low.min(pull_off * 1e6) - 0.3, 15.5));
     Ok(chart)
 }

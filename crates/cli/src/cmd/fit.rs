@@ -10,6 +10,7 @@ use stiction_scenario::Scenario;
 use stiction_units::io::write_atomic;
 use stiction_units::{Constraint, Dimension};
 
+use crate::figargs::FigureArgs;
 use crate::output::{CliResult, OutputSet, print_json, quantity};
 
 /// Fit measured (V_clamp, V_pull) data: eq. 10 with regression and calibration intervals, and the
@@ -61,6 +62,9 @@ pub struct Args {
     /// Repeats per clamp voltage in the synthetic file.
     #[arg(long, default_value_t = 3)]
     pub repeats: usize,
+    /// Figure size and font (with --out).
+    #[command(flatten)]
+    pub fig: FigureArgs,
 }
 
 /// Runs the subcommand.
@@ -94,7 +98,7 @@ pub fn run(args: Args) -> CliResult {
     if let Some(mut set) = outputs {
         set.add_bytes("report.json", (serde_json::to_string_pretty(&report)? + "\n").as_bytes())?;
         let staging = set.staging_dir().to_path_buf();
-        write_figures(&staging, &data, &report)?;
+        write_figures(&staging, &data, &report, &args.fig)?;
         set.adopt_staged()?;
         set.commit()?;
     }
@@ -240,7 +244,8 @@ fn chart_csv(path: &Path, x_name: &str, y_name: &str, rows: &[CsvRow]) -> CliRes
     Ok(())
 }
 
-fn write_chart(dir: &Path, stem: &str, chart: &Chart) -> CliResult {
+fn write_chart(dir: &Path, stem: &str, chart: Chart, fig: &FigureArgs) -> CliResult {
+    let chart = fig.apply(chart)?;
     chart.write_svg(&dir.join(format!("{stem}.svg")))?;
     chart.write_png(&dir.join(format!("{stem}.png")))?;
     Ok(())
@@ -252,8 +257,9 @@ type CsvRows = Vec<CsvRow>;
 /// Repeats of one (device, clamp voltage): pull voltage and its SD.
 type Groups = BTreeMap<(String, u64), Vec<(f64, Option<f64>)>>;
 
-fn write_figures(dir: &Path, data: &Dataset, r: &FitReport) -> CliResult {
+fn write_figures(dir: &Path, data: &Dataset, r: &FitReport, fig: &FigureArgs) -> CliResult {
     let red = r.reduction;
+    let file = Path::new(&r.data).file_name().map_or_else(|| r.data.clone(), |n| n.to_string_lossy().into_owned());
     // Data grouped by (device, V_clamp): mean V_pull^2 and its error bar (SD of the repeats, or
     // 2 V sd from the column).
     let mut groups: Groups = BTreeMap::new();
@@ -279,18 +285,18 @@ fn write_figures(dir: &Path, data: &Dataset, r: &FitReport) -> CliResult {
     let mut rows: CsvRows =
         pts.iter().zip(&errs).map(|(p, e)| ("data".to_string(), p.0, p.1, Some(p.1 - e), Some(p.1 + e))).collect();
     let mut fig5 = Chart::new(
-        "Pull voltage at slip against clamp voltage (measured, with each model's fit)",
-        "V_clamp^2 (V^2)",
-        "V_pull^2 (V^2)",
+        format!("Pull voltage at slip: measured ({file}) and each model's fit of s"),
+        "clamp voltage squared V_clamp² (V²)",
+        "pull voltage squared at slip V_pull² (V²)",
     )
     .with(Series::markers("data (mean, error bar: SD of repeats)", pts.clone()).with_y_err(errs.clone()));
     let best = r.models.first().map(|m| m.name.clone());
     let mut bands = Vec::new();
-    for m in &r.models {
+    for (k, m) in r.models.iter().enumerate() {
         let line: Vec<(f64, f64)> =
             m.curve.iter().filter_map(|c| c.v_pull_sq_v2.map(|y| (c.v_clamp_sq_v2, y))).collect();
         let s_gpa = m.shear_strength_pa.value / 1e9;
-        fig5 = fig5.with(Series::line(format!("{} (s = {s_gpa:.3} GPa)", m.name), line));
+        fig5 = fig5.with(Series::line(format!("{} (s = {s_gpa:.3} GPa)", m.name), line).with_color(k + 1));
         for c in &m.curve {
             if let Some(y) = c.v_pull_sq_v2 {
                 rows.push((m.name.clone(), c.v_clamp_sq_v2, y, c.band_v2.map(|b| b[0]), c.band_v2.map(|b| b[1])));
@@ -298,19 +304,17 @@ fn write_figures(dir: &Path, data: &Dataset, r: &FitReport) -> CliResult {
         }
         if m.roughness.is_some() || (Some(&m.name) == best.as_ref() && r.models.iter().all(|o| o.roughness.is_none())) {
             let what = if m.roughness.is_some() { "roughness band 95 %" } else { "95 % band of s" };
-            // One closed outline: along the low edge, back along the high edge.
-            let mut band: Vec<(f64, f64)> =
-                m.curve.iter().filter_map(|c| c.band_v2.map(|b| (c.v_clamp_sq_v2, b[0]))).collect();
-            band.extend(m.curve.iter().rev().filter_map(|c| c.band_v2.map(|b| (c.v_clamp_sq_v2, b[1]))));
+            let band: Vec<(f64, f64, f64)> =
+                m.curve.iter().filter_map(|c| c.band_v2.map(|b| (c.v_clamp_sq_v2, b[0], b[1]))).collect();
             if !band.is_empty() {
-                bands.push(Series::dashed(format!("{} {what}", m.name), band));
+                bands.push(Series::band(format!("{} {what}", m.name), band).with_color(k + 1));
             }
         }
     }
     for b in bands {
         fig5 = fig5.with(b);
     }
-    write_chart(dir, "fit-vpull2", &fig5)?;
+    write_chart(dir, "fit-vpull2", fig5, fig)?;
     chart_csv(&dir.join("fit-vpull2.csv"), "v_clamp_sq_v2", "v_pull_sq_v2", &rows)?;
 
     // F_f against L (uN), the paper's Fig. 7 view.
@@ -323,38 +327,47 @@ fn write_figures(dir: &Path, data: &Dataset, r: &FitReport) -> CliResult {
     let mu = r.mu_apparent.value;
     let fa0 = r.apparent_adhesion_force_n.value * 1e6;
     let (l0, l1) = fl.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-    let eq10_line = vec![(l0.min(0.0), mu * (fa0 + l0.min(0.0))), (l1, mu * (fa0 + l1))];
+    // From L = -F_a0 (F_f = 0), so the figure shows F_a0 where the line meets the axis.
+    let eq10_line = vec![(-fa0.max(-l0.min(0.0)), mu * (fa0 - fa0.max(-l0.min(0.0)))), (l1, mu * (fa0 + l1))];
     for p in &eq10_line {
         rows.push(("eq10".into(), p.0, p.1, None, None));
     }
-    let mut fig7 = Chart::new("Friction against load (nominal reduction)", "L (uN)", "F_f (uN)")
-        .with(Series::markers("data", fl).with_y_err(fe))
-        .with(Series::dashed(format!("eq. 10: mu_e,a = {mu:.3}, F_a0 = {fa0:.2} uN"), eq10_line));
-    for m in &r.models {
+    let mut fig7 = Chart::new(
+        format!("Friction against load: measured ({file}), nominal a_clamp, a_pull, F_spring"),
+        "clamp load L (µN)",
+        "friction force F_f (µN)",
+    )
+    .with(Series::markers("measured (mean, error bar: SD of repeats)", fl).with_y_err(fe))
+    .with(Series::dashed(format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"), eq10_line));
+    fig7.legend = stiction_plot::LegendPosition::LowerRight;
+    for (k, m) in r.models.iter().enumerate() {
         let line: Vec<(f64, f64)> =
             m.curve.iter().filter_map(|c| c.v_pull_sq_v2.map(|y| (c.load_n * 1e6, to_f(y)))).collect();
         for (c, p) in m.curve.iter().zip(&line) {
             rows.push((m.name.clone(), p.0, p.1, c.band_v2.map(|b| to_f(b[0])), c.band_v2.map(|b| to_f(b[1]))));
         }
-        fig7 = fig7.with(Series::line(m.name.clone(), line));
+        fig7 = fig7.with(Series::line(m.name.clone(), line).with_color(k + 2));
     }
-    write_chart(dir, "fit-friction-load", &fig7)?;
+    write_chart(dir, "fit-friction-load", fig7, fig)?;
     chart_csv(&dir.join("fit-friction-load.csv"), "load_un", "friction_un", &rows)?;
 
     // Residuals.
     let mut rows: CsvRows = Vec::new();
-    let mut fig =
-        Chart::new("Residuals of each model's best fit", "V_clamp^2 (V^2)", "V_pull^2 measured - model (V^2)");
+    let mut res_chart = Chart::new(
+        format!("Residuals of each model's best fit to {file}"),
+        "clamp voltage squared V_clamp² (V²)",
+        "V_pull² measured − model (V²)",
+    );
     let (x0, x1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-    fig = fig.with(Series::dashed("zero", vec![(x0, 0.0), (x1, 0.0)]));
+    res_chart = res_chart.with(Series::dashed("zero", vec![(x0, 0.0), (x1, 0.0)]));
     for m in r.models.iter().filter(|m| m.comparable) {
         let p: Vec<(f64, f64)> = m.residuals.iter().map(|(_, x, res)| (*x, *res)).collect();
         for (line, x, res) in &m.residuals {
             rows.push((format!("{} (line {line})", m.name), *x, *res, None, None));
         }
-        fig = fig.with(Series::markers(m.name.clone(), p));
+        res_chart = res_chart.with(Series::markers(m.name.clone(), p));
     }
-    write_chart(dir, "fit-residuals", &fig)?;
+    write_chart(dir, "fit-residuals", res_chart, fig)?;
     chart_csv(&dir.join("fit-residuals.csv"), "v_clamp_sq_v2", "residual_v2", &rows)?;
     Ok(())
 }

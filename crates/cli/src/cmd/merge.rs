@@ -22,12 +22,15 @@ pub struct Args {
     /// Print study.json instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Figure size and font.
+    #[command(flatten)]
+    pub fig: crate::figargs::FigureArgs,
 }
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     ensure_dir(&args.out)?;
     let header = log::merge(&args.dirs, &args.out)?;
-    let summary = crate::cmd::study::finish_folder(&args.out)?;
+    let summary = crate::cmd::study::finish_folder(&args.out, &args.fig)?;
     crate::cmd::study::report(&summary, args.json, std::path::Path::new(&header.scenario))
 }

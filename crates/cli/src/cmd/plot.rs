@@ -3,41 +3,63 @@
 use std::path::{Path, PathBuf};
 
 use stiction_contact::gw;
-use stiction_plot::{Chart, Series};
+use stiction_plot::{Chart, LegendPosition, Series};
+use stiction_scenario::Scenario;
 
+use crate::figargs::FigureArgs;
 use crate::output::CliResult;
 
 /// Which figure.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
 pub enum Figure {
-    /// Fig. 2: fraction of summits in contact N* at L* = 0 against the adhesion parameter theta.
+    /// Fig. 2: fraction of summits in contact N* at L* = 0 against the adhesion parameter theta
+    /// (with --scenario: the scenario's theta marked, the axis extended to it).
     Fig2,
-    /// Fig. 3: normalized real area A* against normalized load L* for theta = 10, 15, 30, inf.
+    /// Fig. 3: normalized real area A* against normalized load L* for theta = 10, 15, 30, inf, on a
+    /// symmetric-log load axis that shows the adhesive branches and pull-off (with --scenario: the
+    /// scenario's theta added).
     Fig3,
-    /// Fig. 7: friction against load in the discrete model, N = 3, R = 0.5 um, s = 1.4 GPa (Table 1).
+    /// Fig. 7: friction against load in the discrete model (eq. 12); default the paper's N = 3,
+    /// R = 0.5 um, s = 1.4 GPa, DMT (Table 1); with --scenario (and --set) the scenario's material,
+    /// summit radius, contact law and number of contacts, and its reference values.
     Fig7,
     /// Hysteresis of a scenario's actuator array: travel against voltage, loading and unloading.
     Actuator,
 }
 
-/// Recompute a figure and write it as SVG (or PNG when the file name ends in .png).
+impl Figure {
+    fn name(self) -> &'static str {
+        match self {
+            Figure::Fig2 => "fig2",
+            Figure::Fig3 => "fig3",
+            Figure::Fig7 => "fig7",
+            Figure::Actuator => "actuator",
+        }
+    }
+}
+
+/// Recompute a figure and write it as SVG (or PNG when the file name ends in .png), with its data
+/// as CSV beside it.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The figure.
     #[arg(value_enum)]
     pub figure: Figure,
-    /// Output file (.svg or .png).
+    /// Output file (.svg or .png); the data go beside it as .csv.
     #[arg(long)]
     pub out: PathBuf,
-    /// Scenario file (for `actuator`).
+    /// Scenario file: its parameters for fig2, fig3, fig7 and actuator (required for actuator).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// Actuator array name in the scenario (for `actuator`; default: the only one, or `clamp`).
     #[arg(long)]
     pub array: Option<String>,
-    /// Override a scenario field (repeatable), as in `stiction run`.
-    #[arg(long = "set", value_name = "PATH=VALUE")]
+    /// Override a scenario field (repeatable; needs --scenario), as in `stiction run`.
+    #[arg(long = "set", value_name = "PATH=VALUE", requires = "scenario")]
     pub sets: Vec<String>,
+    /// Figure size and font.
+    #[command(flatten)]
+    pub fig: FigureArgs,
 }
 
 /// The image format of an output path: "svg" or "png" by its extension; any other is an error.
@@ -75,60 +97,213 @@ pub fn write_chart(chart: &Chart, path: &Path) -> CliResult {
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     chart_format(&args.out).map_err(|e| format!("--out {e}"))?;
-    if !matches!(args.figure, Figure::Actuator) {
-        for (flag, given) in [
-            ("--scenario", args.scenario.is_some()),
-            ("--array", args.array.is_some()),
-            ("--set", !args.sets.is_empty()),
-        ] {
-            if given {
-                return Err(format!(
-                    "{flag} is used only by `plot actuator`; `plot {}` draws the paper's figure from its own numbers",
-                    format!("{:?}", args.figure).to_lowercase()
-                )
-                .into());
-            }
-        }
+    if args.array.is_some() && !matches!(args.figure, Figure::Actuator) {
+        return Err(format!(
+            "--array is used only by `plot actuator`; `plot {}` has no actuator array",
+            args.figure.name()
+        )
+        .into());
     }
+    let scenario = match &args.scenario {
+        Some(path) => Some((Scenario::load(path, &args.sets)?, path.parent().map(PathBuf::from).unwrap_or_default())),
+        None => None,
+    };
+    let scenario_ref = scenario.as_ref().map(|(s, b)| (s, b.as_path()));
     let chart = match args.figure {
-        Figure::Fig2 => fig2()?,
-        Figure::Fig3 => fig3()?,
-        Figure::Fig7 => crate::cmd::discrete::fig7_chart()?,
+        Figure::Fig2 => fig2(scenario_ref)?,
+        Figure::Fig3 => fig3(scenario_ref)?,
+        Figure::Fig7 => match scenario_ref {
+            Some((s, base)) => {
+                crate::cmd::discrete::fig7_chart(&crate::cmd::discrete::Fig7Setup::of_scenario(s, base)?)?
+            }
+            None => crate::cmd::discrete::fig7_chart(&crate::cmd::discrete::Fig7Setup::paper())?,
+        },
         Figure::Actuator => {
             let path = args.scenario.as_ref().ok_or("`plot actuator` needs --scenario FILE.json")?;
             crate::cmd::actuator::hysteresis_chart(path, args.array.as_deref(), &args.sets)?
         }
     };
-    write_chart(&chart, &args.out)?;
-    crate::errln!("wrote {}", args.out.display());
+    write_chart(&args.fig.apply(chart)?, &args.out)?;
+    crate::errln!("wrote {} and {}", args.out.display(), stiction_plot::data_path(&args.out).display());
     Ok(())
 }
 
-/// Fig. 2: N*(L* = 0) against theta, from 1 to 40.
-pub fn fig2() -> Result<Chart, Box<dyn std::error::Error>> {
-    let pts = gw::fig2_series(0.5, 40.0, 80)?;
+/// The adhesion parameter theta (eq. 9) of a scenario's surface and material, or an error saying
+/// what is missing. `None`: no adhesion (theta = infinity).
+fn scenario_theta(s: &Scenario, base: &Path) -> Result<Option<f64>, Box<dyn std::error::Error>> {
+    let surface = s.require_surface()?;
+    let material = s.require_material()?;
+    let sd = surface.summit_sd.ok_or("the scenario's surface has no `summit_sd` (needed for theta, eq. 9)")?;
+    let radius = stiction_meter::model_summit_radius_m(surface, base)?;
+    Ok(gw::adhesion_parameter(sd, radius, material.compliance_per_pa(), material.work_of_adhesion)?)
+}
+
+/// Fig. 2: N*(L* = 0) against theta, from 0.5 to 40 (the paper: 1 to 30), on log axes; with a
+/// scenario, its theta marked and the axis extended to it.
+pub fn fig2(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::error::Error>> {
+    let theta = match scenario {
+        Some((s, base)) => Some(
+            scenario_theta(s, base)?
+                .ok_or("the scenario has no adhesion (work_of_adhesion = 0): theta is infinite, N* = 0")?,
+        ),
+        None => None,
+    };
+    // N* of the scenario, as log10 (it underflows f64 for theta above about 10^3).
+    let state = theta.map(|t| gw::GwModel::new(Some(t)).and_then(|m| m.solve(0.0))).transpose()?;
+    let drawable = state.as_ref().is_some_and(|st| st.log10_n_star > -250.0);
+    let top = match (theta, drawable) {
+        (Some(t), true) => (t * 1.5).max(40.0),
+        _ => 40.0,
+    };
+    let pts = gw::fig2_series(0.5, top, if top > 40.0 { 160 } else { 80 })?;
     let mut chart = Chart::new(
         "Fig. 2: summits in contact at zero load (GW + DMT, eq. 5a, 8)",
-        "adhesion parameter theta (eq. 9)",
+        "adhesion parameter θ (eq. 9)",
         "fraction of summits in contact N* at L* = 0",
     )
-    .with(Series::line("N* = F_0(h), L* = 0", pts));
+    .keys("theta", "n_star")
+    .with(Series::line("N* = F₀(h) at L* = 0", pts));
+    if let (Some(t), Some(st)) = (theta, &state) {
+        let n_text = if st.n_star > 0.0 && st.log10_n_star > -300.0 {
+            sig3(st.n_star)
+        } else {
+            format!("10{}", stiction_plot::superscript(st.log10_n_star.round() as i64))
+        };
+        if drawable {
+            chart
+                .series
+                .push(Series::markers(format!("this scenario: θ = {}, N* = {n_text}", sig3(t)), vec![(t, st.n_star)]));
+            chart.note = Some("θ of the scenario from its σ, R, D and Δγ (eq. 9)".into());
+        } else {
+            chart.note = Some(format!(
+                "this scenario: θ = {} (eq. 9, from its σ, R, D and Δγ), N* = {n_text}: far beyond this axis",
+                sig3(t)
+            ));
+        }
+    }
+    chart.x_log = true;
     chart.y_log = true;
+    chart.legend = LegendPosition::LowerLeft;
     Ok(chart)
 }
 
-/// Fig. 3: A* against L* for theta = 10, 15, 30 and infinity.
-pub fn fig3() -> Result<Chart, Box<dyn std::error::Error>> {
+/// Fig. 3: A* against L* for theta = 10, 15, 30 and infinity (and a scenario's theta), on a
+/// symmetric-log load axis: the pull-off loads (L* = -0.024 for theta = 10 down to about -2e-5
+/// for theta = 30) and the adhesive branches are visible beside the loaded range up to L* = 1.
+pub fn fig3(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::error::Error>> {
     let mut chart = Chart::new(
         "Fig. 3: real area against load (GW + DMT, eq. 5b, 8)",
-        "normalized load L* (eq. 8)",
+        "normalized load L* (eq. 8), symmetric-log axis: linear within ±10⁻⁶",
         "normalized real area A* (eq. 5b)",
-    );
-    for (label, theta) in
-        [("(1) theta = 10", Some(10.0)), ("(2) theta = 15", Some(15.0)), ("(3) theta = 30", Some(30.0))]
-    {
-        chart.series.push(Series::line(label, gw::fig3_series(theta, -1.0, 1.0, 200)?));
+    )
+    .keys("l_star", "a_star")
+    .with_note("each curve starts at its pull-off load (dot): the adhesive branch reaches L* < 0");
+    let mut pull_offs = Vec::new();
+    let mut hidden: Vec<String> = Vec::new();
+    let mut thetas: Vec<(String, Option<f64>)> = vec![
+        ("(1) θ = 10".into(), Some(10.0)),
+        ("(2) θ = 15".into(), Some(15.0)),
+        ("(3) θ = 30".into(), Some(30.0)),
+        ("(4) θ = ∞ (GW, no adhesion)".into(), None),
+    ];
+    if let Some((s, base)) = scenario {
+        let t = scenario_theta(s, base)?;
+        thetas.push((format!("this scenario: θ = {}", t.map_or("∞".to_string(), sig3)), t));
     }
-    chart.series.push(Series::line("(4) theta = inf (GW)", gw::fig3_series(None, 1e-4, 1.0, 200)?));
+    for (label, theta) in thetas {
+        // Loads spaced evenly in the symmetric-log coordinate, so both branches get points.
+        let model = gw::GwModel::new(theta)?;
+        let start = match (theta, model.pull_off()) {
+            (Some(_), Some(po)) => po.l_star,
+            _ => 1e-6,
+        };
+        let pts = symlog_series(&model, start, 1.0, 240)?;
+        if let (Some(t), Some(po)) = (theta, model.pull_off()) {
+            if po.a_star >= A_STAR_FLOOR {
+                pull_offs.push((po.l_star, po.a_star));
+            } else {
+                hidden.push(format!(
+                    "θ = {}: pull-off at L* = −10{}, A* = 10{} (below these axes)",
+                    sig3(t),
+                    stiction_plot::superscript(po.log10_abs_l_star.round() as i64),
+                    stiction_plot::superscript(po.a_star.log10().round() as i64)
+                ));
+            }
+        }
+        chart.series.push(Series::line(label, pts));
+    }
+    chart.series.push(Series::markers("pull-off (L* = −P_c*)", pull_offs).with_color(5));
+    if !hidden.is_empty() {
+        chart.note = Some(format!("{}\n{}", chart.note.take().unwrap_or_default(), hidden.join("; ")));
+    }
+    chart.x_symlog = Some(1e-6);
+    chart.y_log = true;
+    // From the GW curve's A* at L* = 1e-6 (about 5e-6) up: a large theta's branch near its
+    // pull-off (A* down to 1e-20) would squash the paper's curves.
+    let top = chart.series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).fold(0.0, f64::max);
+    chart.y_range = Some((A_STAR_FLOOR, top * 1.5));
+    chart.legend = LegendPosition::LowerRight;
     Ok(chart)
+}
+
+/// Lowest A* drawn in Fig. 3.
+const A_STAR_FLOOR: f64 = 1e-6;
+
+/// `n` points of A*(L*) from `from` to `to`, evenly spaced in sign(L*) log10(1 + |L*|/1e-6).
+fn symlog_series(
+    model: &gw::GwModel,
+    from: f64,
+    to: f64,
+    n: usize,
+) -> Result<Vec<(f64, f64)>, Box<dyn std::error::Error>> {
+    let c = 1e-6;
+    let f = |v: f64| v.signum() * (v.abs() / c).ln_1p();
+    let g = |t: f64| t.signum() * c * t.abs().exp_m1();
+    let (a, b) = (f(from), f(to));
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let l = if i == 0 {
+            from
+        } else if i + 1 == n {
+            to
+        } else {
+            g(a + (b - a) * i as f64 / (n - 1) as f64)
+        };
+        out.push((l, model.solve(l)?.a_star));
+    }
+    Ok(out)
+}
+
+/// Three significant digits without trailing zeros, plain or a·10ⁿ: 0.5, 1.4, 12400, 9.1·10⁻¹².
+pub fn sig3(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let trim = |t: String| if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t };
+    let a = v.abs();
+    if !(1e-3..1e5).contains(&a) {
+        let e = a.log10().floor();
+        format!("{}·10{}", trim(format!("{:.2}", v / 10f64.powf(e))), stiction_plot::superscript(e as i64))
+    } else {
+        let d = a.log10().floor() as i32;
+        let decimals = (2 - d).clamp(0, 6) as usize;
+        // Round to 3 significant digits also above 1000 (12433 -> 12400).
+        let v = if d > 2 { (v / 10f64.powi(d - 2)).round() * 10f64.powi(d - 2) } else { v };
+        trim(format!("{:.*}", decimals, v))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sig3;
+
+    #[test]
+    fn three_significant_digits_without_trailing_zeros() {
+        assert_eq!(sig3(2.8), "2.8");
+        assert_eq!(sig3(0.5), "0.5");
+        assert_eq!(sig3(1.4), "1.4");
+        assert_eq!(sig3(12433.0), "12400");
+        assert_eq!(sig3(0.12345), "0.123");
+        assert_eq!(sig3(9.1e-12), "9.1·10⁻¹²");
+    }
 }

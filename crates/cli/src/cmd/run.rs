@@ -9,6 +9,7 @@ use stiction_meter::{ContactModel, Meter, MeterResult};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 
+use crate::figargs::{FigureArgs, reference};
 use crate::output::{CliResult, OutputSet, print_json};
 
 /// Run the friction meter: clamp at each clamp voltage, ramp the pull voltage until slip, fit eq. 10.
@@ -29,6 +30,9 @@ pub struct Args {
     /// left alone; the earlier run's files are replaced or removed).
     #[arg(long)]
     pub force: bool,
+    /// Figure size and font.
+    #[command(flatten)]
+    pub fig: FigureArgs,
 }
 
 #[derive(Serialize)]
@@ -76,22 +80,22 @@ pub fn run(args: Args) -> CliResult {
         measured,
     };
     if let Some(set) = outputs {
-        write_outputs(set, &output, &scenario, &mut meter, &base)?;
+        write_outputs(set, &output, &scenario, &mut meter, &base, &args.fig)?;
     }
     if args.json {
         return print_json(&output);
     }
-    print_summary(&output);
+    print_summary(&output, scenario.reference.as_ref());
     if let Some(dir) = &args.out {
         crate::outln!(
-            "\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig7.svg, fig7.png, manifest.json",
+            "\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig5.csv, fig7.svg, fig7.png, fig7.csv, manifest.json",
             dir.display()
         );
     }
     Ok(())
 }
 
-fn print_summary(o: &RunOutput) {
+fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>) {
     let r = o.result;
     crate::outln!("stiction run {}", o.scenario);
     if !o.description.is_empty() {
@@ -140,19 +144,19 @@ fn print_summary(o: &RunOutput) {
     match (r.mu_apparent, r.apparent_adhesion_force_n, &r.fit) {
         (Some(mu), Some(fa0), Some(fit)) => {
             crate::outln!(
-                "  apparent friction coefficient mu_e,a = {mu:.3} +/- {:.3}  (eq. 10; +/- is the regression's standard error only, without the calibration: `stiction fit` gives both; the paper's device measured 0.7 +/- 0.3)",
+                "  apparent friction coefficient mu_e,a = {mu:.3} +/- {:.3}  (eq. 10; +/- is the regression's standard error only, without the calibration: `stiction fit` gives both)",
                 fit.slope_se
             );
-            crate::outln!(
-                "  apparent zero-load adhesion F_a0    = {:.3} uN  (the paper's device measured 2.0 +/- 1.3 uN)",
-                fa0 * 1e6
-            );
+            crate::outln!("  apparent zero-load adhesion F_a0    = {:.3} uN  (eq. 10)", fa0 * 1e6);
             crate::outln!("  fit over {} points with L > 0, R^2 = {:.4}", fit.points, fit.r_squared);
         }
         _ => crate::outln!(
             "  no eq. 10 fit: {}",
             r.fit_note.as_deref().unwrap_or("the fitted slope is not positive, so mu_e,a and F_a0 are undefined")
         ),
+    }
+    if let Some(r) = reference {
+        crate::outln!("  {}", reference::text(r));
     }
     if let Some(c) = &o.measured {
         crate::outln!("\n  measured data ({} slips):", c.points.len());
@@ -203,8 +207,26 @@ fn print_summary(o: &RunOutput) {
     }
 }
 
-fn write_outputs(mut set: OutputSet, o: &RunOutput, scenario: &Scenario, meter: &mut Meter, base: &Path) -> CliResult {
-    set.add_bytes("results.json", (serde_json::to_string_pretty(o)? + "\n").as_bytes())?;
+fn write_outputs(
+    mut set: OutputSet,
+    o: &RunOutput,
+    scenario: &Scenario,
+    meter: &mut Meter,
+    base: &Path,
+    fig: &FigureArgs,
+) -> CliResult {
+    // The figures first: results.json holds every plotted curve under `figures`, with the same
+    // keys (units included) as the data CSV beside each figure.
+    let measured_name = scenario.measured.as_ref().map(|m| {
+        m.voltages_csv.file_name().map_or_else(|| m.voltages_csv.display().to_string(), |n| n.to_string_lossy().into())
+    });
+    let fig5 = fig.apply(fig5_chart(o, scenario, base, measured_name.as_deref())?)?;
+    let fig7 = fig.apply(fig7_chart(o, scenario, meter, base, measured_name.as_deref())?)?;
+    let mut json = serde_json::to_value(o)?;
+    if let Some(obj) = json.as_object_mut() {
+        obj.insert("figures".into(), serde_json::json!({"fig5": fig5.data_json(), "fig7": fig7.data_json()}));
+    }
+    set.add_bytes("results.json", (serde_json::to_string_pretty(&json)? + "\n").as_bytes())?;
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "v_clamp_v",
@@ -257,32 +279,33 @@ fn write_outputs(mut set: OutputSet, o: &RunOutput, scenario: &Scenario, meter: 
     }
     let csv_bytes = w.into_inner().map_err(|e| format!("results.csv: {e}"))?;
     set.add_bytes("results.csv", &csv_bytes)?;
-    let mut fig5 = fig5_chart(o.result, scenario, base)?;
-    if let Some(c) = &o.measured {
-        fig5.series.push(Series::markers(
-            "measured",
-            c.points.iter().map(|p| (p.v_clamp * p.v_clamp, p.v_pull_measured * p.v_pull_measured)).collect(),
-        ));
-    }
     set.add_chart("fig5.svg", &fig5)?;
     set.add_chart("fig5.png", &fig5)?;
-    let mut fig7 = fig7_chart(o.result, scenario, meter, base)?;
-    if let Some(c) = &o.measured {
-        fig7.series.push(Series::markers(
-            "measured (nominal a_clamp, a_pull, F_spring)",
-            c.points.iter().map(|p| (p.load_measured_n * 1e6, p.friction_measured_n * 1e6)).collect(),
-        ));
-    }
     set.add_chart("fig7.svg", &fig7)?;
     set.add_chart("fig7.png", &fig7)?;
     set.commit()
 }
 
-/// Fig. 5: V_pull^2 at slip against V_clamp^2.
+/// The figure titles' account of the data: the virtual meter, and the measured file if any.
+fn what(r: &MeterResult, measured: Option<&str>) -> String {
+    // The contact model is named in the virtual meter's legend entry.
+    match measured {
+        Some(name) => format!("measured ({name}) and virtual meter"),
+        None => format!("virtual meter, {} contact model", r.contact_model),
+    }
+}
+
 /// Fig. 5: V_pull^2 at slip against V_clamp^2, with the paper's own analysis (discrete N = 3,
 /// eq. 12) turned back into voltages through the same conversion: V_pull^2 = F_f(L) / a_pull,
-/// L = a_clamp V_clamp^2 - F_spring.
-fn fig5_chart(r: &MeterResult, scenario: &Scenario, base: &Path) -> Result<Chart, Box<dyn std::error::Error>> {
+/// L = a_clamp V_clamp^2 - F_spring; with measured data, the measured slips and their eq. 10 line
+/// in the same voltages.
+fn fig5_chart(
+    o: &RunOutput,
+    scenario: &Scenario,
+    base: &Path,
+    measured: Option<&str>,
+) -> Result<Chart, Box<dyn std::error::Error>> {
+    let r = o.result;
     let pts: Vec<(f64, f64)> = r.points.iter().filter_map(|p| p.v_pull_sq.map(|v| (p.v_clamp_sq, v))).collect();
     let red = r.reduction;
     let v2_min = red.spring_force_n / red.a_clamp_n_per_v2;
@@ -298,47 +321,137 @@ fn fig5_chart(r: &MeterResult, scenario: &Scenario, base: &Path) -> Result<Chart
             ((l_un * 1e-6 + red.spring_force_n) / red.a_clamp_n_per_v2, f_un * 1e-6 / red.a_pull_n_per_v2)
         })
         .collect();
-    Ok(Chart::new(
-        format!("Fig. 5 (virtual): pull voltage at slip, {} contact model", r.contact_model),
+    let mut chart = Chart::new(
+        format!("Fig. 5: pull voltage at slip, {}", what(r, measured)),
         "clamp voltage squared V_clamp² (V²)",
         "pull voltage squared at slip V_pull² (V²)",
     )
     .keys("v_clamp_squared_v2", "v_pull_squared_v2")
-    .with(Series::markers("virtual measurement", pts))
-    .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete)))
+    .with_note(format!(
+        "L = a_clamp V_clamp² − F_spring, F_f = a_pull V_pull² (nominal a_clamp = {} N/V², a_pull = {} N/V², F_spring = {} µN)",
+        crate::cmd::plot::sig3(red.a_clamp_n_per_v2),
+        crate::cmd::plot::sig3(red.a_pull_n_per_v2),
+        crate::cmd::plot::sig3(red.spring_force_n * 1e6)
+    ))
+    .with(Series::markers("virtual meter", pts))
+    .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete));
+    if let Some(c) = &o.measured {
+        chart.series.push(Series::markers(
+            "measured",
+            c.points.iter().map(|p| (p.v_clamp * p.v_clamp, p.v_pull_measured * p.v_pull_measured)).collect(),
+        ));
+        if let Some(fit) = &c.measured_fit {
+            // eq. 10 in voltages: V_pull^2 = (intercept + slope (a_clamp V_clamp^2 - F_spring)) / a_pull.
+            let x0 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(f64::INFINITY, f64::min).max(v2_min);
+            let x1 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(0.0, f64::max);
+            let y = |x: f64| {
+                (fit.intercept + fit.slope * (red.a_clamp_n_per_v2 * x - red.spring_force_n)) / red.a_pull_n_per_v2
+            };
+            chart.series.push(
+                Series::line(
+                    format!("eq. 10 fit of the measured slips: μ_e,a = {:.2}", fit.slope),
+                    vec![(x0, y(x0)), (x1, y(x1))],
+                )
+                .with_color(3),
+            );
+        }
+    }
+    Ok(chart)
 }
 
 /// Fig. 7: friction against load: the meter's points, the contact model's curve from pull-off,
-/// the discrete N = 3 model (eq. 12) and the eq. 10 line.
+/// the discrete N = 3 model (eq. 12), the eq. 10 lines of the virtual (and measured) points and
+/// the reference F_a0 band when the scenario has one.
 fn fig7_chart(
-    r: &MeterResult,
+    o: &RunOutput,
     scenario: &Scenario,
     meter: &mut Meter,
     base: &Path,
+    measured: Option<&str>,
 ) -> Result<Chart, Box<dyn std::error::Error>> {
+    let r = o.result;
     let material = scenario.require_material()?;
     let radius = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
-    let max_load = r.points.iter().map(|p| p.load_n).fold(0.0, f64::max).max(1e-6) * 1.1;
+    let mut max_load = r.points.iter().map(|p| p.load_n).fold(0.0, f64::max).max(1e-6) * 1.1;
+    if let Some(c) = &o.measured {
+        max_load = c.points.iter().map(|p| p.load_measured_n * 1.05).fold(max_load, f64::max);
+    }
     let meas: Vec<(f64, f64)> =
         r.points.iter().filter_map(|p| p.friction_n.map(|f| (p.load_n * 1e6, f * 1e6))).collect();
-    let mut chart = Chart::new("Fig. 7: static friction against load", "clamp load L (µN)", "friction force F_f (µN)")
-        .keys("load_un", "friction_un")
-        .with(Series::markers(format!("virtual meter ({})", r.contact_model), meas));
+    let mut chart = Chart::new(
+        format!("Fig. 7: static friction against load, {}", what(r, measured)),
+        "clamp load L (µN)",
+        "friction force F_f (µN)",
+    )
+    .keys("load_un", "friction_un")
+    .with(Series::markers(format!("virtual meter ({}), shoe clamped anew at each load", r.contact_model), meas));
+    let mut notes = vec!["Meter points: the shoe comes down anew at each clamp voltage (meter.reclamp).".to_string()];
     // The contact model's own curve s A_r(L), from its pull-off where it has one.
     if let ContactModel::Explicit(solver) = meter.contact_model() {
         solver.reset();
         if let Ok(sweep) = solver.loading_curve(max_load, 120) {
             let pts = sweep.points.iter().map(|e| (e.load_n * 1e6, e.friction_capacity_n * 1e6)).collect();
-            chart.series.push(Series::line("explicit solver, loading from pull-off", pts));
+            chart.series.push(Series::line("explicit solver, one loading path from pull-off", pts));
+            notes.push(
+                "Solid line: one shoe loaded up from pull-off may rest on another set of summits (below the points)"
+                    .into(),
+            );
+            notes.push(
+                "and jumps where it changes set: static friction depends on the load path (docs/experiment.md).".into(),
+            );
         }
     }
     let discrete = crate::cmd::discrete::friction_curve_n3(material, radius, max_load)?;
-    chart.series.push(Series::dashed("discrete model N = 3 (eq. 12)", discrete));
+    chart.series.push(Series::dashed("discrete model N = 3 (eq. 12)", discrete).with_color(2));
     if let (Some(fit), Some(fa0)) = (&r.fit, r.apparent_adhesion_force_n) {
         let line = vec![(-fa0 * 1e6, 0.0), (max_load * 1e6, (fit.intercept + fit.slope * max_load) * 1e6)];
-        chart
-            .series
-            .push(Series::dashed(format!("eq. 10 fit: mu_e,a = {:.2}, F_a0 = {:.2} uN", fit.slope, fa0 * 1e6), line));
+        chart.series.push(
+            Series::dashed(
+                format!("eq. 10 fit of the virtual meter: μ_e,a = {:.2}, F_a0 = {:.2} µN", fit.slope, fa0 * 1e6),
+                line,
+            )
+            .with_color(3),
+        );
     }
+    if let Some(c) = &o.measured {
+        chart.series.push(
+            Series::markers(
+                "measured (nominal a_clamp, a_pull, F_spring)",
+                c.points.iter().map(|p| (p.load_measured_n * 1e6, p.friction_measured_n * 1e6)).collect(),
+            )
+            .with_color(4),
+        );
+        if let (Some(fit), Some(mu), Some(fa0)) =
+            (&c.measured_fit, c.mu_apparent_measured, c.apparent_adhesion_force_measured_n)
+        {
+            let line = vec![(-fa0 * 1e6, 0.0), (max_load * 1e6, (fit.intercept + fit.slope * max_load) * 1e6)];
+            chart.series.push(
+                Series::line(
+                    format!("eq. 10 fit of the measured slips: μ_e,a = {mu:.2}, F_a0 = {:.2} µN", fa0 * 1e6),
+                    line,
+                )
+                .with_color(4),
+            );
+        }
+    }
+    if let Some(rf) = &scenario.reference
+        && let (Some((a, b)), Some(label)) = (reference::adhesion_range_un(rf), reference::adhesion_label(rf))
+    {
+        // At L = -F_a0, where an eq. 10 line meets F_f = 0.
+        chart.series.push(Series::x_range(format!("{label}, at L = −F_a0"), -b, -a).with_color(7));
+        if let Some(n) = reference::meaning_note(rf) {
+            notes.push(n);
+        }
+    }
+    chart.note = Some(notes.join("\n"));
+    chart.legend = stiction_plot::LegendPosition::UpperLeft;
+    let top = chart
+        .series
+        .iter()
+        .filter(|s| s.style != stiction_plot::SeriesStyle::XSpan)
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .fold(0.0, f64::max);
+    // Headroom above the data for the legend (upper left).
+    chart.y_range = Some((0.0, top * 1.2));
     Ok(chart)
 }

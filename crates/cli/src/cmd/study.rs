@@ -12,6 +12,7 @@ use stiction_study::log::LogWriter;
 use stiction_study::summary::FigureData;
 use stiction_study::{Calibration, MAX_THREADS, Study, StudyConfig, StudySummary};
 
+use crate::figargs::{FigureArgs, reference};
 use crate::output::{CliResult, ensure_dir, print_json};
 
 /// Run the friction meter on many realisations of a scenario: every parameter written with an
@@ -65,6 +66,9 @@ pub struct Args {
     /// Override a scenario field (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
+    /// Figure size and font.
+    #[command(flatten)]
+    pub fig: FigureArgs,
 }
 
 /// The --calibration choices.
@@ -216,7 +220,7 @@ pub fn run(args: Args) -> CliResult {
     let result = if temporary {
         stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| s)
     } else {
-        finish_folder(&dir).map_err(|e| stiction_study::StudyError::Log(e.to_string()))
+        finish_folder(&dir, &args.fig).map_err(|e| stiction_study::StudyError::Log(e.to_string()))
     };
     if temporary {
         let _ = std::fs::remove_dir_all(&dir);
@@ -227,10 +231,10 @@ pub fn run(args: Args) -> CliResult {
 
 /// Writes study.json, samples.csv, sensitivity.csv and the figures of the study whose complete
 /// log is in `dir` (shared with `stiction merge`).
-pub(crate) fn finish_folder(dir: &Path) -> Result<StudySummary, Box<dyn std::error::Error>> {
+pub(crate) fn finish_folder(dir: &Path, figargs: &FigureArgs) -> Result<StudySummary, Box<dyn std::error::Error>> {
     let (summary, fig) = stiction_study::summary::finalize(dir)?;
     write_sensitivity_csv(&summary, dir)?;
-    write_figures(&summary, &fig, dir)?;
+    write_figures(&summary, &fig, dir, figargs)?;
     Ok(summary)
 }
 
@@ -258,8 +262,11 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
         ),
         None => crate::outln!("  {name:<28} no sample gave a value"),
     };
-    show("mu_e,a (paper 0.7 +/- 0.3)", &summary.mu_apparent, 1.0, "");
-    show("F_a0 (paper 2.0 +/- 1.3 uN)", &summary.apparent_adhesion_force_n, 1e6, " uN");
+    show("mu_e,a", &summary.mu_apparent, 1.0, "");
+    show("F_a0", &summary.apparent_adhesion_force_n, 1e6, " uN");
+    if let Some(r) = &summary.reference {
+        crate::outln!("  {}", reference::text(r));
+    }
     if !summary.reasons.is_empty() {
         crate::outln!(
             "  samples without a fit ({} ran without one, {} failed), by reason:",
@@ -312,31 +319,24 @@ fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
     Ok(())
 }
 
-fn write_figures(summary: &StudySummary, fig: &FigureData, dir: &Path) -> CliResult {
+fn write_figures(summary: &StudySummary, fig: &FigureData, dir: &Path, figargs: &FigureArgs) -> CliResult {
     // A figure without data is left out (a shard or a tiny study may have no fit or too few
-    // samples for the sensitivity table, which needs 20 with a fit).
+    // samples for the sensitivity table, which needs 20 with a fit). Each figure has its data as
+    // CSV beside it (same stem, the plot crate's columns with units).
     let has_sens = summary.sensitivity.inputs.iter().any(|r| r.mu_first_order.is_some());
+    let r = summary.reference.as_ref();
     let charts = [
-        ("mu_cdf", !fig.mu_sorted.is_empty(), cdf_chart(fig)),
-        ("mu_vs_fa0", !fig.scatter.is_empty(), scatter_chart(fig)),
+        ("mu_cdf", !fig.mu_sorted.is_empty(), cdf_chart(fig, r)),
+        ("mu_vs_fa0", !fig.scatter.is_empty(), scatter_chart(fig, r)),
         ("sensitivity", has_sens, sensitivity_chart(summary)),
     ];
-    for (name, _, chart) in charts.iter().filter(|c| c.1) {
-        // The plot crate writes each file atomically; the data go beside them below.
-        crate::cmd::plot::render_chart(chart, &dir.join(format!("{name}.svg")))?;
-        crate::cmd::plot::render_chart(chart, &dir.join(format!("{name}.png")))?;
+    for (name, _, chart) in charts.into_iter().filter(|c| c.1) {
+        let chart = figargs.apply(chart)?;
+        // The plot crate writes each file atomically.
+        crate::cmd::plot::render_chart(&chart, &dir.join(format!("{name}.svg")))?;
+        crate::cmd::plot::render_chart(&chart, &dir.join(format!("{name}.png")))?;
+        stiction_units::io::write_atomic(&dir.join(format!("{name}.csv")), chart.data_csv().as_bytes())?;
     }
-    // The data beside the figures.
-    let mut cdf = String::from("mu_apparent [1],cumulative_fraction [1]\n");
-    for (m, p) in cdf_points(fig) {
-        cdf.push_str(&format!("{m:e},{p:e}\n"));
-    }
-    stiction_units::io::write_atomic(&dir.join("mu_cdf.csv"), cdf.as_bytes())?;
-    let mut sc = String::from("apparent_adhesion_force [N],mu_apparent [1]\n");
-    for (f, m) in &fig.scatter {
-        sc.push_str(&format!("{f:e},{m:e}\n"));
-    }
-    stiction_units::io::write_atomic(&dir.join("mu_vs_fa0.csv"), sc.as_bytes())?;
     Ok(())
 }
 
@@ -352,26 +352,69 @@ fn cdf_points(fig: &FigureData) -> Vec<(f64, f64)> {
     pts
 }
 
-fn cdf_chart(fig: &FigureData) -> Chart {
-    Chart::new(
-        format!("Spread of the apparent friction coefficient ({} samples)", fig.mu_sorted.len()),
-        "apparent friction coefficient mu_e,a (eq. 10)",
+fn cdf_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>) -> Chart {
+    let mut chart = Chart::new(
+        format!("Spread of the apparent friction coefficient over {} virtual meters", fig.mu_sorted.len()),
+        "apparent friction coefficient μ_e,a (eq. 10)",
         "cumulative fraction of samples",
     )
-    .with(Series::line("virtual meters", cdf_points(fig)))
-    .with(Series::markers("paper: 0.7 +/- 0.3", vec![(0.7, 0.5)]).with_y_err(vec![0.0]))
-    .with(Series::dashed("", vec![(0.4, 0.5), (1.0, 0.5)]))
+    .keys("mu_apparent", "cumulative_fraction")
+    .with(Series::step("virtual meters (empirical CDF)", cdf_points(fig)));
+    if let Some(r) = r
+        && let (Some((a, b)), Some(label)) = (reference::mu_range(r), reference::mu_label(r))
+    {
+        chart.series.push(Series::x_range(label, a, b).with_color(1));
+        chart.note = reference::meaning_note(r);
+    }
+    chart.legend = stiction_plot::LegendPosition::LowerRight;
+    chart.y_range = Some((0.0, 1.0));
+    chart
 }
 
-fn scatter_chart(fig: &FigureData) -> Chart {
+fn scatter_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>) -> Chart {
     let pts: Vec<(f64, f64)> = fig.scatter.iter().map(|&(f, m)| (f * 1e6, m)).collect();
-    Chart::new(
-        "mu_e,a against F_a0 over the samples",
-        "apparent zero-load adhesion force F_a0 (uN)",
-        "apparent friction coefficient mu_e,a",
+    let mut chart = Chart::new(
+        format!("μ_e,a against F_a0 over {} virtual meters", pts.len()),
+        "apparent zero-load adhesion force F_a0 (µN)",
+        "apparent friction coefficient μ_e,a",
     )
-    .with(Series::markers("virtual meters", pts))
-    .with(Series::markers("paper (measured)", vec![(2.0, 0.7)]).with_y_err(vec![0.3]))
+    .keys("fa0_un", "mu_apparent")
+    .with(Series::markers("virtual meters", pts));
+    if let Some(r) = r {
+        match (r.mu_apparent, r.apparent_adhesion_force) {
+            (Some(m), Some(f)) => {
+                let pm = |v: f64, u: Option<f64>| match u {
+                    Some(u) => format!("{} ± {}", reference::num(v), reference::num(u)),
+                    None => reference::num(v),
+                };
+                let label = format!(
+                    "measured μ_e,a = {}, F_a0 = {} µN",
+                    pm(m, r.mu_apparent_uncertainty),
+                    pm(f * 1e6, r.apparent_adhesion_force_uncertainty.map(|u| u * 1e6))
+                );
+                chart.series.push(
+                    Series::markers(format!("{label} ({})", r.source), vec![(f * 1e6, m)])
+                        .with_y_err(vec![r.mu_apparent_uncertainty.unwrap_or(0.0)])
+                        .with_x_err(vec![r.apparent_adhesion_force_uncertainty.unwrap_or(0.0) * 1e6])
+                        .with_color(1),
+                );
+            }
+            (Some(_), None) => {
+                if let (Some((a, b)), Some(label)) = (reference::mu_range(r), reference::mu_label(r)) {
+                    chart.series.push(Series::y_range(label, a, b).with_color(1));
+                }
+            }
+            (None, Some(_)) => {
+                if let (Some((a, b)), Some(label)) = (reference::adhesion_range_un(r), reference::adhesion_label(r)) {
+                    chart.series.push(Series::x_range(label, a, b).with_color(1));
+                }
+            }
+            (None, None) => {}
+        }
+        chart.note = reference::meaning_note(r);
+    }
+    chart.legend = stiction_plot::LegendPosition::UpperRight;
+    chart
 }
 
 /// First-order Sobol indices as markers at x = input number (1, 2, ...), mu_e,a and F_a0 side by side.
@@ -385,15 +428,20 @@ fn sensitivity_chart(summary: &StudySummary) -> Chart {
         let parts: Vec<&str> = s.split('.').collect();
         parts[parts.len().saturating_sub(2)..].join(".")
     };
-    let names: Vec<String> = rows.iter().enumerate().map(|(i, r)| format!("{} {}", i + 1, short(&r.input))).collect();
+    let names: Vec<String> = rows.iter().map(|r| short(&r.input)).collect();
     let series = |off: f64, f: &dyn Fn(&stiction_study::sensitivity::InputShare) -> Option<f64>| -> Vec<(f64, f64)> {
         rows.iter().enumerate().filter_map(|(i, r)| f(r).map(|v| (i as f64 + 1.0 + off, v))).collect()
     };
-    Chart::new(
+    let mut chart = Chart::new(
         format!("Share of the variance by input ({} samples with a fit)", summary.sensitivity.samples),
-        format!("input: {}", names.join(", ")),
+        "input",
         "first-order Sobol index",
     )
-    .with(Series::markers("mu_e,a", series(-0.1, &|r| r.mu_first_order)))
-    .with(Series::markers("F_a0", series(0.1, &|r| r.fa0_first_order)))
+    .keys("input_number", "sobol_first_order")
+    .with(Series::markers("μ_e,a", series(-0.1, &|r| r.mu_first_order)))
+    .with(Series::markers("F_a0", series(0.1, &|r| r.fa0_first_order)));
+    chart.x_ticks = Some(names.iter().enumerate().map(|(i, n)| (i as f64 + 1.0, n.clone())).collect());
+    chart.x_range = Some((0.5, rows.len() as f64 + 0.5));
+    chart.legend = stiction_plot::LegendPosition::UpperRight;
+    chart
 }

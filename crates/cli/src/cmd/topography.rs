@@ -67,6 +67,9 @@ pub struct Args {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Figure size and font (with --out).
+    #[command(flatten)]
+    pub fig: crate::figargs::FigureArgs,
 }
 
 /// GW parameters of the map and the adhesion parameter.
@@ -149,7 +152,7 @@ pub fn run(args: Args) -> CliResult {
         set.add_bytes("statistics.json", (serde_json::to_string_pretty(&out)? + "\n").as_bytes())?;
         let staging = set.staging_dir().to_path_buf();
         write_summit_csv(&map, &summits, &staging.join("summits.csv"))?;
-        figures(&map, &summits, &report, &staging)?;
+        figures(&map, &summits, &report, &staging, &args.fig)?;
         set.adopt_staged()?;
         set.commit()?;
         crate::errln!("wrote figures, their data, summits.csv, statistics.json and manifest.json to {}", dir.display());
@@ -309,7 +312,13 @@ fn steps(h: &[(f64, f64, usize)], scale: f64) -> Vec<(f64, f64)> {
     h.iter().flat_map(|&(a, b, c)| [(a * scale, c as f64), (b * scale, c as f64)]).collect()
 }
 
-fn figures(map: &HeightMap, s: &Summits, report: &PreparationReport, dir: &Path) -> CliResult {
+fn figures(
+    map: &HeightMap,
+    s: &Summits,
+    report: &PreparationReport,
+    dir: &Path,
+    fig: &crate::figargs::FigureArgs,
+) -> CliResult {
     // Height map, block-averaged to at most 400 x 400 cells, with the summits.
     let block = map.nx().max(map.ny()).div_ceil(400).max(1);
     let (cx, cy) = (map.nx().div_ceil(block), map.ny().div_ceil(block));
@@ -335,14 +344,14 @@ fn figures(map: &HeightMap, s: &Summits, report: &PreparationReport, dir: &Path)
     let markers: Vec<(f64, f64)> = (0..s.len())
         .map(|i| ((f64::from(s.ix[i]) + 0.5) * map.dx_m() * 1e6, (f64::from(s.iy[i]) + 0.5) * map.dy_m() * 1e6))
         .collect();
-    ImageMap {
+    fig.apply_map(ImageMap {
         title: format!(
             "Height map ({} summits{})",
             s.len(),
             if block > 1 { format!(", drawn in {block} x {block} blocks") } else { String::new() }
         ),
-        x_label: "x (um)".into(),
-        y_label: "y (um)".into(),
+        x_label: "x (µm)".into(),
+        y_label: "y (µm)".into(),
         value_label: "height (nm)".into(),
         nx: cx,
         ny: cy,
@@ -350,7 +359,8 @@ fn figures(map: &HeightMap, s: &Summits, report: &PreparationReport, dir: &Path)
         x_max: xmax,
         y_max: ymax,
         markers: if s.len() <= 5000 { markers } else { Vec::new() },
-    }
+        ..Default::default()
+    })
     .write_png(&dir.join("height_map.png"))?;
     let bw = block as f64;
     write_csv_rows(
@@ -371,9 +381,12 @@ fn figures(map: &HeightMap, s: &Summits, report: &PreparationReport, dir: &Path)
     // PSD with the cut-offs.
     let psd = radial_psd(map, PsdWindow::Hann);
     let pts: Vec<(f64, f64)> = psd.f_per_m.iter().zip(&psd.psd_m4).map(|(f, p)| (f * 1e-6, *p)).collect();
-    let mut chart =
-        Chart::new("Radially averaged PSD (Hann window)", "spatial frequency 1/wavelength (1/um)", "PSD C (m^4)")
-            .with(Series::line("map", pts.clone()));
+    let mut chart = Chart::new(
+        "Radially averaged PSD of the height map (Hann window)",
+        "spatial frequency 1/λ (1/µm)",
+        "PSD C (m⁴)",
+    )
+    .with(Series::line("map", pts.clone()));
     chart.x_log = true;
     chart.y_log = true;
     let (ylo, yhi) =
@@ -385,7 +398,7 @@ fn figures(map: &HeightMap, s: &Summits, report: &PreparationReport, dir: &Path)
             chart = chart.with(Series::dashed(name, vec![(1e-6 / l, ylo), (1e-6 / l, yhi)]));
         }
     }
-    chart.write_png(&dir.join("psd.png"))?;
+    fig.apply(chart)?.write_png(&dir.join("psd.png"))?;
     write_csv_rows(
         &dir.join("psd.csv"),
         &["f_per_m", "wavelength_m", "psd_m4", "dft_bins"],
@@ -397,13 +410,13 @@ fn figures(map: &HeightMap, s: &Summits, report: &PreparationReport, dir: &Path)
         let (lo, hi) = s.height_m.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| (a.min(h), b.max(h)));
         let bins = (s.len() as f64).sqrt().clamp(5.0, 60.0) as usize;
         let hh = histogram(&s.height_m, lo, hi, bins);
-        Chart::new(
+        let heights = Chart::new(
             format!("Summit heights ({} summits)", s.len()),
             "summit height above the mean plane (nm)",
             "summits per bin",
         )
-        .with(Series::line("", steps(&hh, 1e9)))
-        .write_png(&dir.join("summit_heights.png"))?;
+        .with(Series::line("", steps(&hh, 1e9)));
+        fig.apply(heights)?.write_png(&dir.join("summit_heights.png"))?;
         write_csv_rows(
             &dir.join("summit_heights.csv"),
             &["height_lo_m", "height_hi_m", "count"],
@@ -413,17 +426,17 @@ fn figures(map: &HeightMap, s: &Summits, report: &PreparationReport, dir: &Path)
         radii.sort_by(f64::total_cmp);
         let p99 = radii[((radii.len() - 1) as f64 * 0.99) as usize];
         let rh = histogram(&radii, 0.0, p99, bins);
-        Chart::new(
+        let radii_chart = Chart::new(
             format!(
-                "Summit radii 1/kappa ({} summits; {} above the 99th percentile not shown)",
+                "Summit radii 1/κ ({} summits; {} above the 99th percentile not shown)",
                 s.len(),
                 radii.len() - rh.iter().map(|b| b.2).sum::<usize>()
             ),
-            "summit radius (um)",
+            "summit radius (µm)",
             "summits per bin",
         )
-        .with(Series::line("", steps(&rh, 1e6)))
-        .write_png(&dir.join("summit_radii.png"))?;
+        .with(Series::line("", steps(&rh, 1e6)));
+        fig.apply(radii_chart)?.write_png(&dir.join("summit_radii.png"))?;
         write_csv_rows(
             &dir.join("summit_radii.csv"),
             &["radius_lo_m", "radius_hi_m", "count"],
