@@ -333,14 +333,21 @@ fn fig5_chart(
         crate::cmd::plot::sig3(red.a_pull_n_per_v2),
         crate::cmd::plot::sig3(red.spring_force_n * 1e6)
     ))
-    .with(Series::markers("virtual meter", pts))
-    .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete));
+    .with(Series::markers("virtual meter", pts).with_color(0))
+    .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete).with_color(1));
     if let Some(c) = &o.measured {
-        chart.series.push(Series::markers(
-            "measured",
-            c.points.iter().map(|p| (p.v_clamp * p.v_clamp, p.v_pull_measured * p.v_pull_measured)).collect(),
-        ));
-        if let Some(fit) = &c.measured_fit {
+        // Drawn first, so that the virtual meter's points at the same voltages stay visible on top.
+        chart.series.insert(
+            0,
+            Series::markers(
+                "measured",
+                c.points.iter().map(|p| (p.v_clamp * p.v_clamp, p.v_pull_measured * p.v_pull_measured)).collect(),
+            )
+            .with_color(4),
+        );
+        if let (Some(fit), Some(mu), Some(fa0)) =
+            (&c.measured_fit, c.mu_apparent_measured, c.apparent_adhesion_force_measured_n)
+        {
             // eq. 10 in voltages: V_pull^2 = (intercept + slope (a_clamp V_clamp^2 - F_spring)) / a_pull.
             let x0 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(f64::INFINITY, f64::min).max(v2_min);
             let x1 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(0.0, f64::max);
@@ -349,10 +356,10 @@ fn fig5_chart(
             };
             chart.series.push(
                 Series::line(
-                    format!("eq. 10 fit of the measured slips: μ_e,a = {:.2}", fit.slope),
+                    format!("eq. 10 fit of the measured slips: μ_e,a = {mu:.2}, F_a0 = {:.2} µN", fa0 * 1e6),
                     vec![(x0, y(x0)), (x1, y(x1))],
                 )
-                .with_color(3),
+                .with_color(4),
             );
         }
     }
@@ -384,14 +391,17 @@ fn fig7_chart(
         "friction force F_f (µN)",
     )
     .keys("load_un", "friction_un")
-    .with(Series::markers(format!("virtual meter ({}), shoe clamped anew at each load", r.contact_model), meas));
+    .with(
+        Series::markers(format!("virtual meter ({}), shoe clamped anew at each load", r.contact_model), meas)
+            .with_color(0),
+    );
     let mut notes = vec!["Meter points: the shoe comes down anew at each clamp voltage (meter.reclamp).".to_string()];
     // The contact model's own curve s A_r(L), from its pull-off where it has one.
     if let ContactModel::Explicit(solver) = meter.contact_model() {
         solver.reset();
         if let Ok(sweep) = solver.loading_curve(max_load, 120) {
             let pts = sweep.points.iter().map(|e| (e.load_n * 1e6, e.friction_capacity_n * 1e6)).collect();
-            chart.series.push(Series::line("explicit solver, one loading path from pull-off", pts));
+            chart.series.push(Series::line("explicit solver, one loading path from pull-off", pts).with_color(1));
             notes.push(
                 "Solid line: one shoe loaded up from pull-off may rest on another set of summits (below the points)"
                     .into(),
@@ -414,7 +424,9 @@ fn fig7_chart(
         );
     }
     if let Some(c) = &o.measured {
-        chart.series.push(
+        // Drawn first, so that the virtual meter's points at the same loads stay visible on top.
+        chart.series.insert(
+            0,
             Series::markers(
                 "measured (nominal a_clamp, a_pull, F_spring)",
                 c.points.iter().map(|p| (p.load_measured_n * 1e6, p.friction_measured_n * 1e6)).collect(),
