@@ -420,13 +420,19 @@ fn scatter_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>)
 /// First-order Sobol indices as markers at x = input number (1, 2, ...), mu_e,a and F_a0 side by side.
 fn sensitivity_chart(summary: &StudySummary) -> Chart {
     let rows = &summary.sensitivity.inputs;
-    // Short names: the last two parts of a JSON path ("clamp.conversion_factor").
+    // Short names that fit under a tick: the paper's symbols for the inputs it names
+    // (a_clamp, a_pull, F_spring, R), else the last two parts of the JSON path.
     let short = |s: &str| -> String {
         if s.contains(' ') {
-            return "surface + interactions".into();
+            return "sidewall + interactions".into();
         }
         let parts: Vec<&str> = s.split('.').collect();
-        parts[parts.len().saturating_sub(2)..].join(".")
+        match parts.as_slice() {
+            ["actuators", name, "conversion_factor"] => format!("a_{name}"),
+            ["meter", "spring_force"] => "F_spring".into(),
+            ["surface", "summit_radius"] => "summit radius R".into(),
+            _ => parts[parts.len().saturating_sub(2)..].join("."),
+        }
     };
     let names: Vec<String> = rows.iter().map(|r| short(&r.input)).collect();
     let series = |off: f64, f: &dyn Fn(&stiction_study::sensitivity::InputShare) -> Option<f64>| -> Vec<(f64, f64)> {
