@@ -29,7 +29,20 @@ fn bem_sweep_writes_fields_curves_and_figures() {
         assert!((f / (1e8 * p["contact_area_m2"].as_f64().unwrap()) - 1.0).abs() < 1e-12);
         assert!(p["area_ratio_bem_over_asperity"].as_f64().unwrap() > 0.0);
     }
-    for f in ["fields.csv", "curve.csv", "pressure.png", "gap.png", "load_area.png", "load_gap.png", "area_ratio.png"] {
+    for f in [
+        "results.json",
+        "manifest.json",
+        "fields.csv",
+        "curve.csv",
+        "height.png",
+        "pressure.png",
+        "gap.png",
+        "load_area.png",
+        "load_area.csv",
+        "load_gap.png",
+        "area_ratio.png",
+        "area_ratio.csv",
+    ] {
         let meta = std::fs::metadata(dir.join(f)).unwrap_or_else(|_| panic!("{f} missing"));
         assert!(meta.len() > 100, "{f} is nearly empty");
     }
@@ -74,4 +87,66 @@ fn bem_bad_flags_exit_2() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(needle), "{args:?}: {err}");
     }
+}
+
+/// A measured map (the bundled 640 x 200 gsf, non-square) is the periodic cell: the grid, pixel
+/// and rms height are those `stiction topography` reports for it (levelled plane).
+#[test]
+fn bem_on_a_measured_height_map() {
+    let v = stiction_json(&["bem", "--map", "data/topography-example/wall.gsf", "--pressure", "20 MPa", "--json"]);
+    assert_eq!(v["grid"]["nx"].as_u64(), Some(640));
+    assert_eq!(v["grid"]["ny"].as_u64(), Some(200));
+    assert!((v["grid"]["dx_m"].as_f64().unwrap() / 40e-9 - 1.0).abs() < 1e-9);
+    assert_eq!(v["surface"]["source"], "height_map");
+    let topo = stiction_json(&["topography", "data/topography-example/wall.gsf", "--json"]);
+    let (a, b) = (v["rms_height_m"].as_f64().unwrap(), topo["rms_height_m"].as_f64().unwrap());
+    assert!((a / b - 1.0).abs() < 1e-9, "{a} vs {b}");
+    let p = &v["points"][0];
+    assert!((p["mean_pressure_pa"].as_f64().unwrap() / 20e6 - 1.0).abs() < 1e-9);
+    assert!(p["contact_fraction"].as_f64().unwrap() > 0.0);
+    // A generator flag with a map is refused.
+    let out = stiction(&["bem", "--map", "data/topography-example/wall.gsf", "--grid", "64", "--pressure", "1MPa"]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+/// A scenario's height-map face under the shoe: 20 um x 5 um at 40 nm = 500 x 125 points, E* from
+/// the material (3/(4D), D = 9.1e-12 1/Pa); the output folder is an OutputSet (manifest, --force).
+#[test]
+fn bem_on_a_scenario_patch_with_output_set() {
+    let dir = temp_dir("bem-scenario");
+    let out_dir = dir.join("out");
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "bem",
+            "--scenario",
+            "scenarios/tas2000-height-map.json",
+            "--sweep",
+            "0.01MPa:1MPa:3",
+            "--json",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let run = |extra: &[&str]| {
+        let a = args(extra);
+        stiction(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let out = run(&[]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!((v["grid"]["nx"].as_u64(), v["grid"]["ny"].as_u64()), (Some(500), Some(125)));
+    assert!((v["e_star_pa"].as_f64().unwrap() * 9.1e-12 / 0.75 - 1.0).abs() < 1e-12);
+    assert_eq!(v["surface"]["source"], "scenario");
+    let manifest = std::fs::read_to_string(out_dir.join("manifest.json")).unwrap();
+    assert!(manifest.contains("\"command\": \"bem\"") && manifest.contains("fields.csv"), "{manifest}");
+    // A second run replaces the folder; a foreign file makes it refuse without --force.
+    assert!(run(&[]).status.success());
+    std::fs::write(out_dir.join("notes.txt"), "mine").unwrap();
+    let refused = run(&[]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--force"));
+    assert!(run(&["--force"]).status.success());
+    assert_eq!(std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(), "mine");
 }
