@@ -150,3 +150,103 @@ fn bem_on_a_scenario_patch_with_output_set() {
     assert!(run(&["--force"]).status.success());
     assert_eq!(std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(), "mine");
 }
+
+/// The bundled `bem` scenario through the friction meter end to end: Fig. 5 and 7 with their
+/// data, the contact model named, friction capacity s A_r exactly (s = 1.4 GPa), every clamp
+/// voltage in contact with a slip and an eq. 10 fit.
+#[test]
+fn run_on_the_bem_scenario_writes_fig5_and_fig7() {
+    let dir = temp_dir("bem-run");
+    let out = dir.join("out");
+    let v = stiction_json(&["run", "scenarios/tas2000-bem.json", "--json", "--out", out.to_str().unwrap()]);
+    assert_eq!(v["contact_model"], "bem");
+    let pts = v["points"].as_array().unwrap();
+    assert_eq!(pts.len(), 7);
+    for p in pts {
+        assert_eq!(p["in_contact"], true, "{p}");
+        let (cap, area) = (p["friction_capacity_n"].as_f64().unwrap(), p["real_area_m2"].as_f64().unwrap());
+        assert!(area > 0.0 && (cap / (1.4e9 * area) - 1.0).abs() < 1e-12, "{p}");
+        assert!(p["v_pull"].as_f64().is_some(), "no slip: {p}");
+    }
+    assert!(v["mu_apparent"].as_f64().unwrap() > 0.0);
+    for f in ["results.json", "results.csv", "fig5.svg", "fig5.png", "fig5.csv", "fig7.svg", "fig7.png", "fig7.csv"] {
+        assert!(std::fs::metadata(out.join(f)).is_ok_and(|m| m.len() > 100), "{f}");
+    }
+}
+
+/// `stiction contact --model bem`: a load sweep on the scenario's patch; the loads are met within
+/// the load-gap curve's pixel steps (2 %), the area grows with the load, the adhesive tension is
+/// positive (Dugdale law of the material), friction capacity is s A_r.
+#[test]
+fn contact_model_bem_load_sweep() {
+    let v =
+        stiction_json(&["contact", "scenarios/tas2000-bem.json", "--model", "bem", "--sweep", "1uN:5uN:3", "--json"]);
+    assert_eq!((v["grid"]["nx"].as_u64(), v["grid"]["ny"].as_u64()), (Some(500), Some(125)));
+    assert!(v["dugdale"]["stress_pa"].as_f64().unwrap() > 0.0);
+    let pts = v["points"].as_array().unwrap();
+    let mut area = 0.0;
+    for (p, want) in pts.iter().zip([1e-6, 3e-6, 5e-6]) {
+        assert!((p["load_n"].as_f64().unwrap() / want - 1.0).abs() < 0.02, "{p}");
+        let a = p["real_area_m2"].as_f64().unwrap();
+        assert!(a >= area, "area fell: {p}");
+        area = a;
+        assert!(p["adhesive_load_n"].as_f64().unwrap() > 0.0);
+        assert!((p["friction_capacity_n"].as_f64().unwrap() / (1.4e9 * a) - 1.0).abs() < 1e-12);
+    }
+    // Hertz: no adhesion, smaller area at the same load.
+    let dry = stiction_json(&[
+        "contact",
+        "scenarios/tas2000-bem.json",
+        "--model",
+        "bem",
+        "--load",
+        "5uN",
+        "--set",
+        "contact.law=\"hertz\"",
+        "--json",
+    ]);
+    assert!(dry["dugdale"].is_null());
+    assert!(dry["points"][0]["real_area_m2"].as_f64().unwrap() < area);
+}
+
+/// A study over the bem scenario: the same bytes on 1 and 2 threads.
+#[test]
+fn study_on_the_bem_scenario_is_deterministic_across_threads() {
+    let dir = temp_dir("bem-study");
+    let run = |t: &str| {
+        let out = dir.join(format!("t{t}"));
+        let o = stiction(&[
+            "study",
+            "scenarios/tas2000-bem.json",
+            "--samples",
+            "2",
+            "--seed",
+            "1",
+            "--threads",
+            t,
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(out.join("samples.csv")).unwrap()
+    };
+    assert_eq!(run("1"), run("2"));
+}
+
+/// `contact.model = "bem"` on a summit-list surface is refused with the reason; so are a bad
+/// `contact.bem` field and a grid above `max_points`.
+#[test]
+fn bem_model_bad_scenarios_exit_2() {
+    for (args, needle) in [
+        (vec!["run", "scenarios/tas2000.json", "--set", "contact.model=\"bem\""], "height_map"),
+        (vec!["run", "scenarios/tas2000-bem.json", "--set", "contact.bem.tolerance=2"], "contact.bem.tolerance"),
+        (vec!["run", "scenarios/tas2000-bem.json", "--set", "contact.bem.max_points=1000"], "1000"),
+        (vec!["contact", "scenarios/tas2000-bem.json", "--model", "bem", "--load", "-1uN"], "loading branch"),
+    ] {
+        let out = stiction(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
