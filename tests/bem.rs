@@ -29,7 +29,20 @@ fn bem_sweep_writes_fields_curves_and_figures() {
         assert!((f / (1e8 * p["contact_area_m2"].as_f64().unwrap()) - 1.0).abs() < 1e-12);
         assert!(p["area_ratio_bem_over_asperity"].as_f64().unwrap() > 0.0);
     }
-    for f in ["fields.csv", "curve.csv", "pressure.png", "gap.png", "load_area.png", "load_gap.png", "area_ratio.png"] {
+    for f in [
+        "results.json",
+        "manifest.json",
+        "fields.csv",
+        "curve.csv",
+        "height.png",
+        "pressure.png",
+        "gap.png",
+        "load_area.png",
+        "load_area.csv",
+        "load_gap.png",
+        "area_ratio.png",
+        "area_ratio.csv",
+    ] {
         let meta = std::fs::metadata(dir.join(f)).unwrap_or_else(|_| panic!("{f} missing"));
         assert!(meta.len() > 100, "{f} is nearly empty");
     }
@@ -68,6 +81,168 @@ fn bem_bad_flags_exit_2() {
         (vec!["bem", "--sweep", "1MPa:2MPa:0"], "STEPS"),
         (vec!["bem", "--tolerance", "2", "--pressure", "1MPa"], "--tolerance"),
         (vec!["bem", "--hurst", "1.5", "--pressure", "1MPa"], "hurst"),
+    ] {
+        let out = stiction(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
+
+/// A measured map (the bundled 640 x 200 gsf, non-square) is the periodic cell: the grid, pixel
+/// and rms height are those `stiction topography` reports for it (levelled plane).
+#[test]
+fn bem_on_a_measured_height_map() {
+    let v = stiction_json(&["bem", "--map", "data/topography-example/wall.gsf", "--pressure", "20 MPa", "--json"]);
+    assert_eq!(v["grid"]["nx"].as_u64(), Some(640));
+    assert_eq!(v["grid"]["ny"].as_u64(), Some(200));
+    assert!((v["grid"]["dx_m"].as_f64().unwrap() / 40e-9 - 1.0).abs() < 1e-9);
+    assert_eq!(v["surface"]["source"], "height_map");
+    let topo = stiction_json(&["topography", "data/topography-example/wall.gsf", "--json"]);
+    let (a, b) = (v["rms_height_m"].as_f64().unwrap(), topo["rms_height_m"].as_f64().unwrap());
+    assert!((a / b - 1.0).abs() < 1e-9, "{a} vs {b}");
+    let p = &v["points"][0];
+    assert!((p["mean_pressure_pa"].as_f64().unwrap() / 20e6 - 1.0).abs() < 1e-9);
+    assert!(p["contact_fraction"].as_f64().unwrap() > 0.0);
+    // A generator flag with a map is refused.
+    let out = stiction(&["bem", "--map", "data/topography-example/wall.gsf", "--grid", "64", "--pressure", "1MPa"]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+/// A scenario's height-map face under the shoe: 20 um x 5 um at 40 nm = 500 x 125 points, E* from
+/// the material (3/(4D), D = 9.1e-12 1/Pa); the output folder is an OutputSet (manifest, --force).
+#[test]
+fn bem_on_a_scenario_patch_with_output_set() {
+    let dir = temp_dir("bem-scenario");
+    let out_dir = dir.join("out");
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "bem",
+            "--scenario",
+            "scenarios/tas2000-height-map.json",
+            "--sweep",
+            "0.01MPa:1MPa:3",
+            "--json",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let run = |extra: &[&str]| {
+        let a = args(extra);
+        stiction(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let out = run(&[]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!((v["grid"]["nx"].as_u64(), v["grid"]["ny"].as_u64()), (Some(500), Some(125)));
+    assert!((v["e_star_pa"].as_f64().unwrap() * 9.1e-12 / 0.75 - 1.0).abs() < 1e-12);
+    assert_eq!(v["surface"]["source"], "scenario");
+    let manifest = std::fs::read_to_string(out_dir.join("manifest.json")).unwrap();
+    assert!(manifest.contains("\"command\": \"bem\"") && manifest.contains("fields.csv"), "{manifest}");
+    // A second run replaces the folder; a foreign file makes it refuse without --force.
+    assert!(run(&[]).status.success());
+    std::fs::write(out_dir.join("notes.txt"), "mine").unwrap();
+    let refused = run(&[]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--force"));
+    assert!(run(&["--force"]).status.success());
+    assert_eq!(std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(), "mine");
+}
+
+/// The bundled `bem` scenario through the friction meter end to end: Fig. 5 and 7 with their
+/// data, the contact model named, friction capacity s A_r exactly (s = 1.4 GPa), every clamp
+/// voltage in contact with a slip and an eq. 10 fit.
+#[test]
+fn run_on_the_bem_scenario_writes_fig5_and_fig7() {
+    let dir = temp_dir("bem-run");
+    let out = dir.join("out");
+    let v = stiction_json(&["run", "scenarios/tas2000-bem.json", "--json", "--out", out.to_str().unwrap()]);
+    assert_eq!(v["contact_model"], "bem");
+    let pts = v["points"].as_array().unwrap();
+    assert_eq!(pts.len(), 7);
+    for p in pts {
+        assert_eq!(p["in_contact"], true, "{p}");
+        let (cap, area) = (p["friction_capacity_n"].as_f64().unwrap(), p["real_area_m2"].as_f64().unwrap());
+        assert!(area > 0.0 && (cap / (1.4e9 * area) - 1.0).abs() < 1e-12, "{p}");
+        assert!(p["v_pull"].as_f64().is_some(), "no slip: {p}");
+    }
+    assert!(v["mu_apparent"].as_f64().unwrap() > 0.0);
+    for f in ["results.json", "results.csv", "fig5.svg", "fig5.png", "fig5.csv", "fig7.svg", "fig7.png", "fig7.csv"] {
+        assert!(std::fs::metadata(out.join(f)).is_ok_and(|m| m.len() > 100), "{f}");
+    }
+}
+
+/// `stiction contact --model bem`: a load sweep on the scenario's patch; the loads are met within
+/// the load-gap curve's pixel steps (2 %), the area grows with the load, the adhesive tension is
+/// positive (Dugdale law of the material), friction capacity is s A_r.
+#[test]
+fn contact_model_bem_load_sweep() {
+    let v =
+        stiction_json(&["contact", "scenarios/tas2000-bem.json", "--model", "bem", "--sweep", "1uN:5uN:3", "--json"]);
+    assert_eq!((v["grid"]["nx"].as_u64(), v["grid"]["ny"].as_u64()), (Some(500), Some(125)));
+    assert!(v["dugdale"]["stress_pa"].as_f64().unwrap() > 0.0);
+    let pts = v["points"].as_array().unwrap();
+    let mut area = 0.0;
+    for (p, want) in pts.iter().zip([1e-6, 3e-6, 5e-6]) {
+        assert!((p["load_n"].as_f64().unwrap() / want - 1.0).abs() < 0.02, "{p}");
+        let a = p["real_area_m2"].as_f64().unwrap();
+        assert!(a >= area, "area fell: {p}");
+        area = a;
+        assert!(p["adhesive_load_n"].as_f64().unwrap() > 0.0);
+        assert!((p["friction_capacity_n"].as_f64().unwrap() / (1.4e9 * a) - 1.0).abs() < 1e-12);
+    }
+    // Hertz: no adhesion, smaller area at the same load.
+    let dry = stiction_json(&[
+        "contact",
+        "scenarios/tas2000-bem.json",
+        "--model",
+        "bem",
+        "--load",
+        "5uN",
+        "--set",
+        "contact.law=\"hertz\"",
+        "--json",
+    ]);
+    assert!(dry["dugdale"].is_null());
+    assert!(dry["points"][0]["real_area_m2"].as_f64().unwrap() < area);
+}
+
+/// A study over the bem scenario: the same bytes on 1 and 2 threads.
+#[test]
+fn study_on_the_bem_scenario_is_deterministic_across_threads() {
+    let dir = temp_dir("bem-study");
+    let run = |t: &str| {
+        let out = dir.join(format!("t{t}"));
+        let o = stiction(&[
+            "study",
+            "scenarios/tas2000-bem.json",
+            "--samples",
+            "2",
+            "--seed",
+            "1",
+            "--threads",
+            t,
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(out.join("samples.csv")).unwrap()
+    };
+    assert_eq!(run("1"), run("2"));
+}
+
+/// `contact.model = "bem"` on a summit-list surface is refused with the reason; so are a bad
+/// `contact.bem` field and a grid above `max_points`.
+#[test]
+fn bem_model_bad_scenarios_exit_2() {
+    for (args, needle) in [
+        (vec!["run", "scenarios/tas2000.json", "--set", "contact.model=\"bem\""], "height_map"),
+        (vec!["run", "scenarios/tas2000-bem.json", "--set", "contact.bem.tolerance=2"], "contact.bem.tolerance"),
+        (vec!["run", "scenarios/tas2000-bem.json", "--set", "contact.bem.max_points=1000"], "1000"),
+        (vec!["contact", "scenarios/tas2000-bem.json", "--model", "bem", "--load", "-1uN"], "loading branch"),
     ] {
         let out = stiction(&args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");

@@ -31,6 +31,17 @@ pub enum BemError {
         /// The value.
         value: f64,
     },
+    /// The height field has missing (NaN) or infinite values.
+    #[error(
+        "the height map has {count} missing or non-finite pixel(s) (the first at row-major index {first_index}); \
+         the boundary-element solver needs a complete periodic grid: fill or crop the map first"
+    )]
+    MissingHeights {
+        /// How many.
+        count: usize,
+        /// The first, row-major.
+        first_index: usize,
+    },
     /// A scalar input out of range.
     #[error("{name} = {value}: expected {expected}")]
     Value {

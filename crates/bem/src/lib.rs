@@ -54,7 +54,9 @@
 pub mod asperity;
 pub mod error;
 mod fft;
+pub mod loading;
 pub mod patches;
+pub mod spec;
 pub mod synth;
 
 use rayon::prelude::*;
@@ -64,6 +66,8 @@ use serde::Serialize;
 pub use error::BemError;
 use error::{check_nonnegative, check_positive};
 use fft::Fft2;
+pub use loading::LoadingPath;
+pub use spec::BemSpec;
 
 /// Largest grid, in points (4096 x 4096): about 1.5 GB of solver state at
 /// [`BYTES_PER_POINT`].
@@ -618,7 +622,15 @@ impl BemSolver {
             p.fill(mean_pressure_pa);
         }
         let b = self.heights.clone();
-        let out = self.constrained_cg(Operator::Compliance, &b, &mut p, mean_pressure_pa, self.height_rms, opts)?;
+        let out = match self.constrained_cg(Operator::Compliance, &b, &mut p, mean_pressure_pa, self.height_rms, opts) {
+            // A warm start whose residual vanishes on its contact set (a single contact point)
+            // gives the first step no direction; start again from the uniform pressure.
+            Err(BemError::NoConvergence { .. }) if warm.is_some() => {
+                p.fill(mean_pressure_pa);
+                self.constrained_cg(Operator::Compliance, &b, &mut p, mean_pressure_pa, self.height_rms, opts)?
+            }
+            other => other?,
+        };
         let contact: Vec<bool> = p.iter().map(|&v| v > 0.0).collect();
         let gap: Vec<f64> =
             out.complementary.iter().zip(&contact).map(|(g, &c)| if c { 0.0 } else { g.max(0.0) }).collect();

@@ -3,7 +3,7 @@
 
 use std::f64::consts::PI;
 
-use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, SolverOptions, synth};
+use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, LoadingPath, SolverOptions, synth};
 use stiction_contact::single::MaugisCurve;
 
 /// A paraboloid `h = -r^2/(2R)` (the Hertz geometry) centred on grid point (n/2, n/2) of an
@@ -243,6 +243,47 @@ fn dugdale_sphere_pull_off_follows_maugis() {
         got.push(pull_off);
     }
     assert!(got[0] < got[1] && got[1] < got[2], "pull-off should fall from DMT toward JKR: {got:?}");
+}
+
+/// The adhesive state at a prescribed load on the loading branch (what the meter's `bem` model
+/// asks for): a Dugdale sphere at lambda = 0.5 under the loads P/(pi w R) = 0.5 and 2, against
+/// the contact radius of the analytic Maugis-Dugdale curve on its stable branch
+/// (`MaugisCurve::state_at_load`, Maugis 1992). Tolerance: the counted radius sqrt(A/pi) within
+/// 1.5 pixels (the area is whole pixels; here a ~ 12-20 pixels). The returned load is the target
+/// within the pixel step of the load-gap curve (2 %), the area exceeds the Hertz area at the same
+/// load (the adhesive tension adds to what the contact carries), and the second load reached by
+/// continuing the first approach equals a fresh approach to it (same contact pixels).
+#[test]
+fn dugdale_sphere_at_load_on_the_loading_branch() {
+    let (e_star, radius, l, n): (f64, f64, f64, usize) = (1.0, 1.0, 1.0, 128);
+    let (lambda, la) = (0.5, 0.1);
+    let d = 0.75 / e_star;
+    let w = (la * l).powi(3) / (PI * radius * radius * d);
+    let sigma0 = lambda / 2.0 * (PI * w / (radius * d * d)).cbrt();
+    let law = Dugdale::from_work_and_range(w, w / sigma0).unwrap();
+    let dx = l / n as f64;
+    let h = paraboloid(n, l, radius);
+    let mut s = BemSolver::new(n, n, dx, dx, &h, e_star).unwrap();
+    let opts = SolverOptions { tolerance: 1e-6, ..Default::default() };
+    let curve = MaugisCurve::new(lambda).unwrap();
+    let mut path = LoadingPath::default();
+    let mut last = None;
+    for p_bar in [0.5, 2.0] {
+        let load = p_bar * PI * w * radius;
+        let sol = s.adhesive_loading_at_pressure(load / (l * l), &law, &opts, &mut path).unwrap();
+        assert!((sol.load_n(&s.grid()) / load - 1.0).abs() < 0.02, "load {} vs {load}", sol.load_n(&s.grid()));
+        let a = (sol.contact_area_m2 / PI).sqrt();
+        let exact = curve.state_at_load(p_bar).unwrap().a_hat * la;
+        println!("P/(pi w R) = {p_bar}: a = {a:.5}, Maugis-Dugdale {exact:.5} ({:.2} px)", (a - exact) / dx);
+        assert!((a - exact).abs() < 1.5 * dx, "p_bar {p_bar}: a {a} vs {exact}");
+        let hertz = (3.0 * load * radius / (4.0 * e_star)).cbrt();
+        assert!(a > hertz, "adhesion should enlarge the contact: {a} vs Hertz {hertz}");
+        last = Some(sol);
+    }
+    let fresh = s
+        .adhesive_loading_at_pressure(2.0 * PI * w * radius / (l * l), &law, &opts, &mut LoadingPath::default())
+        .unwrap();
+    assert_eq!(fresh.contact, last.unwrap().contact);
 }
 
 /// Same input, same bytes, on 1 and 2 threads; and the same seed gives the same surface.

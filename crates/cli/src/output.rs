@@ -346,6 +346,13 @@ impl OutputSet {
         Ok(())
     }
 
+    /// Adds a colour image (a field drawn as a heat map with a colour bar) as PNG.
+    pub fn add_image_map(&mut self, name: &str, map: &stiction_plot::ImageMap) -> CliResult {
+        let path = self.claim(name)?;
+        map.write_png(&path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
+        Ok(())
+    }
+
     /// Writes the manifest and puts the folder in place.
     pub fn commit(mut self) -> CliResult {
         let manifest = Manifest { tool: "stiction".into(), command: self.command.clone(), files: self.files.clone() };

@@ -1,4 +1,5 @@
-//! The contact model the meter asks for the real area at a load: explicit, GW+DMT or discrete.
+//! The contact model the meter asks for the real area at a load: explicit, GW+DMT, discrete or
+//! the boundary-element solver on the height-map patch under the shoe.
 
 use stiction_contact::discrete;
 use stiction_contact::explicit::{self, Equilibrium};
@@ -39,6 +40,8 @@ pub enum ContactModel {
     Explicit(Box<explicit::ExplicitSolver>),
     /// Greenwood-Williamson with DMT adhesion (eq. 5, 8).
     Gw(GwSurface),
+    /// The FFT boundary-element solver on the composite height patch under the shoe.
+    Bem(Box<BemContact>),
     /// The discrete model of eq. 12 with `contacts` equally loaded summits.
     Discrete {
         /// Number of contacts (1, 2, 3).
@@ -56,6 +59,7 @@ impl ContactModel {
         match self {
             ContactModel::Explicit(_) => "explicit".into(),
             ContactModel::Gw(_) => "gw-dmt".into(),
+            ContactModel::Bem(_) => "bem".into(),
             ContactModel::Discrete { contacts, .. } => format!("discrete-n{contacts}"),
         }
     }
@@ -97,6 +101,7 @@ impl ContactModel {
                     max_pressure_pa: c.mean_elastic_pressure_pa,
                 })
             }
+            ContactModel::Bem(bem) => bem.state_at_load(load_n),
             ContactModel::Discrete { contacts, law, params } => {
                 let model = discrete::DiscreteModel::new(*contacts as u32, *law, *params, 1.0)
                     .map_err(|e| MeterError::Contact(e.to_string()))?;
@@ -116,5 +121,93 @@ impl ContactModel {
                 })
             }
         }
+    }
+}
+
+/// The boundary-element model of the shoe face: the composite height patch under the shoe's
+/// apparent area as one periodic cell (the patch's opposite edges meet: an approximation that
+/// matters when a contact patch touches the edge), a rigid flat shoe approaching it without tilt,
+/// the elastic interaction of every point with every other through the half-space Green's
+/// function. Without adhesion (law "hertz" or no work of adhesion) the state at a load is the
+/// Polonsky-Keer solution; with adhesion the Dugdale cohesive law (`w` of the material, range
+/// `contact.bem.range`) on the loading branch (see `stiction_bem::loading`).
+#[derive(Debug)]
+pub struct BemContact {
+    solver: stiction_bem::BemSolver,
+    grid: stiction_bem::Grid,
+    law: Option<stiction_bem::Dugdale>,
+    options: stiction_bem::SolverOptions,
+    path: stiction_bem::LoadingPath,
+    last: Option<stiction_bem::ContactSolution>,
+    /// Block factors (x, y) that coarsened the map's pixels into the grid.
+    pub coarsening: (usize, usize),
+}
+
+impl BemContact {
+    /// The model on the row-major `heights_m` of an `nx x ny` grid of `dx_m x dy_m` pixels (already
+    /// coarsened and size-checked), composite modulus `e_star_pa`, optional Dugdale law.
+    pub fn new(
+        grid: stiction_bem::Grid,
+        heights_m: &[f64],
+        e_star_pa: f64,
+        law: Option<stiction_bem::Dugdale>,
+        tolerance: f64,
+        coarsening: (usize, usize),
+    ) -> Result<Self, MeterError> {
+        let solver = stiction_bem::BemSolver::new(grid.nx, grid.ny, grid.dx_m, grid.dy_m, heights_m, e_star_pa)
+            .map_err(|e| MeterError::Contact(format!("bem: {e}")))?;
+        let options = stiction_bem::SolverOptions { tolerance, ..Default::default() };
+        Ok(BemContact { solver, grid, law, options, path: Default::default(), last: None, coarsening })
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> stiction_bem::Grid {
+        self.grid
+    }
+
+    /// The Dugdale law, if adhesive.
+    pub fn law(&self) -> Option<stiction_bem::Dugdale> {
+        self.law
+    }
+
+    /// The full solution at external load `load_n` (N, > 0) on the patch.
+    pub fn solve(&mut self, load_n: f64) -> Result<stiction_bem::ContactSolution, MeterError> {
+        if !(load_n.is_finite() && load_n > 0.0) {
+            return Err(MeterError::Contact(format!(
+                "bem: load {load_n:e} N: the loading branch needs a compressive load > 0 (below, the shoe is not in \
+                 contact on approach)"
+            )));
+        }
+        let p = load_n / self.grid.area_m2();
+        let s = match &self.law {
+            None => self.solver.solve_load(p, &self.options, self.last.as_ref()),
+            Some(law) => self.solver.adhesive_loading_at_pressure(p, law, &self.options, &mut self.path),
+        }
+        .map_err(|e| MeterError::Contact(format!("bem: {e}")))?;
+        if self.law.is_none() {
+            self.last = Some(s.clone());
+        }
+        Ok(s)
+    }
+
+    /// The contact state at external load `load_n` (N): real area (contact points times the pixel
+    /// area), contact patches as "contacts", adhesive load = the Dugdale tension over the cohesive
+    /// zone (the contact pressure carries `L` plus it), largest contact pressure.
+    pub fn state_at_load(&mut self, load_n: f64) -> Result<ContactState, MeterError> {
+        let s = self.solve(load_n)?;
+        let stress = self.law.map_or(0.0, |l| l.stress_pa);
+        // Net traction p = p_c - sigma0 in the zone: the contact pressure is p + sigma0 there.
+        let max_pressure_pa =
+            s.pressure_pa.iter().zip(&s.contact).filter(|(_, c)| **c).map(|(p, _)| p + stress).fold(0.0, f64::max);
+        let adhesive_load_n = stress * s.cohesive_fraction * self.grid.area_m2();
+        Ok(ContactState {
+            load_n,
+            real_area_m2: s.contact_area_m2,
+            contacts: s.patches as f64,
+            adhesive_load_n,
+            tilt_x_rad: 0.0,
+            tilt_y_rad: 0.0,
+            max_pressure_pa,
+        })
     }
 }

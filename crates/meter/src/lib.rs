@@ -21,7 +21,7 @@ mod contact_model;
 pub mod fit;
 pub mod measured;
 pub mod slip;
-pub use contact_model::{ContactModel, ContactState};
+pub use contact_model::{BemContact, ContactModel, ContactState};
 pub use slip::SlipPath;
 use stiction_contact::explicit;
 use stiction_contact::gw::GwSurface;
@@ -474,6 +474,7 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
             };
             Ok(ContactModel::Gw(gw))
         }
+        ModelKind::Bem => build_bem(s, material, base_dir).map(|b| ContactModel::Bem(Box::new(b))),
         ModelKind::Discrete => {
             let radius = model_summit_radius_m(surface_spec, base_dir)?;
             Ok(ContactModel::Discrete {
@@ -483,4 +484,38 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
             })
         }
     }
+}
+
+/// The boundary-element model of a scenario (`contact.model` = "bem"): the composite height patch
+/// under the shoe ([`stiction_surface::height_map_patch`]), coarsened as `contact.bem` asks and
+/// checked against its point limit before the solver allocates; E* = 3/(4D); the Dugdale law with
+/// the material's work of adhesion and `contact.bem.range` (default z0/1.03) unless the law is
+/// "hertz" or the work of adhesion is 0.
+pub fn build_bem(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Result<BemContact, MeterError> {
+    let c = s.contact_or_default();
+    let spec = c.bem.clone().unwrap_or_default();
+    let surface_spec = s.require_surface().map_err(MeterError::Scenario)?;
+    let (patch, _) =
+        stiction_surface::height_map_patch(surface_spec, base_dir).map_err(|e| MeterError::Surface(e.to_string()))?;
+    let (kx, ky) = spec
+        .coarsening(patch.nx(), patch.ny(), patch.dx_m(), patch.dy_m())
+        .map_err(|e| MeterError::Scenario(format!("contact.bem: {e}")))?;
+    let (nx, ny) = (patch.nx() / kx, patch.ny() / ky);
+    let grid = stiction_bem::Grid::new(nx, ny, patch.dx_m() * kx as f64, patch.dy_m() * ky as f64)
+        .map_err(|e| MeterError::Scenario(format!("contact.bem: {e}")))?;
+    let heights = stiction_bem::spec::coarsen(patch.heights_m(), patch.nx(), patch.ny(), kx, ky);
+    drop(patch);
+    stiction_bem::spec::check_complete(&heights).map_err(|e| MeterError::Surface(e.to_string()))?;
+    let adhesive = c.law != stiction_contact::single::AdhesionLaw::Hertz && material.work_of_adhesion > 0.0;
+    let law = if adhesive {
+        let range =
+            spec.range.unwrap_or(material.equilibrium_spacing * stiction_bem::spec::RANGE_PER_EQUILIBRIUM_SPACING);
+        Some(
+            stiction_bem::Dugdale::from_work_and_range(material.work_of_adhesion, range)
+                .map_err(|e| MeterError::Scenario(format!("contact.bem: {e}")))?,
+        )
+    } else {
+        None
+    };
+    BemContact::new(grid, &heights, 0.75 / material.compliance_per_pa(), law, spec.tolerance(), (kx, ky))
 }

@@ -129,7 +129,8 @@ fn slot<'a>(v: &'a mut Value, path: &[String]) -> Option<&'a mut Value> {
     Some(node)
 }
 
-/// Keeps each case small: three clamp voltages, no shuttle dynamics, a test-sized summit budget.
+/// Keeps each case small: three clamp voltages, no shuttle dynamics, a test-sized summit budget,
+/// a coarse boundary-element grid.
 fn tame(v: &mut Value) {
     if let Some(m) = v.get_mut("meter").and_then(Value::as_object_mut) {
         m.remove("slip_dynamics");
@@ -137,6 +138,12 @@ fn tame(v: &mut Value) {
     }
     if let Some(s) = v.get_mut("surface").and_then(Value::as_object_mut) {
         s.insert("max_summits".into(), Value::from(20_000));
+    }
+    // The boundary-element model on a coarse grid (at most 2048 points, milliseconds per solve).
+    if let Some(c) = v.get_mut("contact").and_then(Value::as_object_mut)
+        && c.get("model").and_then(Value::as_str) == Some("bem")
+    {
+        c.insert("bem".into(), serde_json::json!({"points": 2048}));
     }
 }
 

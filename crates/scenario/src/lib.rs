@@ -197,6 +197,15 @@ impl Scenario {
         }
         if let Some(c) = &self.contact {
             c.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+            let on_map = self.surface.as_ref().is_some_and(|s| s.source == stiction_surface::SurfaceSource::HeightMap);
+            if c.model == ContactModel::Bem && !on_map {
+                return Err((
+                    "contact.model".into(),
+                    "\"bem\" solves on a grid: it needs `surface.source` = \"height_map\" (a measured or generated \
+                     `height_map`); summit lists have no surface between the summits"
+                        .into(),
+                ));
+            }
         }
         if let Some(r) = &self.reference {
             r.validate().map_err(|(p, msg)| (format!("reference.{p}"), msg))?;

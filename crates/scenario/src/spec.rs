@@ -105,6 +105,9 @@ pub enum ContactModel {
     Gw,
     /// The discrete model with `contacts` equally loaded summits (eq. 12).
     Discrete,
+    /// The FFT boundary-element solver on the height-map patch under the shoe (elastic interaction
+    /// between all points of the face; settings in `bem`).
+    Bem,
 }
 
 /// Degrees of freedom of the rigid shoe in the explicit solver.
@@ -128,7 +131,7 @@ pub struct ContactSpec {
     /// Single-asperity law: "dmt" (default, as in the paper), "hertz", "jkr", "maugis-dugdale".
     #[serde(default = "default_law")]
     pub law: AdhesionLaw,
-    /// "explicit" (default), "gw" or "discrete".
+    /// "explicit" (default), "gw", "discrete" or "bem".
     #[serde(default)]
     pub model: ContactModel,
     /// Shoe degrees of freedom for the explicit model: "tilt" (default), "flat", "fixed".
@@ -137,6 +140,10 @@ pub struct ContactSpec {
     /// Number of contacts for the discrete model (1, 2 or 3; the paper uses 3) and for mode "fixed".
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contacts: Option<usize>,
+    /// Settings of the boundary-element model (`model` = "bem"): grid spacing or points, tolerance,
+    /// Dugdale range.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bem: Option<stiction_bem::BemSpec>,
 }
 
 fn default_law() -> AdhesionLaw {
@@ -145,12 +152,24 @@ fn default_law() -> AdhesionLaw {
 
 impl Default for ContactSpec {
     fn default() -> Self {
-        ContactSpec { law: AdhesionLaw::Dmt, model: ContactModel::Explicit, mode: ShoeMode::Tilt, contacts: None }
+        ContactSpec {
+            law: AdhesionLaw::Dmt,
+            model: ContactModel::Explicit,
+            mode: ShoeMode::Tilt,
+            contacts: None,
+            bem: None,
+        }
     }
 }
 
 impl ContactSpec {
     pub(crate) fn validate(&self) -> Result<(), (String, String)> {
+        if let Some(b) = &self.bem {
+            if self.model != ContactModel::Bem {
+                return Err(("bem".into(), "only with `model` = \"bem\"".into()));
+            }
+            b.validate().map_err(|(p, msg)| (format!("bem.{p}"), msg))?;
+        }
         let needs_contacts = self.model == ContactModel::Discrete || self.mode == ShoeMode::Fixed;
         match self.contacts {
             None if needs_contacts => Err((

@@ -14,6 +14,46 @@ use crate::{Radii, Surface, SurfaceError, SurfaceSpec};
 const WALL_STREAM: u64 = 10;
 const SHOE_STREAM: u64 = 11;
 
+/// The composite height patch under the shoe of a `source` = "height_map" surface: each face's
+/// map read (or generated) and prepared, the shoe's apparent area cut from it at the same corner
+/// the summit list uses (stated, or drawn from the surface seed), and the two patches added when
+/// both faces have a map. This is the grid a boundary-element solver takes for the shoe face;
+/// returns the patch and, per face, the pixel window it was cut from.
+pub fn height_map_patch(
+    spec: &SurfaceSpec,
+    base_dir: &Path,
+) -> Result<(stiction_topography::HeightMap, Vec<stiction_topography::Patch>), SurfaceError> {
+    if spec.source != crate::SurfaceSource::HeightMap {
+        return Err(SurfaceError::Spec(
+            "a height patch needs `source` = \"height_map\" with `height_map` and/or `counter_height_map`".into(),
+        ));
+    }
+    let (l, w) = (spec.apparent_length, spec.apparent_width);
+    crate::surface::check_positive("apparent_length", l, "m")?;
+    crate::surface::check_positive("apparent_width", w, "m")?;
+    let mut patch: Option<stiction_topography::HeightMap> = None;
+    let mut windows = Vec::new();
+    for (map_spec, stream) in [(&spec.height_map, WALL_STREAM), (&spec.counter_height_map, SHOE_STREAM)] {
+        if let Some(m) = map_spec {
+            let (map, _) = m.build_map(base_dir, spec.seed)?;
+            let p = m.patch(&map, l, w, spec.seed, stream)?;
+            let cut = map.crop(p.ix0, p.iy0, p.nx, p.ny)?;
+            drop(map);
+            windows.push(p);
+            patch = Some(match patch {
+                None => cut,
+                Some(acc) => acc.add(&cut)?,
+            });
+        }
+    }
+    let patch = patch.ok_or_else(|| {
+        SurfaceError::Spec(
+            "`source` = \"height_map\" needs `height_map` (the wall's map) or `counter_height_map` (the shoe's)".into(),
+        )
+    })?;
+    Ok((patch, windows))
+}
+
 pub(crate) fn build(spec: &SurfaceSpec, base_dir: &Path) -> Result<Surface, SurfaceError> {
     for (name, present) in [
         ("summit_density", spec.summit_density.is_some()),

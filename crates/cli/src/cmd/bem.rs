@@ -1,48 +1,67 @@
-//! `stiction bem`: the FFT boundary-element solver on a generated self-affine surface, at one
-//! load, over a load sweep or (with adhesion) over a mean-gap path; fields, curves and figures.
+//! `stiction bem`: the FFT boundary-element solver on a surface: a generated self-affine one, a
+//! measured height map (`--map`, read and levelled as `stiction topography` does) or a scenario's
+//! height-map face(s) under the shoe (`--scenario`); at one load, over a load sweep or (with
+//! adhesion) over a mean-gap path; fields, curves and figures.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use plotters::prelude::*;
-use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
 use serde::Serialize;
 use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, SolverOptions, synth};
-use stiction_plot::{Chart, Series};
-use stiction_units::io::write_atomic;
+use stiction_plot::{Chart, ImageMap, Series};
+use stiction_scenario::Scenario;
+use stiction_topography::{MapInfo, Patch, PreparationReport, prepare, read_file};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
-use crate::output::{CliResult, ensure_dir, print_json, print_table, q, quantity};
+use super::map_args::MapArgs;
+use crate::output::{CliResult, OutputSet, print_json, print_table, q, quantity};
 
 /// Largest grid side of the command (the solver's own limit is 4096 x 4096 points).
 const MAX_SIDE: usize = 4096;
 
-/// Boundary-element contact of a rigid flat on a generated Gaussian self-affine rough surface.
+/// Boundary-element contact of a rigid flat on a rough surface: a generated Gaussian self-affine
+/// one (default), a measured height map (--map) or a scenario's height-map face(s) under the shoe
+/// (--scenario). The cell is periodic: a map is taken as one period of the interface.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Side of the square periodic cell ("100 um").
-    #[arg(long, default_value = "100 um", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    /// A measured height map (.npy, .gsf, .xyz, text/CSV), read, levelled and filtered as
+    /// `stiction topography` does; the whole map is the periodic cell (nx x ny, need not be square).
+    #[arg(long, value_name = "FILE", conflicts_with = "scenario")]
+    pub map: Option<PathBuf>,
+    /// With --map: the file's metadata and preparation.
+    #[command(flatten)]
+    pub map_args: MapArgs,
+    /// A scenario with `surface.source` = "height_map": the composite patch of its face(s) under the
+    /// shoe (the grid `stiction contact --model bem` and the meter use); E* from its material.
+    #[arg(long, value_name = "SCENARIO.json")]
+    pub scenario: Option<PathBuf>,
+    /// With --scenario: override a scenario field (repeatable).
+    #[arg(long = "set", value_name = "PATH=VALUE", requires = "scenario")]
+    pub sets: Vec<String>,
+    /// Generated surface: side of the square periodic cell ("100 um").
+    #[arg(long, default_value = "100 um", value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
     pub size: f64,
-    /// Grid points per side (2..=4096; powers of two are fastest).
-    #[arg(long, default_value_t = 256)]
+    /// Generated surface: grid points per side (2..=4096; powers of two are fastest).
+    #[arg(long, default_value_t = 256, conflicts_with_all = ["map", "scenario"])]
     pub grid: usize,
-    /// Hurst exponent of the self-affine spectrum (0 < H <= 1).
-    #[arg(long, default_value_t = 0.8)]
+    /// Generated surface: Hurst exponent of the self-affine spectrum (0 < H <= 1).
+    #[arg(long, default_value_t = 0.8, conflicts_with_all = ["map", "scenario"])]
     pub hurst: f64,
-    /// Roll-off wavelength ("25 um"; default: a quarter of the cell).
-    #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    /// Generated surface: roll-off wavelength ("25 um"; default: a quarter of the cell).
+    #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
     pub roll_off: Option<f64>,
-    /// Short-wavelength cut-off ("1.6 um"; default: 4 pixels).
-    #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    /// Generated surface: short-wavelength cut-off ("1.6 um"; default: 4 pixels).
+    #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
     pub short: Option<f64>,
-    /// Rms height of the composite surface ("0.5 um").
-    #[arg(long, default_value = "0.5 um", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    /// Generated surface: rms height of the composite surface ("0.5 um").
+    #[arg(long, default_value = "0.5 um", value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
     pub rms_height: f64,
-    /// Seed of the surface (ChaCha8).
-    #[arg(long, default_value_t = 1)]
+    /// Generated surface: seed (ChaCha8).
+    #[arg(long, default_value_t = 1, conflicts_with_all = ["map", "scenario"])]
     pub seed: u64,
-    /// Composite modulus E* = 1/sum((1 - nu^2)/E) ("85 GPa").
-    #[arg(long, default_value = "85 GPa", value_parser = quantity(Dimension::Pressure, Constraint::Positive))]
-    pub e_star: f64,
+    /// Composite modulus E* = 1/sum((1 - nu^2)/E) ("85 GPa"; default 85 GPa, or 3/(4D) from the
+    /// --scenario's material).
+    #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::Positive))]
+    pub e_star: Option<f64>,
     /// Mean (nominal) pressure, compressive ("20 MPa"); without adhesion.
     #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::Positive), conflicts_with_all = ["sweep", "gap_sweep"])]
     pub pressure: Option<f64>,
@@ -72,9 +91,17 @@ pub struct Args {
     /// no elastic interaction; adds its contact fraction and the ratio A_BEM/A_asperity to the curve.
     #[arg(long)]
     pub compare_asperity: bool,
-    /// Folder for the fields (CSV, PNG heat maps of the last state) and the curves (CSV, PNG).
+    /// Folder for the fields (CSV, PNG heat maps of the last state), the curves (CSV, PNG) and
+    /// results.json, with a manifest.json, swapped in whole.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write into an --out folder that holds files not from an earlier stiction run (they are
+    /// left alone; the earlier run's files are replaced or removed).
+    #[arg(long)]
+    pub force: bool,
+    /// Figure size and font (--width, --height, --font-size).
+    #[command(flatten)]
+    pub fig: crate::figargs::FigureArgs,
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -98,13 +125,39 @@ struct Point {
     area_ratio_bem_over_asperity: Option<f64>,
 }
 
+/// Where the heights came from.
+#[derive(Serialize)]
+#[serde(tag = "source", rename_all = "snake_case")]
+enum SurfaceSource {
+    /// The built-in generator.
+    Generated { hurst: f64, roll_off_wavelength_m: f64, short_wavelength_m: f64, seed: u64 },
+    /// A height-map file, whole.
+    HeightMap { file: String, read: MapInfo, preparation: PreparationReport },
+    /// A scenario's face(s) under the shoe.
+    Scenario {
+        file: String,
+        /// The pixel window of each face's map (wall first, then shoe) that makes the patch.
+        faces: Vec<Patch>,
+    },
+}
+
+/// The surface to solve on.
+struct Surface {
+    grid: Grid,
+    heights: Vec<f64>,
+    source: SurfaceSource,
+    e_star_pa: f64,
+}
+
 #[derive(Serialize)]
 struct Output {
+    surface: SurfaceSource,
     grid: Grid,
     e_star_pa: f64,
     rms_height_m: f64,
     rms_slope: f64,
-    seed: u64,
+    /// The generator's seed (null for a map or a scenario).
+    seed: Option<u64>,
     dugdale: Option<Dugdale>,
     tolerance: f64,
     points: Vec<Point>,
@@ -131,13 +184,49 @@ fn parse_path(text: &str, dim: Dimension, flag: &str) -> Result<Vec<f64>, String
     Ok((0..steps).map(|k| a + (b - a) * k as f64 / (steps - 1) as f64).collect())
 }
 
-/// Runs the subcommand.
-pub fn run(args: Args) -> CliResult {
+/// The surface of the command line: generated, a map file, or a scenario's patch.
+fn build_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
+    if let Some(file) = &args.map {
+        let (raw, info) = read_file(file, args.map_args.format, &args.map_args.metadata())?;
+        let (map, report) = prepare(&raw, &args.map_args.preparation())?;
+        drop(raw);
+        let grid = Grid::new(map.nx(), map.ny(), map.dx_m(), map.dy_m())
+            .map_err(|e| format!("{}: {e} (the BEM grid limit)", file.display()))?;
+        let heights = map.into_heights_m();
+        stiction_bem::spec::check_complete(&heights).map_err(|e| format!("{}: {e}", file.display()))?;
+        return Ok(Surface {
+            grid,
+            heights,
+            source: SurfaceSource::HeightMap { file: file.display().to_string(), read: info, preparation: report },
+            e_star_pa: args.e_star.unwrap_or(85e9),
+        });
+    }
+    if let Some(file) = &args.scenario {
+        let scenario = Scenario::load(file, &args.sets)?;
+        let base = file.parent().map(PathBuf::from).unwrap_or_default();
+        let spec = scenario.require_surface().map_err(|e| format!("{}: {e}", file.display()))?;
+        let (patch, faces) =
+            stiction_surface::height_map_patch(spec, &base).map_err(|e| format!("{}: surface: {e}", file.display()))?;
+        let grid = Grid::new(patch.nx(), patch.ny(), patch.dx_m(), patch.dy_m())
+            .map_err(|e| format!("{}: {e} (the BEM grid limit)", file.display()))?;
+        let heights = patch.into_heights_m();
+        stiction_bem::spec::check_complete(&heights).map_err(|e| format!("{}: {e}", file.display()))?;
+        let e_star_pa = match args.e_star {
+            Some(e) => e,
+            None => {
+                let m = scenario.require_material().map_err(|e| format!("{}: {e}", file.display()))?;
+                0.75 / m.compliance_per_pa()
+            }
+        };
+        return Ok(Surface {
+            grid,
+            heights,
+            source: SurfaceSource::Scenario { file: file.display().to_string(), faces },
+            e_star_pa,
+        });
+    }
     if !(2..=MAX_SIDE).contains(&args.grid) {
         return Err(format!("--grid {}: expected 2..={MAX_SIDE} points per side", args.grid).into());
-    }
-    if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
-        return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
     }
     let n = args.grid;
     let dx = args.size / n as f64;
@@ -145,7 +234,38 @@ pub fn run(args: Args) -> CliResult {
     let roll_off = args.roll_off.unwrap_or(args.size / 4.0);
     let short = args.short.unwrap_or(4.0 * dx);
     let heights = synth::self_affine(grid, args.hurst, roll_off, short, args.rms_height, args.seed)?;
-    let mut solver = BemSolver::new(n, n, dx, dx, &heights, args.e_star)?;
+    Ok(Surface {
+        grid,
+        heights,
+        source: SurfaceSource::Generated {
+            hurst: args.hurst,
+            roll_off_wavelength_m: roll_off,
+            short_wavelength_m: short,
+            seed: args.seed,
+        },
+        e_star_pa: args.e_star.unwrap_or(85e9),
+    })
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> CliResult {
+    if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
+        return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
+    }
+    if args.gap_sweep.is_none() && args.sweep.is_none() && args.pressure.is_none() {
+        return Err("give --pressure, --sweep or --gap-sweep".into());
+    }
+    // Check the output folder before the work, so a refusal comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "bem", args.force)?),
+        None => None,
+    };
+    let Surface { grid, heights, source, e_star_pa } = build_surface(&args)?;
+    let seed = match source {
+        SurfaceSource::Generated { seed, .. } => Some(seed),
+        _ => None,
+    };
+    let mut solver = BemSolver::new(grid.nx, grid.ny, grid.dx_m, grid.dy_m, &heights, e_star_pa)?;
     let rms_slope = solver.slope_rms();
     let opts = SolverOptions { tolerance: args.tolerance, ..Default::default() };
     let law = match (args.work_of_adhesion, args.range) {
@@ -204,7 +324,7 @@ pub fn run(args: Args) -> CliResult {
         .collect();
     if args.compare_asperity {
         for p in points.iter_mut().filter(|p| p.load_n > 0.0) {
-            let st = stiction_bem::asperity::at_load(&summits, args.e_star, p.load_n)?;
+            let st = stiction_bem::asperity::at_load(&summits, e_star_pa, p.load_n)?;
             let frac = st.contact_area_m2 / grid.area_m2();
             p.asperity_contact_fraction = Some(frac);
             p.area_ratio_bem_over_asperity = Some(p.contact_fraction / frac);
@@ -212,18 +332,19 @@ pub fn run(args: Args) -> CliResult {
     }
     let pull_off_n = law.map(|_| points.iter().map(|p| p.load_n).fold(0.0, f64::min));
     let out = Output {
+        surface: source,
         grid,
-        e_star_pa: args.e_star,
+        e_star_pa,
         rms_height_m: solver.height_rms_m(),
         rms_slope,
-        seed: args.seed,
+        seed,
         dugdale: law,
         tolerance: args.tolerance,
         points,
         pull_off_n,
     };
-    if let (Some(dir), Some(last)) = (&args.out, states.last()) {
-        write_outputs(dir, &out, last, &heights)?;
+    if let (Some(set), Some(last)) = (outputs, states.last()) {
+        write_outputs(set, &out, last, &heights, &args.fig)?;
     }
     if args.json {
         return print_json(&out);
@@ -231,17 +352,35 @@ pub fn run(args: Args) -> CliResult {
     print_table(
         "BEM rough contact (periodic half-space, rigid flat)",
         &[
-            ("grid", format!("{n} x {n}, pixel {}", q(dx, Dimension::Length))),
+            (
+                "grid",
+                if grid.dx_m == grid.dy_m {
+                    format!("{} x {}, pixel {}", grid.nx, grid.ny, q(grid.dx_m, Dimension::Length))
+                } else {
+                    format!(
+                        "{} x {}, pixel {} x {}",
+                        grid.nx,
+                        grid.ny,
+                        q(grid.dx_m, Dimension::Length),
+                        q(grid.dy_m, Dimension::Length)
+                    )
+                },
+            ),
             (
                 "surface",
                 format!(
-                    "H {}, rms height {}, rms slope {:.4}",
-                    args.hurst,
+                    "{}, rms height {}, rms slope {:.4}",
+                    match &out.surface {
+                        SurfaceSource::Generated { hurst, seed, .. } =>
+                            format!("generated self-affine H {hurst}, seed {seed}"),
+                        SurfaceSource::HeightMap { file, .. } => format!("height map {file}"),
+                        SurfaceSource::Scenario { file, .. } => format!("shoe patch of {file}"),
+                    },
                     q(out.rms_height_m, Dimension::Length),
                     rms_slope
                 ),
             ),
-            ("E*", q(args.e_star, Dimension::Pressure)),
+            ("E*", q(e_star_pa, Dimension::Pressure)),
             (
                 "adhesion",
                 law.map_or("none".into(), |l| {
@@ -301,9 +440,15 @@ struct FieldRow {
     contact: u8,
 }
 
-fn write_outputs(dir: &Path, out: &Output, last: &ContactSolution, heights: &[f64]) -> CliResult {
-    ensure_dir(dir)?;
+fn write_outputs(
+    mut set: OutputSet,
+    out: &Output,
+    last: &ContactSolution,
+    heights: &[f64],
+    fig: &crate::figargs::FigureArgs,
+) -> CliResult {
     let g = out.grid;
+    set.add_bytes("results.json", (serde_json::to_string_pretty(out)? + "\n").as_bytes())?;
     let rows: Vec<FieldRow> = (0..g.len())
         .map(|i| FieldRow {
             x_m: (i % g.nx) as f64 * g.dx_m,
@@ -314,73 +459,91 @@ fn write_outputs(dir: &Path, out: &Output, last: &ContactSolution, heights: &[f6
             contact: u8::from(last.contact[i]),
         })
         .collect();
-    write_atomic(&dir.join("fields.csv"), &csv_bytes(&rows)?)?;
-    write_atomic(&dir.join("curve.csv"), &csv_bytes(&out.points)?)?;
-    let side_um = g.nx as f64 * g.dx_m * 1e6;
-    heat_map(&dir.join("pressure.png"), &last.pressure_pa, g, "Pressure (MPa)", 1e-6, side_um)?;
-    let gap_nm: Vec<f64> = last.gap_m.clone();
-    heat_map(&dir.join("gap.png"), &gap_nm, g, "Gap (nm)", 1e9, side_um)?;
+    set.add_bytes("fields.csv", &csv_bytes(&rows)?)?;
+    drop(rows);
+    set.add_bytes("curve.csv", &csv_bytes(&out.points)?)?;
+    set.add_image_map(
+        "height.png",
+        &fig.apply_map(heat_map(heights, g, "Height of the composite surface", "height (nm)", 1e9)),
+    )?;
+    set.add_image_map(
+        "pressure.png",
+        &fig.apply_map(heat_map(&last.pressure_pa, g, "Pressure (last state)", "pressure (MPa)", 1e-6)),
+    )?;
+    set.add_image_map("gap.png", &fig.apply_map(heat_map(&last.gap_m, g, "Gap (last state)", "gap (nm)", 1e9)))?;
     let pts = &out.points;
     if pts.len() > 1 {
         let area: Vec<(f64, f64)> = pts.iter().map(|p| (p.mean_pressure_pa * 1e-6, p.contact_fraction)).collect();
-        Chart::new("Load - area (BEM)", "Mean pressure (MPa)", "Contact fraction A_r/A_0")
-            .with(Series::line("BEM", area.clone()))
-            .with(Series::markers("solved", area))
-            .write_png(&dir.join("load_area.png"))?;
+        set.add_chart(
+            "load_area.png",
+            &fig.apply(
+                Chart::new("Load - area (BEM)", "mean pressure p (MPa)", "contact fraction A_r/A_0")
+                    .keys("mean_pressure_mpa", "contact_fraction")
+                    .with(Series::line("BEM", area.clone()))
+                    .with(Series::markers("solved", area)),
+            )?,
+        )?;
         let gap: Vec<(f64, f64)> = pts.iter().map(|p| (p.mean_gap_m * 1e9, p.mean_pressure_pa * 1e-6)).collect();
-        Chart::new("Load - mean gap (BEM)", "Mean gap (nm)", "Mean pressure (MPa)")
-            .with(Series::line("BEM", gap.clone()))
-            .with(Series::markers("solved", gap))
-            .write_png(&dir.join("load_gap.png"))?;
+        set.add_chart(
+            "load_gap.png",
+            &fig.apply(
+                Chart::new("Load - mean gap (BEM)", "mean gap (nm)", "mean pressure p (MPa)")
+                    .keys("mean_gap_nm", "mean_pressure_mpa")
+                    .with(Series::line("BEM", gap.clone()))
+                    .with(Series::markers("solved", gap)),
+            )?,
+        )?;
         let ratio: Vec<(f64, f64)> =
             pts.iter().filter_map(|p| p.area_ratio_bem_over_asperity.map(|r| (p.mean_pressure_pa * 1e-6, r))).collect();
         if ratio.len() > 1 {
-            Chart::new("Real contact area: BEM / asperity model", "Mean pressure (MPa)", "A_r(BEM) / A_r(asperity)")
-                .with(Series::line("BEM / independent Hertz summits", ratio.clone()))
-                .with(Series::markers("solved", ratio))
-                .write_png(&dir.join("area_ratio.png"))?;
+            set.add_chart(
+                "area_ratio.png",
+                &fig.apply(
+                    Chart::new(
+                        "Real contact area: BEM / asperity model",
+                        "mean pressure p (MPa)",
+                        "A_r(BEM) / A_r(asperity)",
+                    )
+                    .keys("mean_pressure_mpa", "area_ratio")
+                    .with(Series::line("BEM / independent Hertz summits", ratio.clone()))
+                    .with(Series::markers("solved", ratio)),
+                )?,
+            )?;
         }
     }
-    Ok(())
+    set.commit()
 }
 
-/// A heat map of a row-major field (values times `scale`), with a colour bar; at most 512 x 512
-/// cells are drawn (larger grids are sampled every k-th point).
-fn heat_map(path: &Path, field: &[f64], g: Grid, label: &str, scale: f64, side_um: f64) -> CliResult {
-    let step = g.nx.max(g.ny).div_ceil(512).max(1);
-    let (lo, hi) =
-        field.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &v| (a.0.min(v * scale), a.1.max(v * scale)));
-    let span = if hi > lo { hi - lo } else { 1.0 };
-    let root = BitMapBackend::new(path, (1000, 860)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let (main, bar) = root.split_horizontally(860);
-    let mut chart = ChartBuilder::on(&main)
-        .caption(label, ("sans-serif", 28))
-        .margin(16)
-        .x_label_area_size(50)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0.0..side_um, 0.0..side_um * g.ny as f64 * g.dy_m / (g.nx as f64 * g.dx_m))?;
-    chart.configure_mesh().disable_mesh().x_desc("x (um)").y_desc("y (um)").label_style(("sans-serif", 18)).draw()?;
-    let (px, py) = (g.dx_m * 1e6 * step as f64, g.dy_m * 1e6 * step as f64);
-    chart.draw_series((0..g.ny).step_by(step).flat_map(|j| {
-        (0..g.nx).step_by(step).map(move |i| {
-            let v = (field[j * g.nx + i] * scale - lo) / span;
-            let c: RGBColor = ViridisRGB.get_color(v.clamp(0.0, 1.0));
-            let (x, y) = (i as f64 * g.dx_m * 1e6, j as f64 * g.dy_m * 1e6);
-            Rectangle::new([(x, y), (x + px, y + py)], c.filled())
-        })
-    }))?;
-    let mut cb = ChartBuilder::on(&bar)
-        .margin_top(60)
-        .margin_bottom(66)
-        .margin_right(10)
-        .y_label_area_size(90)
-        .build_cartesian_2d(0.0..1.0, lo..lo + span)?;
-    cb.configure_mesh().disable_mesh().disable_x_axis().label_style(("sans-serif", 16)).draw()?;
-    cb.draw_series((0..200).map(|k| {
-        let (a, b) = (lo + span * k as f64 / 200.0, lo + span * (k + 1) as f64 / 200.0);
-        Rectangle::new([(0.0, a), (1.0, b)], ViridisRGB.get_color(k as f64 / 199.0).filled())
-    }))?;
-    root.present()?;
-    Ok(())
+/// A row-major field (values times `scale`) as a heat map, block-averaged to at most 400 x 400
+/// cells.
+fn heat_map(field: &[f64], g: Grid, title: &str, value_label: &str, scale: f64) -> ImageMap {
+    let block = g.nx.max(g.ny).div_ceil(400).max(1);
+    let (cx, cy) = (g.nx.div_ceil(block), g.ny.div_ceil(block));
+    let mut cells = vec![f64::NAN; cx * cy];
+    for by in 0..cy {
+        for bx in 0..cx {
+            let (mut sum, mut n) = (0.0, 0usize);
+            for iy in by * block..((by + 1) * block).min(g.ny) {
+                for ix in bx * block..((bx + 1) * block).min(g.nx) {
+                    sum += field[iy * g.nx + ix];
+                    n += 1;
+                }
+            }
+            cells[by * cx + bx] = sum / n as f64 * scale;
+        }
+    }
+    ImageMap {
+        title: if block > 1 { format!("{title}, drawn in {block} x {block} blocks") } else { title.to_string() },
+        x_label: "x (µm)".into(),
+        y_label: "y (µm)".into(),
+        value_label: value_label.into(),
+        nx: cx,
+        ny: cy,
+        values: cells,
+        x_max: g.nx as f64 * g.dx_m * 1e6,
+        y_max: g.ny as f64 * g.dy_m * 1e6,
+        markers: Vec::new(),
+        size_px: None,
+        font_px: None,
+    }
 }

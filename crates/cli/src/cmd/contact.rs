@@ -1,4 +1,5 @@
-//! `stiction contact`: the explicit asperity-by-asperity solver on a scenario's surface.
+//! `stiction contact`: the explicit asperity-by-asperity solver (or, with `--model bem`, the
+//! boundary-element model) on a scenario's surface.
 
 use std::path::PathBuf;
 
@@ -21,11 +22,24 @@ pub enum Mode {
     Fixed,
 }
 
+/// Which solver `stiction contact` runs.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Model {
+    /// The explicit asperity-by-asperity solver (summits, tilting rigid shoe).
+    Explicit,
+    /// The FFT boundary-element solver on the height-map patch under the shoe (needs
+    /// `surface.source` = "height_map"; settings from `contact.bem`).
+    Bem,
+}
+
 /// Equilibrium of a rigid shoe on the scenario's rough surface under a normal load (or a sweep of loads).
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The scenario JSON file (surface, material, contact law).
     pub scenario: PathBuf,
+    /// The solver: explicit (default) or bem.
+    #[arg(long, value_enum, default_value = "explicit")]
+    pub model: Model,
     /// Normal load, compressive positive ("3 uN"; negative = adhesive pull, down to pull-off).
     #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Force, Constraint::Finite), required_unless_present = "sweep")]
     pub load: Option<f64>,
@@ -88,6 +102,9 @@ pub fn parse_sweep(text: &str, max_steps: usize) -> Result<Vec<f64>, String> {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
+    if args.model == Model::Bem {
+        return run_bem(&args);
+    }
     let mut sets = args.sets.clone();
     sets.push("contact.model=\"explicit\"".into());
     match args.mode {
@@ -221,4 +238,130 @@ fn rows(eq: &Equilibrium, hardness: f64) -> Vec<(&'static str, String)> {
         ("force residual", format!("{:.3e} N", eq.force_residual_n)),
         ("moment residuals", format!("{:.3e} N m, {:.3e} N m", eq.moment_residual_x_n_m, eq.moment_residual_y_n_m)),
     ]
+}
+
+/// One load of `stiction contact --model bem`.
+#[derive(serde::Serialize)]
+struct BemPoint {
+    load_n: f64,
+    real_area_m2: f64,
+    contact_fraction: f64,
+    patches: usize,
+    mean_gap_m: f64,
+    /// The Dugdale tension over the cohesive zone, N (the contact pressure carries L plus it).
+    adhesive_load_n: f64,
+    cohesive_fraction: f64,
+    /// s A_r with the material's shear strength, N.
+    friction_capacity_n: f64,
+    max_pressure_pa: f64,
+    iterations: usize,
+}
+
+#[derive(serde::Serialize)]
+struct BemRun {
+    model: &'static str,
+    grid: stiction_bem::Grid,
+    /// Block factors (x, y) from the map's pixels to the grid.
+    coarsening: (usize, usize),
+    e_star_pa: f64,
+    dugdale: Option<stiction_bem::Dugdale>,
+    shear_strength_pa: f64,
+    points: Vec<BemPoint>,
+}
+
+/// `--model bem`: the boundary-element model of the meter at each load (loading branch).
+fn run_bem(args: &Args) -> CliResult {
+    if args.mode.is_some() || args.contacts.is_some() || args.summits {
+        return Err("--mode, --contacts and --summits belong to the explicit solver; --model bem has a flat shoe and \
+                    reports contact patches"
+            .into());
+    }
+    let mut sets = args.sets.clone();
+    sets.push("contact.model=\"bem\"".into());
+    let scenario = Scenario::load(&args.scenario, &sets)?;
+    let material = scenario.require_material().map_err(|e| format!("{}: {e}", args.scenario.display()))?.clone();
+    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    let mut bem = stiction_meter::build_bem(&scenario, &material, &base)
+        .map_err(|e| format!("{}: {e}", args.scenario.display()))?;
+    let loads = match (&args.sweep, args.load) {
+        (Some(sweep), _) => parse_sweep(sweep, args.max_sweep_steps)?,
+        (None, Some(l)) => vec![l],
+        (None, None) => return Err("give --load or --sweep".into()),
+    };
+    if let Some(l) = loads.iter().find(|l| l.is_nan() || **l <= 0.0) {
+        return Err(format!(
+            "load {}: --model bem follows the loading branch and needs compressive loads > 0",
+            q(*l, Dimension::Force)
+        )
+        .into());
+    }
+    let grid = bem.grid();
+    let stress = bem.law().map_or(0.0, |l| l.stress_pa);
+    let mut points = Vec::with_capacity(loads.len());
+    for &load in &loads {
+        let s = bem.solve(load)?;
+        let max_pressure_pa =
+            s.pressure_pa.iter().zip(&s.contact).filter(|(_, c)| **c).map(|(p, _)| p + stress).fold(0.0, f64::max);
+        points.push(BemPoint {
+            load_n: s.load_n(&grid),
+            real_area_m2: s.contact_area_m2,
+            contact_fraction: s.contact_fraction,
+            patches: s.patches,
+            mean_gap_m: s.mean_gap_m,
+            adhesive_load_n: stress * s.cohesive_fraction * grid.area_m2(),
+            cohesive_fraction: s.cohesive_fraction,
+            friction_capacity_n: s.friction_n(material.shear_strength),
+            max_pressure_pa,
+            iterations: s.iterations,
+        });
+    }
+    let out = BemRun {
+        model: "bem",
+        grid,
+        coarsening: bem.coarsening,
+        e_star_pa: 0.75 / material.compliance_per_pa(),
+        dugdale: bem.law(),
+        shear_strength_pa: material.shear_strength,
+        points,
+    };
+    if args.json {
+        return print_json(&out);
+    }
+    crate::outln!(
+        "Boundary-element contact on the shoe patch: {} x {} points of {:.4} nm x {:.4} nm (periodic cell = the patch), {}",
+        grid.nx,
+        grid.ny,
+        grid.dx_m * 1e9,
+        grid.dy_m * 1e9,
+        out.dugdale.map_or("no adhesion".into(), |l| format!(
+            "Dugdale adhesion {} over {} (loading branch)",
+            q(l.stress_pa, Dimension::Pressure),
+            q(l.range_m, Dimension::Length)
+        ))
+    );
+    crate::outln!(
+        "  {:>10} {:>12} {:>10} {:>8} {:>12} {:>11} {:>11} {:>9}",
+        "L (uN)",
+        "A_r (um^2)",
+        "A_r/A_0",
+        "patches",
+        "gap (nm)",
+        "F_adh (uN)",
+        "F_cap (uN)",
+        "q0 (GPa)"
+    );
+    for p in &out.points {
+        crate::outln!(
+            "  {:>10.4} {:>12.5e} {:>10.3e} {:>8} {:>12.4} {:>11.4} {:>11.4} {:>9.3}",
+            p.load_n * 1e6,
+            p.real_area_m2 * 1e12,
+            p.contact_fraction,
+            p.patches,
+            p.mean_gap_m * 1e9,
+            p.adhesive_load_n * 1e6,
+            p.friction_capacity_n * 1e6,
+            p.max_pressure_pa * 1e-9
+        );
+    }
+    Ok(())
 }

@@ -6,6 +6,7 @@ pub mod contact;
 pub mod discrete;
 pub mod fit;
 pub mod gw;
+pub mod map_args;
 pub mod merge;
 pub mod plot;
 pub mod run;

@@ -7,13 +7,13 @@ use stiction_plot::{Chart, ImageMap, Series};
 use stiction_scenario::Scenario;
 use stiction_surface::{Radii, Surface};
 use stiction_topography::{
-    HeightMap, Levelling, MapFormat, MapInfo, MapMetadata, Nayak, Preparation, PreparationReport, PsdWindow,
-    Statistics, Summits, find_summits, parse_length_unit, prepare, radial_psd, read_file, statistics,
+    HeightMap, MapFormat, MapInfo, Nayak, PreparationReport, PsdWindow, Statistics, Summits, find_summits, prepare,
+    radial_psd, read_file, statistics,
 };
 use stiction_units::io::write_atomic;
-use stiction_units::{Constraint, Dimension};
 
-use crate::output::{CliResult, OutputSet, print_json, print_table, quantity};
+use super::map_args::MapArgs;
+use crate::output::{CliResult, OutputSet, print_json, print_table};
 
 /// Read a measured height map (AFM, optical profiler): level it, filter it, find its summits
 /// (8-neighbour maxima, curvature -(z_xx + z_yy)/2) and print the statistics beside Nayak's
@@ -26,30 +26,9 @@ use crate::output::{CliResult, OutputSet, print_json, print_table, quantity};
 pub struct Args {
     /// The height-map file.
     pub file: PathBuf,
-    /// File format: npy, text, gsf or xyz (default: from the extension).
-    #[arg(long, value_parser = |s: &str| s.parse::<MapFormat>())]
-    pub format: Option<MapFormat>,
-    /// Pixel size, when the file does not state it: "10 nm".
-    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
-    pub pixel_size: Option<f64>,
-    /// Pixel size along y, if it differs from --pixel-size.
-    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
-    pub pixel_size_y: Option<f64>,
-    /// Unit of the file's heights, when the file does not state it: "nm", "um", "m".
-    #[arg(long, value_name = "U", value_parser = |s: &str| parse_length_unit(s))]
-    pub height_unit: Option<f64>,
-    /// Unit of the x and y coordinates of an xyz point list: "um".
-    #[arg(long, value_name = "U", value_parser = |s: &str| parse_length_unit(s))]
-    pub xy_unit: Option<f64>,
-    /// Levelling: none, mean, plane, poly2, poly3.
-    #[arg(long, default_value = "plane", value_parser = |s: &str| s.parse::<Levelling>())]
-    pub level: Levelling,
-    /// Short-wavelength cut-off (Gaussian low-pass, 50 % at this wavelength): "40 nm".
-    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
-    pub cutoff: Option<f64>,
-    /// Long-wavelength cut-off (Gaussian high-pass, 50 % at this wavelength): "5 um".
-    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
-    pub long_cutoff: Option<f64>,
+    /// Metadata and preparation of the map.
+    #[command(flatten)]
+    pub map: MapArgs,
     /// Write the summits as CSV (x_m,y_m,height_m,radius_m: readable by a scenario with "source": "csv").
     #[arg(long, value_name = "OUT.csv")]
     pub summits: Option<PathBuf>,
@@ -110,19 +89,13 @@ struct Output {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
-    let meta = MapMetadata {
-        pixel_size_x_m: args.pixel_size,
-        pixel_size_y_m: args.pixel_size_y,
-        height_unit_m: args.height_unit,
-        xy_unit_m: args.xy_unit,
-    };
     // Check the output folder before the work, so a refusal comes at once.
     let outputs = match &args.out {
         Some(dir) => Some(OutputSet::begin(dir, "topography", args.force)?),
         None => None,
     };
-    let (raw, info) = read_file(&args.file, args.format, &meta)?;
-    let prep = Preparation { levelling: args.level, short_cutoff_m: args.cutoff, long_cutoff_m: args.long_cutoff };
+    let (raw, info) = read_file(&args.file, args.map.format, &args.map.metadata())?;
+    let prep = args.map.preparation();
     let (map, report) = prepare(&raw, &prep)?;
     drop(raw);
     let summits = find_summits(&map);

@@ -1,0 +1,54 @@
+//! The height-map flags shared by `stiction topography` and `stiction bem`: the file's metadata
+//! (when the file does not state it) and the preparation (levelling and cut-offs). The reading
+//! and the preparation themselves are `stiction_topography::read_file` and `prepare`.
+
+use stiction_topography::{Levelling, MapFormat, MapMetadata, Preparation, parse_length_unit};
+use stiction_units::{Constraint, Dimension};
+
+use crate::output::quantity;
+
+/// Metadata and preparation of a height-map file.
+#[derive(clap::Args, Debug, Clone)]
+pub struct MapArgs {
+    /// File format: npy, text, gsf or xyz (default: from the extension).
+    #[arg(long, value_parser = |s: &str| s.parse::<MapFormat>())]
+    pub format: Option<MapFormat>,
+    /// Pixel size, when the file does not state it: "10 nm".
+    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    pub pixel_size: Option<f64>,
+    /// Pixel size along y, if it differs from --pixel-size.
+    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    pub pixel_size_y: Option<f64>,
+    /// Unit of the file's heights, when the file does not state it: "nm", "um", "m".
+    #[arg(long, value_name = "U", value_parser = |s: &str| parse_length_unit(s))]
+    pub height_unit: Option<f64>,
+    /// Unit of the x and y coordinates of an xyz point list: "um".
+    #[arg(long, value_name = "U", value_parser = |s: &str| parse_length_unit(s))]
+    pub xy_unit: Option<f64>,
+    /// Levelling: none, mean, plane, poly2, poly3.
+    #[arg(long, default_value = "plane", value_parser = |s: &str| s.parse::<Levelling>())]
+    pub level: Levelling,
+    /// Short-wavelength cut-off (Gaussian low-pass, 50 % at this wavelength): "40 nm".
+    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    pub cutoff: Option<f64>,
+    /// Long-wavelength cut-off (Gaussian high-pass, 50 % at this wavelength): "5 um".
+    #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    pub long_cutoff: Option<f64>,
+}
+
+impl MapArgs {
+    /// The metadata given on the command line.
+    pub fn metadata(&self) -> MapMetadata {
+        MapMetadata {
+            pixel_size_x_m: self.pixel_size,
+            pixel_size_y_m: self.pixel_size_y,
+            height_unit_m: self.height_unit,
+            xy_unit_m: self.xy_unit,
+        }
+    }
+
+    /// The preparation asked for.
+    pub fn preparation(&self) -> Preparation {
+        Preparation { levelling: self.level, short_cutoff_m: self.cutoff, long_cutoff_m: self.long_cutoff }
+    }
+}
