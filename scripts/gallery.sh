@@ -69,7 +69,7 @@ s topography data/topography-example/wall.gsf --out "$TMP/topo" $FIG
 for f in height_map psd summit_heights summit_radii; do take "topo/$f.png" "topography-$f.png"; done
 
 # Boundary-element contact.
-s bem --grid 64 --sweep 2MPa:60MPa:6 --compare-asperity --out "$TMP/bem"
+s bem --map data/topography-example/wall.gsf --e-star "82.4 GPa" --sweep 2MPa:2GPa:8 --compare-asperity --out "$TMP/bem" $FIG
 for f in "$TMP"/bem/*.png; do n=$(basename "$f"); cp "$f" "$OUT/bem-$n"; done
 
 ls "$OUT" | wc -l | xargs echo "gallery: PNG files in $OUT:"

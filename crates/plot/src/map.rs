@@ -64,9 +64,22 @@ impl ImageMap {
         let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| backend_err(&e))?;
         let (main, bar) = root.split_horizontally(w.saturating_sub((170.0 * f / 15.0) as u32).max(w / 2));
+        // Square pixels: the plot area keeps the map's aspect ratio whatever the image size; the
+        // spare width or height goes to the right or bottom margin. The caption's height is
+        // estimated from its font size (plotters draws it at about 1.2 font heights).
+        let (mw, mh) = main.dim_in_pixel();
+        let caption_px = (f * 22.0 / 15.0 * 1.2).round() as u32;
+        let (avail_w, avail_h) =
+            (mw.saturating_sub(14 * 2 + 70).max(50) as f64, mh.saturating_sub(14 * 2 + 52 + caption_px).max(50) as f64);
+        let px_per_unit = (avail_w / self.x_max).min(avail_h / self.y_max);
+        let spare_w = (avail_w - px_per_unit * self.x_max).max(0.0).floor() as u32;
+        let spare_h = (avail_h - px_per_unit * self.y_max).max(0.0).floor() as u32;
         let mut chart = ChartBuilder::on(&main)
             .caption(&self.title, ("sans-serif", f * 22.0 / 15.0))
-            .margin(14)
+            .margin_top(14 + spare_h / 2)
+            .margin_left(14)
+            .margin_right(14 + spare_w)
+            .margin_bottom(14 + spare_h - spare_h / 2)
             .x_label_area_size(52)
             .y_label_area_size(70)
             .build_cartesian_2d(0.0..self.x_max, 0.0..self.y_max)
@@ -108,10 +121,13 @@ impl ImageMap {
                 .draw()
                 .map_err(|e| backend_err(&e))?;
         }
-        // Colour bar.
+        // Colour bar, labelled with as many decimals as a fifth of its span needs.
+        let decimals = (-(span / 5.0).log10()).ceil().clamp(0.0, 6.0) as usize;
+        // The bar spans the plot area's height (its caption, the value label, just above it).
+        let bar_caption_px = (f * 1.2).round() as u32;
         let mut cb = ChartBuilder::on(&bar)
-            .margin_top(50)
-            .margin_bottom(66)
+            .margin_top((14 + spare_h / 2 + caption_px).saturating_sub(bar_caption_px))
+            .margin_bottom(14 + 52 + spare_h - spare_h / 2)
             .margin_right(10)
             .y_label_area_size(80)
             .caption(&self.value_label, ("sans-serif", f))
@@ -120,7 +136,7 @@ impl ImageMap {
         cb.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_label_formatter(&|v| format!("{v:.3}"))
+            .y_label_formatter(&|v| format!("{v:.decimals$}"))
             .label_style(("sans-serif", f * 14.0 / 15.0))
             .draw()
             .map_err(|e| backend_err(&e))?;

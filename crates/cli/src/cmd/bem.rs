@@ -13,7 +13,7 @@ use stiction_topography::{MapInfo, Patch, PreparationReport, prepare, read_file}
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use super::map_args::MapArgs;
-use crate::output::{CliResult, OutputSet, print_json, print_table, q, quantity};
+use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q, quantity};
 
 /// Largest grid side of the command (the solver's own limit is 4096 x 4096 points).
 const MAX_SIDE: usize = 4096;
@@ -393,29 +393,28 @@ pub fn run(args: Args) -> CliResult {
             ),
         ],
     );
-    crate::outln!(
-        "  {:>12} {:>12} {:>12} {:>10} {:>8} {:>12} {:>6}",
-        "p_mean",
-        "load",
-        "mean gap",
-        "A/A0",
-        "patches",
-        "friction",
-        "iter"
-    );
+    let compared = out.points.iter().any(|p| p.area_ratio_bem_over_asperity.is_some());
+    let mut header = vec!["p_mean", "load", "mean gap", "A/A0", "patches", "friction", "iterations"];
+    if compared {
+        header.push("A(BEM)/A(asperity)");
+    }
+    let mut t = TextTable::new(&header);
     for p in &out.points {
-        crate::outln!(
-            "  {:>12} {:>12} {:>12} {:>10.5} {:>8} {:>12} {:>6} {:>10}",
+        let mut row = vec![
             q(p.mean_pressure_pa, Dimension::Pressure),
             q(p.load_n, Dimension::Force),
             q(p.mean_gap_m, Dimension::Length),
-            p.contact_fraction,
-            p.patches,
+            format!("{:.5}", p.contact_fraction),
+            p.patches.to_string(),
             p.friction_n.map_or("-".into(), |f| q(f, Dimension::Force)),
-            p.iterations,
-            p.area_ratio_bem_over_asperity.map_or("-".into(), |r| format!("{r:.3}"))
-        );
+            p.iterations.to_string(),
+        ];
+        if compared {
+            row.push(p.area_ratio_bem_over_asperity.map_or("-".into(), |r| format!("{r:.3}")));
+        }
+        t.row(row);
     }
+    t.print("  ");
     if let Some(f) = out.pull_off_n {
         crate::outln!("  pull-off (most tensile load on the path): {}", q(f, Dimension::Force));
     }
