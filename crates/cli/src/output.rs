@@ -347,10 +347,12 @@ impl OutputSet {
     }
 
     /// Adds a colour image (a field drawn as a heat map with a colour bar) as PNG.
+    /// Its drawn cells go beside it as CSV under the same name (`height.png`, `height.csv`).
     pub fn add_image_map(&mut self, name: &str, map: &stiction_plot::ImageMap) -> CliResult {
         let path = self.claim(name)?;
         map.write_png(&path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
-        Ok(())
+        let csv_name = Path::new(name).with_extension("csv").to_string_lossy().into_owned();
+        self.add_bytes(&csv_name, map.data_csv().as_bytes())
     }
 
     /// Writes the manifest and puts the folder in place.
