@@ -295,7 +295,23 @@ fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
     let finite = |v: &[stiction_actuator::SweepPoint]| -> Vec<(f64, f64)> {
         v.iter().filter(|p| p.travel_m.is_finite()).map(|p| (p.voltage_v, p.travel_m * 1e6)).collect()
     };
-    let (up, down) = (finite(&sweep.loading), finite(&sweep.unloading));
+    let (mut up, down) = (finite(&sweep.loading), finite(&sweep.unloading));
+    // The sweep's voltage steps end below pull-in, where x(V) turns vertical; the stable branch is
+    // closed up to the pull-in point from the equilibrium voltage V(x) at 24 travels between the
+    // last stable step and x_pi (exact points of the same curve, not an interpolation).
+    if let (Ok(pi), Some(&(v_last, x_last_um))) = (model.pull_in(), up.last())
+        && !pi.limited_by_stop
+        && pi.travel_m * 1e6 > x_last_um
+    {
+        let x_last = x_last_um * 1e-6;
+        for k in 1..=24 {
+            let x = x_last + (pi.travel_m - x_last) * f64::from(k) / 24.0;
+            let v = if k == 24 { pi.voltage_v } else { model.equilibrium_voltage_v(x) };
+            if v.is_finite() && v >= v_last {
+                up.push((v, x * 1e6));
+            }
+        }
+    }
     let mut chart = Chart::new(
         format!("Actuator `{name}`: travel against voltage, loading and unloading"),
         "voltage V (V)",
