@@ -49,7 +49,7 @@ take act-pull.png plot-actuator-pull.png
 s study scenarios/tas2000.json --samples 300 --quiet --out "$TMP/study" $FIG
 take study/mu_cdf.png study-mu-cdf.png
 take study/mu_vs_fa0.png study-mu-vs-fa0.png
-take study/sensitivity.png study-sensitivity.png
+take study/sensitivity_indices.png study-sensitivity.png
 
 # Fits of measured voltages.
 s fit --scenario scenarios/tas2000-fit-synthetic.json --surfaces 20 --draws 1000 --out "$TMP/fit" $FIG

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use crate::util::{root, stiction, stiction_json, temp_dir};
 
-const FILES: [&str; 10] = [
+const FILES: [&str; 11] = [
     "samples.log",
     "samples.csv",
     "study.json",
@@ -17,8 +17,9 @@ const FILES: [&str; 10] = [
     "mu_vs_fa0.csv",
     "mu_cdf.svg",
     "mu_vs_fa0.svg",
-    "sensitivity.svg",
-    "sensitivity.png",
+    "sensitivity_indices.svg",
+    "sensitivity_indices.png",
+    "sensitivity_indices.csv",
 ];
 
 fn study(out: &Path, extra: &[&str]) {
@@ -57,6 +58,12 @@ fn threads_and_merged_shards_give_the_bytes_of_one_run() {
     let r = stiction(&args);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     same_files(&one, &merged);
+    // The sensitivity table and the figure's data are two files (the figure's CSV once overwrote
+    // the table).
+    let table = std::fs::read_to_string(one.join("sensitivity.csv")).unwrap();
+    assert!(table.starts_with("input,mu_first_order_sobol,"), "{table}");
+    let chart = std::fs::read_to_string(one.join("sensitivity_indices.csv")).unwrap();
+    assert!(chart.starts_with("series,style,"), "{chart}");
     // Units in every column; a reason for every sample without a fit, counted in the summary.
     let csv = std::fs::read_to_string(one.join("samples.csv")).unwrap();
     let mut lines = csv.lines();

@@ -328,7 +328,8 @@ fn write_figures(summary: &StudySummary, fig: &FigureData, dir: &Path, figargs: 
     let charts = [
         ("mu_cdf", !fig.mu_sorted.is_empty(), cdf_chart(fig, r)),
         ("mu_vs_fa0", !fig.scatter.is_empty(), scatter_chart(fig, r)),
-        ("sensitivity", has_sens, sensitivity_chart(summary)),
+        // Not "sensitivity": its data CSV would overwrite the sensitivity table (sensitivity.csv).
+        ("sensitivity_indices", has_sens, sensitivity_chart(summary)),
     ];
     for (name, _, chart) in charts.into_iter().filter(|c| c.1) {
         let chart = figargs.apply(chart)?;
