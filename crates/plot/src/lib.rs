@@ -19,7 +19,7 @@ use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
 use plotters::prelude::*;
 
 mod map;
-pub use map::ImageMap;
+pub use map::{ImageMap, block_means};
 
 /// How a series is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

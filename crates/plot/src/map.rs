@@ -46,6 +46,34 @@ fn viridis(t: f64) -> RGBColor {
     RGBColor(c(A[i].0, A[i + 1].0), c(A[i].1, A[i + 1].1), c(A[i].2, A[i + 1].2))
 }
 
+/// Block means of a row-major `nx x ny` grid (`values[iy * nx + ix]`) for drawing: the smallest
+/// whole block side `b` that brings the longer side to at most `max_cells` cells, and the mean of
+/// each `b x b` block (the last row and column of blocks may be partial). NaN values are left out
+/// of a mean; a block without any is NaN (drawn grey). Returns `(b, cells_x, cells_y, means)`.
+pub fn block_means(values: &[f64], nx: usize, ny: usize, max_cells: usize) -> (usize, usize, usize, Vec<f64>) {
+    let block = nx.max(ny).div_ceil(max_cells.max(1)).max(1);
+    let (cx, cy) = (nx.div_ceil(block), ny.div_ceil(block));
+    let mut cells = vec![f64::NAN; cx * cy];
+    for by in 0..cy {
+        for bx in 0..cx {
+            let (mut sum, mut n) = (0.0, 0usize);
+            for iy in by * block..((by + 1) * block).min(ny) {
+                for ix in bx * block..((bx + 1) * block).min(nx) {
+                    let v = values[iy * nx + ix];
+                    if !v.is_nan() {
+                        sum += v;
+                        n += 1;
+                    }
+                }
+            }
+            if n > 0 {
+                cells[by * cx + bx] = sum / n as f64;
+            }
+        }
+    }
+    (block, cx, cy, cells)
+}
+
 impl ImageMap {
     /// The drawn cells as CSV: one row per cell with its centre and value, columns named from the
     /// axis and colour-bar labels with their units (`x_um,y_um,height_nm`); an empty value where
@@ -180,6 +208,16 @@ impl ImageMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Block means: a 5 x 3 grid in blocks of 2 (max 3 cells a side), partial blocks and a NaN
+    /// left out of its block's mean; values chosen so every mean is exact in binary.
+    #[test]
+    fn block_means_average_whole_and_partial_blocks() {
+        let v = [1.0, 3.0, 5.0, 7.0, 9.0, 2.0, f64::NAN, 6.0, 8.0, 10.0, 0.5, 0.5, 0.5, 0.5, 0.5];
+        let (b, cx, cy, m) = block_means(&v, 5, 3, 3);
+        assert_eq!((b, cx, cy), (2, 3, 2));
+        assert_eq!(m, vec![2.0, 6.5, 9.5, 0.5, 0.5, 0.5]);
+    }
 
     /// The CSV holds the cell centres and the values drawn, keyed by the labels' units.
     #[test]

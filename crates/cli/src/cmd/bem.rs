@@ -516,21 +516,8 @@ fn write_outputs(
 /// A row-major field (values times `scale`) as a heat map, block-averaged to at most 400 x 400
 /// cells.
 fn heat_map(field: &[f64], g: Grid, title: &str, value_label: &str, scale: f64) -> ImageMap {
-    let block = g.nx.max(g.ny).div_ceil(400).max(1);
-    let (cx, cy) = (g.nx.div_ceil(block), g.ny.div_ceil(block));
-    let mut cells = vec![f64::NAN; cx * cy];
-    for by in 0..cy {
-        for bx in 0..cx {
-            let (mut sum, mut n) = (0.0, 0usize);
-            for iy in by * block..((by + 1) * block).min(g.ny) {
-                for ix in bx * block..((bx + 1) * block).min(g.nx) {
-                    sum += field[iy * g.nx + ix];
-                    n += 1;
-                }
-            }
-            cells[by * cx + bx] = sum / n as f64 * scale;
-        }
-    }
+    let (block, cx, cy, mut cells) = stiction_plot::block_means(field, g.nx, g.ny, 400);
+    cells.iter_mut().for_each(|c| *c *= scale);
     ImageMap {
         title: if block > 1 { format!("{title}, drawn in {block} x {block} blocks") } else { title.to_string() },
         x_label: "x (µm)".into(),

@@ -293,26 +293,8 @@ fn figures(
     fig: &crate::figargs::FigureArgs,
 ) -> CliResult {
     // Height map, block-averaged to at most 400 x 400 cells, with the summits.
-    let block = map.nx().max(map.ny()).div_ceil(400).max(1);
-    let (cx, cy) = (map.nx().div_ceil(block), map.ny().div_ceil(block));
-    let mut cells = vec![f64::NAN; cx * cy];
-    for by in 0..cy {
-        for bx in 0..cx {
-            let (mut sum, mut n) = (0.0, 0);
-            for iy in by * block..((by + 1) * block).min(map.ny()) {
-                for ix in bx * block..((bx + 1) * block).min(map.nx()) {
-                    let z = map.at(ix, iy);
-                    if !z.is_nan() {
-                        sum += z;
-                        n += 1;
-                    }
-                }
-            }
-            if n > 0 {
-                cells[by * cx + bx] = sum / n as f64 * 1e9;
-            }
-        }
-    }
+    let (block, cx, cy, mut cells) = stiction_plot::block_means(map.heights_m(), map.nx(), map.ny(), 400);
+    cells.iter_mut().for_each(|c| *c *= 1e9);
     let (xmax, ymax) = (map.length_x_m() * 1e6, map.length_y_m() * 1e6);
     let markers: Vec<(f64, f64)> = (0..s.len())
         .map(|i| ((f64::from(s.ix[i]) + 0.5) * map.dx_m() * 1e6, (f64::from(s.iy[i]) + 0.5) * map.dy_m() * 1e6))
