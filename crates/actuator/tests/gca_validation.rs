@@ -4,20 +4,10 @@
 //! and for release over the nine finger lengths, with at most one global fitted parameter
 //! (here the stop contact standoff, fitted to release only).
 
-use std::path::PathBuf;
-
 use stiction_actuator::*;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn gca_spec() -> ArraySpec {
-    let text = std::fs::read_to_string(root().join("scenarios/gca-rauf2022.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    assert_eq!(v["format_version"], 1);
-    serde_json::from_value(v["actuators"]["gca"].clone()).unwrap()
-}
+mod common;
+use common::{gca_spec, root};
 
 fn data() -> Vec<MeasuredPoint> {
     read_measurements(&root().join("data/gca-pullin-release/measured.csv")).unwrap()

@@ -6,28 +6,13 @@
 //! `cargo test -p stiction-actuator --release --test transients -- --nocapture` prints the numbers
 //! quoted in docs/actuators.md.
 
-use std::path::PathBuf;
-
 use stiction_actuator::*;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn gca_spec() -> ArraySpec {
-    let text = std::fs::read_to_string(root().join("scenarios/gca-rauf2022.json")).unwrap();
-    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    serde_json::from_value(v["actuators"]["gca"].clone()).unwrap()
-}
+mod common;
+use common::{at_length, gca_spec, root};
 
 fn data() -> Vec<MeasuredTransient> {
     read_transients(&root().join("data/gca-transients/measured_times.csv")).unwrap()
-}
-
-fn at_length(spec: &ArraySpec, drawn_length_m: f64) -> ArraySpec {
-    let mut s = spec.clone();
-    s.overlap_length = drawn_length_m;
-    s
 }
 
 #[test]
