@@ -1,7 +1,7 @@
 //! `stiction bem`: a small non-adhesive sweep with the asperity comparison and all outputs, an
 //! adhesive mean-gap cycle, and bad flags (exit status 2, a message naming the flag).
 
-use crate::util::{stiction, stiction_json, temp_dir};
+use crate::util::{assert_foreign_file_needs_force, stiction, stiction_json, temp_dir};
 
 #[test]
 fn bem_sweep_writes_fields_curves_and_figures() {
@@ -143,12 +143,7 @@ fn bem_on_a_scenario_patch_with_output_set() {
     assert!(manifest.contains("\"command\": \"bem\"") && manifest.contains("fields.csv"), "{manifest}");
     // A second run replaces the folder; a foreign file makes it refuse without --force.
     assert!(run(&[]).status.success());
-    std::fs::write(out_dir.join("notes.txt"), "mine").unwrap();
-    let refused = run(&[]);
-    assert_eq!(refused.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&refused.stderr).contains("--force"));
-    assert!(run(&["--force"]).status.success());
-    assert_eq!(std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(), "mine");
+    assert_foreign_file_needs_force(&out_dir, &run, "bem");
 }
 
 /// The bundled `bem` scenario through the friction meter end to end: Fig. 5 and 7 with their

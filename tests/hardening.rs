@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::util::{root, stiction, temp_dir};
+use crate::util::{assert_foreign_file_needs_force, root, stiction, temp_dir};
 
 fn bin() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_stiction"));
@@ -207,13 +207,7 @@ fn output_folder_holds_one_run_with_a_manifest() {
     assert_complete_run(&out_dir);
     assert!(!out_dir.join("old.csv").exists());
     // A foreign file: refused without --force (naming it), kept with --force.
-    std::fs::write(out_dir.join("notes.txt"), "mine").unwrap();
-    let r = run(&[]);
-    let stderr = String::from_utf8_lossy(&r.stderr);
-    assert_eq!(r.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("notes.txt") && stderr.contains("--force"), "{stderr}");
-    assert!(run(&["--force"]).status.success());
-    assert_eq!(std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(), "mine");
+    assert_foreign_file_needs_force(&out_dir, &run, "run");
     // An output folder that is a symbolic link is refused; its target untouched.
     #[cfg(unix)]
     {

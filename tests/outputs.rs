@@ -1,6 +1,6 @@
 //! Text and JSON outputs (issue 14): user-facing names, units in keys, readable tables, paths.
 
-use crate::util::{stiction, stiction_json};
+use crate::util::{assert_foreign_file_needs_force, stiction, stiction_json};
 
 fn stdout(args: &[&str]) -> String {
     let out = stiction(args);
@@ -246,12 +246,6 @@ fn fit_and_topography_out_folders_have_a_manifest_and_refuse_foreign_files() {
         assert_eq!(present, listed, "{what}: the folder holds exactly the listed files");
         // A second run replaces the folder; a foreign file makes it refuse, unless --force.
         assert!(run(&[]).status.success());
-        std::fs::write(out.join("notes.txt"), "mine").unwrap();
-        let r = run(&[]);
-        let err = String::from_utf8_lossy(&r.stderr);
-        assert_eq!(r.status.code(), Some(2), "{what}: {err}");
-        assert!(err.contains("notes.txt") && err.contains("--force"), "{what}: {err}");
-        assert!(run(&["--force"]).status.success());
-        assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "mine");
+        assert_foreign_file_needs_force(out, run, what);
     }
 }

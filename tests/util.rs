@@ -34,3 +34,16 @@ pub fn temp_dir(name: &str) -> PathBuf {
 pub fn num(v: &serde_json::Value, key: &str) -> f64 {
     v.get(key).and_then(serde_json::Value::as_f64).unwrap_or_else(|| panic!("no number `{key}` in {v}"))
 }
+
+/// The `--out` rule for a folder that holds a file no stiction run wrote (`notes.txt` is put in
+/// `out_dir`): `run(&[])` refuses with status 2 naming the file and `--force`; `run(&["--force"])`
+/// succeeds and leaves the file as it was. `what` names the command in failure messages.
+pub fn assert_foreign_file_needs_force(out_dir: &std::path::Path, run: &dyn Fn(&[&str]) -> Output, what: &str) {
+    std::fs::write(out_dir.join("notes.txt"), "mine").unwrap();
+    let r = run(&[]);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{what}: {err}");
+    assert!(err.contains("notes.txt") && err.contains("--force"), "{what}: {err}");
+    assert!(run(&["--force"]).status.success(), "{what} --force");
+    assert_eq!(std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(), "mine", "{what}");
+}
