@@ -71,6 +71,7 @@ pub fn calibrate_from_pull_in(
         let mut s = spec.clone();
         s.front_gap = Some(gap - 2.0 * u);
         s.conversion_factor = None;
+        s.calibrated_on = None;
         s.to_model()
     };
     let v_at = |gap: f64| -> Result<f64, ActuatorError> { Ok(model_at(gap)?.pull_in()?.voltage_v) };

@@ -78,6 +78,14 @@ pub struct ArraySpec {
     )]
     #[schemars(with = "Option<stiction_units::QuantityInput>")]
     pub conversion_factor: Option<f64>,
+    /// The plate geometry `conversion_factor` was measured on (a calibration states what it
+    /// calibrates). The conversion factor fixes the as-built front gap of that geometry; when the
+    /// array's own `plate_count`, `overlap_length` or `thickness` differ, the same gap is carried
+    /// over and the conversion factor is re-derived for the array's geometry
+    /// ([`ArraySpec::calibration_rederived`] says so). Absent: the calibration is taken as
+    /// measured on this array's geometry (and cannot be checked).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub calibrated_on: Option<CalibrationGeometry>,
     /// Travel at which the conversion factor is defined/evaluated (m), default 0 (initial gap).
     /// For the meter's clamp array: the travel at which the shoe touches the wall.
     #[serde(default, deserialize_with = "stiction_units::de::length_nonnegative")]
@@ -125,6 +133,22 @@ pub struct ArraySpec {
     /// default none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shuttle: Option<ShuttleSpec>,
+}
+
+/// The plate geometry a conversion factor was measured on (drawn dimensions, like the array's).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct CalibrationGeometry {
+    /// Number of movable plates of the calibrated array.
+    pub plate_count: u32,
+    /// Drawn overlap length of the calibrated array (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub overlap_length: f64,
+    /// Plate thickness of the calibrated array (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub thickness: f64,
 }
 
 fn is_quasi_static(p: &PullInProtocol) -> bool {
@@ -325,7 +349,32 @@ impl ArraySpec {
         plates.front_gap_m = match (self.front_gap, self.conversion_factor) {
             (Some(g), None) => positive("front_gap", g)? + 2.0 * u,
             (None, Some(a)) => {
-                crate::conversion::infer_front_gap_m(&plates, self.operating_travel, positive("conversion_factor", a)?)?
+                // The calibration fixes the as-built gap of the geometry it was measured on; the
+                // same gap (same process) serves the array's own geometry.
+                let mut calibrated = plates;
+                if let Some(c) = &self.calibrated_on {
+                    if c.plate_count == 0 {
+                        return Err(ActuatorError::InvalidField {
+                            field: "calibrated_on.plate_count".into(),
+                            value: 0.0,
+                            expected: "at least 1 plate".into(),
+                        });
+                    }
+                    calibrated.plate_count = c.plate_count;
+                    calibrated.overlap_length_m = positive("calibrated_on.overlap_length", c.overlap_length)? - u;
+                    calibrated.thickness_m = positive("calibrated_on.thickness", c.thickness)?;
+                    if calibrated.overlap_length_m <= 0.0 {
+                        return Err(ActuatorError::Inconsistent(format!(
+                            "undercut = {u:e} m consumes the whole calibrated_on.overlap_length = {:e} m",
+                            c.overlap_length
+                        )));
+                    }
+                }
+                crate::conversion::infer_front_gap_m(
+                    &calibrated,
+                    self.operating_travel,
+                    positive("conversion_factor", a)?,
+                )?
             }
             (Some(_), Some(_)) => {
                 return Err(ActuatorError::Inconsistent(
@@ -338,6 +387,13 @@ impl ArraySpec {
                 ));
             }
         };
+        if self.calibrated_on.is_some() && self.conversion_factor.is_none() {
+            return Err(ActuatorError::Inconsistent(
+                "`calibrated_on` is given without `conversion_factor`: it states the geometry a conversion factor \
+                 was measured on; remove it, or give the measured `conversion_factor`"
+                    .into(),
+            ));
+        }
         if self.operating_travel >= plates.front_gap_m {
             return Err(ActuatorError::InvalidField {
                 field: "operating_travel".into(),
@@ -347,6 +403,41 @@ impl ArraySpec {
         }
         plates.validate()?;
         Ok(plates)
+    }
+
+    /// When the conversion factor was calibrated on another plate geometry (`calibrated_on`
+    /// differs from `plate_count`, `overlap_length` or `thickness`): a sentence naming the fields
+    /// that differ and saying how the conversion factor was re-derived. None when it applies as given.
+    pub fn calibration_rederived(&self) -> Option<String> {
+        let (c, a) = (self.calibrated_on.as_ref()?, self.conversion_factor?);
+        let mut diffs = Vec::new();
+        if c.plate_count != self.plate_count {
+            diffs.push(format!("plate_count = {} (calibrated on {})", self.plate_count, c.plate_count));
+        }
+        if c.overlap_length != self.overlap_length {
+            diffs.push(format!(
+                "overlap_length = {} (calibrated on {})",
+                stiction_units::format_quantity(self.overlap_length, stiction_units::Dimension::Length),
+                stiction_units::format_quantity(c.overlap_length, stiction_units::Dimension::Length)
+            ));
+        }
+        if c.thickness != self.thickness {
+            diffs.push(format!(
+                "thickness = {} (calibrated on {})",
+                stiction_units::format_quantity(self.thickness, stiction_units::Dimension::Length),
+                stiction_units::format_quantity(c.thickness, stiction_units::Dimension::Length)
+            ));
+        }
+        if diffs.is_empty() {
+            return None;
+        }
+        Some(format!(
+            "conversion_factor = {a:.4e} N/V^2 was measured on another geometry (calibrated_on) than this array's {}: \
+             the as-built front gap it implies is kept (same process) and the conversion factor re-derived for \
+             this geometry; to use a measurement of this array, state it in `conversion_factor` and set \
+             `calibrated_on` to this geometry",
+            diffs.join(", ")
+        ))
     }
 
     /// The as-built suspension.

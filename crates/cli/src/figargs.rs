@@ -134,6 +134,7 @@ pub mod reference {
     /// figure shows it. The same values as the `reference` section of scenarios/tas2000.json.
     pub fn paper() -> ReferenceSpec {
         ReferenceSpec {
+            device: None,
             source: "Tas et al., MEMS 2000, section 5".into(),
             mu_apparent: Some(0.7),
             mu_apparent_uncertainty: Some(0.3),

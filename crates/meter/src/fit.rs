@@ -94,6 +94,57 @@ pub fn no_fit_reason(points: &[(f64, f64)]) -> Option<String> {
     })
 }
 
+/// The least number of points an eq. 10 fit should rest on without a warning: with fewer, its
+/// n - 2 degrees of freedom leave the standard error (and R^2) themselves too uncertain to judge
+/// the fit by (3 points: one degree of freedom, a 95 % interval of +/- 12.7 standard errors).
+pub const MIN_RECOMMENDED_POINTS: usize = 5;
+
+/// The least fraction of the scheduled clamp voltages an eq. 10 fit should use without a warning.
+pub const MIN_CLAMP_RANGE_FRACTION: f64 = 0.5;
+
+/// Warnings about an eq. 10 fit: `few_points` (fewer than [`MIN_RECOMMENDED_POINTS`]) and
+/// `partial_clamp_range` (fewer than [`MIN_CLAMP_RANGE_FRACTION`] of the `scheduled` clamp
+/// voltages among the `fitted` ones; the other points say why in their `reason`).
+pub fn eq10_warnings(
+    line: &LineFit,
+    scheduled: &[f64],
+    fitted: &[f64],
+    points: &[crate::MeterPoint],
+) -> Vec<stiction_scenario::Warning> {
+    let mut out = Vec::new();
+    if line.points < MIN_RECOMMENDED_POINTS {
+        out.push(stiction_scenario::Warning::new(
+            "few_points",
+            format!(
+                "the eq. 10 fit rests on {} points (fewer than {MIN_RECOMMENDED_POINTS}): with {} degree(s) of \
+                 freedom its standard error and R^2 say little about mu_e,a; measure at more clamp voltages with \
+                 contact and slip",
+                line.points,
+                line.points.saturating_sub(2)
+            ),
+        ));
+    }
+    let range = |v: &[f64]| {
+        (v.iter().cloned().fold(f64::INFINITY, f64::min), v.iter().cloned().fold(f64::NEG_INFINITY, f64::max))
+    };
+    if !scheduled.is_empty() && (fitted.len() as f64) < MIN_CLAMP_RANGE_FRACTION * scheduled.len() as f64 {
+        let (a, b) = range(fitted);
+        let (lo, hi) = range(scheduled);
+        let first_reason = points.iter().find_map(|p| p.reason.clone()).unwrap_or_default();
+        out.push(stiction_scenario::Warning::new(
+            "partial_clamp_range",
+            format!(
+                "the eq. 10 fit uses {} of {} clamp voltages ({a:.2}-{b:.2} V of {lo:.2}-{hi:.2} V): mu_e,a and \
+                 F_a0 describe only that part of the range; the other points have no contact, load or slip (e.g. \
+                 {first_reason})",
+                fitted.len(),
+                scheduled.len()
+            ),
+        ));
+    }
+    out
+}
+
 /// Eq. 10 from (L, F_f) points: the least-squares line, mu_e,a = its slope and
 /// F_a0 = intercept / slope (None without a line of positive slope).
 pub fn eq10(points: &[(f64, f64)]) -> (Option<LineFit>, Option<f64>, Option<f64>) {

@@ -121,6 +121,11 @@ pub struct MeterPoint {
     /// not; the point then has no slip and is left out of the fit, and the run goes on.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// Why this point has no contact, no slip or no equilibrium (absent when it has all three):
+    /// the clamp stops short of the wall below its contact voltage, the load does not exceed
+    /// zero, the pull array cannot reach the friction, or the contact model's error.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
 }
 
 /// The experiment's outcome.
@@ -145,6 +150,10 @@ pub struct MeterResult {
     pub pull_array_pull_in_v: Option<f64>,
     /// The conversion used to report forces.
     pub reduction: Reduction,
+    /// What the user must know about the fit (few points, part of the clamp range), with a
+    /// stable `code` each.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<stiction_scenario::Warning>,
 }
 
 /// The assembled device.
@@ -242,6 +251,8 @@ impl Meter {
             Some(r) => r,
             None => self.device_reduction()?,
         };
+        let clamp_pull_in =
+            self.clamp.pull_in().map_err(|e| actuator_err("clamp", e))?;
         let mut points = Vec::with_capacity(voltages.len());
         let mut spring_force_used = f64::NAN;
         let mut previous_in_contact = false;
@@ -274,7 +285,32 @@ impl Meter {
                 max_pressure_pa: 0.0,
                 over_elastic_limit: false,
                 error: None,
+                reason: None,
             };
+            if !clamp.in_contact {
+                let x_c = self.contact_travel_m * 1e6;
+                point.reason = Some(if self.contact_travel_m > clamp_pull_in.travel_m {
+                    format!(
+                        "no contact: V_clamp is below the clamp's pull-in voltage {:.2} V; the clamp rests short of \
+                         the wall (pull-in travel {:.3} um < contact travel {x_c:.3} um) and reaches it only by \
+                         pulling in",
+                        clamp.contact_voltage_v,
+                        clamp_pull_in.travel_m * 1e6
+                    )
+                } else {
+                    format!(
+                        "no contact: V_clamp is below {:.2} V, where the clamp's equilibrium reaches the wall \
+                         (contact travel {x_c:.3} um): the spring holds the shoe off",
+                        clamp.contact_voltage_v
+                    )
+                });
+            } else if !in_contact {
+                point.reason = Some(format!(
+                    "no load: the electrostatic force {:.4} uN does not exceed the spring force {:.4} uN at the wall",
+                    clamp.electrostatic_force_n * 1e6,
+                    spring * 1e6
+                ));
+            }
             if in_contact {
                 // Re-clamping releases the shoe between clamp voltages; otherwise it stays in
                 // contact and the load path carries over from the previous voltage.
@@ -283,6 +319,7 @@ impl Meter {
                     Ok(state) => state,
                     Err(e) => {
                         point.error = Some(e.to_string());
+                        point.reason = Some(format!("no equilibrium: {e}"));
                         previous_in_contact = false;
                         points.push(point);
                         progress(k + 1, voltages.len());
@@ -311,6 +348,13 @@ impl Meter {
                 let top = force(n_max)?;
                 let n = if !capacity.is_finite() || top.is_nan() || top < capacity {
                     // No slip up to pull_voltage_max (or a capacity that no force reaches).
+                    point.reason = Some(format!(
+                        "no slip: the friction capacity {:.4} uN exceeds the pull force {:.4} uN at \
+                         pull_voltage_max = {} V",
+                        capacity * 1e6,
+                        top * 1e6,
+                        self.protocol.pull_voltage_max
+                    ));
                     n_max + 1.0
                 } else {
                     let guess = ((capacity / a_pull).sqrt() / step).ceil();
@@ -375,6 +419,15 @@ impl Meter {
         let pairs: Vec<(f64, f64)> =
             points.iter().filter(|p| p.load_n > 0.0).filter_map(|p| p.friction_n.map(|f| (p.load_n, f))).collect();
         let (line, mu, fa0) = fit::eq10(&pairs);
+        let fitted: Vec<f64> = points
+            .iter()
+            .filter(|p| p.load_n > 0.0 && p.friction_n.is_some())
+            .map(|p| p.v_clamp)
+            .collect();
+        let warnings = match &line {
+            Some(l) => fit::eq10_warnings(l, voltages, &fitted, &points),
+            None => Vec::new(),
+        };
         Ok(MeterResult {
             contact_model: self.contact.name(),
             points,
@@ -385,6 +438,7 @@ impl Meter {
             spring_force_n: spring_force_used,
             pull_array_pull_in_v: pull_in_v,
             reduction,
+            warnings,
         })
     }
 

@@ -21,8 +21,10 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+mod device;
 mod overrides;
 mod spec;
+pub use device::{Explanation, Quantity, SPRING_FORCE_RELATIVE_TOLERANCE, Warning};
 pub mod strict_json;
 pub use overrides::{apply_set, parse_set};
 pub use spec::*;
@@ -38,6 +40,10 @@ pub fn truncate(text: &str, max: usize) -> String {
         None => text.to_string(),
     }
 }
+
+/// Why `material.relative_humidity` is refused (in a file and with `--set` alike).
+pub const RELATIVE_HUMIDITY_MESSAGE: &str = "not modelled yet (capillary adhesion may come later): no model uses the \
+     humidity, so the field is refused rather than silently ignored; remove it (note it in `description`)";
 
 /// The format version this build reads.
 pub const FORMAT_VERSION: u32 = 1;
@@ -72,6 +78,14 @@ pub struct Scenario {
     /// Measured values of this device to compare with (printed and drawn only when given).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceSpec>,
+    /// The scenario as read, after `--set` (units and uncertain-parameter objects as written):
+    /// the source of the uncertainties (`sd`) and of [`Scenario::to_input_json`].
+    #[serde(skip)]
+    pub source_json: Value,
+    /// Notes made while loading: a `reference` of another device dropped, a reference whose
+    /// device cannot be checked.
+    #[serde(skip)]
+    pub notes: Vec<Warning>,
 }
 
 /// A scenario loading error: where (file and JSON path), what was given and what was expected.
@@ -120,7 +134,7 @@ pub enum ScenarioError {
 impl Scenario {
     /// Reads, overrides (`--set`), parses and validates a scenario file.
     pub fn load(path: &Path, sets: &[String]) -> Result<Scenario, ScenarioError> {
-        Scenario::from_value(Scenario::load_json(path, sets)?, path)
+        Scenario::from_value_with_sets(Scenario::load_json(path, sets)?, path, sets)
     }
 
     /// Reads a scenario file as JSON and applies the `--set` overrides, without the typed parse
@@ -133,7 +147,7 @@ impl Scenario {
 
     /// Parses scenario text; `origin` names it in errors.
     pub fn from_str_with_sets(text: &str, origin: &Path, sets: &[String]) -> Result<Scenario, ScenarioError> {
-        Scenario::from_value(Scenario::json_with_sets(text, origin, sets)?, origin)
+        Scenario::from_value_with_sets(Scenario::json_with_sets(text, origin, sets)?, origin, sets)
     }
 
     /// Scenario text as JSON with the overrides applied; `origin` names it in errors.
@@ -154,10 +168,27 @@ impl Scenario {
 
     /// Parses and validates a JSON value; `origin` names it in errors.
     pub fn from_value(value: Value, origin: &Path) -> Result<Scenario, ScenarioError> {
-        let field = |json_path: String, message: String| ScenarioError::Field {
-            path: origin.to_path_buf(),
-            json_path,
-            message,
+        Scenario::from_value_with_sets(value, origin, &[])
+    }
+
+    /// Parses and validates a JSON value to which `sets` were applied: an error in a field that a
+    /// `--set` wrote names that `--set`, not the file.
+    pub fn from_value_with_sets(value: Value, origin: &Path, sets: &[String]) -> Result<Scenario, ScenarioError> {
+        let field = |json_path: String, message: String| {
+            // The last --set that wrote this field or one of its parents (or children) is to blame.
+            let blamed = sets.iter().rev().find(|set| {
+                parse_set(set).is_ok_and(|(segments, _)| {
+                    let p = segments.join(".");
+                    json_path == p
+                        || json_path.starts_with(&format!("{p}."))
+                        || json_path.starts_with(&format!("{p}["))
+                        || p.starts_with(&format!("{json_path}."))
+                })
+            });
+            match blamed {
+                Some(set) => ScenarioError::Set { set: set.clone(), message: format!("at `{json_path}`: {message}") },
+                None => ScenarioError::Field { path: origin.to_path_buf(), json_path, message },
+            }
         };
         // Check the version first: a newer file should say so rather than fail on a new field.
         match value.get("format_version") {
@@ -172,19 +203,48 @@ impl Scenario {
         }
         // Fields that a model does not use yet are refused rather than silently ignored.
         if value.get("material").and_then(|m| m.get("relative_humidity")).is_some() {
-            return Err(field(
-                "material.relative_humidity".into(),
-                "not modelled yet (capillary adhesion may come later): no model uses the humidity, so the \
-                 field is refused rather than silently ignored; remove it (note it in `description`)"
-                    .into(),
-            ));
+            return Err(field("material.relative_humidity".into(), RELATIVE_HUMIDITY_MESSAGE.into()));
         }
-        let scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
+        let source_json = value.clone();
+        let mut scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
             let p = e.path().to_string();
             field(if p == "." { "(top level)".into() } else { p }, truncate(&e.into_inner().to_string(), 300))
         })?;
         scenario.validate().map_err(|(p, m)| field(p, m))?;
+        scenario.source_json = source_json;
+        scenario.check_reference_device();
         Ok(scenario)
+    }
+
+    /// Drops a `reference` measured on another device (its `device` fingerprint differs from
+    /// this scenario's), with a note; notes a reference that states no device.
+    fn check_reference_device(&mut self) {
+        let Some(r) = &self.reference else { return };
+        let own = self.device_fingerprint();
+        match &r.device {
+            Some(fp) if *fp == own => {}
+            Some(fp) => {
+                self.notes.push(Warning::new(
+                    "reference_dropped",
+                    format!(
+                        "the `reference` ({}) was measured on device {fp}, and this scenario describes device {own} \
+                         (its actuator arrays, calibrations, spring force, contact travel or shoe size differ), so \
+                         the reference is not shown beside its results. For a measurement of this device, replace \
+                         the reference's values and set `reference.device` to \"{own}\"",
+                        r.source
+                    ),
+                ));
+                self.reference = None;
+            }
+            None => self.notes.push(Warning::new(
+                "reference_unchecked",
+                format!(
+                    "the `reference` ({}) states no `device`, so nothing checks that it was measured on this \
+                     device; set `reference.device` to \"{own}\" (this scenario's device fingerprint) if it was",
+                    r.source
+                ),
+            )),
+        }
     }
 
     /// Cross-field checks that serde cannot express. Returns (JSON path, message).

@@ -40,7 +40,25 @@ pub const PATH_KEYWORD: &str = "x-stiction-path";
 pub fn apply_set(root: &mut Value, set: &str) -> Result<(), ScenarioError> {
     let (segments, mut value) = parse_set(set)?;
     let err = |message: String| ScenarioError::Set { set: set.to_string(), message };
+    if segments == ["material", "relative_humidity"] {
+        return Err(err(format!("at `material.relative_humidity`: {}", crate::RELATIVE_HUMIDITY_MESSAGE)));
+    }
     let target = check_path(&segments).map_err(err)?;
+    // `PATH=null` removes the field (its default, or the quantity derived instead, applies).
+    if value.is_null() {
+        let (last, parents) = segments.split_last().ok_or_else(|| err("empty path".into()))?;
+        let mut node = &mut *root;
+        for seg in parents {
+            match node.get_mut(seg.as_str()) {
+                Some(next) => node = next,
+                None => return Ok(()),
+            }
+        }
+        if let Some(map) = node.as_object_mut() {
+            map.remove(last.as_str());
+        }
+        return Ok(());
+    }
     let cwd = std::env::current_dir()
         .map_err(|e| err(format!("cannot read the current directory to resolve a relative path: {e}")))?;
     let defs = Scenario::json_schema().get("$defs").cloned().unwrap_or(Value::Null);

@@ -477,6 +477,12 @@ pub struct ReferenceSpec {
     /// Where the values come from, printed and shown in figure legends
     /// (e.g. "Tas et al., MEMS 2000, section 5").
     pub source: String,
+    /// The device the values were measured on: its fingerprint (`stiction scenario FILE
+    /// --explain` prints it; see `Scenario::device_fingerprint`). A scenario that describes
+    /// another device (a copy with other arrays, springs, calibrations or shoe) does not show the
+    /// reference, and says so. Absent: shown, with a note that nothing checks it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub device: Option<String>,
     /// Measured apparent friction coefficient mu_e,a of eq. 10 (dimensionless, > 0).
     #[serde(default, deserialize_with = "plain_dimensionless_positive", skip_serializing_if = "Option::is_none")]
     #[schemars(with = "Option<f64>")]

@@ -55,6 +55,10 @@ pub fn run(args: Args) -> CliResult {
         None => None,
     };
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    // One source of truth: a given spring force that contradicts the clamp spring is refused.
+    if let Some(conflict) = scenario.spring_force_conflict() {
+        return Err(format!("{}: {conflict}", args.scenario.display()).into());
+    }
     let mut meter = Meter::from_scenario(&scenario, &base).map_err(|e| format!("{}: {e}", args.scenario.display()))?;
     let bar = ProgressBar::new(0);
     bar.set_style(
@@ -66,6 +70,16 @@ pub fn run(args: Args) -> CliResult {
         bar.set_position(done as u64);
     })?;
     bar.finish_and_clear();
+    let mut result = result;
+    // What the scenario's loading and calibrations say comes first, then the fit's own warnings.
+    let mut warnings = scenario.notes.clone();
+    for (name, spec) in &scenario.actuators {
+        if let Some(r) = spec.calibration_rederived() {
+            warnings.push(stiction_scenario::Warning::new("calibration_rederived", format!("actuators.{name}: {r}")));
+        }
+    }
+    warnings.append(&mut result.warnings);
+    result.warnings = warnings;
     let measured = match &scenario.measured {
         Some(m) => {
             let data = read_measured_voltages(&base.join(&m.voltages_csv))?;
@@ -101,7 +115,14 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
     if !o.description.is_empty() {
         crate::outln!("  {}", o.description);
     }
-    crate::outln!("  contact model: {}, F_spring = {:.3} uN", r.contact_model, r.spring_force_n * 1e6);
+    crate::outln!(
+        "  contact model: {}, F_spring = {:.3} uN, a_clamp = {:.4e} N/V^2, a_pull = {:.4e} N/V^2 \
+         (`stiction scenario FILE --explain` says where each comes from)",
+        r.contact_model,
+        r.spring_force_n * 1e6,
+        r.reduction.a_clamp_n_per_v2,
+        r.reduction.a_pull_n_per_v2
+    );
     crate::outln!();
     let mut t = crate::output::TextTable::new(&[
         "V_clamp (V)",
@@ -128,15 +149,7 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
             format!("{:.0}", p.contacts),
             format!("{:.4}", p.adhesive_load_n * 1e6),
             format!("{:.3}", p.max_pressure_pa * 1e-9),
-            if !p.in_contact {
-                "no contact".to_string()
-            } else if let Some(e) = &p.error {
-                format!("no equilibrium: {e}")
-            } else if p.v_pull.is_none() {
-                "no slip".to_string()
-            } else {
-                String::new()
-            },
+            p.reason.clone().unwrap_or_default(),
         ]);
     }
     t.print("  ");
@@ -154,6 +167,9 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
             "  no eq. 10 fit: {}",
             r.fit_note.as_deref().unwrap_or("the fitted slope is not positive, so mu_e,a and F_a0 are undefined")
         ),
+    }
+    for w in &r.warnings {
+        crate::outln!("  warning [{}]: {}", w.code, w.message);
     }
     if let Some(r) = reference {
         crate::outln!("  {}", reference::text(r));

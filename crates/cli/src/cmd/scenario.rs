@@ -1,20 +1,30 @@
-//! `stiction scenario`: check a scenario file or print the format's JSON Schema.
+//! `stiction scenario`: check a scenario file, print it as it is run, explain where each quantity
+//! the meter uses comes from, or print the format's JSON Schema.
 
 use std::path::PathBuf;
 
 use stiction_scenario::Scenario;
 
-use crate::output::{CliResult, print_json};
+use crate::output::{CliResult, TextTable, print_json};
 
-/// Check a scenario (with overrides) and print it with every quantity in SI, or print the JSON Schema.
+/// Check a scenario (with overrides) and print it as it is run (readable as input: the file's
+/// units and uncertainties, and every default filled in), explain its quantities, or print the
+/// JSON Schema.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The scenario JSON file (omit with --schema).
     #[arg(required_unless_present = "schema")]
     pub scenario: Option<PathBuf>,
-    /// Override a field: --set surface.summit_sd="40 nm" (repeatable).
+    /// Override a field: --set surface.summit_sd="40 nm" (repeatable; PATH=null removes a field).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
+    /// For each quantity the meter uses: its value, uncertainty and origin (given, derived from
+    /// which fields, calibrated), with disagreements flagged, and the device fingerprint.
+    #[arg(long)]
+    pub explain: bool,
+    /// With --explain: one JSON object instead of the table.
+    #[arg(long, requires = "explain")]
+    pub json: bool,
     /// Print the JSON Schema of the scenario format instead.
     #[arg(long)]
     pub schema: bool,
@@ -27,5 +37,29 @@ pub fn run(args: Args) -> CliResult {
     }
     let path = args.scenario.ok_or("a scenario file is needed")?;
     let scenario = Scenario::load(&path, &args.sets)?;
-    print_json(&scenario)
+    if !args.explain {
+        for n in &scenario.notes {
+            crate::errln!("note [{}]: {}", n.code, n.message);
+        }
+        return print_json(&scenario.to_input_json());
+    }
+    let e = scenario.explain();
+    if args.json {
+        return print_json(&e);
+    }
+    crate::outln!("stiction scenario {} --explain", path.display());
+    crate::outln!("  device fingerprint: {}", e.device);
+    crate::outln!();
+    let mut t = TextTable::new(&["quantity", "value", "uncertainty (sd)", "origin"]);
+    for q in &e.quantities {
+        t.row(vec![q.name.clone(), q.value_text(), q.uncertainty_text(), q.origin.clone()]);
+    }
+    t.print("  ");
+    if !e.warnings.is_empty() {
+        crate::outln!();
+    }
+    for w in &e.warnings {
+        crate::outln!("  warning [{}]: {}", w.code, w.message);
+    }
+    Ok(())
 }

@@ -1,0 +1,442 @@
+//! One source of truth for the device: which quantities the meter uses, where each comes from
+//! (given, derived, calibrated), the checks between a calibration and the geometry it depends on,
+//! and the device fingerprint a `reference` measurement is tied to.
+//!
+//! The rules (docs/scenario.md, "Calibrations and the device they belong to"):
+//!
+//! - A conversion factor is a calibration of a plate geometry (`calibrated_on`): it fixes the
+//!   as-built front gap, and for another plate count, overlap or thickness the conversion factor
+//!   is re-derived from that gap ([`stiction_actuator::ArraySpec::calibration_rederived`]).
+//! - A given `meter.spring_force` is a measured calibration of the clamp spring times the contact
+//!   travel, F_spring = k x_c: it must agree with k x_c within its uncertainty (its `sd`, or 1 %
+//!   without one), else the meter refuses to run ([`Scenario::spring_force_conflict`]).
+//! - A `reference` states the device it was measured on (`reference.device`, the
+//!   [`Scenario::device_fingerprint`]); on another device it is dropped with a note.
+
+use serde::Serialize;
+use serde_json::Value;
+use stiction_units::{Constraint, Dimension, format_quantity, nominal_from_json};
+
+use crate::Scenario;
+
+/// A note about a scenario or a result that the user must see: a stable `code` and a sentence.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Warning {
+    /// Stable identifier, such as `few_points` or `reference_dropped`.
+    pub code: String,
+    /// What happened, why it matters and what to do.
+    pub message: String,
+}
+
+impl Warning {
+    /// A warning with this code and message.
+    pub fn new(code: &str, message: impl Into<String>) -> Warning {
+        Warning { code: code.to_string(), message: message.into() }
+    }
+}
+
+/// Relative tolerance between a given `meter.spring_force` without an `sd` and k x_c (1 %).
+pub const SPRING_FORCE_RELATIVE_TOLERANCE: f64 = 0.01;
+
+/// One quantity the meter uses, with its value, uncertainty and origin.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Quantity {
+    /// Name, with the scenario field where it is given (`a_clamp (actuators.clamp.conversion_factor)`).
+    pub name: String,
+    /// Value in SI.
+    pub value: f64,
+    /// SI unit of `value` and `uncertainty`.
+    pub unit: String,
+    /// Standard uncertainty as given (`sd` of an uncertain parameter), SI; None: none given.
+    pub uncertainty: Option<f64>,
+    /// `given`, `calibrated`, `derived` or `default`, with the fields it comes from.
+    pub origin: String,
+    /// A disagreement or a re-derivation the user must know about.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flag: Option<String>,
+    #[serde(skip)]
+    dim: Option<Dimension>,
+}
+
+impl Quantity {
+    /// The value with an SI prefix, 4 significant digits (`3.712 um`).
+    pub fn value_text(&self) -> String {
+        self.text(self.value)
+    }
+
+    /// The uncertainty the same way, or `-`.
+    pub fn uncertainty_text(&self) -> String {
+        self.uncertainty.map_or_else(|| "-".to_string(), |u| self.text(u))
+    }
+
+    fn text(&self, v: f64) -> String {
+        match self.dim {
+            Some(d) => format_quantity(v, d),
+            None => {
+                let s = format!("{v:.4e} {}", self.unit);
+                s.trim_end().to_string()
+            }
+        }
+    }
+}
+
+/// What `stiction scenario FILE --explain` prints: every quantity the meter uses and the notes.
+#[derive(Debug, Clone, Serialize)]
+pub struct Explanation {
+    /// The device fingerprint ([`Scenario::device_fingerprint`]).
+    pub device: String,
+    /// The quantities.
+    pub quantities: Vec<Quantity>,
+    /// Re-derived calibrations, disagreements, dropped references.
+    pub warnings: Vec<Warning>,
+}
+
+/// 64-bit FNV-1a of `bytes`.
+fn fnv1a64(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= u64::from(*b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+impl Scenario {
+    /// The device fingerprint `"fnv1a64:<16 hex digits>"`: a hash of what the lab built and
+    /// calibrated, parsed to SI (so `"100 um"` and `1e-4` give the same): every actuator array
+    /// without its `description` (plates, gaps, conversion factors and the geometry they were
+    /// calibrated on, springs, stops), `meter.spring_force`, the contact travel, and the shoe's
+    /// apparent size. The surface statistics, the material and the contact model are not part of
+    /// it: they are the model of the contact that a reference measurement is there to test. A
+    /// Monte Carlo sample of a calibration is another device.
+    pub fn device_fingerprint(&self) -> String {
+        let mut arrays = serde_json::Map::new();
+        for (name, spec) in &self.actuators {
+            let mut v = serde_json::to_value(spec).unwrap_or(Value::Null);
+            if let Some(o) = v.as_object_mut() {
+                o.remove("description");
+            }
+            arrays.insert(name.clone(), v);
+        }
+        let device = serde_json::json!({
+            "actuators": arrays,
+            "spring_force": self.meter.as_ref().and_then(|m| m.spring_force),
+            "contact_travel": self.contact_travel_m(),
+            "apparent_length": self.surface.as_ref().map(|s| s.apparent_length),
+            "apparent_width": self.surface.as_ref().map(|s| s.apparent_width),
+        });
+        format!("fnv1a64:{:016x}", fnv1a64(device.to_string().as_bytes()))
+    }
+
+    /// The travel x_c at which the shoe meets the wall: `meter.contact_travel`, else the clamp
+    /// array's `operating_travel`, m.
+    pub fn contact_travel_m(&self) -> Option<f64> {
+        let clamp = self.actuators.get("clamp")?;
+        Some(self.meter.as_ref().and_then(|m| m.contact_travel).unwrap_or(clamp.operating_travel))
+    }
+
+    /// The `sd` given for the field at `path` (an uncertain-parameter object in the scenario
+    /// as read, after `--set`), SI.
+    pub fn given_sd(&self, path: &[&str], dim: Dimension) -> Option<f64> {
+        let mut node = &self.source_json;
+        for seg in path {
+            node = node.get(seg)?;
+        }
+        nominal_from_json(node.get("sd")?, dim, Constraint::NonNegative).ok()
+    }
+
+    /// F_spring = k x_c of the clamp spring (suspension plus parallel stiffness) at the contact
+    /// travel, N; None without a meter or clamp array, or when the clamp cannot be built.
+    pub fn derived_spring_force_n(&self) -> Option<f64> {
+        let clamp = self.actuators.get("clamp")?.to_model().ok()?;
+        Some(clamp.suspension.force_n(self.contact_travel_m()?))
+    }
+
+    /// When `meter.spring_force` is given and disagrees with k x_c by more than its uncertainty
+    /// (its `sd`, or [`SPRING_FORCE_RELATIVE_TOLERANCE`] of it without one): the message naming
+    /// both fields and the two ways out. The meter refuses to run such a scenario: one of the two
+    /// statements is wrong and the program cannot tell which.
+    pub fn spring_force_conflict(&self) -> Option<String> {
+        let given = self.meter.as_ref()?.spring_force?;
+        let derived = self.derived_spring_force_n()?;
+        let sd = self.given_sd(&["meter", "spring_force"], Dimension::Force);
+        let tolerance = sd.unwrap_or(SPRING_FORCE_RELATIVE_TOLERANCE * given.abs());
+        let diff = (given - derived).abs();
+        if diff <= tolerance {
+            return None;
+        }
+        let f = |v: f64| format_quantity(v, Dimension::Force);
+        let clamp = &self.actuators["clamp"];
+        let k = clamp.suspension().map(|s| s.stiffness_n_per_m()).unwrap_or(f64::NAN);
+        let x_c = self.contact_travel_m().unwrap_or(f64::NAN);
+        let tol_text = match sd {
+            Some(s) => format!("its uncertainty (sd {})", f(s)),
+            None => format!("1 % (no `sd` given), {}", f(tolerance)),
+        };
+        Some(format!(
+            "`meter.spring_force` = {} disagrees with the clamp spring `actuators.clamp.spring` times the contact \
+             travel (`meter.contact_travel`): k x_c = {} N/m x {} = {}, by {}, more than {tol_text}; the meter \
+             would use one and silently contradict the other. Resolve: remove `meter.spring_force` (F_spring is \
+             then k x_c = {}; with --set: --set meter.spring_force=null), or restate it as the spring force \
+             measured on this device, with its `sd`",
+            f(given),
+            format!("{k:.4}").trim_end_matches('0').trim_end_matches('.'),
+            format_quantity(x_c, Dimension::Length),
+            f(derived),
+            f(diff),
+            f(derived),
+        ))
+    }
+
+    /// Every quantity the meter uses, its value, uncertainty and origin, and the warnings
+    /// (re-derived calibrations, disagreements, a dropped reference).
+    pub fn explain(&self) -> Explanation {
+        let mut q = Vec::new();
+        let mut warnings = self.notes.clone();
+        let push = |q: &mut Vec<Quantity>,
+                    name: String,
+                    value: f64,
+                    dim: Option<Dimension>,
+                    unit: &str,
+                    uncertainty: Option<f64>,
+                    origin: String,
+                    flag: Option<String>| {
+            q.push(Quantity { name, value, unit: unit.into(), uncertainty, origin, flag, dim });
+        };
+        for name in ["clamp", "pull"] {
+            let Some(spec) = self.actuators.get(name) else { continue };
+            let model = match spec.to_model() {
+                Ok(m) => m,
+                Err(e) => {
+                    warnings.push(Warning::new("actuator_invalid", format!("actuators.{name}: {e}")));
+                    continue;
+                }
+            };
+            let field = format!("actuators.{name}");
+            let rederived = spec.calibration_rederived();
+            let gap_origin = match (spec.front_gap, spec.conversion_factor) {
+                (Some(_), _) => format!("given: {field}.front_gap (drawn) + 2 x undercut"),
+                _ => format!(
+                    "derived from {field}.conversion_factor on {} plates x overlap x thickness (inferred, as built)",
+                    spec.calibrated_on.map_or(spec.plate_count, |c| c.plate_count)
+                ),
+            };
+            push(
+                &mut q,
+                format!("front gap g_{name} ({field}, as built)"),
+                model.plates.front_gap_m,
+                Some(Dimension::Length),
+                "m",
+                None,
+                gap_origin,
+                None,
+            );
+            // The travel where the meter uses the conversion factor: the contact travel (clamp),
+            // zero (pull: its gap is fixed while the shoe sticks).
+            let travel = if name == "clamp" { self.contact_travel_m().unwrap_or(spec.operating_travel) } else { 0.0 };
+            let a = model.conversion_factor_n_per_v2(travel);
+            let sd = self.given_sd(&["actuators", name, "conversion_factor"], Dimension::ForcePerVoltageSquared);
+            let (origin, a_sd) = match (spec.conversion_factor, &rederived) {
+                (Some(given), None) => (
+                    format!(
+                        "calibrated: {field}.conversion_factor{} at operating_travel {}",
+                        if spec.calibrated_on.is_some() {
+                            " (measured on this geometry, calibrated_on)"
+                        } else {
+                            " (geometry it was measured on not stated: unchecked)"
+                        },
+                        format_quantity(spec.operating_travel, Dimension::Length)
+                    ),
+                    sd.map(|s| s * a / given),
+                ),
+                (Some(given), Some(_)) => (
+                    format!(
+                        "re-derived from {field}.conversion_factor (measured on {} plates) for {} plates, same \
+                         as-built gap",
+                        spec.calibrated_on.map_or(0, |c| c.plate_count),
+                        spec.plate_count
+                    ),
+                    sd.map(|s| s * a / given),
+                ),
+                (None, _) => (format!("derived from {field} plate geometry and front_gap"), None),
+            };
+            push(
+                &mut q,
+                format!(
+                    "a_{name} = F/V^2 at travel {} ({field})",
+                    format_quantity(travel, Dimension::Length).replace("0 m", "0")
+                ),
+                a,
+                None,
+                "N/V^2",
+                a_sd,
+                origin,
+                rederived.clone(),
+            );
+            if let Some(r) = rederived {
+                warnings.push(Warning::new("calibration_rederived", format!("{field}: {r}")));
+            }
+            let k = model.suspension.stiffness_n_per_m();
+            let k_origin = match (spec.spring.stiffness, &spec.spring.beams) {
+                (Some(_), _) => format!("given: {field}.spring.stiffness"),
+                _ => format!("derived from {field}.spring.beams"),
+            };
+            push(
+                &mut q,
+                format!("spring stiffness k_{name} ({field}.spring, total)"),
+                k,
+                None,
+                "N/m",
+                self.given_sd(&["actuators", name, "spring", "stiffness"], Dimension::Stiffness),
+                k_origin,
+                None,
+            );
+        }
+        if let (Some(meter), Some(x_c)) = (&self.meter, self.contact_travel_m()) {
+            push(
+                &mut q,
+                "contact travel x_c (meter.contact_travel)".into(),
+                x_c,
+                Some(Dimension::Length),
+                "m",
+                self.given_sd(&["meter", "contact_travel"], Dimension::Length),
+                if meter.contact_travel.is_some() {
+                    "given: meter.contact_travel".into()
+                } else {
+                    "default: actuators.clamp.operating_travel".into()
+                },
+                None,
+            );
+            let derived = self.derived_spring_force_n();
+            let conflict = self.spring_force_conflict();
+            match (meter.spring_force, derived) {
+                (Some(given), _) => {
+                    push(
+                        &mut q,
+                        "spring force F_spring (meter.spring_force)".into(),
+                        given,
+                        Some(Dimension::Force),
+                        "N",
+                        self.given_sd(&["meter", "spring_force"], Dimension::Force),
+                        format!(
+                            "calibrated: meter.spring_force (k x_c = {} from the clamp spring{})",
+                            derived.map_or("-".into(), |d| format_quantity(d, Dimension::Force)),
+                            if conflict.is_some() { ": DISAGREES" } else { ", agrees within its uncertainty" }
+                        ),
+                        conflict.clone(),
+                    );
+                    if let Some(c) = conflict {
+                        warnings.push(Warning::new("spring_force_disagrees", c));
+                    }
+                }
+                (None, Some(d)) => push(
+                    &mut q,
+                    "spring force F_spring (meter.spring_force)".into(),
+                    d,
+                    Some(Dimension::Force),
+                    "N",
+                    None,
+                    "derived: actuators.clamp.spring x contact travel (k x_c)".into(),
+                    None,
+                ),
+                (None, None) => {}
+            }
+        }
+        if let Some(m) = &self.material {
+            let p = |f: &str, dim| self.given_sd(&["material", f], dim);
+            let d_origin = if m.compliance.is_some() {
+                "given: material.compliance".to_string()
+            } else {
+                "derived: material.youngs_modulus, poisson_ratio (D = 1.5 (1 - nu^2) / E)".to_string()
+            };
+            push(
+                &mut q,
+                "compliance D (material.compliance)".into(),
+                m.compliance_per_pa(),
+                None,
+                "1/Pa",
+                p("compliance", Dimension::Compliance),
+                d_origin,
+                None,
+            );
+            for (name, field, value, dim, unit) in [
+                ("shear strength s", "shear_strength", m.shear_strength, Some(Dimension::Pressure), "Pa"),
+                ("work of adhesion", "work_of_adhesion", m.work_of_adhesion, None, "J/m^2"),
+                ("hardness H", "hardness", m.hardness, Some(Dimension::Pressure), "Pa"),
+                ("equilibrium spacing z0", "equilibrium_spacing", m.equilibrium_spacing, Some(Dimension::Length), "m"),
+            ] {
+                let sd_dim = dim.unwrap_or(Dimension::SurfaceEnergy);
+                push(
+                    &mut q,
+                    format!("{name} (material.{field})"),
+                    value,
+                    dim,
+                    unit,
+                    p(field, sd_dim),
+                    format!("given: material.{field}"),
+                    None,
+                );
+            }
+        }
+        if let Some(s) = &self.surface {
+            for (name, field, value) in [
+                ("shoe length", "apparent_length", Some(s.apparent_length)),
+                ("shoe width", "apparent_width", Some(s.apparent_width)),
+                ("summit height sd", "summit_sd", s.summit_sd),
+                ("summit radius", "summit_radius", s.summit_radius),
+            ] {
+                if let Some(v) = value {
+                    push(
+                        &mut q,
+                        format!("{name} (surface.{field})"),
+                        v,
+                        Some(Dimension::Length),
+                        "m",
+                        self.given_sd(&["surface", field], Dimension::Length),
+                        format!("given: surface.{field}"),
+                        None,
+                    );
+                }
+            }
+            if let Some(eta) = s.summit_density {
+                push(
+                    &mut q,
+                    "summit density (surface.summit_density)".into(),
+                    eta,
+                    None,
+                    "1/m^2",
+                    self.given_sd(&["surface", "summit_density"], Dimension::ArealDensity),
+                    "given: surface.summit_density".into(),
+                    None,
+                );
+            }
+        }
+        Explanation { device: self.device_fingerprint(), quantities: q, warnings }
+    }
+
+    /// The scenario as it is run, in its own format and readable as input: every field the file
+    /// (or `--set`) gave, as written (units and uncertain-parameter objects kept), and every
+    /// default the parse filled in, in SI.
+    pub fn to_input_json(&self) -> Value {
+        let typed = serde_json::to_value(self).unwrap_or(Value::Null);
+        overlay(typed, &self.source_json)
+    }
+}
+
+/// `typed` with every field that `raw` gives replaced by `raw`'s (recursively into objects that
+/// are not uncertain parameters).
+fn overlay(typed: Value, raw: &Value) -> Value {
+    match (typed, raw) {
+        (Value::Object(mut t), Value::Object(r)) if !r.contains_key("value") => {
+            for (k, rv) in r {
+                let v = match t.remove(k) {
+                    Some(tv) if !tv.is_null() => overlay(tv, rv),
+                    _ => rv.clone(),
+                };
+                t.insert(k.clone(), v);
+            }
+            Value::Object(t)
+        }
+        (_, raw) => raw.clone(),
+    }
+}
