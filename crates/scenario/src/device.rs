@@ -41,6 +41,9 @@ pub const SPRING_FORCE_RELATIVE_TOLERANCE: f64 = 0.01;
 /// One quantity the meter uses, with its value, uncertainty and origin.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Quantity {
+    /// Stable key: `front_gap_clamp`, `a_clamp`, `k_clamp` (and `_pull`), `contact_travel`,
+    /// `spring_force`, `compliance`, `shear_strength`, ... (the material or surface field name).
+    pub key: String,
     /// Name, with the scenario field where it is given (`a_clamp (actuators.clamp.conversion_factor)`).
     pub name: String,
     /// Value in SI.
@@ -72,12 +75,23 @@ impl Quantity {
     fn text(&self, v: f64) -> String {
         match self.dim {
             Some(d) => format_quantity(v, d),
-            None => {
-                let s = format!("{v:.4e} {}", self.unit);
-                s.trim_end().to_string()
-            }
+            None => format!("{} {}", sig4(v), self.unit),
         }
     }
+}
+
+/// `v` with 4 significant digits: fixed between 1e-3 and 1e6 (`7.8`, `0.1`), else scientific
+/// (`1.400e-8`).
+pub fn sig4(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let mag = v.abs().log10().floor() as i32;
+    if !(-3..6).contains(&mag) {
+        return format!("{v:.3e}");
+    }
+    let s = format!("{v:.*}", (3 - mag).max(0) as usize);
+    if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
 }
 
 /// What `stiction scenario FILE --explain` prints: every quantity the meter uses and the notes.
@@ -194,6 +208,7 @@ impl Scenario {
         let mut q = Vec::new();
         let mut warnings = self.notes.clone();
         let push = |q: &mut Vec<Quantity>,
+                    key: String,
                     name: String,
                     value: f64,
                     dim: Option<Dimension>,
@@ -201,7 +216,7 @@ impl Scenario {
                     uncertainty: Option<f64>,
                     origin: String,
                     flag: Option<String>| {
-            q.push(Quantity { name, value, unit: unit.into(), uncertainty, origin, flag, dim });
+            q.push(Quantity { key, name, value, unit: unit.into(), uncertainty, origin, flag, dim });
         };
         for name in ["clamp", "pull"] {
             let Some(spec) = self.actuators.get(name) else { continue };
@@ -221,13 +236,15 @@ impl Scenario {
                     spec.calibrated_on.map_or(spec.plate_count, |c| c.plate_count)
                 ),
             };
+            let gap_sd = self.given_sd(&["actuators", name, "front_gap"], Dimension::Length);
             push(
                 &mut q,
+                format!("front_gap_{name}"),
                 format!("front gap g_{name} ({field}, as built)"),
                 model.plates.front_gap_m,
                 Some(Dimension::Length),
                 "m",
-                None,
+                gap_sd,
                 gap_origin,
                 None,
             );
@@ -258,10 +275,26 @@ impl Scenario {
                     ),
                     sd.map(|s| s * a / given),
                 ),
-                (None, _) => (format!("derived from {field} plate geometry and front_gap"), None),
+                (None, _) => {
+                    // The gap's sd propagated: half the change of a over g +/- sd.
+                    let a_at = |dg: f64| {
+                        let mut s2 = spec.clone();
+                        s2.front_gap = spec.front_gap.map(|g| g + dg);
+                        s2.to_model().ok().map(|m| m.conversion_factor_n_per_v2(travel))
+                    };
+                    let sd_a = gap_sd.and_then(|sd| Some(((a_at(-sd)? - a_at(sd)?) / 2.0).abs()));
+                    (
+                        format!(
+                            "derived from {field} plate geometry and front_gap{}",
+                            if sd_a.is_some() { " (sd propagated from front_gap's sd)" } else { "" }
+                        ),
+                        sd_a,
+                    )
+                }
             };
             push(
                 &mut q,
+                format!("a_{name}"),
                 format!(
                     "a_{name} = F/V^2 at travel {} ({field})",
                     format_quantity(travel, Dimension::Length).replace("0 m", "0")
@@ -283,6 +316,7 @@ impl Scenario {
             };
             push(
                 &mut q,
+                format!("k_{name}"),
                 format!("spring stiffness k_{name} ({field}.spring, total)"),
                 k,
                 None,
@@ -295,6 +329,7 @@ impl Scenario {
         if let (Some(meter), Some(x_c)) = (&self.meter, self.contact_travel_m()) {
             push(
                 &mut q,
+                "contact_travel".into(),
                 "contact travel x_c (meter.contact_travel)".into(),
                 x_c,
                 Some(Dimension::Length),
@@ -313,6 +348,7 @@ impl Scenario {
                 (Some(given), _) => {
                     push(
                         &mut q,
+                        "spring_force".into(),
                         "spring force F_spring (meter.spring_force)".into(),
                         given,
                         Some(Dimension::Force),
@@ -331,6 +367,7 @@ impl Scenario {
                 }
                 (None, Some(d)) => push(
                     &mut q,
+                    "spring_force".into(),
                     "spring force F_spring (meter.spring_force)".into(),
                     d,
                     Some(Dimension::Force),
@@ -351,6 +388,7 @@ impl Scenario {
             };
             push(
                 &mut q,
+                "compliance".into(),
                 "compliance D (material.compliance)".into(),
                 m.compliance_per_pa(),
                 None,
@@ -368,6 +406,7 @@ impl Scenario {
                 let sd_dim = dim.unwrap_or(Dimension::SurfaceEnergy);
                 push(
                     &mut q,
+                    field.to_string(),
                     format!("{name} (material.{field})"),
                     value,
                     dim,
@@ -388,6 +427,7 @@ impl Scenario {
                 if let Some(v) = value {
                     push(
                         &mut q,
+                        field.to_string(),
                         format!("{name} (surface.{field})"),
                         v,
                         Some(Dimension::Length),
@@ -401,6 +441,7 @@ impl Scenario {
             if let Some(eta) = s.summit_density {
                 push(
                     &mut q,
+                    "summit_density".into(),
                     "summit density (surface.summit_density)".into(),
                     eta,
                     None,
@@ -412,6 +453,21 @@ impl Scenario {
             }
         }
         Explanation { device: self.device_fingerprint(), quantities: q, warnings }
+    }
+
+    /// The relative standard uncertainty that the conversion factors' `sd`s give mu_e,a as the
+    /// lab reduces it: the eq. 10 slope is (a_pull dV_pull^2) / (a_clamp dV_clamp^2), so
+    /// u(mu)/mu = sqrt((u(a_pull)/a_pull)^2 + (u(a_clamp)/a_clamp)^2) (F_spring shifts the loads,
+    /// not the slope). None when neither has an uncertainty.
+    pub fn mu_calibration_relative_sd(&self) -> Option<f64> {
+        let e = self.explain();
+        let rel = |key: &str| {
+            e.quantities.iter().find(|q| q.key == key).and_then(|q| q.uncertainty.map(|u| u / q.value))
+        };
+        match (rel("a_clamp"), rel("a_pull")) {
+            (None, None) => None,
+            (c, p) => Some(c.unwrap_or(0.0).hypot(p.unwrap_or(0.0))),
+        }
     }
 
     /// The scenario as it is run, in its own format and readable as input: every field the file

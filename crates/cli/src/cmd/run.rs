@@ -99,7 +99,7 @@ pub fn run(args: Args) -> CliResult {
     if args.json {
         return print_json(&output);
     }
-    print_summary(&output, scenario.reference.as_ref());
+    print_summary(&output, scenario.reference.as_ref(), scenario.mu_calibration_relative_sd());
     if let Some(dir) = &args.out {
         crate::outln!(
             "\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig5.csv, fig7.svg, fig7.png, fig7.csv, manifest.json",
@@ -109,7 +109,7 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
-fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>) {
+fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>, calibration_rel_sd: Option<f64>) {
     let r = o.result;
     crate::outln!("stiction run {}", o.scenario);
     if !o.description.is_empty() {
@@ -160,6 +160,14 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
                 "  apparent friction coefficient mu_e,a = {mu:.3} +/- {:.3}  (eq. 10; +/- is the regression's standard error only, without the calibration: `stiction fit` gives both)",
                 fit.slope_se
             );
+            if let Some(rel) = calibration_rel_sd {
+                let total = (rel * mu).hypot(fit.slope_se);
+                crate::outln!(
+                    "  with the conversion factors' sd (+/- {:.1} % on mu_e,a): mu_e,a = {mu:.3} +/- {total:.3}  \
+                     (standard uncertainty: regression and calibration combined)",
+                    rel * 100.0
+                );
+            }
             crate::outln!("  apparent zero-load adhesion F_a0    = {:.3} uN  (eq. 10)", fa0 * 1e6);
             crate::outln!("  fit over {} points with L > 0, R^2 = {:.4}", fit.points, fit.r_squared);
         }
