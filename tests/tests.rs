@@ -9,6 +9,7 @@ mod figures;
 mod hardening;
 mod models;
 mod outputs;
+mod own_device;
 mod scenarios;
 mod standalone;
 mod study;
