@@ -5,11 +5,13 @@ mod util;
 
 mod bad_inputs;
 mod bem;
+mod design;
 mod figures;
 mod hardening;
 mod models;
 mod outputs;
 mod scenarios;
+mod slurm;
 mod standalone;
 mod study;
 mod topography;
