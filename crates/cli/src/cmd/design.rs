@@ -261,8 +261,13 @@ fn design_chart(varies: &[Vary], rows: &[DesignRow], k: usize, by: RankBy) -> Ch
         Some(_) => stiction_units::parse_any(v.values[0].trim()).map(|q| unit_name(q.1)).unwrap_or_default(),
         None => String::new(),
     };
+    let short = match by {
+        RankBy::Narrowest => "5-95 % width of μ_e,a",
+        RankBy::LeastBias => "bias of μ_e,a against s / p_mean",
+        RankBy::MostUsable => "usable experiments",
+    };
     let mut chart = Chart::new(
-        format!("Design study: {} against {}", criterion_name(by), v.path),
+        format!("Design study: {short} ({} designs)", rows.len()),
         if unit.is_empty() { v.path.clone() } else { format!("{} ({unit})", v.path) },
         y_label,
     )
@@ -277,6 +282,17 @@ fn design_chart(varies: &[Vary], rows: &[DesignRow], k: usize, by: RankBy) -> Ch
         }
         let name = if label.is_empty() { "designs (95 % intervals)".to_string() } else { label };
         chart.series.push(Series::markers(name, pts).with_y_err(err));
+    }
+    // Widths and fractions from 0, with headroom above the points for the legend.
+    if by != RankBy::LeastBias {
+        let top = chart
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().zip(s.y_err.iter().flatten()).map(|(p, e)| p.1 + e))
+            .fold(0.0f64, f64::max);
+        if top > 0.0 {
+            chart.y_range = Some((0.0, 1.5 * top));
+        }
     }
     if numeric.is_none() {
         chart.x_ticks = Some(v.values.iter().enumerate().map(|(i, x)| (i as f64 + 1.0, x.clone())).collect());
