@@ -387,7 +387,9 @@ mod tests {
         assert_eq!(g[1], vec!["1", "y"]);
         assert_eq!(g[3], vec!["2", "x"]);
         assert_eq!(sets_for(&["c=3".into()], &[a.clone(), b.clone()], &g[5]), vec!["c=3", "a=2", "b=z"]);
-        assert!(grid(&[a.clone()], &["a=5".into()]).unwrap_err().to_string().contains("both set and varied"));
+        assert!(
+            grid(std::slice::from_ref(&a), &["a=5".into()]).unwrap_err().to_string().contains("both set and varied")
+        );
         assert!(grid(&[a.clone(), a.clone()], &[]).unwrap_err().to_string().contains("twice"));
         let many = Vary::parse(&format!("m={}", (0..40).map(|i| i.to_string()).collect::<Vec<_>>().join(","))).unwrap();
         let e = grid(&[many.clone(), Vary { path: "n".into(), ..many }], &[]).unwrap_err().to_string();

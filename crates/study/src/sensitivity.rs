@@ -91,16 +91,25 @@ pub fn bootstrap_first_order(x: &[f64], y: &[f64]) -> Option<[f64; 2]> {
     if n < 20 {
         return None;
     }
+    // Sorted once by x; a resample is a count per sample, walked in x order (no sort per resample).
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| x[a].total_cmp(&x[b]).then(a.cmp(&b)));
     let mut rng = ChaCha8Rng::seed_from_u64(BOOTSTRAP_SEED);
-    let (mut bx, mut by) = (vec![0.0; n], vec![0.0; n]);
+    let mut counts = vec![0u32; n];
+    let mut by = Vec::with_capacity(n);
     let mut got = Vec::with_capacity(BOOTSTRAP_REPS);
     for _ in 0..BOOTSTRAP_REPS {
-        for j in 0..n {
-            let k = rng.random_range(0..n);
-            bx[j] = x[k];
-            by[j] = y[k];
+        counts.iter_mut().for_each(|c| *c = 0);
+        for _ in 0..n {
+            counts[rng.random_range(0..n)] += 1;
         }
-        if let Some(s) = first_order_index(&bx, &by) {
+        by.clear();
+        for &k in &order {
+            for _ in 0..counts[k] {
+                by.push(y[k]);
+            }
+        }
+        if let Some(s) = binned_index_of_sorted(&by) {
             got.push(s);
         }
     }
@@ -111,6 +120,31 @@ pub fn bootstrap_first_order(x: &[f64], y: &[f64]) -> Option<[f64; 2]> {
     let s = first_order_index(&x[..n], &y[..n])?;
     let offset = got.iter().sum::<f64>() / got.len().max(1) as f64 - s;
     percentile_interval(&mut got).map(|[a, b]| [(a - offset).clamp(0.0, 1.0), (b - offset).clamp(0.0, 1.0)])
+}
+
+/// The binned first-order index of `y` already in the order of its input (as
+/// [`first_order_index`] after its sort).
+fn binned_index_of_sorted(y: &[f64]) -> Option<f64> {
+    let n = y.len();
+    if n < 20 {
+        return None;
+    }
+    let mean = y.iter().sum::<f64>() / n as f64;
+    let total: f64 = y.iter().map(|v| (v - mean).powi(2)).sum();
+    if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let bins = ((n as f64).sqrt().round() as usize).max(2);
+    let mut between = 0.0;
+    for b in 0..bins {
+        let (lo, hi) = (b * n / bins, (b + 1) * n / bins);
+        if hi > lo {
+            let m = y[lo..hi].iter().sum::<f64>() / (hi - lo) as f64;
+            between += (hi - lo) as f64 * (m - mean).powi(2);
+        }
+    }
+    let bias = (bins - 1) as f64 / (n - 1) as f64;
+    Some(((between / total - bias) / (1.0 - bias)).clamp(0.0, 1.0))
 }
 
 fn percentile_interval(v: &mut [f64]) -> Option<[f64; 2]> {
@@ -210,7 +244,9 @@ pub fn total_order_indices(x: &[Vec<f64>], y: &[f64], noisy: bool) -> Vec<Option
         let m = t.len().min(MAX_BOOTSTRAP_SAMPLES);
         (0..m).map(|_| t[rng.random_range(0..m)]).sum::<f64>() / m as f64
     };
+    use rayon::prelude::*;
     (0..d)
+        .into_par_iter()
         .map(|i| {
             let others: Vec<usize> = (0..d).filter(|&k| k != i).collect();
             let terms = pair_terms(&nearest_neighbours(&u, &others));
@@ -313,15 +349,33 @@ pub fn table(names: &[String], x: &[Vec<f64>], mu: &[f64], fa0: &[f64], vary_sur
     let (mut sum_mu, mut sum_fa) = (0.0, 0.0);
     // Rows with an undrawn (NaN) parameter cannot have a neighbour distance.
     let finite = x.iter().all(|r| r.iter().all(|v| v.is_finite()));
-    let (t_mu, t_fa) = if finite && !names.is_empty() {
-        (total_order_indices(x, mu, vary_surface), total_order_indices(x, fa0, vary_surface))
-    } else {
-        (vec![None; names.len()], vec![None; names.len()])
-    };
-    for (k, name) in names.iter().enumerate() {
-        let xk: Vec<f64> = x.iter().map(|d| d[k]).collect();
-        let s_mu = first_order_index(&xk, mu);
-        let s_fa = first_order_index(&xk, fa0);
+    let ((t_mu, t_fa), first): (_, Vec<_>) = rayon::join(
+        || {
+            if finite && !names.is_empty() {
+                rayon::join(|| total_order_indices(x, mu, vary_surface), || total_order_indices(x, fa0, vary_surface))
+            } else {
+                (vec![None; names.len()], vec![None; names.len()])
+            }
+        },
+        || {
+            use rayon::prelude::*;
+            // Each input's first-order indices and their bootstrap intervals, in parallel (the
+            // results are collected in input order: same bytes whatever the threads).
+            (0..names.len())
+                .into_par_iter()
+                .map(|k| {
+                    let xk: Vec<f64> = x.iter().map(|d| d[k]).collect();
+                    let (s_mu, s_fa) = (first_order_index(&xk, mu), first_order_index(&xk, fa0));
+                    let (ci_mu, ci_fa) = rayon::join(
+                        || s_mu.and_then(|_| bootstrap_first_order(&xk, mu)),
+                        || s_fa.and_then(|_| bootstrap_first_order(&xk, fa0)),
+                    );
+                    (xk, s_mu, s_fa, ci_mu, ci_fa)
+                })
+                .collect()
+        },
+    );
+    for (k, (name, (xk, s_mu, s_fa, ci_mu, ci_fa))) in names.iter().zip(first).enumerate() {
         sum_mu += s_mu.unwrap_or(0.0);
         sum_fa += s_fa.unwrap_or(0.0);
         let (tm, tf) = (t_mu.get(k).copied().flatten(), t_fa.get(k).copied().flatten());
@@ -329,8 +383,8 @@ pub fn table(names: &[String], x: &[Vec<f64>], mu: &[f64], fa0: &[f64], vary_sur
             input: name.clone(),
             mu_first_order: s_mu,
             fa0_first_order: s_fa,
-            mu_first_order_ci: s_mu.and_then(|_| bootstrap_first_order(&xk, mu)),
-            fa0_first_order_ci: s_fa.and_then(|_| bootstrap_first_order(&xk, fa0)),
+            mu_first_order_ci: ci_mu,
+            fa0_first_order_ci: ci_fa,
             mu_total_order: tm.map(|t| t.0),
             mu_total_order_ci: tm.map(|t| t.1),
             fa0_total_order: tf.map(|t| t.0),

@@ -6,6 +6,8 @@
 //!   ST1 = 0.5576, ST2 = 0.4424, ST3 = 0.2437.
 //! * Additive: `Y = X1 + 2 X2 + 3 X3 (+ Z)`, all U(0, 1): `S_i = ST_i = c_i^2 / sum c^2`.
 
+#![allow(clippy::needless_range_loop)] // the indices name the inputs X1..X3 as in the formulas
+
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use stiction_study::sensitivity::{bootstrap_first_order, first_order_index, total_order_indices};
