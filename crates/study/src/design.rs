@@ -377,6 +377,75 @@ mod tests {
         assert!(Vary::parse("x=1,1").unwrap_err().to_string().contains("twice"));
     }
 
+    /// Hostile --vary text (brackets, quotes, commas, `=` in any order, unbalanced): an answer,
+    /// never a panic; an accepted value list has no empty value and no repeat.
+    #[test]
+    fn any_vary_text_is_parsed_or_refused_without_a_panic() {
+        use rand::{Rng, SeedableRng};
+        let alphabet: Vec<char> = "ab.=,[]{}\"' 1-".chars().collect();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        for _ in 0..20_000 {
+            let len = rng.random_range(0..16);
+            let text: String = (0..len).map(|_| alphabet[rng.random_range(0..alphabet.len())]).collect();
+            if let Ok(v) = Vary::parse(&text) {
+                assert!(!v.path.is_empty() && v.values.iter().all(|x| !x.is_empty()), "{text:?} -> {v:?}");
+                let _ = grid(std::slice::from_ref(&v), &[]);
+            }
+        }
+    }
+
+    #[test]
+    fn ranking_puts_the_best_first_and_rows_without_a_value_last() {
+        let summary = |with_fit: usize, width: Option<(f64, f64)>| {
+            let mut mu = Spread::of(&[0.5, 0.6, 0.7]).unwrap();
+            if let Some((a, b)) = width {
+                (mu.p05, mu.p95) = (a, b);
+            }
+            StudySummary {
+                scenario: String::new(),
+                scenario_hash: String::new(),
+                config: crate::summary::ConfigSummary {
+                    samples: 10,
+                    seed: 1,
+                    vary_surface: true,
+                    shard: "0/1".into(),
+                    calibration: crate::Calibration::Nominal,
+                    slip_path: stiction_meter::SlipPath::Light,
+                },
+                samples_done: 10,
+                with_fit,
+                without_fit: 10 - with_fit,
+                failed: 0,
+                reasons: BTreeMap::new(),
+                reduction: crate::summary::ReductionSummary {
+                    a_clamp_n_per_v2: 1.0,
+                    a_pull_n_per_v2: 1.0,
+                    spring_force_n: 1.0,
+                },
+                mu_apparent: width.map(|_| mu),
+                apparent_adhesion_force_n: None,
+                sensitivity: crate::sensitivity::table(&[], &[], &[], &[], true),
+                reference: None,
+            }
+        };
+        let v = [Vary::parse("a=1,2,3").unwrap()];
+        let iface = |m: f64| Ok(InterfaceCoefficient { mean: m, min: m, max: m, points: 1 });
+        let rows = vec![
+            DesignRow::new(0, &v, &["1".into()], &summary(5, Some((0.2, 1.0))), iface(0.9)),
+            DesignRow::new(1, &v, &["2".into()], &summary(0, None), iface(0.6)),
+            DesignRow::new(2, &v, &["3".into()], &summary(9, Some((0.5, 0.7))), Err("no contact".into())),
+        ];
+        assert_eq!(RankBy::Narrowest.rank(&rows), vec![2, 0, 1]);
+        assert_eq!(RankBy::MostUsable.rank(&rows), vec![2, 0, 1]);
+        // Only design 0 has both a median (0.6) and an interface coefficient (0.9).
+        assert_eq!(RankBy::LeastBias.rank(&rows), vec![0, 1, 2]);
+        assert!((rows[0].mu_bias.unwrap() + 0.3).abs() < 1e-12);
+        assert_eq!(rows[2].interface_mu_reason.as_deref(), Some("no contact"));
+        let csv = String::from_utf8(designs_csv(&v, &rows).unwrap()).unwrap();
+        assert_eq!(csv.lines().count(), 4);
+        assert!(csv.lines().nth(2).unwrap().starts_with("1,2,10,0,0e0,"), "{csv}");
+    }
+
     #[test]
     fn the_grid_is_every_combination_first_vary_slowest() {
         let a = Vary::parse("a=1,2").unwrap();
