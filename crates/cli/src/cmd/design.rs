@@ -196,7 +196,12 @@ fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], b
             Some([a, b]) => format!("{} [{}, {}]", digits(s.median, med_se), digits(a, med_se), digits(b, med_se)),
             None => digits(s.median, None),
         }));
-        cells.push(r.mu_interval_width.map_or_else(dash, |w| digits(w, r.mu_interval_width_se)));
+        // Without an interval for p05 and p95 (too few samples) the width has no standard error:
+        // two significant digits, marked as rough.
+        cells.push(r.mu_interval_width.map_or_else(dash, |w| match r.mu_interval_width_se {
+            Some(se) => digits(w, Some(se)),
+            None => format!("~{}", digits(w, Some(10f64.powf(w.abs().log10().floor() - 1.0)))),
+        }));
         cells.push(r.apparent_adhesion_force_n.as_ref().map_or_else(dash, |s| {
             let se = s.median_ci.map(|[a, b]| (b - a) / 3.92 * 1e6);
             digits(s.median * 1e6, se)
