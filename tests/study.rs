@@ -233,12 +233,13 @@ fn the_slurm_scripts_run_a_study_without_the_scheduler() {
             .env("STUDY_SAMPLES", "48")
             .env("STUDY_SHARDS", "3")
             .env("STUDY_OUT", &out)
-            .env("STUDY_SEED", "5")
-            .env("STUDY_FLAGS", "--quiet");
+            .env("STUDY_SEED", "5");
     };
     for k in ["2", "0", "1"] {
         let mut c = Command::new("bash");
-        c.arg("scripts/slurm/study-shard.sbatch").env("SLURM_ARRAY_TASK_ID", k).env("SLURM_CPUS_PER_TASK", "1");
+        c.args(["scripts/slurm/study-shard.sbatch", "--quiet"])
+            .env("SLURM_ARRAY_TASK_ID", k)
+            .env("SLURM_CPUS_PER_TASK", "1");
         env(&mut c);
         let r = c.output().unwrap();
         assert!(r.status.success(), "task {k}: {}", String::from_utf8_lossy(&r.stderr));

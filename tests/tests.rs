@@ -5,12 +5,14 @@ mod util;
 
 mod bad_inputs;
 mod bem;
+mod design;
 mod figures;
 mod hardening;
 mod models;
 mod outputs;
 mod own_device;
 mod scenarios;
+mod slurm;
 mod standalone;
 mod study;
 mod topography;

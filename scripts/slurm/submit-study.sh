@@ -16,11 +16,12 @@ here="$(cd "$(dirname "$0")" && pwd)"
 export STUDY_SCENARIO="$1" STUDY_SAMPLES="$2" STUDY_SHARDS="$3" STUDY_OUT="$4" STUDY_SEED="${5:-1}"
 shift 4
 if [ $# -gt 0 ]; then shift; fi
-export STUDY_FLAGS="$*"
+# The extra study flags stay a list of words, each as given ("$@", never "$*"): sbatch passes the
+# arguments after the script to it, so `--set "surface.summit_sd=20 nm"` arrives as two words.
 mkdir -p "$STUDY_OUT/logs"
 array=$(sbatch --parsable --export=ALL --array="0-$((STUDY_SHARDS - 1))" \
-    --output="$STUDY_OUT/logs/shard-%a.out" "$here/study-shard.sbatch")
+    --output="$STUDY_OUT/logs/shard-%a.out" "$here/study-shard.sbatch" "$@")
 array="${array%%;*}"
 merge=$(sbatch --parsable --export=ALL --dependency="afterok:$array" \
-    --output="$STUDY_OUT/logs/merge.out" "$here/study-merge.sbatch")
+    --output="$STUDY_OUT/logs/merge.out" "$here/study-merge.sbatch" "$@")
 echo "submitted shards as array job $array and the merge as job $merge; results in $STUDY_OUT/merged"

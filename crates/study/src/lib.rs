@@ -31,6 +31,7 @@ use serde_json::Value;
 use stiction_meter::{Meter, Reduction, SlipPath};
 use stiction_scenario::Scenario;
 
+pub mod design;
 pub mod log;
 mod sample;
 pub mod sensitivity;

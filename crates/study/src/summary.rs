@@ -22,21 +22,32 @@ pub const REASONS: [(&str, &str); 7] = [
     ("meter-failed", "the meter could not run on the drawn device"),
 ];
 
-/// Summary statistics of one reported quantity over the samples that gave it.
+/// Summary statistics of one reported quantity over the samples that gave it, with their Monte
+/// Carlo error: the standard error of the mean `sd / sqrt(n)`, and for each percentile a
+/// distribution-free 95 % interval from the binomial distribution of the order statistics
+/// ([`quantile_interval`]).
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct Spread {
     /// Number of samples with a value.
     pub count: usize,
     /// Mean.
     pub mean: f64,
+    /// Monte Carlo standard error of the mean, `sd / sqrt(n)` (0 for one sample).
+    pub mean_se: f64,
     /// Sample standard deviation.
     pub sd: f64,
     /// 5th percentile.
     pub p05: f64,
+    /// 95 % interval of the 5th percentile (None: too few samples for one).
+    pub p05_ci: Option<[f64; 2]>,
     /// Median.
     pub median: f64,
+    /// 95 % interval of the median.
+    pub median_ci: Option<[f64; 2]>,
     /// 95th percentile.
     pub p95: f64,
+    /// 95 % interval of the 95th percentile.
+    pub p95_ci: Option<[f64; 2]>,
     /// Smallest value.
     pub min: f64,
     /// Largest value.
@@ -61,12 +72,48 @@ impl Spread {
         Spread {
             count: n,
             mean,
+            mean_se: sd / (n as f64).sqrt(),
             sd,
             p05: percentile(v, 0.05),
+            p05_ci: quantile_interval(v, 0.05),
             median: percentile(v, 0.5),
+            median_ci: quantile_interval(v, 0.5),
             p95: percentile(v, 0.95),
+            p95_ci: quantile_interval(v, 0.95),
             min: v[0],
             max: v[n - 1],
+        }
+    }
+}
+
+/// Distribution-free 95 % interval of the p-quantile from `n` sorted values: `[x_(l), x_(u)]`
+/// (1-based order statistics) with `l = ceil(n p - 1.96 sqrt(n p (1 - p)))` and
+/// `u = ceil(n p + 1.96 sqrt(n p (1 - p)))`, the normal approximation to the binomial count of
+/// values below the quantile (Conover, *Practical Nonparametric Statistics*, 3rd ed., 1999,
+/// sec. 3.2; its exact coverage at n = 400 is 0.949-0.950 for p = 0.05, 0.5, 0.95). None when
+/// `l < 1` or `u > n`: too few samples to bound that quantile.
+pub fn quantile_interval(sorted: &[f64], p: f64) -> Option<[f64; 2]> {
+    let n = sorted.len() as f64;
+    let half = 1.96 * (n * p * (1.0 - p)).sqrt();
+    let (l, u) = ((n * p - half).ceil(), (n * p + half).ceil());
+    (l >= 1.0 && u <= n).then(|| [sorted[l as usize - 1], sorted[u as usize - 1]])
+}
+
+/// `value` with only the digits its standard error `se` supports: rounded to the decimal of the
+/// standard error's leading digit (0.7712 with se 0.0055 -> "0.771"), in plain notation. Without a
+/// usable standard error, 3 significant digits.
+pub fn digits(value: f64, se: Option<f64>) -> String {
+    match se.filter(|s| s.is_finite() && *s > 0.0) {
+        Some(s) if value.is_finite() => {
+            let decimals = (-s.log10().floor()).max(0.0) as usize;
+            let decimals = decimals.min(15);
+            let step = 10f64.powi(s.log10().floor() as i32);
+            if decimals == 0 { format!("{:.0}", (value / step).round() * step) } else { format!("{value:.decimals$}") }
+        }
+        _ if value == 0.0 || !value.is_finite() => format!("{value}"),
+        _ => {
+            let decimals = (2 - value.abs().log10().floor() as i32).max(0) as usize;
+            format!("{value:.decimals$}")
         }
     }
 }
@@ -248,5 +295,36 @@ mod tests {
         assert!((s.sd - 2.5f64.sqrt()).abs() < 1e-15);
         assert!((s.p05 - 1.2).abs() < 1e-12 && (s.p95 - 4.8).abs() < 1e-12);
         assert!(Spread::of(&[]).is_none());
+        // Five values bound no 5th percentile; the median's interval would need l >= 1.
+        assert_eq!((s.p05_ci, s.p95_ci), (None, None));
+        assert!((s.mean_se - 2.5f64.sqrt() / 5f64.sqrt()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn digits_follow_the_standard_error() {
+        assert_eq!(digits(0.7712, Some(0.0055)), "0.771");
+        assert_eq!(digits(0.7712, Some(0.03)), "0.77");
+        assert_eq!(digits(1234.5, Some(20.0)), "1230");
+        assert_eq!(digits(0.7712, None), "0.771");
+    }
+
+    /// Coverage of the order-statistic intervals of the 5th, 50th and 95th percentiles of U(0, 1)
+    /// (true values p): 1000 studies of 400 samples. The count of intervals that hold the true
+    /// value is Binomial(1000, 0.95) if the method is right: mean 950, sd 6.9; accepted 930..=970
+    /// (about 3 sd).
+    #[test]
+    fn quantile_intervals_cover_the_true_quantile_95_percent_of_the_time() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        for (p, truth) in [(0.05, 0.05), (0.5, 0.5), (0.95, 0.95)] {
+            let mut hit = 0;
+            for _ in 0..1000 {
+                let mut v: Vec<f64> = (0..400).map(|_| rng.random::<f64>()).collect();
+                v.sort_by(f64::total_cmp);
+                let [lo, hi] = quantile_interval(&v, p).unwrap();
+                hit += usize::from(lo <= truth && truth <= hi);
+            }
+            assert!((930..=970).contains(&hit), "p = {p}: {hit} of 1000 intervals cover");
+        }
     }
 }

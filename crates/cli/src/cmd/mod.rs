@@ -3,6 +3,7 @@
 pub mod actuator;
 pub mod bem;
 pub mod contact;
+pub mod design;
 pub mod discrete;
 pub mod fit;
 pub mod gw;

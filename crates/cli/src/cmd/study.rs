@@ -66,6 +66,14 @@ pub struct Args {
     /// Override a scenario field (repeatable).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
+    /// A design study: run the whole study once per value of this field (values as --set takes
+    /// them), over the grid of every --vary; same seeds in every design. Writes OUT/design-NNN
+    /// (each a study folder), designs.csv, designs.json and a design chart per varied field.
+    #[arg(long = "vary", value_name = "PATH=V1,V2,...")]
+    pub vary: Vec<String>,
+    /// How a design study ranks its designs.
+    #[arg(long, value_enum, default_value = "narrowest", requires = "vary")]
+    pub rank_by: crate::cmd::design::RankByArg,
     /// Figure size and font.
     #[command(flatten)]
     pub fig: FigureArgs,
@@ -185,6 +193,9 @@ pub fn run(args: Args) -> CliResult {
     };
     // Counts first: nothing is read or started before they are known to be sane.
     config.validate()?;
+    if !args.vary.is_empty() {
+        return crate::cmd::design::run(args, config);
+    }
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
         if t == 0 || t > MAX_THREADS {
@@ -251,15 +262,25 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
         if c.shard != "0/1" { format!(", shard {}", c.shard) } else { String::new() },
         c.seed
     );
+    // Only the digits the sample size supports: the mean to its standard error's leading digit,
+    // the percentiles to that of their order-statistic intervals (half-width / 1.96).
     let show = |name: &str, s: &Option<stiction_study::Spread>, scale: f64, unit: &str| match s {
-        Some(s) => crate::outln!(
-            "  {name:<28} mean {:.3}{unit} sd {:.3}{unit}  5-95 %: {:.3}..{:.3}{unit}  (n = {})",
-            s.mean * scale,
-            s.sd * scale,
-            s.p05 * scale,
-            s.p95 * scale,
-            s.count
-        ),
+        Some(s) => {
+            use stiction_study::summary::digits;
+            let q_se = |ci: Option<[f64; 2]>| ci.map(|[a, b]| (b - a) * scale / 3.92);
+            let q = |v: f64, ci: Option<[f64; 2]>| digits(v * scale, q_se(ci));
+            let se = Some(s.mean_se * scale).filter(|x| *x > 0.0);
+            crate::outln!(
+                "  {name:<28} mean {} +/- {}{unit} (Monte Carlo s.e.) sd {}{unit}  median {}{unit}  5-95 %: {}..{}{unit}  (n = {})",
+                digits(s.mean * scale, se),
+                se.map_or("0".into(), |e| digits(e, Some(e))),
+                digits(s.sd * scale, se),
+                q(s.median, s.median_ci),
+                q(s.p05, s.p05_ci),
+                q(s.p95, s.p95_ci),
+                s.count
+            )
+        }
         None => crate::outln!("  {name:<28} no sample gave a value"),
     };
     show("mu_e,a", &summary.mu_apparent, 1.0, "");
@@ -281,19 +302,39 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
     let s = &summary.sensitivity;
     if s.samples >= 20 {
         crate::outln!(
-            "  share of the variance (first-order Sobol index; Spearman rho), {} samples with a fit:",
+            "  share of the variance (Sobol indices, first order S and total order ST, with 95 % bootstrap intervals; \
+             Spearman rho), {} samples with a fit:",
             s.samples
         );
-        let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2}"));
-        let mut t =
-            crate::output::TextTable::new(&["input", "mu_e,a: Sobol", "mu_e,a: rho", "F_a0: Sobol", "F_a0: rho"]);
+        // An index with its interval, to the digit the interval's half-width supports.
+        let f = |x: Option<f64>, ci: Option<[f64; 2]>| match (x, ci) {
+            (Some(v), Some([a, b])) => {
+                let se = Some((b - a) / 3.92).filter(|e| *e > 0.0).map(|e| e.max(0.005));
+                let d = stiction_study::summary::digits;
+                format!("{} [{}, {}]", d(v, se), d(a, se), d(b, se))
+            }
+            (Some(v), None) => format!("{v:.2}"),
+            _ => "-".to_string(),
+        };
+        let rho = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:+.2}"));
+        let mut t = crate::output::TextTable::new(&[
+            "input",
+            "mu_e,a: S",
+            "mu_e,a: ST",
+            "mu_e,a: rho",
+            "F_a0: S",
+            "F_a0: ST",
+            "F_a0: rho",
+        ]);
         for r in &s.inputs {
             t.row(vec![
                 r.input.clone(),
-                f(r.mu_first_order),
-                f(r.mu_spearman),
-                f(r.fa0_first_order),
-                f(r.fa0_spearman),
+                f(r.mu_first_order, r.mu_first_order_ci),
+                f(r.mu_total_order, r.mu_total_order_ci),
+                rho(r.mu_spearman),
+                f(r.fa0_first_order, r.fa0_first_order_ci),
+                f(r.fa0_total_order, r.fa0_total_order_ci),
+                rho(r.fa0_spearman),
             ]);
         }
         t.print("    ");
@@ -303,8 +344,26 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
 
 fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
     let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
-    w.write_record(["input", "mu_first_order_sobol", "fa0_first_order_sobol", "mu_spearman_rho", "fa0_spearman_rho"])?;
+    w.write_record([
+        "input",
+        "mu_first_order_sobol",
+        "fa0_first_order_sobol",
+        "mu_spearman_rho",
+        "fa0_spearman_rho",
+        "mu_first_order_ci_low",
+        "mu_first_order_ci_high",
+        "fa0_first_order_ci_low",
+        "fa0_first_order_ci_high",
+        "mu_total_order_sobol",
+        "mu_total_order_ci_low",
+        "mu_total_order_ci_high",
+        "fa0_total_order_sobol",
+        "fa0_total_order_ci_low",
+        "fa0_total_order_ci_high",
+    ])?;
     let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
+    let lo = |c: Option<[f64; 2]>| f(c.map(|c| c[0]));
+    let hi = |c: Option<[f64; 2]>| f(c.map(|c| c[1]));
     for r in &summary.sensitivity.inputs {
         w.write_record([
             r.input.clone(),
@@ -312,6 +371,16 @@ fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
             f(r.fa0_first_order),
             f(r.mu_spearman),
             f(r.fa0_spearman),
+            lo(r.mu_first_order_ci),
+            hi(r.mu_first_order_ci),
+            lo(r.fa0_first_order_ci),
+            hi(r.fa0_first_order_ci),
+            f(r.mu_total_order),
+            lo(r.mu_total_order_ci),
+            hi(r.mu_total_order_ci),
+            f(r.fa0_total_order),
+            lo(r.fa0_total_order_ci),
+            hi(r.fa0_total_order_ci),
         ])?;
     }
     let bytes = w.into_inner().map_err(|e| e.to_string())?;
@@ -436,17 +505,28 @@ fn sensitivity_chart(summary: &StudySummary) -> Chart {
         }
     };
     let names: Vec<String> = rows.iter().map(|r| short(&r.input)).collect();
-    let series = |off: f64, f: &dyn Fn(&stiction_study::sensitivity::InputShare) -> Option<f64>| -> Vec<(f64, f64)> {
-        rows.iter().enumerate().filter_map(|(i, r)| f(r).map(|v| (i as f64 + 1.0 + off, v))).collect()
+    type Pick = dyn Fn(&stiction_study::sensitivity::InputShare) -> (Option<f64>, Option<[f64; 2]>);
+    // Markers at the index, error bars of the mean half-width of its 95 % bootstrap interval.
+    let series = |name: &str, off: f64, f: &Pick| -> Series {
+        let (mut pts, mut err) = (Vec::new(), Vec::new());
+        for (i, r) in rows.iter().enumerate() {
+            if let (Some(v), ci) = f(r) {
+                pts.push((i as f64 + 1.0 + off, v));
+                err.push(ci.map_or(0.0, |[a, b]| 0.5 * (b - a)));
+            }
+        }
+        Series::markers(name, pts).with_y_err(err)
     };
     let mut chart = Chart::new(
         format!("Share of the variance by input ({} samples with a fit)", summary.sensitivity.samples),
         "input",
-        "first-order Sobol index",
+        "Sobol index (95 % bootstrap intervals)",
     )
-    .keys("input_number", "sobol_first_order")
-    .with(Series::markers("μ_e,a", series(-0.1, &|r| r.mu_first_order)))
-    .with(Series::markers("F_a0", series(0.1, &|r| r.fa0_first_order)));
+    .keys("input_number", "sobol_index")
+    .with(series("μ_e,a, first order", -0.15, &|r| (r.mu_first_order, r.mu_first_order_ci)))
+    .with(series("μ_e,a, total order", -0.05, &|r| (r.mu_total_order, r.mu_total_order_ci)))
+    .with(series("F_a0, first order", 0.05, &|r| (r.fa0_first_order, r.fa0_first_order_ci)))
+    .with(series("F_a0, total order", 0.15, &|r| (r.fa0_total_order, r.fa0_total_order_ci)));
     chart.x_ticks = Some(names.iter().enumerate().map(|(i, n)| (i as f64 + 1.0, n.clone())).collect());
     chart.x_range = Some((0.5, rows.len() as f64 + 0.5));
     chart.legend = stiction_plot::LegendPosition::UpperRight;

@@ -1,0 +1,317 @@
+//! `stiction study SCENARIO --vary PATH=V1,V2,...`: a design study, one complete Monte Carlo study
+//! per design point (stiction_study::design), a design table, a ranking and design charts.
+
+use std::path::{Path, PathBuf};
+
+use stiction_plot::{Chart, Series};
+use stiction_study::design::{self, DesignRow, RankBy, Vary};
+use stiction_study::log::LogWriter;
+use stiction_study::summary::digits;
+use stiction_study::{MAX_THREADS, Study, StudyConfig};
+
+use crate::cmd::study::{Args, Progress};
+use crate::output::{CliResult, ensure_dir, print_json};
+
+/// The --rank-by choices.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default)]
+pub enum RankByArg {
+    /// Narrowest 5-95 % interval of mu_e,a first.
+    #[default]
+    Narrowest,
+    /// Smallest |median mu_e,a - the interface's own coefficient s / p_mean| first.
+    LeastBias,
+    /// Largest fraction of experiments with a usable eq. 10 line first.
+    MostUsable,
+}
+
+impl From<RankByArg> for RankBy {
+    fn from(r: RankByArg) -> RankBy {
+        match r {
+            RankByArg::Narrowest => RankBy::Narrowest,
+            RankByArg::LeastBias => RankBy::LeastBias,
+            RankByArg::MostUsable => RankBy::MostUsable,
+        }
+    }
+}
+
+/// The --json output of a design study.
+#[derive(serde::Serialize)]
+struct DesignReport<'a> {
+    scenario: String,
+    varied: &'a [Vary],
+    rank_by: RankBy,
+    /// Design numbers, best first.
+    ranking: Vec<usize>,
+    designs: &'a [DesignRow],
+}
+
+/// The folder of design `d` inside the design study's --out.
+pub fn design_folder(out: &Path, d: usize) -> PathBuf {
+    out.join(format!("design-{d:03}"))
+}
+
+/// Runs a design study (the study arguments with at least one --vary).
+pub fn run(args: Args, config: StudyConfig) -> CliResult {
+    let varies: Vec<Vary> = args.vary.iter().map(|v| Vary::parse(v)).collect::<Result<_, _>>()?;
+    let points = design::grid(&varies, &args.sets)?;
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = args.threads {
+        if t == 0 || t > MAX_THREADS {
+            return Err(format!("--threads {t}: expected 1 to {MAX_THREADS}").into());
+        }
+        pool = pool.num_threads(t);
+    }
+    let pool = pool.build()?;
+    // Every design is prepared (and so checked) before any runs: a value that makes one design
+    // invalid stops the study at once, naming the design.
+    let name = |p: &[String]| -> String {
+        varies.iter().zip(p).map(|(v, x)| format!("{}={x}", v.path)).collect::<Vec<_>>().join(", ")
+    };
+    let mut studies = Vec::with_capacity(points.len());
+    for (d, p) in points.iter().enumerate() {
+        let sets = design::sets_for(&args.sets, &varies, p);
+        let study =
+            Study::prepare(&args.scenario, &sets, &config).map_err(|e| format!("design {d} ({}): {e}", name(p)))?;
+        studies.push((sets, study));
+    }
+    let temporary = args.out.is_none();
+    let root = match &args.out {
+        Some(d) => d.clone(),
+        None => std::env::temp_dir().join(format!("stiction-design-{}", std::process::id())),
+    };
+    if temporary {
+        let _ = std::fs::remove_dir_all(&root);
+    }
+    ensure_dir(&root)?;
+    let per = config.shard_len();
+    let progress = Progress::new(per * points.len(), 0, args.quiet || args.json);
+    let mut rows = Vec::with_capacity(points.len());
+    let result = (|| -> CliResult {
+        for (d, (p, (sets, study))) in points.iter().zip(&studies).enumerate() {
+            let dir = design_folder(&root, d);
+            ensure_dir(&dir)?;
+            let header = study.header();
+            let (mut log, done) =
+                if args.resume { LogWriter::resume(&dir, &header)? } else { (LogWriter::create(&dir, &header)?, 0) };
+            let offset = d * per;
+            progress.update(offset + done);
+            pool.install(|| study.run_into(&mut log, done, &|n| progress.update(offset + n)))?;
+            drop(log);
+            let summary = if temporary {
+                stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None)?.0
+            } else {
+                crate::cmd::study::finish_folder(&dir, &args.fig)?
+            };
+            let interface = design::interface_coefficient(&args.scenario, sets);
+            rows.push(DesignRow::new(d, &varies, p, &summary, interface));
+        }
+        Ok(())
+    })();
+    progress.finish(if result.is_ok() { per * points.len() } else { 0 });
+    if temporary {
+        let _ = std::fs::remove_dir_all(&root);
+    }
+    result?;
+    let rank_by: RankBy = args.rank_by.into();
+    let ranking = rank_by.rank(&rows);
+    if let Some(out) = &args.out {
+        let write = |name: &str, bytes: &[u8]| stiction_units::io::write_atomic(&out.join(name), bytes);
+        write("designs.csv", &design::designs_csv(&varies, &rows)?)?;
+        let report = DesignReport {
+            scenario: args.scenario.display().to_string(),
+            varied: &varies,
+            rank_by,
+            ranking: ranking.clone(),
+            designs: &rows,
+        };
+        write("designs.json", (serde_json::to_string_pretty(&report)? + "\n").as_bytes())?;
+        for (k, v) in varies.iter().enumerate() {
+            let stem = format!("design_{}", v.path.replace(['.', '/'], "_"));
+            let chart = args.fig.apply(design_chart(&varies, &rows, k, rank_by))?;
+            crate::cmd::plot::render_chart(&chart, &out.join(format!("{stem}.svg")))?;
+            crate::cmd::plot::render_chart(&chart, &out.join(format!("{stem}.png")))?;
+            write(&format!("{stem}.csv"), chart.data_csv().as_bytes())?;
+        }
+    }
+    if args.json {
+        return print_json(&DesignReport {
+            scenario: args.scenario.display().to_string(),
+            varied: &varies,
+            rank_by,
+            ranking,
+            designs: &rows,
+        });
+    }
+    report(&args, &varies, &rows, &ranking, rank_by, &config);
+    Ok(())
+}
+
+fn criterion_name(r: RankBy) -> &'static str {
+    match r {
+        RankBy::Narrowest => "width of the 5-95 % interval of mu_e,a",
+        RankBy::LeastBias => "bias of the median mu_e,a against s / p_mean",
+        RankBy::MostUsable => "fraction of experiments with a usable eq. 10 line",
+    }
+}
+
+/// The criterion's value and standard error of a row, as drawn (not negated).
+fn criterion(r: &DesignRow, by: RankBy) -> Option<(f64, Option<f64>)> {
+    match by {
+        RankBy::Narrowest => r.mu_interval_width.map(|w| (w, r.mu_interval_width_se)),
+        RankBy::LeastBias => r.mu_bias.map(|b| (b, r.mu_bias_se)),
+        RankBy::MostUsable => Some((r.usable_fraction, Some(r.usable_fraction_se).filter(|s| *s > 0.0))),
+    }
+}
+
+fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], by: RankBy, config: &StudyConfig) {
+    crate::outln!(
+        "Design study of {}: {} designs x {} samples{} (seed {}, the same draws in every design)",
+        args.scenario.display(),
+        rows.len(),
+        config.samples,
+        if config.shard_count > 1 {
+            format!(", shard {}/{}", config.shard_index, config.shard_count)
+        } else {
+            String::new()
+        },
+        config.seed
+    );
+    crate::outln!("  ranked by the {} (best first; digits as the standard errors allow):", criterion_name(by));
+    let mut head: Vec<String> = vec!["rank".into(), "design".into()];
+    head.extend(varies.iter().map(|v| v.path.clone()));
+    head.extend(
+        ["usable", "mu_e,a median [95 % CI]", "5-95 % width", "F_a0 median (uN)", "s/p_mean", "bias"].map(String::from),
+    );
+    let mut t = crate::output::TextTable::new(&head);
+    let dash = || "-".to_string();
+    for (rank, &d) in ranking.iter().enumerate() {
+        let r = &rows[d];
+        let mut cells = vec![(rank + 1).to_string(), d.to_string()];
+        cells.extend(varies.iter().map(|v| r.values.get(&v.path).cloned().unwrap_or_default()));
+        let f_se = Some(r.usable_fraction_se).filter(|s| *s > 0.0);
+        cells.push(format!("{} of {} ({})", r.with_fit, r.samples, digits(r.usable_fraction, f_se)));
+        let mu = r.mu_apparent.as_ref();
+        let med_se = mu.and_then(|s| s.median_ci).map(|[a, b]| (b - a) / 3.92);
+        cells.push(mu.map_or_else(dash, |s| match s.median_ci {
+            Some([a, b]) => format!("{} [{}, {}]", digits(s.median, med_se), digits(a, med_se), digits(b, med_se)),
+            None => digits(s.median, None),
+        }));
+        // Without an interval for p05 and p95 (too few samples) the width has no standard error:
+        // two significant digits, marked as rough.
+        cells.push(r.mu_interval_width.map_or_else(dash, |w| match r.mu_interval_width_se {
+            Some(se) => digits(w, Some(se)),
+            None => format!("~{}", digits(w, Some(10f64.powf(w.abs().log10().floor() - 1.0)))),
+        }));
+        cells.push(r.apparent_adhesion_force_n.as_ref().map_or_else(dash, |s| {
+            let se = s.median_ci.map(|[a, b]| (b - a) / 3.92 * 1e6);
+            digits(s.median * 1e6, se)
+        }));
+        cells.push(r.interface_mu.as_ref().map_or_else(dash, |i| digits(i.mean, None)));
+        cells.push(r.mu_bias.map_or_else(dash, |b| digits(b, r.mu_bias_se)));
+        t.row(cells);
+    }
+    t.print("    ");
+    let without: Vec<String> = rows
+        .iter()
+        .filter(|r| !r.reasons.is_empty())
+        .map(|r| {
+            let why: Vec<String> = r.reasons.iter().map(|(k, n)| format!("{n} {k}")).collect();
+            format!("design {}: {}", r.design, why.join(", "))
+        })
+        .collect();
+    if !without.is_empty() {
+        crate::outln!("  experiments without a usable line, by reason (see each design's samples.csv):");
+        for w in without {
+            crate::outln!("    {w}");
+        }
+    }
+    for r in rows.iter().filter(|r| r.interface_mu_reason.is_some()) {
+        crate::outln!("  design {}: no s / p_mean: {}", r.design, r.interface_mu_reason.as_deref().unwrap_or(""));
+    }
+}
+
+/// The criterion against varied parameter `k`, one series per combination of the other varied
+/// values, with 95 % error bars (1.96 standard errors). Numeric values (with units, as `--set`
+/// takes them) go on a numeric axis in SI; others at positions 1, 2, ... with their text as ticks.
+fn design_chart(varies: &[Vary], rows: &[DesignRow], k: usize, by: RankBy) -> Chart {
+    let v = &varies[k];
+    let numeric: Option<Vec<f64>> =
+        v.values.iter().map(|x| stiction_units::parse_any(x.trim()).ok().map(|q| q.0)).collect();
+    let x_of = |val: &str| -> f64 {
+        let pos = v.values.iter().position(|x| x == val).unwrap_or(0);
+        match &numeric {
+            Some(n) => n[pos],
+            None => pos as f64 + 1.0,
+        }
+    };
+    let others: Vec<&Vary> = varies.iter().enumerate().filter(|(j, _)| *j != k).map(|(_, w)| w).collect();
+    let mut groups: Vec<(String, Vec<&DesignRow>)> = Vec::new();
+    for r in rows {
+        let label = others
+            .iter()
+            .map(|w| format!("{} = {}", w.path, r.values.get(&w.path).map_or("", String::as_str)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        match groups.iter_mut().find(|g| g.0 == label) {
+            Some(g) => g.1.push(r),
+            None => groups.push((label, vec![r])),
+        }
+    }
+    let (y_label, y_key) = match by {
+        RankBy::Narrowest => ("width of the 5-95 % interval of μ_e,a", "mu_interval_width"),
+        RankBy::LeastBias => ("median μ_e,a − s / p_mean (bias)", "mu_bias"),
+        RankBy::MostUsable => ("fraction of experiments with a usable line", "usable_fraction"),
+    };
+    let unit = match &numeric {
+        Some(_) => stiction_units::parse_any(v.values[0].trim()).map(|q| unit_name(q.1)).unwrap_or_default(),
+        None => String::new(),
+    };
+    let short = match by {
+        RankBy::Narrowest => "5-95 % width of μ_e,a",
+        RankBy::LeastBias => "bias of μ_e,a against s / p_mean",
+        RankBy::MostUsable => "usable experiments",
+    };
+    let mut chart = Chart::new(
+        format!("Design study: {short} ({} designs)", rows.len()),
+        if unit.is_empty() { v.path.clone() } else { format!("{} ({unit})", v.path) },
+        y_label,
+    )
+    .keys(stiction_units::key_with_unit(&v.path.replace('.', "_"), &unit), y_key);
+    for (label, members) in groups {
+        let (mut pts, mut err) = (Vec::new(), Vec::new());
+        for r in members {
+            if let Some((y, se)) = criterion(r, by) {
+                pts.push((x_of(&r.values[&v.path]), y));
+                err.push(1.96 * se.unwrap_or(0.0));
+            }
+        }
+        let name = if label.is_empty() { "designs (95 % intervals)".to_string() } else { label };
+        chart.series.push(Series::markers(name, pts).with_y_err(err));
+    }
+    // Widths and fractions from 0, with headroom above the points for the legend.
+    if by != RankBy::LeastBias {
+        let top = chart
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().zip(s.y_err.iter().flatten()).map(|(p, e)| p.1 + e))
+            .fold(0.0f64, f64::max);
+        if top > 0.0 {
+            chart.y_range = Some((0.0, 1.5 * top));
+        }
+    }
+    if numeric.is_none() {
+        chart.x_ticks = Some(v.values.iter().enumerate().map(|(i, x)| (i as f64 + 1.0, x.clone())).collect());
+        chart.x_range = Some((0.5, v.values.len() as f64 + 0.5));
+    }
+    chart.legend = stiction_plot::LegendPosition::UpperRight;
+    chart
+}
+
+/// The SI unit name of a parsed quantity's dimension ("" for a pure number).
+fn unit_name(dim: stiction_units::DimensionVector) -> String {
+    use stiction_units::Dimension as D;
+    [D::Length, D::Force, D::Pressure, D::Stiffness, D::Voltage, D::ForcePerVoltageSquared, D::Area]
+        .iter()
+        .find(|d| d.vector() == dim)
+        .map_or(String::new(), |d| d.si_unit().to_string())
+}

@@ -1,0 +1,170 @@
+//! Design studies (`stiction study --vary`): every design point's folder is byte for byte the
+//! single study of that scenario with the same `--set`s (common random numbers: same seed, same
+//! draws), the design table has one row per design with the varied values in columns named by
+//! their paths, sharded and resumed design studies give the same bytes, and bad grids are
+//! refused with exit status 2.
+
+use std::path::Path;
+
+use crate::util::{num, stiction, stiction_json, temp_dir};
+
+const PLATES: &str = "actuators.clamp.plate_count=30,60";
+const SPRING: &str = "actuators.pull.spring.stiffness=1 N/m,3 N/m";
+
+fn run(args: &[&str]) {
+    let r = stiction(args);
+    assert!(r.status.success(), "stiction {args:?}: {}", String::from_utf8_lossy(&r.stderr));
+}
+
+fn files(dir: &Path) -> Vec<String> {
+    let mut f: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_type().unwrap().is_file())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    f.sort();
+    f
+}
+
+fn same_folder(a: &Path, b: &Path) {
+    let (fa, fb) = (files(a), files(b));
+    assert_eq!(fa, fb, "{} vs {}", a.display(), b.display());
+    assert!(fa.contains(&"samples.log".to_string()) && fa.contains(&"study.json".to_string()), "{fa:?}");
+    for f in fa {
+        assert!(
+            std::fs::read(a.join(&f)).unwrap() == std::fs::read(b.join(&f)).unwrap(),
+            "{f} differs: {} vs {}",
+            a.display(),
+            b.display()
+        );
+    }
+}
+
+#[test]
+fn each_design_is_the_single_study_of_its_scenario_byte_for_byte() {
+    let dir = temp_dir("design-bytes");
+    let out = dir.join("designs");
+    let o = out.to_str().unwrap();
+    let base = ["study", "scenarios/tas2000.json", "--samples", "24", "--seed", "7", "--quiet"];
+    let mut args = base.to_vec();
+    args.extend(["--vary", PLATES, "--vary", SPRING, "--out", o]);
+    run(&args);
+    // Grid order: the first --vary slowest.
+    let points = [("30", "1 N/m"), ("30", "3 N/m"), ("60", "1 N/m"), ("60", "3 N/m")];
+    for (d, (plates, spring)) in points.iter().enumerate() {
+        let single = dir.join(format!("single-{d}"));
+        let (p, s) =
+            (format!("actuators.clamp.plate_count={plates}"), format!("actuators.pull.spring.stiffness={spring}"));
+        let mut a = base.to_vec();
+        a.extend(["--set", &p, "--set", &s, "--out", single.to_str().unwrap()]);
+        run(&a);
+        same_folder(&single, &out.join(format!("design-{d:03}")));
+    }
+    let table = std::fs::read_to_string(out.join("designs.csv")).unwrap();
+    let lines: Vec<&str> = table.lines().collect();
+    assert_eq!(lines.len(), 5, "{table}");
+    assert!(
+        lines[0].starts_with("design,actuators.clamp.plate_count,actuators.pull.spring.stiffness,samples,"),
+        "{table}"
+    );
+    assert!(lines[4].starts_with("3,60,3 N/m,24,"), "{table}");
+    for f in ["design_actuators_clamp_plate_count.svg", "design_actuators_pull_spring_stiffness.csv", "designs.json"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    // The same in --json, with the interface's own coefficient s A_r / (L + F_adh) of the nominal
+    // device: recomputed here from `stiction run --json` of design 0's scenario (the explicit
+    // solver's real area, true load and adhesive load at each clamp voltage in contact).
+    let mut j = base.to_vec();
+    j.extend(["--vary", PLATES, "--vary", SPRING, "--json", "--rank-by", "most-usable"]);
+    let v = stiction_json(&j);
+    let designs = v["designs"].as_array().unwrap();
+    assert_eq!(designs.len(), 4);
+    assert_eq!(designs[2]["values"]["actuators.clamp.plate_count"], "60");
+    assert_eq!(v["rank_by"], "most-usable");
+    let r = stiction_json(&[
+        "run",
+        "scenarios/tas2000.json",
+        "--json",
+        "--set",
+        "actuators.clamp.plate_count=30",
+        "--set",
+        "actuators.pull.spring.stiffness=1 N/m",
+    ]);
+    let mus: Vec<f64> = r["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["in_contact"] == true && num(p, "true_load_n") > 0.0)
+        .map(|p| 1.4e9 * num(p, "real_area_m2") / (num(p, "true_load_n") + num(p, "adhesive_load_n")))
+        .collect();
+    let want = mus.iter().sum::<f64>() / mus.len() as f64;
+    let got = num(&designs[0]["interface_mu"], "mean");
+    assert!((got - want).abs() < 1e-12 * want, "interface mu {got} vs {want} from the run's points");
+    let bias = num(&designs[0], "mu_bias");
+    assert!((bias - (num(&designs[0]["mu_apparent"], "median") - got)).abs() < 1e-15, "{bias}");
+}
+
+#[test]
+fn sharded_and_resumed_design_studies_give_the_same_bytes() {
+    let dir = temp_dir("design-shards");
+    let base = ["study", "scenarios/tas2000.json", "--samples", "12", "--seed", "3", "--quiet", "--vary", SPRING];
+    let one = dir.join("one");
+    let mut a = base.to_vec();
+    a.extend(["--out", one.to_str().unwrap()]);
+    run(&a);
+    let shards: Vec<_> = (0..2).map(|k| dir.join(format!("shard{k}"))).collect();
+    for (k, s) in shards.iter().enumerate() {
+        let shard = format!("{k}/2");
+        let mut a = base.to_vec();
+        a.extend(["--shard", &shard, "--out", s.to_str().unwrap()]);
+        run(&a);
+    }
+    // Merge design by design (stiction merge of each design's shard folders), then finish the
+    // design study on the merged folders with --resume: nothing left to run, the same outputs.
+    let merged = dir.join("merged");
+    for d in 0..2 {
+        let name = format!("design-{d:03}");
+        let (s0, s1, m) = (shards[0].join(&name), shards[1].join(&name), merged.join(&name));
+        run(&["merge", s0.to_str().unwrap(), s1.to_str().unwrap(), "--out", m.to_str().unwrap()]);
+    }
+    let mut a = base.to_vec();
+    a.extend(["--out", merged.to_str().unwrap(), "--resume"]);
+    run(&a);
+    for d in 0..2 {
+        let name = format!("design-{d:03}");
+        for f in ["samples.log", "samples.csv", "study.json"] {
+            assert!(
+                std::fs::read(one.join(&name).join(f)).unwrap() == std::fs::read(merged.join(&name).join(f)).unwrap(),
+                "{name}/{f}"
+            );
+        }
+    }
+    assert!(std::fs::read(one.join("designs.csv")).unwrap() == std::fs::read(merged.join("designs.csv")).unwrap());
+    // A killed design study: cut design 1's log to its header and 3 rows, resume.
+    let log = one.join("design-001/samples.log");
+    let text = std::fs::read_to_string(&log).unwrap();
+    let keep: Vec<&str> = text.lines().take(4).collect();
+    std::fs::write(&log, keep.join("\n") + "\n").unwrap();
+    let mut a = base.to_vec();
+    a.extend(["--out", one.to_str().unwrap(), "--resume"]);
+    run(&a);
+    assert_eq!(std::fs::read_to_string(&log).unwrap(), text);
+}
+
+#[test]
+fn bad_grids_are_refused_naming_the_field() {
+    for (args, needle) in [
+        (vec!["--vary", "actuators.clamp.plate_count"], "PATH=V1,V2"),
+        (vec!["--vary", "actuators.clamp.plate_count=30,,60"], "value 2 is empty"),
+        (vec!["--vary", PLATES, "--set", "actuators.clamp.plate_count=40"], "both set and varied"),
+        (vec!["--vary", "meter.spring_force=7 uN,-1 mm"], "design 1 (meter.spring_force=-1 mm)"),
+    ] {
+        let mut a = vec!["study", "scenarios/tas2000.json", "--samples", "4", "--quiet"];
+        a.extend(args.iter().copied());
+        let r = stiction(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{a:?}: {err}");
+        assert!(err.contains(needle), "{a:?}: {err}");
+    }
+}
