@@ -80,7 +80,10 @@ fn bem_adhesive_cycle_reports_pull_off() {
     let sigma0 = v["dugdale"]["stress_pa"].as_f64().unwrap();
     assert!((sigma0 / (0.1 / 2e-9) - 1.0).abs() < 1e-12, "Dugdale stress {sigma0}");
     let g = &v["grid"];
-    let cell_m2 = g["nx"].as_f64().unwrap() * g["ny"].as_f64().unwrap() * g["dx_m"].as_f64().unwrap() * g["dy_m"].as_f64().unwrap();
+    let cell_m2 = g["nx"].as_f64().unwrap()
+        * g["ny"].as_f64().unwrap()
+        * g["dx_m"].as_f64().unwrap()
+        * g["dy_m"].as_f64().unwrap();
     let load = |p: &serde_json::Value| p["load_n"].as_f64().unwrap();
     let loads: Vec<f64> = pts.iter().map(load).collect();
     let pull_off = v["pull_off_n"].as_f64().unwrap();

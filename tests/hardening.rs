@@ -284,10 +284,11 @@ fn killed_runs_leave_complete_outputs_or_none() {
         }
         let _ = child.kill();
         let status = child.wait().unwrap();
-        if let Some(names) = staging_files(&dir) {
-            if !status.success() && !names.iter().any(|n| n == "manifest.json") {
-                mid_write += 1;
-            }
+        if let Some(names) = staging_files(&dir)
+            && !status.success()
+            && !names.iter().any(|n| n == "manifest.json")
+        {
+            mid_write += 1;
         }
         if out_dir.exists() {
             assert_complete_run(&out_dir);

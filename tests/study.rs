@@ -309,7 +309,8 @@ fn sensitivity_indices_agree_with_the_linear_share_of_the_samples() {
     let csv = std::fs::read_to_string(out.join("samples.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let samples: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).filter(|f: &Vec<&str>| !f[1].is_empty()).collect();
+    let samples: Vec<Vec<&str>> =
+        lines.map(|l| l.split(',').collect()).filter(|f: &Vec<&str>| !f[1].is_empty()).collect();
     assert!(samples.len() > 500, "{} fits", samples.len());
     let column = |name: &str| -> Vec<f64> {
         let c = header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}: {header:?}"));
