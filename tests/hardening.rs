@@ -228,7 +228,11 @@ fn output_folder_holds_one_run_with_a_manifest() {
 }
 
 /// A `run` killed at random moments (seeded, so the same moments every time) leaves the previous
-/// complete outputs or none: never a partial file, never two runs' files side by side.
+/// complete outputs or none: never a partial file, never two runs' files side by side. Random
+/// moments may all miss the short writing phase, so every other case watches the staging folder
+/// and kills as soon as the first file appears in it; the test then requires that at least one kill
+/// landed while files were being written (a staging folder left with some files and no manifest),
+/// so it cannot pass without testing the write path.
 #[test]
 fn killed_runs_leave_complete_outputs_or_none() {
     let dir = temp_dir("kill");
@@ -248,13 +252,44 @@ fn killed_runs_leave_complete_outputs_or_none() {
         state
     };
     let cases: usize = std::env::var("STICTION_KILL_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(12);
+    // A staging folder of the parent holding some files (so a kill there is mid-write).
+    let staging_files = |dir: &Path| -> Option<Vec<String>> {
+        let staging = std::fs::read_dir(dir)
+            .ok()?
+            .filter_map(|e| e.ok())
+            .find(|e| e.file_name().to_string_lossy().contains("staging-"))?;
+        let names: Vec<String> = std::fs::read_dir(staging.path())
+            .ok()?
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .collect();
+        (!names.is_empty()).then_some(names)
+    };
+    let mut mid_write = 0;
     for case in 0..cases {
         let frac = (next() % 1200) as f64 / 1000.0;
         let wait = full.mul_f64(frac);
         let mut child = bin().args(args).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
-        std::thread::sleep(wait.min(Duration::from_secs(30)));
+        if case % 2 == 1 {
+            // Watch for the first file in the staging folder (up to 30 s), then kill.
+            let t = Instant::now();
+            while staging_files(&dir).is_none()
+                && child.try_wait().unwrap().is_none()
+                && t.elapsed() < Duration::from_secs(30)
+            {
+                std::thread::sleep(Duration::from_micros(200));
+            }
+        } else {
+            std::thread::sleep(wait.min(Duration::from_secs(30)));
+        }
         let _ = child.kill();
-        let _ = child.wait();
+        let status = child.wait().unwrap();
+        if let Some(names) = staging_files(&dir)
+            && !status.success()
+            && !names.iter().any(|n| n == "manifest.json")
+        {
+            mid_write += 1;
+        }
         if out_dir.exists() {
             assert_complete_run(&out_dir);
         }
@@ -270,6 +305,8 @@ fn killed_runs_leave_complete_outputs_or_none() {
             .collect();
         assert!(leftovers.is_empty(), "case {case}: leftovers {leftovers:?}");
     }
+    eprintln!("{mid_write} of {cases} kills landed while files were being written");
+    assert!(cases < 2 || mid_write >= 1, "no kill out of {cases} landed while files were being written");
 }
 
 /// A full standard error (`2>/dev/full`) never turns an error into a panic (exit 101): the message

@@ -47,3 +47,26 @@ pub fn assert_foreign_file_needs_force(out_dir: &std::path::Path, run: &dyn Fn(&
     assert!(run(&["--force"]).status.success(), "{what} --force");
     assert_eq!(std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(), "mine", "{what}");
 }
+
+/// mu_e,a and F_a0 of a `run --json` recomputed from its printed points: the ordinary least-squares
+/// line F_f = mu (L + F_a0) through (load_n, friction_n) of the points in contact (eq. 10, written
+/// here independently of stiction-fit); checked against the reported values to 1e-9 relative.
+pub fn assert_fit_of_points(v: &serde_json::Value) {
+    let xy: Vec<(f64, f64)> = v["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["in_contact"] == true && p["friction_n"].is_number())
+        .map(|p| (num(p, "load_n"), num(p, "friction_n")))
+        .collect();
+    assert!(xy.len() >= 3, "{} points in contact with a slip", xy.len());
+    let n = xy.len() as f64;
+    let (mx, my) = (xy.iter().map(|p| p.0).sum::<f64>() / n, xy.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxy: f64 = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = xy.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let slope = sxy / sxx;
+    let fa0 = (my - slope * mx) / slope;
+    let (mu, fa0_reported) = (num(v, "mu_apparent"), num(v, "apparent_adhesion_force_n"));
+    assert!((mu / slope - 1.0).abs() < 1e-9, "mu_e,a {mu} vs least squares {slope}");
+    assert!((fa0_reported / fa0 - 1.0).abs() < 1e-9, "F_a0 {fa0_reported} vs least squares {fa0}");
+}

@@ -12,7 +12,9 @@ use stiction_contact::gw::*;
 /// `(n, h, ln F_n(h))`, computed with mpmath 1.3.0 at 40 digits as
 /// `ln Gamma(n+1) - ln sqrt(2 pi) - h^2/4 + ln U(n + 1/2, h)` (parabolic cylinder function; see
 /// module docs of `gw`), cross-checked there against mpmath quadrature of eq. 6 to 1e-13 for h < 15
-/// and against erfc for n = 0.
+/// and against erfc for n = 0. Regenerated and compared with this table by
+/// `python3 crates/contact/tools/gw_reference.py --check` (also `G_REFERENCE`, `GW_DMT_REFERENCE`
+/// and the plain-GW constants below; mpmath 1.4.1 reproduces them to 1.3e-16 relative).
 const LN_F_REFERENCE: &[(f64, f64, f64)] = &[
     (0.0, -10.0, -7.619853024160525817881662e-24),
     (0.0, -3.5, -0.000232656141376804552181341),
@@ -264,7 +266,7 @@ proptest! {
 
 /// Reference GW+DMT numbers `(theta, h_m, log10|L*_min|, h0, log10 N*(L*=0), log10 A*(L*=0))`
 /// computed independently with mpmath (40 digits, F_n via parabolic cylinder functions,
-/// findroot on eq. 8 and on dL*/dh = 0).
+/// findroot on eq. 8 and on dL*/dh = 0; crates/contact/tools/gw_reference.py).
 const GW_DMT_REFERENCE: &[(f64, f64, f64, f64, f64, f64)] = &[
     (
         1.0,
@@ -325,7 +327,7 @@ fn gw_dmt_pull_off_and_zero_load_match_mpmath() {
     }
 }
 
-/// Plain GW (theta = inf): mpmath h(L* = 0.001) = 2.6177043596594008645,
+/// Plain GW (theta = inf; crates/contact/tools/gw_reference.py): mpmath h(L* = 0.001) = 2.6177043596594008645,
 /// log10 N* = -2.3539715969082689179, log10 A* = -2.3618855826927662207;
 /// h(L* = 0.5) = -0.10735861070688818382.
 #[test]
@@ -467,7 +469,7 @@ fn surface_validation_names_the_field() {
     }
 }
 
-/// `G_n(h) = F_n(h)/phi(h)` for the two GW orders without an erfc form, computed with mpmath 1.3.0
+/// `G_n(h) = F_n(h)/phi(h)` for the two GW orders without an erfc form (crates/contact/tools/gw_reference.py), computed with mpmath 1.3.0
 /// at 40 digits by the same formula as `LN_F_REFERENCE` (`Gamma(n+1) exp(h^2/4) D_{-n-1}(h)`,
 /// parabolic cylinder function), at the points of that table plus table-centre edges and both
 /// sides of the switch to the asymptotic series at h = 12. (The far tail is checked on `G_n`:

@@ -99,6 +99,8 @@ fn jkr_closed_forms() {
 
 /// Maugis-Dugdale against an independent mpmath solution (30 digits, Maugis' original (A, m)
 /// variables, golden-section minimum): `(lambda, P_min, A(P = 0), P(A = 1), Delta(A = 1))`.
+/// Regenerated and compared with this table by `python3 crates/contact/tools/md_reference.py --check`
+/// (40 digits; reproduces every value to 4e-17 relative).
 const MD_REFERENCE: &[(f64, f64, f64, f64, f64)] = &[
     (0.01, -1.9982877843215089, 1.2693666336872057, -1.0279417377884137, 0.84906795343573513),
     (0.1, -1.9505948921234289, 1.336179808437504, -1.2081048643778529, 0.51608173162477122),

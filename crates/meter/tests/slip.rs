@@ -13,7 +13,10 @@ use stiction_meter::slip::{SlipPath, light_trajectory, slip_outcome};
 use stiction_meter::{Meter, MeterResult};
 use stiction_scenario::Scenario;
 
-const MASS_KG: f64 = 107e-15;
+/// Shuttle mass of scenarios/tas2000.json: 107 ng = 1.07e-10 kg.
+const MASS_KG: f64 = 107e-9 * 1e-3;
+/// Damping of scenarios/tas2000.json, N s/m: with k = 1 N/m and m = 107 ng the damping ratio
+/// c / (2 sqrt(k m)) is 0.0102 (nearly undamped).
 const DAMPING: f64 = 2.1e-7;
 
 fn scenario_path() -> std::path::PathBuf {
@@ -34,10 +37,11 @@ fn at(traj: &[(f64, f64, f64)], t: f64) -> (f64, f64) {
 }
 
 /// Same outcome, same time to the stop and impact speed, and the same state along the way.
-/// Tolerances: rapier's step is T/2000 (1 ns) with a first-order (symplectic Euler) update; near the
-/// stop the motion's time scale is ~0.1 us, so rapier's state there is off by up to ~1e-3 of the
-/// travel, while the light path's RK4 (fourth order) is accurate to ~1e-6. Rapier's implicit damping adds a first-order error of
-/// about dt c/m (0.8 % for the heaviest damping below). State (further than 5 % from the
+/// Damping ratios c / (2 sqrt(k m)) covered: 0, 0.010 (the scenario's, nearly undamped) and 0.041.
+/// Tolerances: rapier's step is T/2000 (T = 2 pi sqrt(m/k) = 65 us, so 32 ns) with a first-order
+/// (symplectic Euler) update; near the stop rapier's state is off by up to ~1e-3 of the travel,
+/// while the light path's RK4 (fourth order) is accurate to ~1e-6. Rapier's implicit damping adds a
+/// first-order error of about dt c/m (2.6e-4 for the heaviest damping below). State (further than 5 % from the
 /// threshold): x(t) up to 80 % of the time to the stop within (5e-3 + 2 dt c/m) x_c, v(x) within
 /// (2e-2 + 2 dt c/m) of the largest speed; time to the stop
 /// 0.5 %, impact speed 1 %.

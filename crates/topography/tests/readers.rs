@@ -105,6 +105,47 @@ fn every_format_gives_the_same_statistics() {
     assert_eq!(stats_json(&m), want, "xyz");
 }
 
+/// Fixtures written by other programs (crates/topography/tools/make_reader_fixtures.py): .npy by
+/// numpy's np.save (C and Fortran order, little- and big-endian, float64 and float32) and a .gsf
+/// written from Gwyddion's documented layout. The map is known in closed form,
+/// z(ix, iy) = (ix + 100 iy + 0.5) nm on 5 columns x 3 rows (every value distinct, non-square), with
+/// one missing pixel at (3, 1) in the .npy files; every pixel is checked at its place, exactly (to
+/// float32 rounding for the float32 files), so a row/column or byte-order bug in the readers fails
+/// even when this crate's writers share it.
+#[test]
+fn fixtures_written_by_numpy_and_to_gwyddions_spec_read_pixel_by_pixel() {
+    let known = |ix: usize, iy: usize| (ix as f64 + 100.0 * iy as f64 + 0.5) * 1e-9;
+    let check = |m: &HeightMap, what: &str, float32: bool, missing: Option<(usize, usize)>| {
+        assert_eq!((m.nx(), m.ny()), (5, 3), "{what}: shape");
+        for iy in 0..3 {
+            for ix in 0..5 {
+                let got = m.at(ix, iy);
+                if missing == Some((ix, iy)) {
+                    assert!(got.is_nan(), "{what}: ({ix}, {iy}) should be missing, got {got}");
+                    continue;
+                }
+                let want = if float32 { f64::from(known(ix, iy) as f32) } else { known(ix, iy) };
+                assert_eq!(got, want, "{what}: z({ix}, {iy})");
+            }
+        }
+    };
+    for (name, bytes, float32) in [
+        ("known_c_f8.npy", &include_bytes!("fixtures/known_c_f8.npy")[..], false),
+        ("known_fortran_f8.npy", &include_bytes!("fixtures/known_fortran_f8.npy")[..], false),
+        ("known_big_f8.npy", &include_bytes!("fixtures/known_big_f8.npy")[..], false),
+        ("known_c_f4.npy", &include_bytes!("fixtures/known_c_f4.npy")[..], true),
+        ("known_big_fortran_f4.npy", &include_bytes!("fixtures/known_big_fortran_f4.npy")[..], true),
+    ] {
+        let (m, info) = read_npy(bytes, name, &meta_pixel()).unwrap();
+        assert_eq!(info.missing_pixels, 1, "{name}");
+        check(&m, name, float32, Some((3, 1)));
+    }
+    let (m, info) = read_gsf(include_bytes!("fixtures/known.gsf"), "known.gsf", &MapMetadata::default()).unwrap();
+    assert_eq!((info.pixel_size_from, info.height_unit_from), (MetaSource::File, MetaSource::File));
+    assert!((m.dx_m() / 0.25e-6 - 1.0).abs() < 1e-12 && (m.dy_m() / 0.25e-6 - 1.0).abs() < 1e-12);
+    check(&m, "known.gsf", true, None);
+}
+
 #[test]
 fn files_are_read_through_the_checked_reader() {
     let dir = std::env::temp_dir().join(format!("stiction-topo-read-{}", std::process::id()));
