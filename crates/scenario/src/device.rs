@@ -194,7 +194,7 @@ impl Scenario {
              then k x_c = {}; with --set: --set meter.spring_force=null), or restate it as the spring force \
              measured on this device, with its `sd`",
             f(given),
-            format!("{k:.4}").trim_end_matches('0').trim_end_matches('.'),
+            sig4(k),
             format_quantity(x_c, Dimension::Length),
             f(derived),
             f(diff),
