@@ -140,7 +140,9 @@ pub fn check_input(path: &Path, limit_bytes: u64) -> Result<u64, FileError> {
 pub fn read_input(path: &Path, limit_bytes: u64) -> Result<Vec<u8>, FileError> {
     let size = check_input(path, limit_bytes)?;
     let file = std::fs::File::open(path).map_err(|source| FileError::Open { path: path.to_path_buf(), source })?;
-    record_input(path, &file);
+    if let Ok(meta) = file.metadata() {
+        record_input(path, &meta);
+    }
     let mut bytes = Vec::with_capacity(size as usize);
     file.take(limit_bytes.saturating_add(1)).read_to_end(&mut bytes).map_err(|source| FileError::Io {
         path: path.to_path_buf(),
@@ -183,12 +185,20 @@ fn identity(_meta: &std::fs::Metadata) -> Option<(u64, u64)> {
 }
 
 /// Records an opened input file's identity, so that no output of this process replaces it.
-fn record_input(path: &Path, file: &std::fs::File) {
-    if let Some(id) = file.metadata().ok().as_ref().and_then(identity) {
+fn record_input(path: &Path, meta: &std::fs::Metadata) {
+    if let Some(id) = identity(meta) {
         let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
         if !inputs.iter().any(|(d, i, _)| (*d, *i) == id) {
             inputs.push((id.0, id.1, path.to_path_buf()));
         }
+    }
+}
+
+/// Lists an existing file as an input of this command without reading it (a file the command's
+/// arguments name as its data even when this run does not read it), so no output replaces it.
+pub fn declare_input(path: &Path) {
+    if let Ok(meta) = std::fs::metadata(path) {
+        record_input(path, &meta);
     }
 }
 
