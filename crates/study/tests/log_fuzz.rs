@@ -219,8 +219,8 @@ fn mutate(class: Class, bytes: &mut Vec<u8>, rng: &mut Rng) -> (Option<usize>, b
     }
 }
 
-fn temp_dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stiction-log-fuzz-{}", std::process::id()));
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("stiction-log-fuzz-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
@@ -229,7 +229,7 @@ fn temp_dir() -> PathBuf {
 #[test]
 fn mutated_logs_are_refused_naming_the_line_or_read_as_a_prefix() {
     let cases: usize = std::env::var("STICTION_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(2000);
-    let dir = temp_dir();
+    let dir = temp_dir("mutations");
     let path = dir.join(log::LOG_NAME);
     let mut rng = Rng(0x5eed_1234_abcd_ef01);
     let mut counts = std::collections::BTreeMap::<(Class, &str), usize>::new();
@@ -269,8 +269,7 @@ fn mutated_logs_are_refused_naming_the_line_or_read_as_a_prefix() {
 
 #[test]
 fn a_crlf_log_is_refused_on_resume_and_its_cr_never_reaches_samples_csv() {
-    let dir = temp_dir().join("crlf");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("crlf");
     let mut rng = Rng(42);
     write_log(&dir, 5, &mut rng);
     let path = dir.join(log::LOG_NAME);
@@ -285,8 +284,7 @@ fn a_crlf_log_is_refused_on_resume_and_its_cr_never_reaches_samples_csv() {
 
 #[test]
 fn an_untouched_log_reads_back_and_resumes_at_its_end() {
-    let dir = temp_dir().join("clean");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("clean");
     let mut rng = Rng(7);
     let rows = write_log(&dir, 6, &mut rng);
     assert_eq!(read_rows(&dir.join(log::LOG_NAME)).unwrap(), rows);
