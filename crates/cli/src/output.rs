@@ -88,7 +88,7 @@ pub fn json_text<T: serde::Serialize + ?Sized>(value: &T) -> Result<String, Box<
 /// Checks an output file named by `flag` before the work ([`stiction_units::io::check_output`]):
 /// a regular file or a new name, never a device, FIFO, link or one of the command's inputs.
 pub fn check_output_flag(flag: &str, path: &Path) -> CliResult {
-    stiction_units::io::check_output(path).map_err(|e| format!("{flag} {}: {e}", path.display()))?;
+    stiction_units::io::check_output(path).map_err(|e| format!("{flag}: {e}"))?;
     Ok(())
 }
 

@@ -52,7 +52,9 @@ pub fn run(args: Args) -> CliResult {
         .into());
     }
     if let Some(path) = &args.csv {
-        surface.write_csv_file(path).map_err(|e| format!("--csv {}: {e}", path.display()))?;
+        // Again after the build, which read the scenario's own summit CSV, if any.
+        crate::output::check_output_flag("--csv", path)?;
+        surface.write_csv_file(path)?;
         crate::errln!("wrote {} summits to {}", surface.len(), path.display());
     }
     let out = Output {
