@@ -33,15 +33,36 @@ fn mkfifo(p: &Path) {
     assert!(ok, "mkfifo {}", p.display());
 }
 
+/// A character device to write to, like /dev/null. As root (where a broken output layer would
+/// replace the system's /dev/null by a regular file), a private null device node in `dir`;
+/// otherwise /dev/null itself, which a non-root process cannot replace.
+#[cfg(unix)]
+fn null_device(dir: &Path) -> PathBuf {
+    let node = dir.join("null");
+    let made = Command::new("mknod")
+        .args(["-m", "666"])
+        .arg(&node)
+        .args(["c", "1", "3"])
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if made { node } else { PathBuf::from("/dev/null") }
+}
+
 /// A single-file output flag: `cmd(target)` builds the command line writing to `target`.
 /// /dev/null, a FIFO and a symlink are refused and left as they were.
 #[cfg(unix)]
 fn single_file_flag_refuses_special_targets(name: &str, flag: &str, cmd: &dyn Fn(&Path) -> Vec<String>) {
     let dir = temp_dir(&format!("out-targets-{name}"));
-    // /dev/null: a character device (a rename over it would replace the device node, as root).
-    let r = run(&cmd(Path::new("/dev/null")));
-    refused(&r, &format!("{name} {flag} /dev/null"), &[flag, "/dev/null", "a device"]);
-    assert!(std::fs::metadata("/dev/null").is_ok_and(|m| !m.is_file()), "/dev/null was replaced");
+    // A character device like /dev/null (a rename over it would replace the device node, as root).
+    let null = null_device(&dir);
+    let r = run(&cmd(&null));
+    refused(&r, &format!("{name} {flag} {}", null.display()), &[flag, &s(&null), "a device"]);
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = std::fs::symlink_metadata(&null).unwrap().file_type();
+        assert!(t.is_char_device(), "{name}: {} was replaced", null.display());
+    }
     // A FIFO: refused at once, never opened (a write would block).
     let fifo = dir.join("fifo");
     mkfifo(&fifo);
@@ -163,7 +184,7 @@ fn an_output_never_replaces_the_commands_own_input() {
     }
 }
 
-/// Output folders: /dev/null, a FIFO and a symlink are refused for every command with --out.
+/// Output folders: a device like /dev/null, a FIFO and a symlink are refused for every command with --out.
 #[cfg(unix)]
 #[test]
 fn output_folders_are_never_devices_fifos_or_links() {
@@ -174,6 +195,7 @@ fn output_folders_are_never_devices_fifos_or_links() {
     std::fs::create_dir_all(&real).unwrap();
     let link = dir.join("link");
     std::os::unix::fs::symlink(&real, &link).unwrap();
+    let null = null_device(&dir);
     let commands: [(&str, Vec<&str>); 4] = [
         ("run", vec!["run", "scenarios/tas2000.json"]),
         ("topography", vec!["topography", "data/topography-example/wall.gsf"]),
@@ -181,7 +203,7 @@ fn output_folders_are_never_devices_fifos_or_links() {
         ("merge", vec!["merge", "no-such-shard"]),
     ];
     for (name, base) in &commands {
-        for target in [Path::new("/dev/null"), &fifo, &link] {
+        for target in [null.as_path(), &fifo, &link] {
             let mut a: Vec<String> = base.iter().map(|x| x.to_string()).collect();
             a.extend(["--out".into(), s(target)]);
             let r = run(&a);

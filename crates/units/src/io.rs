@@ -313,8 +313,18 @@ mod tests {
     #[cfg(unix)]
     fn outputs_never_replace_devices_fifos_or_inputs() {
         let d = tmpdir("targets");
-        // A character device: refused, and left alone.
-        let e = write_atomic(Path::new("/dev/null"), b"x").unwrap_err();
+        // A character device: refused, and left alone. As root, a private null device node (a
+        // broken write_atomic would rename over it, not over the system's /dev/null); otherwise
+        // /dev/null itself, which a non-root process cannot replace.
+        let node = d.join("null");
+        let made = std::process::Command::new("mknod")
+            .args(["-m", "666"])
+            .arg(&node)
+            .args(["c", "1", "3"])
+            .status()
+            .is_ok_and(|s| s.success());
+        let device = if made { node.as_path() } else { Path::new("/dev/null") };
+        let e = write_atomic(device, b"x").unwrap_err();
         assert!(matches!(e, FileError::NotRegular { kind: "a device", .. }), "{e}");
         // A FIFO (made with mkfifo(1): no unsafe code here).
         let fifo = d.join("fifo");
