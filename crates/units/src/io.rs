@@ -5,7 +5,10 @@
 //! read, so no input can block or exhaust memory. Every output goes through [`write_atomic`]: the
 //! bytes go to a temporary file in the same folder, which is flushed to disk and then renamed over
 //! the target, so a killed run leaves the earlier complete file or the new complete file, never a
-//! partial one; a target that is a symbolic link is refused (an output never writes through a link).
+//! partial one. A target must be a new name or a regular file ([`check_output`]): a symbolic link,
+//! folder, device, FIFO or socket is refused, and so is any file this process read as an input
+//! (by identity, device and inode, recorded by [`read_input`] or [`declare_input`]), so a hard
+//! link or another name for an input is caught too.
 //!
 //! Written by hand (about 100 lines) because the two crates that do part of this (`tempfile`'s
 //! `persist`, `atomic-write-file`) either follow symlinks at the target or add dependencies for
