@@ -8,6 +8,7 @@ mod bem;
 mod design;
 mod figures;
 mod hardening;
+mod hardening_outputs;
 mod models;
 mod outputs;
 mod own_device;

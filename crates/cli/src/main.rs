@@ -54,6 +54,7 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    output::install_interrupt_handler();
     let result = match cli.command {
         Command::Gw(a) => cmd::gw::run(a),
         Command::Discrete(a) => cmd::discrete::run(a),
@@ -72,6 +73,10 @@ fn main() -> ExitCode {
     output::flush_stdout();
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.is::<output::Interrupted>() => {
+            crate::errln!("{e}");
+            ExitCode::from(130)
+        }
         Err(e) => {
             crate::errln!("error: {e}");
             ExitCode::from(2)

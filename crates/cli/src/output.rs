@@ -4,6 +4,11 @@
 //! pipe (`stiction scenario F | head -3`) ends the program quietly with status 0, any other write
 //! error (a full disk, `> /dev/full`) with a clean error and status 2; never a panic. Output
 //! folders go through [`OutputSet`]: one run's files, with a `manifest.json`, swapped in whole.
+//! Single output files go through `stiction_units::io::write_atomic`. Neither ever writes over a
+//! device, FIFO, socket or symbolic link, nor over a file the command read (by identity: device
+//! and inode, so a hard link or another name is caught too). Every JSON the program prints or
+//! writes goes through [`json_text`] (`stiction_units::finite`): a NaN or infinity is an internal
+//! error naming its key path, never a silent `null`.
 
 use std::fmt;
 use std::io::Write;
@@ -67,10 +72,23 @@ pub fn quantity(
     move |s: &str| parse_quantity_checked(s, dim, constraint).map_err(|e| e.to_string())
 }
 
-/// Prints a value as pretty JSON on stdout.
+/// Prints a value as pretty JSON on stdout ([`json_text`]: every number finite).
 pub fn print_json<T: serde::Serialize>(value: &T) -> CliResult {
-    let text = serde_json::to_string_pretty(value)?;
-    crate::outln!("{text}");
+    let text = json_text(value)?;
+    crate::outln!("{}", text.trim_end_matches('\n'));
+    Ok(())
+}
+
+/// A value as pretty JSON with a final newline, for a file or standard output; refuses a NaN or
+/// infinity anywhere in it with an internal error naming the key path.
+pub fn json_text<T: serde::Serialize + ?Sized>(value: &T) -> Result<String, Box<dyn std::error::Error>> {
+    Ok(stiction_units::finite::to_json_pretty(value)?)
+}
+
+/// Checks an output file named by `flag` before the work ([`stiction_units::io::check_output`]):
+/// a regular file or a new name, never a device, FIFO, link or one of the command's inputs.
+pub fn check_output_flag(flag: &str, path: &Path) -> CliResult {
+    stiction_units::io::check_output(path).map_err(|e| format!("{flag}: {e}"))?;
     Ok(())
 }
 
@@ -173,6 +191,107 @@ struct Manifest {
     files: Vec<String>,
 }
 
+/// A study or merge stopped by Ctrl-C or SIGTERM: the message says what was kept and how to go
+/// on; the program exits with status 130 (128 + SIGINT), as a shell does.
+#[derive(Debug)]
+pub struct Interrupted(pub String);
+
+impl fmt::Display for Interrupted {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Interrupted {}
+
+/// Set by the first Ctrl-C or SIGTERM while a command that stops cleanly runs ([`stop_cleanly`]).
+pub static INTERRUPT: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+static STOPS_CLEANLY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+/// Staging folders of the output sets in progress, removed when the program is interrupted.
+static STAGING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Installs the Ctrl-C / SIGTERM handler. A command that called [`stop_cleanly`] (a study) gets
+/// the first signal as [`INTERRUPT`] and finishes its samples in flight; otherwise (and on a
+/// second signal) the staging folders of unfinished output sets are removed and the program
+/// exits with status 130 at once, leaving the earlier outputs as they were and nothing hidden.
+pub fn install_interrupt_handler() {
+    use std::sync::atomic::Ordering;
+    let _ = ctrlc::set_handler(|| {
+        if STOPS_CLEANLY.load(Ordering::SeqCst) && !INTERRUPT.swap(true, Ordering::SeqCst) {
+            crate::errln!("interrupted: finishing the samples in flight (press Ctrl-C again to stop at once)");
+            return;
+        }
+        let dirs: Vec<PathBuf> = STAGING.lock().map(|mut g| std::mem::take(&mut *g)).unwrap_or_default();
+        for d in dirs {
+            let _ = std::fs::remove_dir_all(d);
+        }
+        crate::errln!("interrupted");
+        std::process::exit(130);
+    });
+}
+
+/// Says that this command handles [`INTERRUPT`] itself (finishes its work in flight and returns
+/// [`Interrupted`]).
+pub fn stop_cleanly() {
+    STOPS_CLEANLY.store(true, std::sync::atomic::Ordering::SeqCst);
+}
+
+fn track_staging(dir: &Path, on: bool) {
+    if let Ok(mut g) = STAGING.lock() {
+        if on {
+            g.push(dir.to_path_buf());
+        } else {
+            g.retain(|d| d != dir);
+        }
+    }
+}
+
+/// The file names an earlier stiction run listed in `dir`'s manifest (empty without one).
+pub fn listed_files(dir: &Path) -> Result<Vec<String>, Box<dyn std::error::Error>> {
+    let manifest_path = dir.join(MANIFEST);
+    if !manifest_path.exists() {
+        return Ok(Vec::new());
+    }
+    let text = stiction_units::io::read_own_output_text(&manifest_path, 1 << 20)?;
+    let m: Manifest = serde_json::from_str(&text)
+        .map_err(|e| format!("{}: not a stiction manifest ({e})", manifest_path.display()))?;
+    Ok(m.files)
+}
+
+/// Writes `dir`'s manifest for a folder written in place (a study's folder, which grows sample by
+/// sample and so cannot be swapped in whole): `files`, in order.
+pub fn write_manifest(dir: &Path, command: &str, files: &[String]) -> CliResult {
+    let manifest = Manifest { tool: "stiction".into(), command: command.into(), files: files.to_vec() };
+    stiction_units::io::write_atomic(&dir.join(MANIFEST), json_text(&manifest)?.as_bytes())?;
+    Ok(())
+}
+
+/// The `--out` rule for a folder written in place: the names in `dir` that neither an earlier
+/// run's manifest nor `own` (this command's files) account for are refused unless `force`.
+pub fn check_foreign(dir: &Path, own: &[&str], force: bool) -> CliResult {
+    let Ok(entries) = std::fs::read_dir(dir) else { return Ok(()) };
+    let listed = listed_files(dir)?;
+    let mut foreign: Vec<String> = entries
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != MANIFEST && !listed.contains(n) && !own.contains(&n.as_str()))
+        .collect();
+    foreign.sort();
+    if !foreign.is_empty() && !force {
+        let shown: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
+        return Err(format!(
+            "output folder {} holds {} file(s) that no stiction run listed in its {MANIFEST} ({}{}); \
+             choose a new or empty folder, or pass --force to write beside them",
+            dir.display(),
+            foreign.len(),
+            shown.join(", "),
+            if foreign.len() > 5 { ", ..." } else { "" }
+        )
+        .into());
+    }
+    Ok(())
+}
+
 /// One run's output folder, written as a whole.
 ///
 /// The files go to a hidden staging folder beside the target (same file system). On
@@ -242,13 +361,7 @@ impl OutputSet {
                 return Err(format!("output folder {} exists and is not a folder", dir.display()).into());
             }
             Ok(_) => {
-                let manifest_path = dir.join(MANIFEST);
-                if manifest_path.exists() {
-                    let text = stiction_units::io::read_input_text(&manifest_path, 1 << 20)?;
-                    let m: Manifest = serde_json::from_str(&text)
-                        .map_err(|e| format!("{}: not a stiction manifest ({e})", manifest_path.display()))?;
-                    old_files = m.files;
-                }
+                old_files = listed_files(dir)?;
                 let mut foreign: Vec<String> = std::fs::read_dir(dir)
                     .map_err(|e| io_err("list the output folder", dir, e))?
                     .flatten()
@@ -279,7 +392,8 @@ impl OutputSet {
         std::fs::create_dir(&staging).map_err(|e| {
             format!("cannot write output folder {} (its staging folder {}): {e}", dir.display(), staging.display())
         })?;
-        Ok(OutputSet {
+        track_staging(&staging, true);
+        let set = OutputSet {
             dir: dir.to_path_buf(),
             staging,
             command: command.to_string(),
@@ -287,7 +401,9 @@ impl OutputSet {
             old_files,
             in_place,
             committed: false,
-        })
+        };
+        set.check_inputs()?;
+        Ok(set)
     }
 
     fn claim(&mut self, name: &str) -> Result<PathBuf, Box<dyn std::error::Error>> {
@@ -296,6 +412,24 @@ impl OutputSet {
         }
         self.files.push(name.to_string());
         Ok(self.staging.join(name))
+    }
+
+    /// Refuses to replace or remove a file of the target folder that is one of the command's
+    /// inputs (by identity; called again at [`OutputSet::commit`], after the inputs are read).
+    fn check_inputs(&self) -> CliResult {
+        for name in self.old_files.iter().chain(&self.files).map(String::as_str).chain([MANIFEST]) {
+            let path = self.dir.join(name);
+            if let Some(input) = stiction_units::io::input_at(&path) {
+                return Err(format!(
+                    "output folder {}: its {name} is the input {} of this command (the same file on disk); an \
+                     output never replaces an input: choose another output folder, or move the input out of it",
+                    self.dir.display(),
+                    input.display()
+                )
+                .into());
+            }
+        }
+        Ok(())
     }
 
     /// Adds a file with these bytes.
@@ -355,10 +489,16 @@ impl OutputSet {
         self.add_bytes(&csv_name, map.data_csv().as_bytes())
     }
 
+    /// The names of the files added so far, in order.
+    pub fn file_names(&self) -> Vec<String> {
+        self.files.clone()
+    }
+
     /// Writes the manifest and puts the folder in place.
     pub fn commit(mut self) -> CliResult {
+        self.check_inputs()?;
         let manifest = Manifest { tool: "stiction".into(), command: self.command.clone(), files: self.files.clone() };
-        let text = serde_json::to_string_pretty(&manifest)? + "\n";
+        let text = json_text(&manifest)?;
         std::fs::write(self.staging.join(MANIFEST), &text).map_err(|e| io_err("write", &self.dir.join(MANIFEST), e))?;
         for f in self.files.iter().map(String::as_str).chain([MANIFEST]) {
             let p = self.staging.join(f);
@@ -398,5 +538,6 @@ impl Drop for OutputSet {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.staging);
         }
+        track_staging(&self.staging, false);
     }
 }

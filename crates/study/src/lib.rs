@@ -182,6 +182,43 @@ pub struct Study {
     pub config: StudyConfig,
     /// The uncertain parameters `(JSON path, SI unit)`, in draw order.
     pub parameters: Vec<(String, String)>,
+    /// The files the scenario points to, with the fingerprints of their contents.
+    input_files: Vec<log::InputFile>,
+}
+
+/// The files a scenario points to (`surface.csv_path`, `surface.height_map.file`,
+/// `surface.counter_height_map.file`, `measured.voltages_csv`), each read through the input layer
+/// and fingerprinted (FNV-1a of its bytes), so that resume and merge refuse a study whose maps or
+/// data changed.
+fn input_files(scenario: &Scenario, base_dir: &Path) -> Result<Vec<log::InputFile>, StudyError> {
+    let mut fields: Vec<(&str, PathBuf)> = Vec::new();
+    if let Some(s) = &scenario.surface {
+        if let Some(p) = &s.csv_path {
+            fields.push(("surface.csv_path", p.clone()));
+        }
+        if let Some(f) = s.height_map.as_ref().and_then(|m| m.file.clone()) {
+            fields.push(("surface.height_map.file", f));
+        }
+        if let Some(f) = s.counter_height_map.as_ref().and_then(|m| m.file.clone()) {
+            fields.push(("surface.counter_height_map.file", f));
+        }
+    }
+    if let Some(m) = &scenario.measured {
+        fields.push(("measured.voltages_csv", m.voltages_csv.clone()));
+    }
+    fields
+        .into_iter()
+        .map(|(field, p)| {
+            let full = base_dir.join(&p);
+            let bytes = stiction_units::io::read_input(&full, stiction_units::io::DEFAULT_INPUT_LIMIT_BYTES)
+                .map_err(|e| StudyError::Setting(format!("`{field}`: {e}")))?;
+            Ok(log::InputFile {
+                field: field.to_string(),
+                path: p.display().to_string(),
+                content_hash: format!("{:016x}", log::fnv1a(&bytes)),
+            })
+        })
+        .collect()
 }
 
 impl Study {
@@ -202,7 +239,17 @@ impl Study {
         let mut trial = ChaCha8Rng::seed_from_u64(config.seed);
         trial.set_stream(u64::MAX);
         sample_tree(&mut base.clone(), &mut trial)?;
-        Ok(Study { base, path: path.to_path_buf(), base_dir, nominal, reduction, config: config.clone(), parameters })
+        let input_files = input_files(&nominal, &base_dir)?;
+        Ok(Study {
+            base,
+            path: path.to_path_buf(),
+            base_dir,
+            nominal,
+            reduction,
+            config: config.clone(),
+            parameters,
+            input_files,
+        })
     }
 
     /// The log header that identifies this study (and shard).
@@ -210,7 +257,10 @@ impl Study {
         log::Header {
             format: log::FORMAT,
             scenario: self.path.display().to_string(),
-            scenario_hash: format!("{:016x}", fnv1a(serde_json::to_string(&self.base).unwrap_or_default().as_bytes())),
+            scenario_hash: format!(
+                "{:016x}",
+                log::fnv1a(serde_json::to_string(&self.base).unwrap_or_default().as_bytes())
+            ),
             samples: self.config.samples,
             seed: self.config.seed,
             vary_surface: self.config.vary_surface,
@@ -225,6 +275,8 @@ impl Study {
             ],
             parameters: self.parameters.clone(),
             reference: self.nominal.reference.clone(),
+            program_version: env!("CARGO_PKG_VERSION").to_string(),
+            input_files: self.input_files.clone(),
         }
     }
 
@@ -275,11 +327,21 @@ impl Study {
         })();
         match result {
             Ok(r) => {
-                out.mu_apparent = r.mu_apparent;
-                out.apparent_adhesion_force_n = r.apparent_adhesion_force_n;
+                // Finite or null: a non-finite result is no result, with a reason.
+                let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
+                out.mu_apparent = finite(r.mu_apparent);
+                out.apparent_adhesion_force_n = finite(r.apparent_adhesion_force_n);
                 let c: Vec<f64> = r.points.iter().filter(|p| p.in_contact).map(|p| p.contacts).collect();
-                out.mean_contacts = (!c.is_empty()).then(|| c.iter().sum::<f64>() / c.len() as f64);
-                if r.mu_apparent.is_none() {
+                out.mean_contacts = finite((!c.is_empty()).then(|| c.iter().sum::<f64>() / c.len() as f64));
+                if r.mu_apparent.is_some() && (out.mu_apparent.is_none() || out.apparent_adhesion_force_n.is_none()) {
+                    out.mu_apparent = None;
+                    out.apparent_adhesion_force_n = None;
+                    out.reason = Some("degenerate-fit".into());
+                    out.detail = Some(format!(
+                        "the eq. 10 line gave mu_e,a = {:?}, F_a0 = {:?} N: not finite numbers",
+                        r.mu_apparent, r.apparent_adhesion_force_n
+                    ));
+                } else if r.mu_apparent.is_none() {
                     let in_contact = r.points.iter().filter(|p| p.in_contact).count();
                     let slips = r.points.iter().filter(|p| p.load_n > 0.0 && p.friction_n.is_some()).count();
                     let (reason, detail) = if in_contact == 0 {
@@ -328,6 +390,19 @@ impl Study {
         done: usize,
         progress: &(dyn Fn(usize) + Sync),
     ) -> Result<(), StudyError> {
+        self.run_into_until(log, done, progress, &std::sync::atomic::AtomicBool::new(false)).map(|_| ())
+    }
+
+    /// [`Study::run_into`] that stops early when `interrupt` is set (Ctrl-C): no new sample is
+    /// started, the samples in flight are finished and logged, and the number of samples of the
+    /// shard in the log is returned (the shard's length when it ran to the end).
+    pub fn run_into_until(
+        &self,
+        log: &mut log::LogWriter,
+        done: usize,
+        progress: &(dyn Fn(usize) + Sync),
+        interrupt: &std::sync::atomic::AtomicBool,
+    ) -> Result<usize, StudyError> {
         use std::collections::BTreeMap;
         use std::sync::Mutex;
         use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -343,7 +418,7 @@ impl Study {
         let pending = Mutex::new(Pending { next: done, lines: BTreeMap::new(), log, error: None });
         let worker = || {
             loop {
-                if stop.load(Ordering::Relaxed) {
+                if stop.load(Ordering::Relaxed) || interrupt.load(Ordering::Relaxed) {
                     return;
                 }
                 let j = next.fetch_add(1, Ordering::Relaxed);
@@ -387,16 +462,9 @@ impl Study {
         let p = pending.into_inner().unwrap_or_else(|e| e.into_inner());
         match p.error {
             Some(e) => Err(e),
-            None => Ok(()),
+            None => Ok(p.next),
         }
     }
-}
-
-/// FNV-1a, 64 bit: a fingerprint of the scenario (after `--set`) in the log header, so that
-/// resume and merge refuse pieces of another study. Hand-written (five lines) rather than a
-/// dependency: it identifies, it does not protect against tampering.
-fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
 }
 
 /// The lab's conversion for one device calibrated from its arrays' pull-in voltages: the device

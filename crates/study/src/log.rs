@@ -1,10 +1,14 @@
 //! The append-only sample log `samples.log` of a study folder.
 //!
 //! Line 1 is `# ` and a one-line JSON [`Header`] that identifies the study (scenario fingerprint,
-//! seed, sample count, settings) and the shard; every further line is one finished sample, in
-//! index order, exactly as its row of samples.csv ([`columns`]). Each row is written with one
-//! `write_all` and flushed at once, so a killed study leaves at most a torn last line, which
-//! [`LogWriter::resume`] cuts off. samples.csv is the column line followed by the rows.
+//! fingerprints of the files the scenario points to, program version, seed, sample count,
+//! settings) and the shard; every further line is one finished sample, in index order: its row
+//! of samples.csv ([`columns`]). Every line ends with a tab and its checksum (16 hex digits of
+//! FNV-1a over the line before the tab), so an edited or damaged line is refused, naming it; line
+//! ends are LF only (a log converted to CR LF is refused with what to do). Each line is written
+//! with one `write_all` and flushed at once, so a killed study leaves at most a torn last line,
+//! which [`LogWriter::resume`] cuts off. samples.csv is the column line followed by the rows
+//! (without the checksums).
 
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, BufReader, Read, Seek, SeekFrom, Write};
@@ -15,14 +19,26 @@ use stiction_meter::SlipPath;
 
 use crate::{Calibration, SampleResult, StudyError};
 
-/// Version of the log format.
-pub const FORMAT: u32 = 1;
+/// Version of the log format (2: checksums on every line, input-file fingerprints and the program
+/// version in the header).
+pub const FORMAT: u32 = 2;
 
 /// File name of the log in a study folder.
 pub const LOG_NAME: &str = "samples.log";
 
 /// Longest header line accepted when reading a log (bytes).
 const MAX_HEADER_BYTES: u64 = 1 << 20;
+
+/// A file the scenario points to, with the fingerprint of its content.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct InputFile {
+    /// The scenario field that names it (`surface.height_map.file`).
+    pub field: String,
+    /// The path as written in the scenario.
+    pub path: String,
+    /// FNV-1a (64 bit, hex) of the file's bytes.
+    pub content_hash: String,
+}
 
 /// What identifies a study and one shard of it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -55,14 +71,40 @@ pub struct Header {
     /// outputs computed from the log alone (resume, merge) can show them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<stiction_scenario::ReferenceSpec>,
+    /// The version of stiction that wrote the log.
+    #[serde(default)]
+    pub program_version: String,
+    /// The files the scenario points to (maps, CSVs), with their content fingerprints.
+    #[serde(default)]
+    pub input_files: Vec<InputFile>,
 }
 
 impl Header {
     /// Why `other` is not a piece of the same study (None: it is). Shard and scenario path may
     /// differ (shards run on other machines).
     pub fn mismatch(&self, other: &Header) -> Option<String> {
-        let checks: [(&str, String, String); 8] = [
+        let files = |h: &Header| -> String {
+            h.input_files
+                .iter()
+                .map(|f| format!("{} = {} (content {})", f.field, f.path, f.content_hash))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        for (a, b) in self.input_files.iter().zip(&other.input_files) {
+            if a.field == b.field && a.content_hash != b.content_hash {
+                return Some(format!(
+                    "the file of `{}` differs: {} has content fingerprint {} vs {} has {}",
+                    a.field, a.path, a.content_hash, b.path, b.content_hash
+                ));
+            }
+        }
+        let field_list = |h: &Header| h.input_files.iter().map(|f| f.field.clone()).collect::<Vec<_>>();
+        if field_list(self) != field_list(other) {
+            return Some(format!("input files: {} vs {}", files(self), files(other)));
+        }
+        let checks: [(&str, String, String); 9] = [
             ("log format", self.format.to_string(), other.format.to_string()),
+            ("program version", self.program_version.clone(), other.program_version.clone()),
             ("scenario (fingerprint of the file after --set)", self.scenario_hash.clone(), other.scenario_hash.clone()),
             ("--samples", self.samples.to_string(), other.samples.to_string()),
             ("--seed", self.seed.to_string(), other.seed.to_string()),
@@ -84,7 +126,8 @@ impl Header {
     }
 
     fn line(&self) -> String {
-        format!("# {}\n", serde_json::to_string(self).unwrap_or_default())
+        String::from_utf8_lossy(&log_line(format!("# {}", serde_json::to_string(self).unwrap_or_default()).as_bytes()))
+            .into_owned()
     }
 }
 
@@ -104,6 +147,55 @@ fn csv_line(fields: &[String]) -> Result<Vec<u8>, StudyError> {
     let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
     w.write_record(fields).map_err(|e| StudyError::Log(format!("formatting a sample row: {e}")))?;
     w.into_inner().map_err(|e| StudyError::Log(format!("formatting a sample row: {e}")))
+}
+
+/// FNV-1a, 64 bit: the scenario and input-file fingerprints of the header and the line checksums.
+/// Hand-written (three lines) rather than a dependency: it detects edits and damage, it does not
+/// protect against deliberate tampering.
+pub(crate) fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}
+
+/// A log line: `content` (without its newline), a tab, its checksum, a newline.
+fn log_line(content: &[u8]) -> Vec<u8> {
+    let content = content.strip_suffix(b"\n").unwrap_or(content);
+    let mut l = Vec::with_capacity(content.len() + 18);
+    l.extend_from_slice(content);
+    l.extend_from_slice(format!("\t{:016x}\n", fnv1a(content)).as_bytes());
+    l
+}
+
+/// The content of log line `line_no` (without checksum and newline), after checking its line end
+/// and checksum; errors name the file and line, never echo the content.
+fn checked_content<'a>(path: &Path, line_no: usize, line: &'a [u8]) -> Result<&'a [u8], StudyError> {
+    let at = || format!("{} line {line_no}", path.display());
+    let body = line.strip_suffix(b"\n").ok_or_else(|| {
+        StudyError::Log(format!("{}: torn last line (the study was interrupted): finish it with --resume", at()))
+    })?;
+    if body.ends_with(b"\r") {
+        return Err(StudyError::Log(format!(
+            "{}: ends with CR LF (Windows line ends); a study log has LF line ends only, so it was converted after \
+             it was written: convert it back (dos2unix) or run the study again in a new --out",
+            at()
+        )));
+    }
+    let tab = body.iter().rposition(|&b| b == b'\t').ok_or_else(|| {
+        StudyError::Log(format!(
+            "{}: no checksum at the end of the line (every line of a study log ends with a tab and 16 hex digits); \
+             the line was damaged or the log was written by an older stiction",
+            at()
+        ))
+    })?;
+    let (content, sum) = (&body[..tab], &body[tab + 1..]);
+    let expected = format!("{:016x}", fnv1a(content));
+    if sum != expected.as_bytes() {
+        return Err(StudyError::Log(format!(
+            "{}: the checksum does not match the line (it was edited or damaged after the study wrote it); \
+             the log cannot be trusted: run the study again in a new --out",
+            at()
+        )));
+    }
+    Ok(content)
 }
 
 /// The column line of samples.csv.
@@ -159,23 +251,34 @@ fn parse_row(rec: &[&str], n_params: usize, what: &dyn Fn() -> String) -> Result
     })
 }
 
-/// Reads the header of a log.
+/// Reads the header of a log (its checksum checked; a log of another format refused).
 pub fn read_header(path: &Path) -> Result<Header, StudyError> {
     let f = File::open(path).map_err(|e| StudyError::Log(format!("cannot open {}: {e}", path.display())))?;
-    let mut line = String::new();
+    let mut line = Vec::new();
     BufReader::new(f.take(MAX_HEADER_BYTES))
-        .read_line(&mut line)
+        .read_until(b'\n', &mut line)
         .map_err(|e| StudyError::Log(format!("cannot read {}: {e}", path.display())))?;
-    let json = line
-        .strip_suffix('\n')
-        .and_then(|l| l.strip_prefix("# "))
-        .ok_or_else(|| StudyError::Log(format!("{}: the first line is not a study log header", path.display())))?;
-    serde_json::from_str(json)
-        .map_err(|e| StudyError::Log(format!("{}: the study log header is not valid ({e})", path.display())))
+    let not_header = || StudyError::Log(format!("{}: the first line is not a study log header", path.display()));
+    if !line.starts_with(b"# ") {
+        return Err(not_header());
+    }
+    let content = checked_content(path, 1, &line)?;
+    let json = std::str::from_utf8(&content[2..]).map_err(|_| not_header())?;
+    let h: Header = serde_json::from_str(json)
+        .map_err(|e| StudyError::Log(format!("{}: the study log header is not valid ({e})", path.display())))?;
+    if h.format != FORMAT {
+        return Err(StudyError::Log(format!(
+            "{}: a study log of format {}, this stiction reads format {FORMAT}: run the study again with this version",
+            path.display(),
+            h.format
+        )));
+    }
+    Ok(h)
 }
 
-/// Streams the rows of a log after its header, checking that they are the shard's samples in
-/// order. `f` gets each row and its raw line (with the newline).
+/// Streams the rows of a log after its header, checking each line's checksum and that they are
+/// the shard's samples in order. `f` gets each row and its samples.csv line (with the newline,
+/// without the checksum).
 pub fn for_each_row<F>(path: &Path, mut f: F) -> Result<usize, StudyError>
 where
     F: FnMut(Row, &[u8]) -> Result<(), StudyError>,
@@ -194,17 +297,11 @@ where
             break;
         }
         line_no += 1;
-        if line.last() != Some(&b'\n') {
-            return Err(StudyError::Log(format!(
-                "{} line {line_no}: torn last line (the study was interrupted): finish it with --resume",
-                path.display()
-            )));
-        }
+        let content = checked_content(path, line_no, &line)?;
         let what = || format!("{} line {line_no}", path.display());
         // The number and code fields are never quoted (written by `row`); only the last field,
         // the detail text, may be: split off the first 5 + p fields.
-        let text = std::str::from_utf8(&line[..line.len() - 1])
-            .map_err(|_| StudyError::Log(format!("{}: not UTF-8 text", what())))?;
+        let text = std::str::from_utf8(content).map_err(|_| StudyError::Log(format!("{}: not UTF-8 text", what())))?;
         let n_fields = 5 + header.parameters.len();
         let fields: Vec<&str> = text.splitn(n_fields + 1, ',').collect();
         if fields.len() != n_fields + 1 {
@@ -219,7 +316,10 @@ where
                 row.index
             )));
         }
-        f(row, &line)?;
+        let mut csv_row = Vec::with_capacity(content.len() + 1);
+        csv_row.extend_from_slice(content);
+        csv_row.push(b'\n');
+        f(row, &csv_row)?;
         n += 1;
     }
     Ok(n)
@@ -322,10 +422,10 @@ impl LogWriter {
         Ok((LogWriter { file, path }, done))
     }
 
-    /// Appends one row (a whole line) and flushes it.
-    pub fn append(&mut self, line: &[u8]) -> Result<(), StudyError> {
+    /// Appends one row ([`row`]: a samples.csv line) with its checksum, and flushes it.
+    pub fn append(&mut self, row: &[u8]) -> Result<(), StudyError> {
         self.file
-            .write_all(line)
+            .write_all(&log_line(row))
             .and_then(|()| self.file.flush())
             .map_err(|e| StudyError::Log(format!("cannot append to {}: {e}", self.path.display())))
     }
@@ -411,7 +511,7 @@ pub fn merge(inputs: &[PathBuf], out_dir: &Path) -> Result<Header, StudyError> {
     }
     let mut bytes = header.line().into_bytes();
     for i in 0..header.samples {
-        bytes.extend_from_slice(&rows[i % m][i / m]);
+        bytes.extend_from_slice(&log_line(&rows[i % m][i / m]));
     }
     stiction_units::io::write_atomic(&out, &bytes).map_err(|e| StudyError::Log(e.to_string()))?;
     Ok(header)

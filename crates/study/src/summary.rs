@@ -273,7 +273,7 @@ pub fn finalize(dir: &Path) -> Result<(StudySummary, FigureData), StudyError> {
     let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
     let mut csv = Vec::with_capacity(size as usize + 1024);
     let (summary, fig) = summarize(&path, Some(&mut csv))?;
-    let json = serde_json::to_string_pretty(&summary).map_err(|e| StudyError::Log(e.to_string()))? + "\n";
+    let json = stiction_units::finite::to_json_pretty(&summary).map_err(|e| StudyError::Log(e.to_string()))?;
     let write = |name: &str, bytes: &[u8]| {
         stiction_units::io::write_atomic(&dir.join(name), bytes).map_err(|e| StudyError::Log(e.to_string()))
     };

@@ -5,7 +5,10 @@
 //! read, so no input can block or exhaust memory. Every output goes through [`write_atomic`]: the
 //! bytes go to a temporary file in the same folder, which is flushed to disk and then renamed over
 //! the target, so a killed run leaves the earlier complete file or the new complete file, never a
-//! partial one; a target that is a symbolic link is refused (an output never writes through a link).
+//! partial one. A target must be a new name or a regular file ([`check_output`]): a symbolic link,
+//! folder, device, FIFO or socket is refused, and so is any file this process read as an input
+//! (by identity, device and inode, recorded by [`read_input`] or [`declare_input`]), so a hard
+//! link or another name for an input is caught too.
 //!
 //! Written by hand (about 100 lines) because the two crates that do part of this (`tempfile`'s
 //! `persist`, `atomic-write-file`) either follow symlinks at the target or add dependencies for
@@ -49,6 +52,14 @@ pub enum FileError {
         /// The link.
         path: PathBuf,
     },
+    /// An output path is one of the files this command read (same device and inode: the same
+    /// file, a hard link to it, or another name for it).
+    SameAsInput {
+        /// The output path.
+        path: PathBuf,
+        /// The input, as it was named when it was read.
+        input: PathBuf,
+    },
     /// Reading or writing failed.
     Io {
         /// The file.
@@ -76,6 +87,13 @@ impl fmt::Display for FileError {
                 f,
                 "{} is a symbolic link; outputs never write through a link (remove it or choose another path)",
                 path.display()
+            ),
+            FileError::SameAsInput { path, input } => write!(
+                f,
+                "output {} is the input {} of this command (the same file on disk); an output never replaces \
+                 an input: choose another output path",
+                path.display(),
+                input.display()
             ),
             FileError::Io { path, action, source } => write!(f, "cannot {action} {}: {source}", path.display()),
         }
@@ -125,6 +143,9 @@ pub fn check_input(path: &Path, limit_bytes: u64) -> Result<u64, FileError> {
 pub fn read_input(path: &Path, limit_bytes: u64) -> Result<Vec<u8>, FileError> {
     let size = check_input(path, limit_bytes)?;
     let file = std::fs::File::open(path).map_err(|source| FileError::Open { path: path.to_path_buf(), source })?;
+    if let Ok(meta) = file.metadata() {
+        record_input(path, &meta);
+    }
     let mut bytes = Vec::with_capacity(size as usize);
     file.take(limit_bytes.saturating_add(1)).read_to_end(&mut bytes).map_err(|source| FileError::Io {
         path: path.to_path_buf(),
@@ -151,17 +172,87 @@ pub fn read_input_text(path: &Path, limit_bytes: u64) -> Result<String, FileErro
     Ok(text)
 }
 
-/// Writes `bytes` to `path` atomically: a temporary file in the same folder, flushed, then renamed
-/// over `path`. Refuses a `path` that is a symbolic link.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
-    if let Ok(meta) = std::fs::symlink_metadata(path) {
-        if meta.file_type().is_symlink() {
-            return Err(FileError::Symlink { path: path.to_path_buf() });
-        }
-        if meta.is_dir() {
-            return Err(FileError::NotRegular { path: path.to_path_buf(), kind: "a folder" });
+/// The identities (device, inode) of the files this process read through [`read_input`], with
+/// the name each was read by: outputs are checked against them ([`check_output`]).
+static INPUTS: std::sync::Mutex<Vec<(u64, u64, PathBuf)>> = std::sync::Mutex::new(Vec::new());
+
+#[cfg(unix)]
+fn identity(meta: &std::fs::Metadata) -> Option<(u64, u64)> {
+    use std::os::unix::fs::MetadataExt;
+    Some((meta.dev(), meta.ino()))
+}
+
+#[cfg(not(unix))]
+fn identity(_meta: &std::fs::Metadata) -> Option<(u64, u64)> {
+    None
+}
+
+/// Records an opened input file's identity, so that no output of this process replaces it.
+fn record_input(path: &Path, meta: &std::fs::Metadata) {
+    if let Some(id) = identity(meta) {
+        let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
+        if !inputs.iter().any(|(d, i, _)| (*d, *i) == id) {
+            inputs.push((id.0, id.1, path.to_path_buf()));
         }
     }
+}
+
+/// Lists an existing file as an input of this command without reading it (a file the command's
+/// arguments name as its data even when this run does not read it), so no output replaces it.
+pub fn declare_input(path: &Path) {
+    if let Ok(meta) = std::fs::metadata(path) {
+        record_input(path, &meta);
+    }
+}
+
+/// The input (as it was named when read) that `path` is, by identity (device and inode), if any.
+pub fn input_at(path: &Path) -> Option<PathBuf> {
+    let id = std::fs::metadata(path).ok().as_ref().and_then(identity)?;
+    let inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
+    inputs.iter().find(|(d, i, _)| (*d, *i) == id).map(|(_, _, p)| p.clone())
+}
+
+/// Reads a small text file that the output layer itself owns (an output folder's manifest)
+/// without listing it as an input of the command: it is read to be replaced.
+pub fn read_own_output_text(path: &Path, limit_bytes: u64) -> Result<String, FileError> {
+    check_input(path, limit_bytes)?;
+    let bytes =
+        std::fs::read(path).map_err(|source| FileError::Io { path: path.to_path_buf(), action: "read", source })?;
+    String::from_utf8(bytes).map_err(|e| FileError::Io {
+        path: path.to_path_buf(),
+        action: "read (not UTF-8 text)",
+        source: std::io::Error::new(std::io::ErrorKind::InvalidData, e.utf8_error()),
+    })
+}
+
+/// Checks that `path` may receive an output file: it does not exist yet, or it is a regular file
+/// (never a symbolic link, folder, FIFO, socket or device, which a rename would replace or a write
+/// would block on) that is none of the files this process read ([`read_input`]).
+pub fn check_output(path: &Path) -> Result<(), FileError> {
+    match std::fs::symlink_metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(source) => Err(FileError::Open { path: path.to_path_buf(), source }),
+        Ok(meta) => {
+            let ft = meta.file_type();
+            if ft.is_symlink() {
+                return Err(FileError::Symlink { path: path.to_path_buf() });
+            }
+            if !ft.is_file() {
+                return Err(FileError::NotRegular { path: path.to_path_buf(), kind: kind_of(&ft) });
+            }
+            match input_at(path) {
+                Some(input) => Err(FileError::SameAsInput { path: path.to_path_buf(), input }),
+                None => Ok(()),
+            }
+        }
+    }
+}
+
+/// Writes `bytes` to `path` atomically: a temporary file in the same folder, flushed, then renamed
+/// over `path`. Refuses a `path` that [`check_output`] refuses (a link, folder, device, FIFO,
+/// socket, or one of this process's inputs).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
+    check_output(path)?;
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
@@ -180,6 +271,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
             .map_err(io("create a temporary file for", path))?;
         f.write_all(bytes).map_err(io("write", path))?;
         f.sync_all().map_err(io("flush", path))?;
+        // Checked again just before the rename: the target may have been made since.
+        check_output(path)?;
         std::fs::rename(&tmp, path).map_err(io("replace", path))
     })();
     if result.is_err() {
@@ -217,6 +310,46 @@ mod tests {
             assert!(matches!(write_atomic(&link, b"x"), Err(FileError::Symlink { .. })));
             assert_eq!(std::fs::read(&target).unwrap(), b"keep");
         }
+    }
+
+    #[test]
+    #[cfg(unix)]
+    fn outputs_never_replace_devices_fifos_or_inputs() {
+        let d = tmpdir("targets");
+        // A character device: refused, and left alone. As root, a private null device node (a
+        // broken write_atomic would rename over it, not over the system's /dev/null); otherwise
+        // /dev/null itself, which a non-root process cannot replace.
+        let node = d.join("null");
+        let made = std::process::Command::new("mknod")
+            .args(["-m", "666"])
+            .arg(&node)
+            .args(["c", "1", "3"])
+            .status()
+            .is_ok_and(|s| s.success());
+        let device = if made { node.as_path() } else { Path::new("/dev/null") };
+        let e = write_atomic(device, b"x").unwrap_err();
+        assert!(matches!(e, FileError::NotRegular { kind: "a device", .. }), "{e}");
+        // A FIFO (made with mkfifo(1): no unsafe code here).
+        let fifo = d.join("fifo");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success());
+        if made {
+            let e = write_atomic(&fifo, b"x").unwrap_err();
+            assert!(e.to_string().contains("FIFO"), "{e}");
+        }
+        // An input of this process, by its own name and by a hard link.
+        let input = d.join("input.csv");
+        std::fs::write(&input, b"data").unwrap();
+        read_input(&input, 100).unwrap();
+        let link = d.join("link.csv");
+        std::fs::hard_link(&input, &link).unwrap();
+        for target in [&input, &link] {
+            let e = write_atomic(target, b"x").unwrap_err();
+            assert!(matches!(e, FileError::SameAsInput { .. }), "{e}");
+            assert!(e.to_string().contains("input.csv"), "{e}");
+        }
+        assert_eq!(std::fs::read(&input).unwrap(), b"data");
+        // Another file is fine.
+        write_atomic(&d.join("other.csv"), b"x").unwrap();
     }
 
     #[test]

@@ -26,6 +26,7 @@ mod parse;
 pub use parse::{format_quantity, parse_any, parse_quantity, parse_quantity_checked};
 
 pub mod de;
+pub mod finite;
 pub mod io;
 mod uncertain;
 pub use uncertain::{Distribution, ScalarInput, UncertainInput, nominal_from_json};

@@ -156,7 +156,7 @@ pub fn run(args: Args) -> CliResult {
     }
     if let Some(dir) = &args.out {
         let mut set = OutputSet::begin(dir, "actuator", args.force)?;
-        set.add_bytes("results.json", (serde_json::to_string_pretty(&summary)? + "\n").as_bytes())?;
+        set.add_bytes("results.json", crate::output::json_text(&summary)?.as_bytes())?;
         if let Some(sweep) = &summary.sweep {
             let chart = args.fig.apply(sweep_chart(&name, sweep, &model))?;
             set.add_chart("hysteresis.svg", &chart)?;

@@ -447,7 +447,7 @@ fn write_outputs(
     fig: &crate::figargs::FigureArgs,
 ) -> CliResult {
     let g = out.grid;
-    set.add_bytes("results.json", (serde_json::to_string_pretty(out)? + "\n").as_bytes())?;
+    set.add_bytes("results.json", crate::output::json_text(out)?.as_bytes())?;
     let rows: Vec<FieldRow> = (0..g.len())
         .map(|i| FieldRow {
             x_m: (i % g.nx) as f64 * g.dx_m,

@@ -73,6 +73,11 @@ pub fn run(args: Args) -> CliResult {
     let json = Scenario::load_json(&args.scenario, &args.sets)?;
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
     if let Some(out) = &args.synthesize {
+        // DATA is not read when synthesizing, but it is this command's input all the same.
+        if let Some(d) = &args.data {
+            stiction_units::io::declare_input(d);
+        }
+        crate::output::check_output_flag("--synthesize", out)?;
         return synthesize(&args, &scenario, &base, out);
     }
     let data_path = match (&args.data, &scenario.measured) {
@@ -96,7 +101,7 @@ pub fn run(args: Args) -> CliResult {
     };
     let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options)?;
     if let Some(mut set) = outputs {
-        set.add_bytes("report.json", (serde_json::to_string_pretty(&report)? + "\n").as_bytes())?;
+        set.add_bytes("report.json", crate::output::json_text(&report)?.as_bytes())?;
         let staging = set.staging_dir().to_path_buf();
         write_figures(&staging, &data, &report, &args.fig)?;
         set.adopt_staged()?;

@@ -4,21 +4,27 @@ use std::path::PathBuf;
 
 use stiction_study::log;
 
-use crate::output::{CliResult, ensure_dir};
+use crate::output::{CliResult, OutputSet};
 
 /// Combine the output folders of a study's shards (`stiction study ... --shard K/M --out DIR`, one
 /// folder per shard, in any order) into exactly the samples.log, study.json, samples.csv,
 /// sensitivity table and figures one unsharded run would have written. Refuses folders of
 /// different studies (scenario, seed, sample count, flags), missing or repeated shards, and
-/// unfinished shards.
+/// unfinished shards. The merged folder is staged and swapped in whole, with a manifest.json, like
+/// every --out folder.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The shards' output folders.
     #[arg(required = true)]
     pub dirs: Vec<PathBuf>,
-    /// The folder to write the merged study to (must not hold a study yet).
+    /// The folder to write the merged study to (replaced as a whole; one of the shards' folders is
+    /// refused).
     #[arg(long)]
     pub out: PathBuf,
+    /// Write into an --out folder that holds files not from an earlier stiction run (they are
+    /// left alone; the earlier run's files are replaced or removed).
+    #[arg(long)]
+    pub force: bool,
     /// Print study.json instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -29,8 +35,19 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
-    ensure_dir(&args.out)?;
-    let header = log::merge(&args.dirs, &args.out)?;
-    let summary = crate::cmd::study::finish_folder(&args.out, &args.fig)?;
-    crate::cmd::study::report(&summary, args.json, std::path::Path::new(&header.scenario))
+    // The shards' logs are this command's inputs: no output may replace them.
+    for d in &args.dirs {
+        stiction_units::io::declare_input(&d.join(log::LOG_NAME));
+    }
+    let mut set = OutputSet::begin(&args.out, "merge", args.force)?;
+    let header = log::merge(&args.dirs, set.staging_dir())?;
+    let (summary, _) = crate::cmd::study::finish_folder(set.staging_dir(), &args.fig)?;
+    set.adopt_staged()?;
+    let files = set.file_names();
+    set.commit()?;
+    crate::cmd::study::report(&summary, args.json, std::path::Path::new(&header.scenario))?;
+    if !args.json {
+        crate::outln!("\nwrote {}/{}, {}", args.out.display(), files.join(", "), crate::output::MANIFEST);
+    }
+    Ok(())
 }

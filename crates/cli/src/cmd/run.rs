@@ -250,7 +250,7 @@ fn write_outputs(
     if let Some(obj) = json.as_object_mut() {
         obj.insert("figures".into(), serde_json::json!({"fig5": fig5.data_json(), "fig7": fig7.data_json()}));
     }
-    set.add_bytes("results.json", (serde_json::to_string_pretty(&json)? + "\n").as_bytes())?;
+    set.add_bytes("results.json", crate::output::json_text(&json)?.as_bytes())?;
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "v_clamp_v",

@@ -57,6 +57,10 @@ pub struct Args {
     /// uninterrupted run.
     #[arg(long, requires = "out")]
     pub resume: bool,
+    /// Write into an --out folder that holds files not from an earlier stiction run (they are left
+    /// alone), or start a new study over a finished one there (its files are replaced).
+    #[arg(long)]
+    pub force: bool,
     /// No progress output.
     #[arg(long)]
     pub quiet: bool,
@@ -219,34 +223,118 @@ pub fn run(args: Args) -> CliResult {
         let _ = std::fs::remove_dir_all(&dir);
     }
     ensure_dir(&dir)?;
+    if !temporary {
+        prepare_folder(&dir, &args)?;
+    }
     let (mut log, done) =
         if args.resume { LogWriter::resume(&dir, &header)? } else { (LogWriter::create(&dir, &header)?, 0) };
+    // A manifest says the folder is complete; while the study runs again it is not.
+    let manifest = dir.join(crate::output::MANIFEST);
+    if !temporary && manifest.exists() {
+        std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
+    }
     let total = config.shard_len();
+    if args.resume && !args.quiet {
+        crate::errln!("resuming: {done} of {total} samples found in {}", log.path().display());
+    }
     let progress = Progress::new(total, done, args.quiet || args.json);
     let pool = pool.build()?;
-    let ran = pool.install(|| study.run_into(&mut log, done, &|n| progress.update(n)));
-    progress.finish(if ran.is_ok() { total } else { done });
-    ran?;
+    crate::output::stop_cleanly();
+    let ran = pool.install(|| study.run_into_until(&mut log, done, &|n| progress.update(n), &crate::output::INTERRUPT));
+    progress.finish(*ran.as_ref().unwrap_or(&done));
+    let logged = ran?;
     drop(log);
+    if logged < total {
+        if temporary {
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+        return Err(Box::new(interrupted(logged, total, &dir, temporary)));
+    }
     let result = if temporary {
-        stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| s)
+        stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| (s, Vec::new()))
     } else {
         finish_folder(&dir, &args.fig).map_err(|e| stiction_study::StudyError::Log(e.to_string()))
     };
     if temporary {
         let _ = std::fs::remove_dir_all(&dir);
     }
-    let summary = result?;
+    let (summary, written) = result?;
+    if !temporary {
+        let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
+        files.extend(written);
+        crate::output::write_manifest(&dir, "study", &files)?;
+        report(&summary, args.json, &args.scenario)?;
+        if !args.json {
+            crate::outln!("\nwrote {}/{}, {}", dir.display(), files.join(", "), crate::output::MANIFEST);
+        }
+        return Ok(());
+    }
     report(&summary, args.json, &args.scenario)
+}
+
+/// The --out rules of a study folder, which is written in place (the log grows sample by sample):
+/// files no stiction run listed are refused unless --force; a new study over a finished or
+/// unfinished one needs --resume (finish it) or --force (start again: its files are removed).
+fn prepare_folder(dir: &Path, args: &Args) -> CliResult {
+    use stiction_study::log::LOG_NAME;
+    crate::output::check_foreign(dir, &[LOG_NAME], args.force)?;
+    if !args.resume && args.force {
+        let mut old = crate::output::listed_files(dir)?;
+        old.push(LOG_NAME.into());
+        old.push(crate::output::MANIFEST.into());
+        for f in old {
+            let p = dir.join(&f);
+            if std::fs::symlink_metadata(&p).is_ok_and(|m| m.is_file()) {
+                std::fs::remove_file(&p).map_err(|e| format!("cannot remove {}: {e}", p.display()))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// What an interrupted study kept and how to finish it (the command line again, with --resume).
+fn interrupted(logged: usize, total: usize, dir: &Path, temporary: bool) -> crate::output::Interrupted {
+    if temporary {
+        return crate::output::Interrupted(format!(
+            "interrupted after {logged} of {total} samples; without --out nothing is kept (give --out DIR to be able \
+             to resume)"
+        ));
+    }
+    let quote = |a: String| {
+        if !a.is_empty() && a.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=:,+@%".contains(c)) {
+            a
+        } else {
+            format!("'{}'", a.replace('\'', "'\\''"))
+        }
+    };
+    let mut words: Vec<String> = std::env::args().map(quote).collect();
+    if let Some(first) = words.first_mut() {
+        *first = "stiction".into();
+    }
+    if !words.iter().any(|w| w == "--resume") {
+        words.push("--resume".into());
+    }
+    words.retain(|w| w != "--force");
+    crate::output::Interrupted(format!(
+        "interrupted: {logged} of {total} samples are in {}; finish the study with:\n  {}",
+        dir.join(stiction_study::log::LOG_NAME).display(),
+        words.join(" ")
+    ))
 }
 
 /// Writes study.json, samples.csv, sensitivity.csv and the figures of the study whose complete
 /// log is in `dir` (shared with `stiction merge`).
-pub(crate) fn finish_folder(dir: &Path, figargs: &FigureArgs) -> Result<StudySummary, Box<dyn std::error::Error>> {
+/// Returns the summary and the names of the files written.
+pub(crate) fn finish_folder(
+    dir: &Path,
+    figargs: &FigureArgs,
+) -> Result<(StudySummary, Vec<String>), Box<dyn std::error::Error>> {
     let (summary, fig) = stiction_study::summary::finalize(dir)?;
+    let mut files = vec!["study.json".to_string(), "samples.csv".into()];
     write_sensitivity_csv(&summary, dir)?;
-    write_figures(&summary, &fig, dir, figargs)?;
-    Ok(summary)
+    files.push("sensitivity.csv".into());
+    files.extend(write_figures(&summary, &fig, dir, figargs)?);
+    Ok((summary, files))
 }
 
 /// Prints the summary (or JSON).
@@ -388,7 +476,13 @@ fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
     Ok(())
 }
 
-fn write_figures(summary: &StudySummary, fig: &FigureData, dir: &Path, figargs: &FigureArgs) -> CliResult {
+fn write_figures(
+    summary: &StudySummary,
+    fig: &FigureData,
+    dir: &Path,
+    figargs: &FigureArgs,
+) -> Result<Vec<String>, Box<dyn std::error::Error>> {
+    let mut written = Vec::new();
     // A figure without data is left out (a shard or a tiny study may have no fit or too few
     // samples for the sensitivity table, which needs 20 with a fit). Each figure has its data as
     // CSV beside it (same stem, the plot crate's columns with units).
@@ -406,8 +500,9 @@ fn write_figures(summary: &StudySummary, fig: &FigureData, dir: &Path, figargs: 
         crate::cmd::plot::render_chart(&chart, &dir.join(format!("{name}.svg")))?;
         crate::cmd::plot::render_chart(&chart, &dir.join(format!("{name}.png")))?;
         stiction_units::io::write_atomic(&dir.join(format!("{name}.csv")), chart.data_csv().as_bytes())?;
+        written.extend(["svg", "png", "csv"].map(|e| format!("{name}.{e}")));
     }
-    Ok(())
+    Ok(written)
 }
 
 /// At most 2000 points of the empirical CDF (every k-th sorted value).

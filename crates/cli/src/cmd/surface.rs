@@ -37,6 +37,9 @@ struct Output {
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     let scenario = Scenario::load(&args.scenario, &args.sets)?;
+    if let Some(path) = &args.csv {
+        crate::output::check_output_flag("--csv", path)?;
+    }
     let spec = scenario.require_surface().map_err(|e| format!("{}: {e}", args.scenario.display()))?;
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
     let surface = spec.build(&base).map_err(|e| format!("{}: surface: {e}", args.scenario.display()))?;
@@ -49,6 +52,8 @@ pub fn run(args: Args) -> CliResult {
         .into());
     }
     if let Some(path) = &args.csv {
+        // Again after the build, which read the scenario's own summit CSV, if any.
+        crate::output::check_output_flag("--csv", path)?;
         surface.write_csv_file(path)?;
         crate::errln!("wrote {} summits to {}", surface.len(), path.display());
     }

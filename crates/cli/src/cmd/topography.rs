@@ -95,6 +95,9 @@ pub fn run(args: Args) -> CliResult {
         None => None,
     };
     let (raw, info) = read_file(&args.file, args.map.format, &args.map.metadata())?;
+    if let Some(path) = &args.summits {
+        crate::output::check_output_flag("--summits", path)?;
+    }
     let prep = args.map.preparation();
     let (map, report) = prepare(&raw, &prep)?;
     drop(raw);
@@ -122,7 +125,7 @@ pub fn run(args: Args) -> CliResult {
         statistics: st,
     };
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
-        set.add_bytes("statistics.json", (serde_json::to_string_pretty(&out)? + "\n").as_bytes())?;
+        set.add_bytes("statistics.json", crate::output::json_text(&out)?.as_bytes())?;
         let staging = set.staging_dir().to_path_buf();
         write_summit_csv(&map, &summits, &staging.join("summits.csv"))?;
         figures(&map, &summits, &report, &staging, &args.fig)?;
