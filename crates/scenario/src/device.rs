@@ -461,9 +461,8 @@ impl Scenario {
     /// not the slope). None when neither has an uncertainty.
     pub fn mu_calibration_relative_sd(&self) -> Option<f64> {
         let e = self.explain();
-        let rel = |key: &str| {
-            e.quantities.iter().find(|q| q.key == key).and_then(|q| q.uncertainty.map(|u| u / q.value))
-        };
+        let rel =
+            |key: &str| e.quantities.iter().find(|q| q.key == key).and_then(|q| q.uncertainty.map(|u| u / q.value));
         match (rel("a_clamp"), rel("a_pull")) {
             (None, None) => None,
             (c, p) => Some(c.unwrap_or(0.0).hypot(p.unwrap_or(0.0))),

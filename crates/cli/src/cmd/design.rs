@@ -86,6 +86,7 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
     let per = config.shard_len();
     let progress = Progress::new(per * points.len(), 0, args.quiet || args.json);
     let mut rows = Vec::with_capacity(points.len());
+    crate::output::stop_cleanly();
     let result = (|| -> CliResult {
         for (d, (p, (sets, study))) in points.iter().zip(&studies).enumerate() {
             let dir = design_folder(&root, d);
@@ -93,14 +94,33 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
             let header = study.header();
             let (mut log, done) =
                 if args.resume { LogWriter::resume(&dir, &header)? } else { (LogWriter::create(&dir, &header)?, 0) };
+            // A manifest says a design's folder is complete; while it runs again it is not.
+            let manifest = dir.join(crate::output::MANIFEST);
+            if !temporary && manifest.exists() {
+                std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
+            }
             let offset = d * per;
             progress.update(offset + done);
-            pool.install(|| study.run_into(&mut log, done, &|n| progress.update(offset + n)))?;
+            let logged = pool.install(|| {
+                study.run_into_until(&mut log, done, &|n| progress.update(offset + n), &crate::output::INTERRUPT)
+            })?;
             drop(log);
+            if logged < per {
+                return Err(Box::new(crate::cmd::study::interrupted(
+                    offset + logged,
+                    per * points.len(),
+                    &dir,
+                    temporary,
+                )));
+            }
             let summary = if temporary {
                 stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None)?.0
             } else {
-                crate::cmd::study::finish_folder(&dir, &args.fig)?
+                let (summary, written) = crate::cmd::study::finish_folder(&dir, &args.fig)?;
+                let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
+                files.extend(written);
+                crate::output::write_manifest(&dir, "study", &files)?;
+                summary
             };
             let interface = design::interface_coefficient(&args.scenario, sets);
             rows.push(DesignRow::new(d, &varies, p, &summary, interface));

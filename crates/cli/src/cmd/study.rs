@@ -293,7 +293,7 @@ fn prepare_folder(dir: &Path, args: &Args) -> CliResult {
 }
 
 /// What an interrupted study kept and how to finish it (the command line again, with --resume).
-fn interrupted(logged: usize, total: usize, dir: &Path, temporary: bool) -> crate::output::Interrupted {
+pub(crate) fn interrupted(logged: usize, total: usize, dir: &Path, temporary: bool) -> crate::output::Interrupted {
     if temporary {
         return crate::output::Interrupted(format!(
             "interrupted after {logged} of {total} samples; without --out nothing is kept (give --out DIR to be able \
