@@ -58,8 +58,7 @@ fn fifty_plates_scale_the_clamp_force_by_the_plate_ratio() {
 /// `spring_force_conflict` in `run`.
 #[test]
 fn a_stiffer_spring_is_refused_until_the_spring_force_is_restated() {
-    let (code, _, err) =
-        text(&["run", "scenarios/tas2000.json", "--set", "actuators.clamp.spring.stiffness=12 N/m"]);
+    let (code, _, err) = text(&["run", "scenarios/tas2000.json", "--set", "actuators.clamp.spring.stiffness=12 N/m"]);
     assert_eq!(code, 2, "{err}");
     for needle in ["meter.spring_force", "actuators.clamp.spring", "10.8 uN", "--set meter.spring_force=null"] {
         assert!(err.contains(needle), "missing `{needle}` in: {err}");
@@ -104,7 +103,8 @@ fn a_device_that_never_reaches_the_wall_says_why() {
         assert!(reason.contains("no contact") && reason.contains(&format!("{v_c:.2} V")), "{reason} vs {v_c}");
     }
     assert!(v["mu_apparent"].is_null() && v["fit_note"].is_string(), "{v}");
-    let (_, out, _) = text(&["run", "tests/data/own_device.json", "--set", "meter.clamp_voltages=[\"19 V\", \"20 V\"]"]);
+    let (_, out, _) =
+        text(&["run", "tests/data/own_device.json", "--set", "meter.clamp_voltages=[\"19 V\", \"20 V\"]"]);
     assert!(out.contains(&format!("V_clamp is below {v_c:.2} V")), "{out}");
 }
 

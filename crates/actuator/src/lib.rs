@@ -41,7 +41,9 @@ pub use error::ActuatorError;
 pub use meter::{ClampForce, SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
 pub use plates::{BackElectrode, BackPotential, Fringing, PlateArray, VACUUM_PERMITTIVITY};
 pub use protocol::{MassBreakdown, PullInProtocol, Shuttle, ShuttleSpec, StepPullIn, step_pull_in};
-pub use spec::{ArraySpec, BeamsSpec, CalibrationGeometry, CombSpec, FingerBendingSpec, SpringSpec, StopSpec, SubstrateSpec};
+pub use spec::{
+    ArraySpec, BeamsSpec, CalibrationGeometry, CombSpec, FingerBendingSpec, SpringSpec, StopSpec, SubstrateSpec,
+};
 pub use spring::{BeamKind, BeamSuspension, Suspension};
 pub use transients::{
     MeasuredTransient, ReleaseKick, TransientComparison, TransientErrors, TransientEvent, TransientModel,

@@ -251,8 +251,7 @@ impl Meter {
             Some(r) => r,
             None => self.device_reduction()?,
         };
-        let clamp_pull_in =
-            self.clamp.pull_in().map_err(|e| actuator_err("clamp", e))?;
+        let clamp_pull_in = self.clamp.pull_in().map_err(|e| actuator_err("clamp", e))?;
         let mut points = Vec::with_capacity(voltages.len());
         let mut spring_force_used = f64::NAN;
         let mut previous_in_contact = false;
@@ -419,11 +418,8 @@ impl Meter {
         let pairs: Vec<(f64, f64)> =
             points.iter().filter(|p| p.load_n > 0.0).filter_map(|p| p.friction_n.map(|f| (p.load_n, f))).collect();
         let (line, mu, fa0) = fit::eq10(&pairs);
-        let fitted: Vec<f64> = points
-            .iter()
-            .filter(|p| p.load_n > 0.0 && p.friction_n.is_some())
-            .map(|p| p.v_clamp)
-            .collect();
+        let fitted: Vec<f64> =
+            points.iter().filter(|p| p.load_n > 0.0 && p.friction_n.is_some()).map(|p| p.v_clamp).collect();
         let warnings = match &line {
             Some(l) => fit::eq10_warnings(l, voltages, &fitted, &points),
             None => Vec::new(),

@@ -31,12 +31,7 @@ fn every_bundled_scenario_round_trips_through_its_printed_form() {
         let printed = s.to_input_json();
         // Relative file paths are relative to the scenario's folder: parse as if from there.
         let again = Scenario::from_value(printed.clone(), &path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        assert_eq!(
-            serde_json::to_value(&s).unwrap(),
-            serde_json::to_value(&again).unwrap(),
-            "{}",
-            path.display()
-        );
+        assert_eq!(serde_json::to_value(&s).unwrap(), serde_json::to_value(&again).unwrap(), "{}", path.display());
         if let Some(sd) = s.source_json.pointer("/meter/spring_force/sd") {
             assert_eq!(printed.pointer("/meter/spring_force/sd"), Some(sd), "{}", path.display());
         }
@@ -61,7 +56,9 @@ fn the_spring_force_is_checked_against_stiffness_times_travel() {
     let msg = s.spring_force_conflict().expect("12 N/m x 0.9 um = 10.8 uN vs 7 +/- 2 uN");
     assert!(msg.contains("10.8 uN") && msg.contains("3.8 uN") && msg.contains("actuators.clamp.spring"), "{msg}");
     // 8.5 N/m: 7.65 uN, 0.65 uN off, within 2 uN.
-    assert!(load("tas2000.json", &["actuators.clamp.spring.stiffness=8.5 N/m"]).unwrap().spring_force_conflict().is_none());
+    assert!(
+        load("tas2000.json", &["actuators.clamp.spring.stiffness=8.5 N/m"]).unwrap().spring_force_conflict().is_none()
+    );
     // Without an sd, 1 %: 7.8 N/m gives 7.02 uN, 0.29 % off 7 uN: accepted; 8.5 N/m is not.
     assert!(load("tas2000.json", &["meter.spring_force=7 uN"]).unwrap().spring_force_conflict().is_none());
     let s = load("tas2000.json", &["meter.spring_force=7 uN", "actuators.clamp.spring.stiffness=8.5 N/m"]).unwrap();
@@ -107,7 +104,8 @@ fn a_calibration_on_another_geometry_is_re_derived_and_said() {
     assert!((a / 1.4e-8 - 50.0 / 30.0).abs() < 1e-9, "{a}");
     assert!(load("tas2000.json", &[]).unwrap().actuators["clamp"].calibration_rederived().is_none());
     // `calibrated_on` without a conversion factor is refused by the array.
-    let s = load("tas2000.json", &["actuators.clamp.conversion_factor=null", "actuators.clamp.front_gap=3 um"]).unwrap();
+    let s =
+        load("tas2000.json", &["actuators.clamp.conversion_factor=null", "actuators.clamp.front_gap=3 um"]).unwrap();
     assert!(s.actuators["clamp"].to_model().unwrap_err().to_string().contains("calibrated_on"));
 }
 
