@@ -4,7 +4,7 @@
 use crate::util::{num, stiction, stiction_json, temp_dir};
 
 /// Vacuum permittivity, F/m (CODATA 2018).
-const EPS0: f64 = 8.854_187_8128e-12;
+const EPS0: f64 = 8.854_187_812_8e-12;
 
 fn text(args: &[&str]) -> (i32, String, String) {
     let out = stiction(args);
