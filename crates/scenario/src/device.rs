@@ -105,6 +105,20 @@ pub struct Explanation {
     pub warnings: Vec<Warning>,
 }
 
+/// `v` with every number written with 12 significant digits, so that one quantity written two ways
+/// ("100 um" is 1.0000000000000002e-4 m after parsing, 1e-4 is not) hashes the same.
+fn rounded(v: Value) -> Value {
+    match v {
+        Value::Number(n) => match n.as_f64() {
+            Some(x) if n.is_f64() => Value::String(format!("{x:.11e}")),
+            _ => Value::Number(n),
+        },
+        Value::Array(a) => Value::Array(a.into_iter().map(rounded).collect()),
+        Value::Object(o) => Value::Object(o.into_iter().map(|(k, v)| (k, rounded(v))).collect()),
+        other => other,
+    }
+}
+
 /// 64-bit FNV-1a of `bytes`.
 fn fnv1a64(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -139,7 +153,7 @@ impl Scenario {
             "apparent_length": self.surface.as_ref().map(|s| s.apparent_length),
             "apparent_width": self.surface.as_ref().map(|s| s.apparent_width),
         });
-        format!("fnv1a64:{:016x}", fnv1a64(device.to_string().as_bytes()))
+        format!("fnv1a64:{:016x}", fnv1a64(rounded(device).to_string().as_bytes()))
     }
 
     /// The travel x_c at which the shoe meets the wall: `meter.contact_travel`, else the clamp
