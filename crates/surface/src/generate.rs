@@ -226,6 +226,21 @@ fn positions(layout: &Layout, density: f64, stream: u64, field: &str) -> Result<
     }
 }
 
+/// `n` positions drawn uniformly over the apparent area from `layout.seed` (stream 0, x then y
+/// for each summit, as the Poisson placement draws them after its count), for summit heights read
+/// without positions (a heights-only `.npy` file).
+pub fn uniform_positions(layout: &Layout, n: usize) -> (Vec<f32>, Vec<f32>) {
+    let mut r = rng(layout.seed, 0);
+    let (l, w) = (layout.apparent_length_m, layout.apparent_width_m);
+    let mut xs = Vec::with_capacity(n);
+    let mut ys = Vec::with_capacity(n);
+    for _ in 0..n {
+        xs.push(clamp_f32(r.random::<f64>() * l, l));
+        ys.push(clamp_f32(r.random::<f64>() * w, w));
+    }
+    (xs, ys)
+}
+
 /// Rounds to f32, keeping the value inside [0, lim] (rounding up could leave the area).
 fn clamp_f32(v: f64, lim: f64) -> f32 {
     let mut f = v as f32;
