@@ -8,6 +8,7 @@ mod bem;
 mod figures;
 mod hardening;
 mod models;
+mod npy;
 mod outputs;
 mod scenarios;
 mod standalone;
