@@ -196,7 +196,20 @@ pub fn read_npy_summits(bytes: &[u8], origin: &str) -> Result<NpySummits, Surfac
                         .collect()
                 }
             };
-            let out = if cols == 1 {
+            let native = FloatType { size: 8, little: true };
+            let out = if cols == 4 && !fortran && float == native {
+                // The layout this crate and NumPy write by default: one pass over the rows.
+                let (mut x, mut y, mut h, mut r) =
+                    (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
+                let le = |b: &[u8]| f64::from_le_bytes(b.try_into().unwrap_or_default());
+                for row in data.chunks_exact(32) {
+                    x.push(le(&row[0..8]));
+                    y.push(le(&row[8..16]));
+                    h.push(le(&row[16..24]));
+                    r.push(le(&row[24..32]));
+                }
+                NpySummits::Summits { x_m: x, y_m: y, height_m: h, radius_m: Some(r) }
+            } else if cols == 1 {
                 NpySummits::Heights(column(0))
             } else {
                 NpySummits::Summits { x_m: column(0), y_m: column(1), height_m: column(2), radius_m: Some(column(3)) }
