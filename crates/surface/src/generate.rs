@@ -286,14 +286,14 @@ fn draw_radii(seed: u64, stream: u64, n: usize, face: &FaceParams) -> Option<Vec
 /// ties cannot show), in O(n) for generated heights.
 ///
 /// Each height maps to a `u64` key whose ascending order is the heights' descending total order
-/// ([`desc_key`]). A least-significant-digit radix sort orders the keys by their top 40 bits (five
-/// stable counting passes of 8 bits, from bit 24 up; a pass whose digit is the same for every key
-/// is skipped); keys that agree in those 40 bits (heights within a relative 2^-28 of each other:
-/// a few hundred pairs among 1e6 Gaussian heights, a few per thousand at 1e8) are then put in
-/// order by one insertion-sort pass over the whole array with the full key. Should that pass
+/// ([`desc_key`]). A least-significant-digit radix sort orders the keys by their top 32 bits (four
+/// stable counting passes of 8 bits; five passes, 40 bits, above 2^22 keys; a pass whose digit is
+/// the same for every key is skipped); keys that agree in those bits (heights within a relative
+/// 2^-20, or 2^-28, of each other: about one summit in ten at 1e6, a few per thousand at 1e8) are
+/// then put in order by one insertion-sort pass over the whole array with the full key. Should that pass
 /// have to move more than `n` keys (heights far more concentrated than a generator makes them),
 /// it gives up and the comparison sort finishes the nearly sorted array: the result is exact in
-/// every case. About 80 instructions per summit against about 300 for the comparison sort
+/// every case. About 90 instructions per summit against about 300 for the comparison sort
 /// (docs/performance.md). Extra memory: one `u64` buffer of the same length (the heights are
 /// turned into keys in place).
 fn sort_desc(h: Vec<f64>) -> Vec<f64> {
@@ -313,8 +313,10 @@ fn sort_desc(h: Vec<f64>) -> Vec<f64> {
 const RADIX_MIN_LEN: usize = 4096;
 const RADIX_BITS: u32 = 8;
 const RADIX_BUCKETS: usize = 1 << RADIX_BITS;
-/// The radix passes order the keys by bits 24..64 (digits 3..8 of 8 bits).
+/// The radix passes order the keys by bits 24..64 (digits 3..8 of 8 bits), or by bits 32..64 up
+/// to `RADIX_SHORT_MAX_LEN` keys.
 const RADIX_FIRST_DIGIT: u32 = 3;
+const RADIX_SHORT_MAX_LEN: usize = 1 << 22;
 const RADIX_DIGITS: u32 = 64 / RADIX_BITS;
 
 /// A key whose ascending unsigned order is the descending [`f64::total_cmp`] order: the IEEE bits
@@ -332,14 +334,15 @@ fn from_desc_key(k: u64) -> f64 {
     f64::from_bits(if ascending >> 63 == 1 { ascending & !(1 << 63) } else { !ascending })
 }
 
-/// Stable LSD radix sort of `keys` by their bits from `RADIX_FIRST_DIGIT * RADIX_BITS` up.
+/// Stable LSD radix sort of `keys` by their top 32 bits (up to [`RADIX_SHORT_MAX_LEN`] keys) or
+/// top 40 bits (more keys: with only 32 bits the insertion pass would have more to move).
 fn radix_sort_top_bits(keys: &mut Vec<u64>) {
     let n = keys.len();
-    const PASSES: usize = (RADIX_DIGITS - RADIX_FIRST_DIGIT) as usize;
-    let mut counts = vec![[0u32; RADIX_BUCKETS]; PASSES];
+    let first = if n <= RADIX_SHORT_MAX_LEN { RADIX_FIRST_DIGIT + 1 } else { RADIX_FIRST_DIGIT };
+    let mut counts = vec![[0u32; RADIX_BUCKETS]; (RADIX_DIGITS - first) as usize];
     for &k in keys.iter() {
         for (p, c) in counts.iter_mut().enumerate() {
-            c[((k >> ((p as u32 + RADIX_FIRST_DIGIT) * RADIX_BITS)) as usize) & (RADIX_BUCKETS - 1)] += 1;
+            c[((k >> ((p as u32 + first) * RADIX_BITS)) as usize) & (RADIX_BUCKETS - 1)] += 1;
         }
     }
     let mut scratch = vec![0u64; n];
@@ -353,7 +356,7 @@ fn radix_sort_top_bits(keys: &mut Vec<u64>) {
             *o = sum;
             sum += m as usize;
         }
-        let shift = (p as u32 + RADIX_FIRST_DIGIT) * RADIX_BITS;
+        let shift = (p as u32 + first) * RADIX_BITS;
         for &k in keys.iter() {
             let d = ((k >> shift) as usize) & (RADIX_BUCKETS - 1);
             scratch[offsets[d]] = k;
