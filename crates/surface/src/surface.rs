@@ -225,6 +225,21 @@ impl Surface {
         b as f64 / n
     }
 
+    /// Mean summit radius \[m\]: the `radius_mean_m` of [`Surface::stats`] (same value, bit for
+    /// bit), without the height moments (a division per summit). NaN for an empty surface.
+    pub fn mean_radius_m(&self) -> f64 {
+        match &self.radius_m {
+            Radii::Uniform(r) => {
+                if self.is_empty() {
+                    f64::NAN
+                } else {
+                    *r
+                }
+            }
+            Radii::PerSummit(r) => moments(r.iter().copied(), r.len()).0,
+        }
+    }
+
     /// Sample statistics: count, density, height mean/SD/extremes, radius mean/SD/extremes.
     /// Uses Welford's algorithm (stable for 1e8 summits). For an empty surface the moments are NaN.
     pub fn stats(&self) -> SurfaceStats {

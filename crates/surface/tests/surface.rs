@@ -328,3 +328,17 @@ fn large_surfaces_keep_the_bits_of_the_comparison_sort_generator() {
     let s = generate_composite(&layout(2000, Placement::Poisson), &base, &shoe).unwrap();
     assert_eq!((s.len(), s.content_hash()), (1_251_228, 0x5d6e_7bd8_a5b1_bdcf), "composite of two faces");
 }
+
+#[test]
+fn mean_radius_is_the_stats_value_bit_for_bit() {
+    // The explicit solver reads the mean radius without the height moments; it must be the value
+    // `stats()` reports (Welford's running mean), for uniform and per-summit radii.
+    let logn = FaceParams {
+        radius_sd_m: 0.2e-6,
+        radius_distribution: RadiusDistribution::Lognormal,
+        ..table1_face()
+    };
+    for s in [generate(&table1_layout(5), &table1_face()).unwrap(), generate(&table1_layout(5), &logn).unwrap()] {
+        assert_eq!(s.mean_radius_m().to_bits(), s.stats().radius_mean_m.to_bits());
+    }
+}
