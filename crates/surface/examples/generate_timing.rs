@@ -25,7 +25,8 @@ fn main() {
         .unwrap_or(5);
     let area = n / 4e12;
     let width = (area / 4.0).sqrt();
-    let layout = Layout { apparent_length_m: 4.0 * width, apparent_width_m: width, placement: Placement::Poisson, seed: 2000 };
+    let layout =
+        Layout { apparent_length_m: 4.0 * width, apparent_width_m: width, placement: Placement::Poisson, seed: 2000 };
     let face = FaceParams::gaussian_fixed(4e12, 0.04e-6, 0.5e-6);
     let mut cpu = Vec::new();
     let cpu_start = thread_cpu_ns();
@@ -56,6 +57,9 @@ fn main() {
     println!("summits {count}  runs {repeat}");
     println!("cpu_s {c:.4}  cpu_ns_per_summit {:.1}  (median of runs)", c / count as f64 * 1e9);
     let mean = cpu_total / repeat as f64;
-    println!("mean_cpu_s {mean:.4}  mean_cpu_ns_per_summit {:.1}  (all runs, includes freeing)", mean / count as f64 * 1e9);
+    println!(
+        "mean_cpu_s {mean:.4}  mean_cpu_ns_per_summit {:.1}  (all runs, includes freeing)",
+        mean / count as f64 * 1e9
+    );
     println!("wall_s {w:.4}  wall_ns_per_summit {:.1}", w / count as f64 * 1e9);
 }

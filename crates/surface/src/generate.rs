@@ -575,10 +575,17 @@ mod tests {
         // infinities, subnormals, values of every binade, and a length that leaves some passes
         // with a constant digit (all keys positive and small).
         let mut r = rng(3, 9);
-        let mut v: Vec<f64> = (0..50_000).map(|_| { let g: f64 = StandardNormal.sample(&mut r); 4e-8 * g }).collect::<Vec<f64>>();
+        let mut v: Vec<f64> = (0..50_000)
+            .map(|_| {
+                let g: f64 = StandardNormal.sample(&mut r);
+                4e-8 * g
+            })
+            .collect::<Vec<f64>>();
         v.extend([0.0, -0.0, f64::INFINITY, f64::NEG_INFINITY, f64::MIN_POSITIVE / 3.0, -5e-324, 1e300, -1e-300]);
         v.extend(v[..1000].to_vec()); // exact ties
-        v.extend((0..5000).map(|k| f64::from_bits(r.random::<u64>() & !(1 << 63)) * if k % 2 == 0 { 1.0 } else { -1.0 }));
+        v.extend(
+            (0..5000).map(|k| f64::from_bits(r.random::<u64>() & !(1 << 63)) * if k % 2 == 0 { 1.0 } else { -1.0 }),
+        );
         v.retain(|x| !x.is_nan());
         let mut expected = v.clone();
         expected.sort_unstable_by(|a, b| b.total_cmp(a));

@@ -248,9 +248,8 @@ pub fn read_npy_summits(bytes: &[u8], origin: &str) -> Result<NpySummits, Surfac
                         )));
                     }
                 };
-                let float = parse_float_dtype(dtype).ok_or_else(|| {
-                    bad(format!("field '{name}' has dtype '{dtype}': expected float64 or float32"))
-                })?;
+                let float = parse_float_dtype(dtype)
+                    .ok_or_else(|| bad(format!("field '{name}' has dtype '{dtype}': expected float64 or float32")))?;
                 if slots[slot].is_some() {
                     return Err(bad(format!("field '{name}' appears twice (x/x_m etc. name the same column)")));
                 }
@@ -265,12 +264,8 @@ pub fn read_npy_summits(bytes: &[u8], origin: &str) -> Result<NpySummits, Surfac
             let field = |(off, float): (usize, FloatType)| -> Vec<f64> {
                 data.chunks_exact(record).map(|rec| float.read(&rec[off..off + float.size])).collect()
             };
-            let out = NpySummits::Summits {
-                x_m: field(sx),
-                y_m: field(sy),
-                height_m: field(sh),
-                radius_m: sr.map(field),
-            };
+            let out =
+                NpySummits::Summits { x_m: field(sx), y_m: field(sy), height_m: field(sh), radius_m: sr.map(field) };
             check_finite(&out).map_err(bad)?;
             Ok(out)
         }
@@ -492,11 +487,8 @@ impl Parser<'_> {
         match self.peek() {
             Some(q @ (b'\'' | b'"')) => {
                 let start = self.i + 1;
-                let end = self.s[start..]
-                    .iter()
-                    .position(|&c| c == q)
-                    .map(|k| start + k)
-                    .ok_or("unterminated string")?;
+                let end =
+                    self.s[start..].iter().position(|&c| c == q).map(|k| start + k).ok_or("unterminated string")?;
                 self.i = end + 1;
                 let t = std::str::from_utf8(&self.s[start..end]).map_err(|_| "a string is not text")?;
                 if t.contains('\\') {
@@ -582,8 +574,8 @@ mod tests {
 
     #[test]
     fn header_literals_parse() {
-        let d = parse_literal("{'descr': [('x', '<f8'), ('y', '>f4')], 'fortran_order': False, 'shape': (3,), }")
-            .unwrap();
+        let d =
+            parse_literal("{'descr': [('x', '<f8'), ('y', '>f4')], 'fortran_order': False, 'shape': (3,), }").unwrap();
         let Literal::Dict(items) = d else { panic!("not a dict") };
         assert_eq!(items[2], ("shape".to_string(), Literal::Tuple(vec![Literal::Int(3)])));
         assert!(parse_literal("{'a': ((((((((((1,),),),),),),),),),)}").is_err(), "depth limit");

@@ -309,8 +309,10 @@ impl SurfaceSpec {
     /// Reads the summits of `source` = "npy" (see [`SurfaceSource::Npy`]). The file may hold at
     /// most `max_summits` summits of 32 bytes (checked on its size before it is read).
     fn build_npy(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
-        let path =
-            self.npy_path.as_ref().ok_or_else(|| SurfaceError::Spec("`npy_path` is required when `source` is \"npy\"".into()))?;
+        let path = self
+            .npy_path
+            .as_ref()
+            .ok_or_else(|| SurfaceError::Spec("`npy_path` is required when `source` is \"npy\"".into()))?;
         for (name, present) in [
             ("csv_path", self.csv_path.is_some()),
             ("summit_density", self.summit_density.is_some()),

@@ -106,8 +106,10 @@ fn tmp(name: &str) -> PathBuf {
 }
 
 fn spec(extra: &str) -> SurfaceSpec {
-    serde_json::from_str(&format!(r#"{{"apparent_length": "20 um", "apparent_width": "5 um", "source": "npy" {extra}}}"#))
-        .unwrap()
+    serde_json::from_str(&format!(
+        r#"{{"apparent_length": "20 um", "apparent_width": "5 um", "source": "npy" {extra}}}"#
+    ))
+    .unwrap()
 }
 
 #[test]

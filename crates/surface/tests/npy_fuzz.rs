@@ -143,12 +143,9 @@ fn mutated_npy_files_never_panic_and_errors_name_the_file() {
             read_npy_summits(&bytes, "fuzz.npy").and_then(|s| {
                 let finite = match &s {
                     NpySummits::Heights(h) => h.iter().all(|v| v.is_finite()),
-                    NpySummits::Summits { x_m, y_m, height_m, radius_m } => x_m
-                        .iter()
-                        .chain(y_m)
-                        .chain(height_m)
-                        .chain(radius_m.iter().flatten())
-                        .all(|v| v.is_finite()),
+                    NpySummits::Summits { x_m, y_m, height_m, radius_m } => {
+                        x_m.iter().chain(y_m).chain(height_m).chain(radius_m.iter().flatten()).all(|v| v.is_finite())
+                    }
                 };
                 assert!(finite, "an accepted file holds a non-finite value");
                 let layout =
@@ -164,7 +161,12 @@ fn mutated_npy_files_never_panic_and_errors_name_the_file() {
         let dt = t0.elapsed();
         assert!(dt < CASE_TIME_LIMIT, "case {case} (seed {}) took {dt:?}", seed());
         match result {
-            Err(_) => panic!("case {case} (seed {}) panicked on {} bytes: {:?}", seed(), bytes.len(), &bytes[..bytes.len().min(160)]),
+            Err(_) => panic!(
+                "case {case} (seed {}) panicked on {} bytes: {:?}",
+                seed(),
+                bytes.len(),
+                &bytes[..bytes.len().min(160)]
+            ),
             Ok(Ok(_)) => accepted += 1,
             Ok(Err(e)) => {
                 let m = e.to_string();

@@ -333,11 +333,7 @@ fn large_surfaces_keep_the_bits_of_the_comparison_sort_generator() {
 fn mean_radius_is_the_stats_value_bit_for_bit() {
     // The explicit solver reads the mean radius without the height moments; it must be the value
     // `stats()` reports (Welford's running mean), for uniform and per-summit radii.
-    let logn = FaceParams {
-        radius_sd_m: 0.2e-6,
-        radius_distribution: RadiusDistribution::Lognormal,
-        ..table1_face()
-    };
+    let logn = FaceParams { radius_sd_m: 0.2e-6, radius_distribution: RadiusDistribution::Lognormal, ..table1_face() };
     for s in [generate(&table1_layout(5), &table1_face()).unwrap(), generate(&table1_layout(5), &logn).unwrap()] {
         assert_eq!(s.mean_radius_m().to_bits(), s.stats().radius_mean_m.to_bits());
     }
