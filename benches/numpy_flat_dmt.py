@@ -10,9 +10,11 @@ docs/performance.md (issue 16). Same summits, same method as `stiction contact -
   grows (summits jumping in), to |residual| <= 1e-9 x max(|L|, sum |P|, one summit's adhesion),
   each load from the previous equilibrium (the solver's relative tolerance is 1e-9 as well).
 
-Usage (the command in docs/performance.md):
-  stiction surface benches/numpy-1e6.json --csv /tmp/numpy-1e6-summits.csv
-  python3 benches/numpy_flat_dmt.py /tmp/numpy-1e6-summits.csv 0 62 100
+Usage (the commands in docs/performance.md):
+  stiction surface benches/numpy-1e6.json --npy /tmp/numpy-1e6-summits.npy
+  python3 benches/numpy_flat_dmt.py /tmp/numpy-1e6-summits.npy 0 62 100
+  (or --csv /tmp/numpy-1e6-summits.csv and the .csv: a name ending in .npy is read with np.load as
+  the N x 4 float64 array x, y, height, radius, as a researcher holds it; otherwise np.loadtxt)
 prints one line per load (L, d, N, A_r, F_cap, passes) and the time of the curve in process.
 Material as in scenarios/tas2000.json: D = 9.1e-12 1/Pa, dgamma = 0.1 J/m^2, s = 1.4 GPa.
 """
@@ -30,9 +32,14 @@ TOL = 1e-9
 def main():
     path, l_from, l_to, steps = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), int(sys.argv[4])
     t0 = time.perf_counter()
-    data = np.loadtxt(path, delimiter=",", skiprows=1, usecols=(2, 3))
-    h = np.ascontiguousarray(data[:, 0])
-    radii = data[:, 1]
+    if path.endswith(".npy"):
+        data = np.load(path)
+        h = np.ascontiguousarray(data[:, 2])
+        radii = data[:, 3]
+    else:
+        data = np.loadtxt(path, delimiter=",", skiprows=1, usecols=(2, 3))
+        h = np.ascontiguousarray(data[:, 0])
+        radii = data[:, 1]
     radius = float(radii[0])
     if not np.all(radii == radius):
         sys.exit("this comparison is for one summit radius")

@@ -10,6 +10,7 @@ mod figures;
 mod hardening;
 mod hardening_outputs;
 mod models;
+mod npy;
 mod outputs;
 mod own_device;
 mod scenarios;

@@ -37,6 +37,14 @@ pub enum SurfaceError {
         /// What is wrong.
         message: String,
     },
+    /// A `.npy` summit file is malformed or holds values that are not summits.
+    #[error("summit file {path}: {message}")]
+    Npy {
+        /// Path of the file.
+        path: String,
+        /// What is wrong and what was expected.
+        message: String,
+    },
     /// A height map could not be read, prepared or cut.
     #[error("height map: {0}")]
     HeightMap(#[from] stiction_topography::TopographyError),

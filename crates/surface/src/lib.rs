@@ -10,7 +10,8 @@
 //!   fixed or lognormal radii), for two faces as the paper's composite ([`generate_composite`]) or
 //!   explicitly, shoe summits meeting wall summits ([`generate_two_face`]),
 //! * reports sample statistics to compare with the requested parameters ([`Surface::stats`]),
-//! * writes and reads CSV (`x_m,y_m,height_m,radius_m`, SI) so measured summit lists can be used,
+//! * writes and reads CSV (`x_m,y_m,height_m,radius_m`, SI) and NumPy `.npy` (an N x 4 float64
+//!   array, a structured array, or heights alone) so measured summit lists can be used,
 //! * finds summits on a patch of a measured height map (`source` = "height_map", via
 //!   `stiction-topography`),
 //! * and describes all of this for scenario files ([`SurfaceSpec`]).
@@ -21,6 +22,7 @@ mod csv_io;
 mod error;
 mod generate;
 mod height_map;
+mod npy_io;
 mod spec;
 mod surface;
 
@@ -28,9 +30,13 @@ pub use csv_io::CSV_HEADER;
 pub use error::SurfaceError;
 pub use generate::{
     FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution, generate, generate_composite,
-    generate_two_face, generate_two_face_limited,
+    generate_two_face, generate_two_face_limited, uniform_positions,
 };
 pub use height_map::height_map_patch;
+pub use npy_io::{
+    NPY_MAX_BYTES_PER_SUMMIT, NPY_MAX_HEADER_BYTES, NpySummits, npy_header, npy_surface, read_npy_summits,
+    read_npy_summits_file,
+};
 pub use spec::{
     DEFAULT_MAX_SUMMITS, ESTIMATED_BYTES_PER_SUMMIT, FaceSpec, MAX_LENGTH_M, SurfaceSource, SurfaceSpec, TwoFaceMode,
 };

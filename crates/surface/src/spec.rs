@@ -32,6 +32,10 @@ pub enum SurfaceSource {
     Csv,
     /// Found on a patch of a measured height map (`height_map` and/or `counter_height_map`).
     HeightMap,
+    /// Read from the NumPy file `npy_path`: an N x 4 float array (x, y, height, radius in m), a
+    /// structured array with float fields x, y, height\[, radius\], or heights alone (N,) with
+    /// `summit_radius` and positions drawn uniformly from `seed`.
+    Npy,
 }
 
 /// How a second rough face (`counter_face`) is combined with the first.
@@ -115,6 +119,11 @@ pub struct SurfaceSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(extend("x-stiction-path" = true))]
     pub csv_path: Option<PathBuf>,
+    /// NumPy `.npy` file of summits (see [`SurfaceSource::Npy`]); relative paths as for
+    /// `csv_path`. Only with `source` = "npy".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("x-stiction-path" = true))]
+    pub npy_path: Option<PathBuf>,
     /// "poisson" (default) or "jittered_grid".
     #[serde(default)]
     pub placement: Placement,
@@ -247,7 +256,7 @@ impl SurfaceSpec {
         let budget = self.summit_budget() as f64;
         let area = self.apparent_length * self.apparent_width;
         let (field, expected) = match (self.source, &self.counter_face, self.two_face) {
-            (SurfaceSource::Csv, _, _) => return Ok(()),
+            (SurfaceSource::Csv | SurfaceSource::Npy, _, _) => return Ok(()),
             (_, None, _) => ("summit_density", self.summit_density.unwrap_or(0.0) * area),
             (_, Some(c), TwoFaceMode::Composite) => {
                 ("summit_density", (self.summit_density.unwrap_or(0.0) + c.summit_density) * area)
@@ -297,6 +306,54 @@ impl SurfaceSpec {
         }
     }
 
+    /// Reads the summits of `source` = "npy" (see [`SurfaceSource::Npy`]). The file may hold at
+    /// most `max_summits` summits of 32 bytes (checked on its size before it is read).
+    fn build_npy(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
+        let path = self
+            .npy_path
+            .as_ref()
+            .ok_or_else(|| SurfaceError::Spec("`npy_path` is required when `source` is \"npy\"".into()))?;
+        for (name, present) in [
+            ("csv_path", self.csv_path.is_some()),
+            ("summit_density", self.summit_density.is_some()),
+            ("summit_sd", self.summit_sd.is_some()),
+            ("counter_face", self.counter_face.is_some()),
+            ("radius_sd", self.radius_sd != 0.0),
+            ("radius_distribution", self.radius_distribution != RadiusDistribution::Fixed),
+            ("height_distribution", self.height_distribution != HeightDistribution::Gaussian),
+            ("placement", self.placement != Placement::Poisson),
+            ("pair_reach", self.pair_reach.is_some()),
+        ] {
+            if present {
+                return Err(SurfaceError::Spec(format!(
+                    "`{name}` must be absent when `source` is \"npy\" (the file gives the summits; only                      `summit_radius` and `seed` complete a file without radii or positions)"
+                )));
+            }
+        }
+        let full = if path.is_absolute() { path.clone() } else { base_dir.join(path) };
+        let limit = self.summit_budget().saturating_mul(crate::NPY_MAX_BYTES_PER_SUMMIT).saturating_add(1 << 20);
+        let summits = crate::read_npy_summits_file(&full, limit)?;
+        if summits.len() as u64 > self.summit_budget() {
+            return Err(SurfaceError::Npy {
+                path: full.display().to_string(),
+                message: format!(
+                    "{} summits, more than the limit of {} (`surface.max_summits`, default {DEFAULT_MAX_SUMMITS})",
+                    summits.len(),
+                    self.summit_budget()
+                ),
+            });
+        }
+        let layout = self.layout();
+        crate::npy_surface(
+            summits,
+            &full.display().to_string(),
+            self.apparent_length,
+            self.apparent_width,
+            self.summit_radius,
+            |n| crate::uniform_positions(&layout, n),
+        )
+    }
+
     /// Builds the surface: generates it or reads the CSV file (relative `csv_path` resolved
     /// against `base_dir`, normally the scenario file's folder).
     pub fn build(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
@@ -306,8 +363,12 @@ impl SurfaceSpec {
                 "`height_map` and `counter_height_map` are only allowed when `source` is \"height_map\"".into(),
             ));
         }
+        if self.source != SurfaceSource::Npy && self.npy_path.is_some() {
+            return Err(SurfaceError::Spec("`npy_path` is only allowed when `source` is \"npy\"".into()));
+        }
         match self.source {
             SurfaceSource::HeightMap => crate::height_map::build(self, base_dir),
+            SurfaceSource::Npy => self.build_npy(base_dir),
             SurfaceSource::Csv => {
                 let path = self
                     .csv_path

@@ -101,12 +101,19 @@ impl Surface {
                 }
             }
         }
-        if let Some((i, v)) = height_m.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        // Each check first runs as a branch-free fold (vectorised: about 1 instruction per summit
+        // instead of 20 for `enumerate().find`); the failing index is only searched for on failure.
+        let height_ok = |v: &f64| v.is_finite();
+        if !height_m.iter().fold(true, |ok, v| ok & height_ok(v))
+            && let Some((i, v)) = height_m.iter().enumerate().find(|(_, v)| !height_ok(v))
+        {
             return Err(SurfaceError::Inconsistent(format!("height_m[{i}] = {v}: expected a finite height in m")));
         }
         for (name, arr, lim) in [("x_m", &x_m, apparent_length_m), ("y_m", &y_m, apparent_width_m)] {
-            if let Some((i, v)) =
-                arr.iter().enumerate().find(|(_, v)| !(v.is_finite() && **v >= 0.0 && f64::from(**v) <= lim))
+            // f32 -> f64 is exact, so comparing in f32 against the f64 limit is the same test.
+            let inside = |v: &f32| v.is_finite() & (*v >= 0.0) & (f64::from(*v) <= lim);
+            if !arr.iter().fold(true, |ok, v| ok & inside(v))
+                && let Some((i, v)) = arr.iter().enumerate().find(|(_, v)| !inside(v))
             {
                 return Err(SurfaceError::Inconsistent(format!(
                     "{name}[{i}] = {v}: expected a position inside [0, {lim}] m (the apparent area)"
@@ -216,6 +223,21 @@ impl Surface {
             b += r.capacity() * 8;
         }
         b as f64 / n
+    }
+
+    /// Mean summit radius \[m\]: the `radius_mean_m` of [`Surface::stats`] (same value, bit for
+    /// bit), without the height moments (a division per summit). NaN for an empty surface.
+    pub fn mean_radius_m(&self) -> f64 {
+        match &self.radius_m {
+            Radii::Uniform(r) => {
+                if self.is_empty() {
+                    f64::NAN
+                } else {
+                    *r
+                }
+            }
+            Radii::PerSummit(r) => moments(r.iter().copied(), r.len()).0,
+        }
     }
 
     /// Sample statistics: count, density, height mean/SD/extremes, radius mean/SD/extremes.

@@ -298,3 +298,43 @@ fn sizes_are_checked_against_the_budget_and_the_density_is_kept() {
     let e = Surface::read_csv("x_m,y_m,height_m,radius_m\n".as_bytes(), 2e-5, 5e-6).unwrap_err().to_string();
     assert!(e.contains("no summit rows"), "{e}");
 }
+
+/// Golden hashes of 1e6-summit surfaces (the scenario benches/numpy-1e6.json: 1 mm x 0.25 mm,
+/// eta = 4e12 m^-2, sigma = 0.04 um, R = 0.5 um, seed 2000, and variants), printed by
+/// `stiction surface benches/numpy-1e6.json --json [--set ...]` built from the generator that
+/// sorted the heights with `sort_unstable_by(total_cmp)` (commit ae818d9). The radix sort that
+/// replaced it (docs/performance.md) must keep every bit: these surfaces are large enough to take
+/// the radix path, the Table 1 golden above is not.
+#[test]
+fn large_surfaces_keep_the_bits_of_the_comparison_sort_generator() {
+    let layout = |seed, placement| Layout { apparent_length_m: 1e-3, apparent_width_m: 0.25e-3, placement, seed };
+    let base = table1_face();
+    let s = generate(&layout(2000, Placement::Poisson), &base).unwrap();
+    assert_eq!((s.len(), s.content_hash()), (1_001_098, 0x4bef_d389_ec3d_34fd), "Table 1 statistics, seed 2000");
+    let exp = FaceParams { height_distribution: HeightDistribution::Exponential, ..base };
+    let s = generate(&layout(2000, Placement::JitteredGrid), &exp).unwrap();
+    assert_eq!((s.len(), s.content_hash()), (1_000_000, 0x6965_eace_df80_cf53), "exponential, jittered grid");
+    let logn = FaceParams { radius_sd_m: 0.2e-6, radius_distribution: RadiusDistribution::Lognormal, ..base };
+    let s = generate(&layout(7, Placement::Poisson), &logn).unwrap();
+    assert_eq!((s.len(), s.content_hash()), (999_224, 0xd497_3893_e992_f5be), "lognormal radii, seed 7");
+    let shoe = FaceParams {
+        summit_density_per_m2: 1e12,
+        summit_sd_m: 0.03e-6,
+        summit_radius_m: 1e-6,
+        radius_sd_m: 0.3e-6,
+        radius_distribution: RadiusDistribution::Lognormal,
+        ..base
+    };
+    let s = generate_composite(&layout(2000, Placement::Poisson), &base, &shoe).unwrap();
+    assert_eq!((s.len(), s.content_hash()), (1_251_228, 0x5d6e_7bd8_a5b1_bdcf), "composite of two faces");
+}
+
+#[test]
+fn mean_radius_is_the_stats_value_bit_for_bit() {
+    // The explicit solver reads the mean radius without the height moments; it must be the value
+    // `stats()` reports (Welford's running mean), for uniform and per-summit radii.
+    let logn = FaceParams { radius_sd_m: 0.2e-6, radius_distribution: RadiusDistribution::Lognormal, ..table1_face() };
+    for s in [generate(&table1_layout(5), &table1_face()).unwrap(), generate(&table1_layout(5), &logn).unwrap()] {
+        assert_eq!(s.mean_radius_m().to_bits(), s.stats().radius_mean_m.to_bits());
+    }
+}

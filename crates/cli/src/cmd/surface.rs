@@ -9,7 +9,8 @@ use stiction_surface::SurfaceStats;
 use crate::output::{CliResult, print_json, print_table};
 
 /// Generate (or read) the scenario's rough sidewall: summit statistics against the requested
-/// parameters, and an export as CSV (x_m, y_m, height_m, radius_m in SI) for inspection or reuse.
+/// parameters, and an export as CSV (x_m, y_m, height_m, radius_m in SI) or NumPy .npy for
+/// inspection or reuse.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The scenario JSON file (its `surface` section).
@@ -17,6 +18,10 @@ pub struct Args {
     /// Write the summits to this CSV file (readable back with `"source": "csv"`).
     #[arg(long, value_name = "FILE.csv")]
     pub csv: Option<PathBuf>,
+    /// Write the summits to this NumPy file: an N x 4 float64 array, columns x, y, height, radius
+    /// in m (`np.load`; readable back with `"source": "npy"`).
+    #[arg(long, value_name = "FILE.npy")]
+    pub npy: Option<PathBuf>,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -55,6 +60,10 @@ pub fn run(args: Args) -> CliResult {
         // Again after the build, which read the scenario's own summit CSV, if any.
         crate::output::check_output_flag("--csv", path)?;
         surface.write_csv_file(path)?;
+        crate::errln!("wrote {} summits to {}", surface.len(), path.display());
+    }
+    if let Some(path) = &args.npy {
+        surface.write_npy_file(path)?;
         crate::errln!("wrote {} summits to {}", surface.len(), path.display());
     }
     let out = Output {

@@ -29,8 +29,10 @@ pub struct Args {
     /// Metadata and preparation of the map.
     #[command(flatten)]
     pub map: MapArgs,
-    /// Write the summits as CSV (x_m,y_m,height_m,radius_m: readable by a scenario with "source": "csv").
-    #[arg(long, value_name = "OUT.csv")]
+    /// Write the summits as CSV (x_m,y_m,height_m,radius_m: readable by a scenario with "source": "csv"),
+    /// or, for a name ending in .npy, as an N x 4 float64 NumPy array (x, y, height, radius in m;
+    /// readable with "source": "npy").
+    #[arg(long, value_name = "OUT.csv|OUT.npy")]
     pub summits: Option<PathBuf>,
     /// Write figures (PNG) with their data (CSV), summits.csv and statistics.json to this folder,
     /// with a manifest.json; the folder is replaced as a whole.
@@ -256,6 +258,11 @@ fn write_summit_csv(map: &HeightMap, s: &Summits, path: &Path) -> CliResult {
     let ys = s.iy.iter().map(|&i| ((f64::from(i) + 0.5) * map.dy_m()) as f32).collect();
     let radii = (0..s.len()).map(|i| s.radius_m(i)).collect();
     let surface = Surface::new(lx, ly, xs, ys, s.height_m.clone(), Radii::PerSummit(radii))?;
+    // A name ending in .npy gets the N x 4 float64 array (x, y, height, radius) of `stiction surface --npy`.
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy")) {
+        write_atomic(path, &surface.to_npy_bytes())?;
+        return Ok(());
+    }
     let mut bytes = Vec::new();
     surface.write_csv(&mut bytes)?;
     write_atomic(path, &bytes)?;

@@ -233,7 +233,7 @@ impl ExplicitSolver {
         params: AsperityParams,
         config: SolverConfig,
     ) -> Result<Self, SolveError> {
-        let mean_r = surface.stats().radius_mean_m;
+        let mean_r = surface.mean_radius_m();
         let check = AsperityParams { radius_m: if mean_r.is_finite() { mean_r } else { 1.0 }, ..params };
         check.validate().map_err(|e| invalid("params", format!("{params:?}"), e.to_string()))?;
         if !(config.shear_strength_pa.is_finite() && config.shear_strength_pa >= 0.0) {
