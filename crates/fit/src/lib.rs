@@ -170,6 +170,13 @@ pub struct FitReport {
     pub models_failed: Vec<FailedModel>,
     /// Plain sentences on which models the data can and cannot tell apart.
     pub model_selection: Vec<String>,
+    /// With a height-map surface: the summit statistics the statistical models (GW, discrete) use,
+    /// counted on the map (the numbers `stiction topography` prints), and where they come from.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub summit_statistics: Option<stiction_surface::MapSummitStatistics>,
+    /// Sentences on the surface the models stand on (which statistics come from a map, which maps
+    /// are tiled as periodic cells).
+    pub surface_notes: Vec<String>,
 }
 
 /// The reduction's uncertain sources from the scenario's JSON tree (`actuators.clamp.conversion_factor`,
@@ -433,6 +440,28 @@ pub fn analyse(
         }
     }
     let model_selection = rank(&mut models);
+    let mut surface_notes = Vec::new();
+    let mut summit_statistics = None;
+    if let Some(spec) = scenario.surface.as_ref().filter(|s| s.source == stiction_surface::SurfaceSource::HeightMap) {
+        let map_err = |e: stiction_surface::SurfaceError| FitError::Setting(format!("surface: {e}"));
+        if options.models.iter().any(|k| k.is_cheap()) {
+            let st = stiction_surface::map_summit_statistics(spec, base_dir).map_err(map_err)?;
+            surface_notes.push(format!(
+                "gw-dmt and discrete-nN use the {}: eta = {:.4e} m^-2, sigma = {}, R = {} ({} summits){}",
+                st.source,
+                st.summit_density_per_m2,
+                stiction_units::format_quantity(st.summit_sd_m, stiction_units::Dimension::Length),
+                stiction_units::format_quantity(
+                    spec.summit_radius.unwrap_or(st.summit_radius_m),
+                    stiction_units::Dimension::Length
+                ),
+                st.summit_count,
+                if spec.summit_radius.is_some() { "; R is the given `summit_radius`, not the map's" } else { "" }
+            ));
+            summit_statistics = Some(st);
+        }
+        surface_notes.extend(stiction_surface::height_map_tiling(spec, base_dir).map_err(map_err)?);
+    }
     let interval_method = "95 % intervals of s: `ci95` from the noise alone (the nominal a_clamp, a_pull and F_spring taken as exact), by profile likelihood (chi2_prof(s) - chi2_min <= t_0.975(nu)^2): exact for the linear dependence on s, follows the (s, R, F_spring) valley when those are free, and needs a few hundred model evaluations instead of the thousands of refits a bootstrap would (unaffordable for the explicit ensemble). `ci95_with_calibration` adds a_clamp, a_pull and F_spring drawn from their stated uncertainties (s refitted per draw, the noise added as se t_nu; 2.5-97.5 percentiles), with the variance shares by source. The ensemble's roughness interval is the 2.5-97.5 percentile of the s each surface alone needs.".to_string();
     Ok(FitReport {
         data: data.source.clone(),
@@ -450,6 +479,8 @@ pub fn analyse(
         models,
         models_failed,
         model_selection,
+        summit_statistics,
+        surface_notes,
     })
 }
 

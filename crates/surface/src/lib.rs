@@ -30,7 +30,7 @@ pub use generate::{
     FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution, generate, generate_composite,
     generate_two_face, generate_two_face_limited,
 };
-pub use height_map::height_map_patch;
+pub use height_map::{MapSummitStatistics, height_map_patch, height_map_tiling, map_summit_statistics};
 pub use spec::{
     DEFAULT_MAX_SUMMITS, ESTIMATED_BYTES_PER_SUMMIT, FaceSpec, MAX_LENGTH_M, SurfaceSource, SurfaceSpec, TwoFaceMode,
 };

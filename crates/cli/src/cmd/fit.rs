@@ -205,6 +205,9 @@ fn print_summary(r: &FitReport) {
             None => crate::outln!("  device {:>8}: {}", d.device, d.note.clone().unwrap_or_default()),
         }
     }
+    for note in &r.surface_notes {
+        crate::outln!("\nsurface: {note}");
+    }
     crate::outln!("\n{}", r.noise_note);
     crate::outln!();
     let mut t = crate::output::TextTable::new(&[
