@@ -8,14 +8,8 @@ const SCENARIO: &str = "scenarios/tas2000-discrete.json";
 /// `--surfaces 0` is an error with status 2, not a success with a "failed" row.
 #[test]
 fn zero_surfaces_exits_2() {
-    let out = stiction(&[
-        "fit",
-        "data/measured-voltages-synthetic/voltages.csv",
-        "--scenario",
-        SCENARIO,
-        "--surfaces",
-        "0",
-    ]);
+    let out =
+        stiction(&["fit", "data/measured-voltages-synthetic/voltages.csv", "--scenario", SCENARIO, "--surfaces", "0"]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--surfaces 0") && err.contains("expected 1 to"), "{err}");
@@ -51,7 +45,8 @@ fn equal_pull_voltages_are_nulls_with_reasons() {
 #[test]
 fn semicolon_files_fit_like_comma_files() {
     let dir = temp_dir("fit-semicolon");
-    let comma = std::fs::read_to_string(crate::util::root().join("data/measured-voltages-synthetic/voltages.csv")).unwrap();
+    let comma =
+        std::fs::read_to_string(crate::util::root().join("data/measured-voltages-synthetic/voltages.csv")).unwrap();
     let file = dir.join("semi.csv");
     std::fs::write(&file, comma.replace(',', ";")).unwrap();
     let args = |d: &str| {
@@ -66,7 +61,14 @@ fn semicolon_files_fit_like_comma_files() {
 /// The text names both intervals of s: the noise-only one and the one with the calibration.
 #[test]
 fn both_intervals_of_s_are_printed_and_labelled() {
-    let out = stiction(&["fit", "data/measured-voltages-synthetic/voltages.csv", "--scenario", SCENARIO, "--models", "discrete-n3"]);
+    let out = stiction(&[
+        "fit",
+        "data/measured-voltages-synthetic/voltages.csv",
+        "--scenario",
+        SCENARIO,
+        "--models",
+        "discrete-n3",
+    ]);
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("95 % noise only (GPa)") && text.contains("95 % with calibration (GPa)"), "{text}");

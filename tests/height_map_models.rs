@@ -48,8 +48,9 @@ fn a_map_smaller_than_the_shoe_is_tiled_only_when_asked() {
         let row: Vec<String> = (0..200)
             .map(|ix| {
                 let (x, y) = (ix as f64 / 200.0, iy as f64 / 200.0);
-                let z = 10.0 * (2.0 * std::f64::consts::PI * 7.0 * x).sin() * (2.0 * std::f64::consts::PI * 5.0 * y).cos()
-                    + 4.0 * (2.0 * std::f64::consts::PI * 13.0 * (x + y)).sin();
+                let z =
+                    10.0 * (2.0 * std::f64::consts::PI * 7.0 * x).sin() * (2.0 * std::f64::consts::PI * 5.0 * y).cos()
+                        + 4.0 * (2.0 * std::f64::consts::PI * 13.0 * (x + y)).sin();
                 format!("{z:.4}")
             })
             .collect();

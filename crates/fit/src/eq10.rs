@@ -390,7 +390,8 @@ pub fn fit_eq10(
         },
         intercept_n: finite(nominal.a_pull_n_per_v2 * line.intercept + mu * nominal.spring_force_n),
         slope_intercept_covariance_n: finite(
-            k * nominal.a_pull_n_per_v2 * (line.cov + line.var_slope * nominal.spring_force_n / nominal.a_clamp_n_per_v2),
+            k * nominal.a_pull_n_per_v2
+                * (line.cov + line.var_slope * nominal.spring_force_n / nominal.a_clamp_n_per_v2),
         ),
         points: line.points,
         dof: line.dof,

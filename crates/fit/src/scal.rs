@@ -52,7 +52,13 @@ pub struct Propagated {
 
 fn interp(grid: &[f64], parts: &[Parts], load: f64) -> Option<(f64, f64)> {
     let k = grid.partition_point(|&l| l < load);
-    let (i, j) = if k == 0 { (0, 1) } else if k >= grid.len() { (grid.len() - 2, grid.len() - 1) } else { (k - 1, k) };
+    let (i, j) = if k == 0 {
+        (0, 1)
+    } else if k >= grid.len() {
+        (grid.len() - 2, grid.len() - 1)
+    } else {
+        (k - 1, k)
+    };
     let (a, b) = (parts[i].as_ref().ok()?, parts[j].as_ref().ok()?);
     let span = grid[j] - grid[i];
     let f = if span > 0.0 { ((load - grid[i]) / span).clamp(0.0, 1.0) } else { 0.0 };
@@ -86,7 +92,10 @@ pub fn propagate(
         Noise::Residuals => fit.dof as f64,
     };
     let Some(t) = t975(nu) else {
-        return Ok(Propagated { note: "too few degrees of freedom for the noise level".into(), ..Propagated::default() });
+        return Ok(Propagated {
+            note: "too few degrees of freedom for the noise level".into(),
+            ..Propagated::default()
+        });
     };
     let se = 0.5 * (hi - lo) / t;
     let draws = draws.min(MAX_S_DRAWS);
@@ -129,7 +138,10 @@ pub fn propagate(
         l_hi = l_hi.max(c[0] * x_max - c[2]);
     }
     if !(l_lo > 0.0 && l_hi > l_lo && l_hi.is_finite()) {
-        return Ok(Propagated { note: "no load range to propagate the calibration over".into(), ..Propagated::default() });
+        return Ok(Propagated {
+            note: "no load range to propagate the calibration over".into(),
+            ..Propagated::default()
+        });
     }
     let grid: Vec<f64> = (0..LOAD_GRID).map(|k| l_lo + (l_hi - l_lo) * k as f64 / (LOAD_GRID - 1) as f64).collect();
     let parts = match kind {

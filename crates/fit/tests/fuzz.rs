@@ -29,7 +29,8 @@ fn mutate(base: &str, rng: &mut ChaCha8Rng) -> String {
                 // Insert a piece into a line.
                 let i = rng.random_range(0..n).min(lines.len().saturating_sub(1));
                 if let Some(l) = lines.get_mut(i) {
-                    let at = l.char_indices().map(|c| c.0).nth(rng.random_range(0..=l.chars().count())).unwrap_or(l.len());
+                    let at =
+                        l.char_indices().map(|c| c.0).nth(rng.random_range(0..=l.chars().count())).unwrap_or(l.len());
                     l.insert_str(at, PIECES[rng.random_range(0..PIECES.len())]);
                 }
             }
@@ -56,10 +57,10 @@ fn mutate(base: &str, rng: &mut ChaCha8Rng) -> String {
             5 => {
                 let extreme = ["1e308", "5e-324", "0", "-0", "9999", "1e6", "-1", "00000000000000000000027"];
                 let i = rng.random_range(0..n).min(lines.len().saturating_sub(1));
-                if let Some(l) = lines.get_mut(i) {
-                    if let Some((c, _)) = l.split_once(',') {
-                        *l = format!("{c},{}", extreme[rng.random_range(0..extreme.len())]);
-                    }
+                if let Some(l) = lines.get_mut(i)
+                    && let Some((c, _)) = l.split_once(',')
+                {
+                    *l = format!("{c},{}", extreme[rng.random_range(0..extreme.len())]);
                 }
             }
             6 => {

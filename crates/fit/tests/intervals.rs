@@ -113,16 +113,9 @@ fn calibration_interval_of_s_scales_with_a_pull() {
     sc.1["actuators"]["clamp"]["conversion_factor"] = Value::String("1.4e-8 N/V^2".into());
     sc.1["meter"]["spring_force"] = Value::String("7 uN".into());
     let ctx = ModelContext::new(&sc.0, &sc.2).unwrap();
-    let rows = synth::from_model(
-        &ctx,
-        ModelKind::Discrete(3),
-        1.4e9,
-        &volts(),
-        1,
-        0.0,
-        &mut ChaCha8Rng::seed_from_u64(1),
-    )
-    .unwrap();
+    let rows =
+        synth::from_model(&ctx, ModelKind::Discrete(3), 1.4e9, &volts(), 1, 0.0, &mut ChaCha8Rng::seed_from_u64(1))
+            .unwrap();
     // A whisker of noise so the noise interval exists (residual noise level > 0).
     let mut rows = rows;
     for (i, r) in rows.iter_mut().enumerate() {

@@ -192,8 +192,9 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
             col[which] = Some(k);
         } else if is_voltage_name_without_unit(name) {
             return Err(header_err(format!(
-                "column `{}` gives no unit; accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
-                crate::short(name)
+                "column `{}` gives no unit (read with the separator {}); accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
+                crate::short(name),
+                separator_name(separator)
             )));
         }
     }
@@ -278,10 +279,7 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
 /// line that is not blank (comment lines are blank by then); comma when the line has a comma or
 /// none of them.
 fn detect_separator(bytes: &[u8]) -> u8 {
-    let first = bytes
-        .split(|&b| b == b'\n')
-        .find(|l| !l.iter().all(|b| b.is_ascii_whitespace()))
-        .unwrap_or_default();
+    let first = bytes.split(|&b| b == b'\n').find(|l| !l.iter().all(|b| b.is_ascii_whitespace())).unwrap_or_default();
     let count = |c: u8| first.iter().filter(|&&b| b == c).count();
     if count(b',') > 0 {
         b','
@@ -463,7 +461,8 @@ mod tests {
     #[test]
     fn semicolon_and_tab_separators_are_detected() {
         for sep in [";", "\t"] {
-            let text = format!("# lab export\nv_clamp_v{sep}v_pull_v{sep}device\n25{sep}30.5{sep}d1\n26{sep}31{sep}d2\n");
+            let text =
+                format!("# lab export\nv_clamp_v{sep}v_pull_v{sep}device\n25{sep}30.5{sep}d1\n26{sep}31{sep}d2\n");
             let d = parse_measured_voltages(text.as_bytes(), "m.csv").unwrap();
             assert_eq!(d.rows.len(), 2, "separator {sep:?}");
             assert_eq!((d.rows[0].v_clamp_v, d.rows[0].v_pull_v, d.rows[1].device.as_str()), (25.0, 30.5, "d2"));

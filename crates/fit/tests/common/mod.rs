@@ -15,7 +15,10 @@ pub fn non_finite_in_debug(text: &str) -> Option<String> {
             // Inside a string (a note) the word is preceded by a space and followed by a space.
             let prose = i > 0 && b[i - 1] == b' ' && j < b.len() && b[j] == b' ';
             if before_ok && after_ok && !prose {
-                let lo = text.floor_char_boundary(i.saturating_sub(60));
+                let mut lo = i.saturating_sub(60);
+                while !text.is_char_boundary(lo) {
+                    lo -= 1;
+                }
                 return Some(text[lo..j.min(text.len())].to_string());
             }
             from = j;
