@@ -2,7 +2,8 @@
 //! `L = a_clamp V_clamp^2 - F_spring`, with two kinds of uncertainty kept apart.
 //!
 //! * **Regression.** The line is fitted in the measured variables, `Y = alpha + beta X` with
-//!   `X = V_clamp^2`, `Y = V_pull^2` (ordinary least squares over the rows with `L > 0`), keeping
+//!   `X = V_clamp^2`, `Y = V_pull^2` (over the rows with `L > 0`, weighted by the noise of
+//!   `V_pull^2`, which grows with `V_pull`: see [`eq10_line`]), keeping
 //!   the covariance of `alpha` and `beta`. Then `mu_e,a = (a_pull / a_clamp) beta` and
 //!   `F_a0 = a_clamp alpha / beta + F_spring`, exactly the slope and intercept / slope of the line in
 //!   (L, F_f). The interval of `mu_e,a` is `t_{n-2}` times its standard error; the interval of `F_a0`
@@ -23,8 +24,12 @@
 //!   are proportional to `1 / a_clamp`, and a normal `a_clamp` of 1.4 +/- 0.5 gives `1 / a_clamp`
 //!   a tail so long that the plain variance is dominated by a handful of draws near zero.
 //!
-//! Line fits in the Monte Carlo use running sums over the rows sorted by `V_clamp^2`, so each draw
-//! costs O(log n) whatever the number of rows.
+//! The line is fitted once (the rows are those of the nominal reduction in every draw), so each
+//! draw costs O(1) whatever the number of rows, and the whole fit is linear in the rows.
+//!
+//! When every row in the line has the same pull voltage the data show no load dependence: then
+//! `mu_e,a` and `F_a0` are null with the reason, and so are they (and `F_a0` alone) when the slope
+//! is not positive; nothing is divided by a zero slope.
 
 use std::collections::BTreeMap;
 
@@ -36,7 +41,7 @@ use stiction_meter::Reduction;
 use stiction_units::UncertainInput;
 
 use crate::FitError;
-use crate::stats::{Line, Sums, fieller, percentile, robust_sd, t975};
+use crate::stats::{Line, fieller, percentile, robust_sd, t975, weighted_line};
 
 /// One uncertain quantity of the reduction.
 #[derive(Debug, Clone, Serialize)]
@@ -59,8 +64,12 @@ pub struct CalibrationSource {
 /// A quantity with its intervals.
 #[derive(Debug, Clone, Serialize)]
 pub struct Estimate {
-    /// Best estimate (nominal reduction).
-    pub value: f64,
+    /// Best estimate (nominal reduction); null when the data do not determine it (reason in
+    /// `value_note`).
+    pub value: Option<f64>,
+    /// Why `value` is null, when it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub value_note: Option<String>,
     /// Standard error from the regression alone.
     pub stderr: Option<f64>,
     /// 95 % interval from the regression alone.
@@ -70,6 +79,9 @@ pub struct Estimate {
     pub ci95_note: Option<String>,
     /// 95 % interval from the regression and the calibration together (Monte Carlo percentiles).
     pub ci95_with_calibration: Option<[f64; 2]>,
+    /// Why `ci95_with_calibration` is null, when it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ci95_with_calibration_note: Option<String>,
     /// Standard deviation from the calibration alone (Monte Carlo; robust: half the 15.9-84.1
     /// percentile range, since mu_e,a is proportional to 1 / a_clamp, whose normal draw has a
     /// long tail towards small a_clamp that would make the plain SD meaningless).
@@ -84,15 +96,17 @@ pub struct Eq10Fit {
     /// Apparent zero-load adhesion force F_a0, N.
     pub apparent_adhesion_force_n: Estimate,
     /// Intercept of F_f against L, mu_e,a F_a0, N.
-    pub intercept_n: f64,
+    pub intercept_n: Option<f64>,
     /// Covariance of the slope mu_e,a and the intercept (N), from the regression.
-    pub slope_intercept_covariance_n: f64,
+    pub slope_intercept_covariance_n: Option<f64>,
     /// Rows in the line.
     pub points: usize,
     /// Degrees of freedom of the line, n - 2.
     pub dof: usize,
-    /// Coefficient of determination.
+    /// Coefficient of determination (weighted).
     pub r_squared: f64,
+    /// How the line is weighted ([`WEIGHTING`]).
+    pub weighting: String,
     /// Share of the variance of each quantity by source (`regression`, `a_clamp`, `a_pull`,
     /// `spring_force`), summing to 1.
     pub variance_shares: VarianceShares,
@@ -124,48 +138,47 @@ pub struct CalibrationRun {
     pub mu_sd_total: Option<f64>,
     /// Standard deviation of F_a0 over the joint draws, N.
     pub adhesion_force_sd_total_n: Option<f64>,
+    /// Why there was no Monte Carlo, when there was none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
-/// The measured voltages behind eq. 10, sorted by V_clamp^2 with running sums.
-struct Prepared {
-    /// Sorted X = V_clamp^2 (V^2).
-    xs: Vec<f64>,
-    /// Running sums of centred (X, Y); prefix[k] covers rows 0..k.
-    prefix: Vec<Sums>,
-    mx: f64,
-    my: f64,
+/// One measured slip entering eq. 10.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Eq10Point {
+    /// Clamp voltage, V.
+    pub v_clamp_v: f64,
+    /// Pull voltage at slip, V.
+    pub v_pull_v: f64,
+    /// The row's pull-voltage SD, V (the file's `v_pull_sd_v`), when the file gives it.
+    pub v_pull_sd_v: Option<f64>,
 }
 
-impl Prepared {
-    fn new(pairs: &[(f64, f64)]) -> Prepared {
-        let mut p: Vec<(f64, f64)> = pairs.to_vec();
-        p.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let n = p.len().max(1) as f64;
-        let mx = p.iter().map(|q| q.0).sum::<f64>() / n;
-        let my = p.iter().map(|q| q.1).sum::<f64>() / n;
-        let mut prefix = Vec::with_capacity(p.len() + 1);
-        let mut s = Sums::default();
-        prefix.push(s);
-        for q in &p {
-            s.add(q.0 - mx, q.1 - my);
-            prefix.push(s);
+/// How the eq. 10 line is weighted, in words (the report's `eq10.weighting`).
+pub const WEIGHTING: &str = "weighted least squares in (V_clamp^2, V_pull^2) with weights 1 / Var(V_pull^2), Var(V_pull^2) = (2 V_pull sd)^2 to first order: V_pull from the line's own prediction (three reweighting passes from the unweighted line), sd the row's v_pull_sd_v or one common value; the scale of the variances comes from the weighted residuals (t with n - 2 degrees of freedom)";
+
+/// Reweighting passes of the eq. 10 line.
+const REWEIGHT_PASSES: usize = 3;
+
+/// The eq. 10 line `Y = alpha + beta X` through `(X, Y, sd)` = (V_clamp^2, V_pull^2, pull-voltage
+/// SD): the noise of `Y = V_pull^2` is `2 V_pull sd` to first order, so it grows with `V_pull`;
+/// ordinary least squares ignores that and its interval of the slope undercovers. Weights
+/// `w = 1 / (Yhat sd^2)` (the constant 4 cancels against the residual scale) with `Yhat` the line's
+/// prediction, from the unweighted line and [`REWEIGHT_PASSES`] passes (the prediction, not the
+/// measured `Y`, so that a high measurement is not down-weighted for being high). `Yhat` is kept
+/// at least a quarter of the smallest measured `Y`.
+pub fn eq10_line(points: &[(f64, f64, f64)]) -> Option<Line> {
+    let y_floor = 0.25 * points.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    let mut w: Vec<(f64, f64, f64)> = points.iter().map(|&(x, y, sd)| (x, y, 1.0 / (sd * sd))).collect();
+    let mut line = weighted_line(&w)?;
+    for _ in 0..REWEIGHT_PASSES {
+        for (q, &(x, _, sd)) in w.iter_mut().zip(points) {
+            let y_hat = (line.intercept + line.slope * x).max(y_floor);
+            q.2 = 1.0 / (y_hat * sd * sd);
         }
-        Prepared { xs: p.iter().map(|q| q.0).collect(), prefix, mx, my }
+        line = weighted_line(&w)?;
     }
-
-    /// The line Y = alpha + beta X over the rows with X > x_min, in uncentred coordinates.
-    fn line_above(&self, x_min: f64) -> Option<Line> {
-        let k = self.xs.partition_point(|&x| x <= x_min);
-        let all = self.prefix[self.prefix.len() - 1];
-        let sums = all.minus(&self.prefix[k]);
-        let mut l = sums.line()?;
-        let (mx, my) = (self.mx, self.my);
-        let (a_c, var_c, cov_c) = (l.intercept, l.var_intercept, l.cov);
-        l.intercept = a_c + my - l.slope * mx;
-        l.var_intercept = var_c + mx * mx * l.var_slope - 2.0 * mx * cov_c;
-        l.cov = cov_c - mx * l.var_slope;
-        Some(l)
-    }
+    Some(line)
 }
 
 /// mu_e,a and F_a0 from a line in (V_clamp^2, V_pull^2) and a reduction.
@@ -174,31 +187,37 @@ fn reduce(beta: f64, alpha: f64, r: &Reduction) -> (f64, f64) {
 }
 
 /// Draws one value of a source (its nominal when it has no uncertainty).
-fn draw(src: &CalibrationSource, rng: &mut ChaCha8Rng) -> Result<f64, FitError> {
+pub(crate) fn draw(src: &CalibrationSource, rng: &mut ChaCha8Rng) -> Result<f64, FitError> {
     match &src.uncertainty {
         Some(u) => stiction_study::draw(u, &src.path, rng).map_err(|e| FitError::Setting(e.to_string())),
         None => Ok(src.nominal),
     }
 }
 
-/// Eq. 10 on measured (V_clamp, V_pull) pairs (all readable rows with V_pull > 0; the rows with
-/// L > 0 under the nominal reduction enter the line), with `draws` calibration draws from `seed`.
-/// `sources` are a_clamp, a_pull, spring_force in this order.
+/// Eq. 10 on measured rows (those with V_pull > 0 and L > 0 under the nominal reduction enter the
+/// line), weighted by the noise of V_pull^2 ([`eq10_line`]), with `draws` calibration draws from
+/// `seed` (0: no calibration Monte Carlo, the regression intervals only, with the reason in
+/// `calibration.note`). `sources` are a_clamp, a_pull, spring_force in this order.
 pub fn fit_eq10(
-    voltages: &[(f64, f64)],
+    points: &[Eq10Point],
     nominal: &Reduction,
     sources: &[CalibrationSource; 3],
     draws: usize,
     seed: u64,
 ) -> Result<Eq10Fit, FitError> {
-    let pairs: Vec<(f64, f64)> = voltages.iter().map(|&(c, p)| (c * c, p * p)).collect();
-    let prep = Prepared::new(&pairs);
-    let cut = |r: &Reduction| r.spring_force_n / r.a_clamp_n_per_v2;
-    let line = prep.line_above(cut(nominal)).ok_or_else(|| {
+    let cut = nominal.spring_force_n / nominal.a_clamp_n_per_v2;
+    let pts: Vec<(f64, f64, f64)> = points
+        .iter()
+        .filter(|p| p.v_pull_v > 0.0 && p.v_clamp_v * p.v_clamp_v > cut)
+        .map(|p| (p.v_clamp_v * p.v_clamp_v, p.v_pull_v * p.v_pull_v, p.v_pull_sd_v.unwrap_or(1.0)))
+        .collect();
+    let line = eq10_line(&pts).ok_or_else(|| {
         FitError::TooFewRows("eq. 10 needs at least three rows with L > 0 and two different clamp voltages".into())
     })?;
+    let flat = pts.iter().all(|p| p.1 == pts[0].1);
+    let slope_ok = line.slope > 0.0 && !flat;
     let (mu, fa0) = reduce(line.slope, line.intercept, nominal);
-    let t = t975(line.dof as f64).unwrap_or(f64::NAN);
+    let t = t975(line.dof as f64);
     let k = nominal.a_pull_n_per_v2 / nominal.a_clamp_n_per_v2;
     let mu_se = k * line.var_slope.sqrt();
     // F_a0 = a_c (alpha / beta) + F_spring; delta method for the ratio.
@@ -206,67 +225,86 @@ pub fn fit_eq10(
     let ratio_var =
         (line.var_intercept / (b * b) - 2.0 * a * line.cov / b.powi(3) + a * a * line.var_slope / b.powi(4)).max(0.0);
     let fa0_se = nominal.a_clamp_n_per_v2 * ratio_var.sqrt();
-    let fa0_ci = fieller(a, b, line.var_intercept, line.var_slope, line.cov, t).map(|[lo, hi]| {
-        [nominal.a_clamp_n_per_v2 * lo + nominal.spring_force_n, nominal.a_clamp_n_per_v2 * hi + nominal.spring_force_n]
-    });
-    let mu_ci = (mu > 0.0).then_some([mu - t * mu_se, mu + t * mu_se]);
+    let flat_note = || {
+        format!(
+            "all {} rows in the line have the same pull voltage ({} V): the data show no change of friction with load, so eq. 10 has no slope to fit",
+            pts.len(),
+            pts[0].1.sqrt()
+        )
+    };
+    let fa0_ci = t
+        .filter(|_| slope_ok)
+        .and_then(|t| fieller(a, b, line.var_intercept, line.var_slope, line.cov, t))
+        .map(|[lo, hi]| {
+            [
+                nominal.a_clamp_n_per_v2 * lo + nominal.spring_force_n,
+                nominal.a_clamp_n_per_v2 * hi + nominal.spring_force_n,
+            ]
+        });
+    let mu_ci = t.filter(|_| slope_ok).map(|t| [mu - t * mu_se, mu + t * mu_se]);
 
-    // The calibration Monte Carlo: stream 0 joint (with regression draws), streams 1-3 one source.
+    // The calibration Monte Carlo: stream 0 joint (with regression draws), streams 1-3 one source,
+    // stream 4 all sources without the regression. The rows and the line stay those of the
+    // nominal reduction (they slipped, so they were in contact whatever the true factors).
     let mut joint_mu = Vec::with_capacity(draws);
     let mut joint_fa0 = Vec::with_capacity(draws);
     let mut failed = 0usize;
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    rng.set_stream(0);
-    for _ in 0..draws {
-        let r = Reduction {
-            a_clamp_n_per_v2: draw(&sources[0], &mut rng)?,
-            a_pull_n_per_v2: draw(&sources[1], &mut rng)?,
-            spring_force_n: draw(&sources[2], &mut rng)?,
-        };
-        let (z1, z2): (f64, f64) = (StandardNormal.sample(&mut rng), StandardNormal.sample(&mut rng));
-        match prep.line_above(cut(nominal)) {
-            Some(l) if l.slope > 0.0 => {
-                let sb = l.var_slope.sqrt();
-                let beta = l.slope + sb * z1;
-                let alpha = l.intercept
-                    + if sb > 0.0 { l.cov / sb * z1 } else { 0.0 }
-                    + (l.var_intercept - if sb > 0.0 { l.cov * l.cov / l.var_slope } else { 0.0 }).max(0.0).sqrt() * z2;
-                let (m, f) = reduce(beta, alpha, &r);
-                if m.is_finite() && f.is_finite() {
-                    joint_mu.push(m);
-                    joint_fa0.push(f);
-                } else {
-                    failed += 1;
-                }
-            }
-            _ => failed += 1,
-        }
-    }
     let mut one_at_a_time = [(0.0, 0.0); 3];
     let mut cal_only_mu = Vec::new();
     let mut cal_only_fa0 = Vec::new();
-    for (which, slot) in one_at_a_time.iter_mut().enumerate() {
+    let mc_note = if !slope_ok {
+        Some(if flat { flat_note() } else { "the fitted slope is not positive: no calibration Monte Carlo".into() })
+    } else if draws == 0 {
+        Some("no calibration draws asked for: the intervals are the regression's alone".into())
+    } else {
+        None
+    };
+    if mc_note.is_none() {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        rng.set_stream(which as u64 + 1);
-        let (mut ms, mut fs) = (Vec::with_capacity(draws), Vec::with_capacity(draws));
+        rng.set_stream(0);
+        let sb = line.var_slope.sqrt();
         for _ in 0..draws {
-            let mut r = *nominal;
-            let x = draw(&sources[which], &mut rng)?;
-            match which {
-                0 => r.a_clamp_n_per_v2 = x,
-                1 => r.a_pull_n_per_v2 = x,
-                _ => r.spring_force_n = x,
-            }
-            if let Some(l) = prep.line_above(cut(nominal)).filter(|l| l.slope > 0.0) {
-                let (m, f) = reduce(l.slope, l.intercept, &r);
-                ms.push(m);
-                fs.push(f);
+            let r = Reduction {
+                a_clamp_n_per_v2: draw(&sources[0], &mut rng)?,
+                a_pull_n_per_v2: draw(&sources[1], &mut rng)?,
+                spring_force_n: draw(&sources[2], &mut rng)?,
+            };
+            let (z1, z2): (f64, f64) = (StandardNormal.sample(&mut rng), StandardNormal.sample(&mut rng));
+            let beta = line.slope + sb * z1;
+            let alpha = line.intercept
+                + if sb > 0.0 { line.cov / sb * z1 } else { 0.0 }
+                + (line.var_intercept - if sb > 0.0 { line.cov * line.cov / line.var_slope } else { 0.0 })
+                    .max(0.0)
+                    .sqrt()
+                    * z2;
+            let (m, f) = reduce(beta, alpha, &r);
+            if m.is_finite() && f.is_finite() {
+                joint_mu.push(m);
+                joint_fa0.push(f);
+            } else {
+                failed += 1;
             }
         }
-        *slot = (robust_sd(&ms).map_or(0.0, |v| v * v), robust_sd(&fs).map_or(0.0, |v| v * v));
-    }
-    // Calibration alone (all three sources, no regression draw), stream 4.
-    {
+        for (which, slot) in one_at_a_time.iter_mut().enumerate() {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            rng.set_stream(which as u64 + 1);
+            let (mut ms, mut fs) = (Vec::with_capacity(draws), Vec::with_capacity(draws));
+            for _ in 0..draws {
+                let mut r = *nominal;
+                let x = draw(&sources[which], &mut rng)?;
+                match which {
+                    0 => r.a_clamp_n_per_v2 = x,
+                    1 => r.a_pull_n_per_v2 = x,
+                    _ => r.spring_force_n = x,
+                }
+                let (m, f) = reduce(line.slope, line.intercept, &r);
+                if m.is_finite() && f.is_finite() {
+                    ms.push(m);
+                    fs.push(f);
+                }
+            }
+            *slot = (robust_sd(&ms).map_or(0.0, |v| v * v), robust_sd(&fs).map_or(0.0, |v| v * v));
+        }
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         rng.set_stream(4);
         for _ in 0..draws {
@@ -275,8 +313,8 @@ pub fn fit_eq10(
                 a_pull_n_per_v2: draw(&sources[1], &mut rng)?,
                 spring_force_n: draw(&sources[2], &mut rng)?,
             };
-            if let Some(l) = prep.line_above(cut(nominal)).filter(|l| l.slope > 0.0) {
-                let (m, f) = reduce(l.slope, l.intercept, &r);
+            let (m, f) = reduce(line.slope, line.intercept, &r);
+            if m.is_finite() && f.is_finite() {
                 cal_only_mu.push(m);
                 cal_only_fa0.push(f);
             }
@@ -285,48 +323,80 @@ pub fn fit_eq10(
     let shares = |reg: f64, parts: [f64; 3]| {
         let total = reg + parts.iter().sum::<f64>();
         let mut m = BTreeMap::new();
-        for (name, v) in [("regression", reg), ("a_clamp", parts[0]), ("a_pull", parts[1]), ("spring_force", parts[2])]
-        {
-            m.insert(name.to_string(), if total > 0.0 { v / total } else { 0.0 });
+        if total > 0.0 && total.is_finite() {
+            for (name, v) in
+                [("regression", reg), ("a_clamp", parts[0]), ("a_pull", parts[1]), ("spring_force", parts[2])]
+            {
+                m.insert(name.to_string(), v / total);
+            }
         }
         m
     };
-    let variance_shares = VarianceShares {
-        mu_apparent: shares(mu_se * mu_se, one_at_a_time.map(|v| v.0)),
-        apparent_adhesion_force_n: shares(fa0_se * fa0_se, one_at_a_time.map(|v| v.1)),
+    let variance_shares = if mc_note.is_none() {
+        VarianceShares {
+            mu_apparent: shares(mu_se * mu_se, one_at_a_time.map(|v| v.0)),
+            apparent_adhesion_force_n: shares(fa0_se * fa0_se, one_at_a_time.map(|v| v.1)),
+        }
+    } else {
+        VarianceShares::default()
     };
     let interval = |v: &mut Vec<f64>| {
         v.sort_by(f64::total_cmp);
         Some([percentile(v, 0.025)?, percentile(v, 0.975)?])
     };
-    let fa0_note = fa0_ci.is_none().then(|| {
-        "Fieller's interval of F_a0 = intercept / slope is unbounded: the slope is not significantly above zero at 95 %"
-            .to_string()
-    });
+    let fa0_note = if !slope_ok {
+        Some(if flat {
+            flat_note()
+        } else {
+            format!(
+                "F_a0 = a_clamp intercept / slope + F_spring needs a positive slope; the fitted slope is {:.4} (V^2/V^2)",
+                line.slope
+            )
+        })
+    } else {
+        fa0_ci.is_none().then(|| {
+            "Fieller's interval of F_a0 = intercept / slope is unbounded: the slope is not significantly above zero at 95 %"
+                .to_string()
+        })
+    };
+    let mu_note = if flat {
+        Some(flat_note())
+    } else if !slope_ok {
+        Some("the fitted slope is not positive".to_string())
+    } else {
+        t.is_none().then(|| "no interval: too few degrees of freedom".to_string())
+    };
+    let finite = |x: f64| x.is_finite().then_some(x);
     Ok(Eq10Fit {
         mu_apparent: Estimate {
-            value: mu,
-            stderr: Some(mu_se),
+            value: if flat { None } else { finite(mu) },
+            value_note: flat.then(flat_note),
+            stderr: if flat { None } else { finite(mu_se) },
             ci95: mu_ci,
-            ci95_note: mu_ci.is_none().then(|| "the fitted slope is not positive".to_string()),
+            ci95_note: mu_note,
             ci95_with_calibration: interval(&mut joint_mu.clone()),
+            ci95_with_calibration_note: mc_note.clone(),
             sd_calibration: robust_sd(&cal_only_mu),
         },
         apparent_adhesion_force_n: Estimate {
-            value: fa0,
-            stderr: Some(fa0_se),
+            value: if slope_ok { finite(fa0) } else { None },
+            value_note: (!slope_ok).then(|| fa0_note.clone().unwrap_or_default()),
+            stderr: if slope_ok { finite(fa0_se) } else { None },
             ci95: fa0_ci,
             ci95_note: fa0_note,
             ci95_with_calibration: interval(&mut joint_fa0.clone()),
+            ci95_with_calibration_note: mc_note.clone(),
             sd_calibration: robust_sd(&cal_only_fa0),
         },
-        intercept_n: mu * fa0,
-        slope_intercept_covariance_n: k
-            * nominal.a_pull_n_per_v2
-            * (line.cov + line.var_slope * nominal.spring_force_n / nominal.a_clamp_n_per_v2),
+        intercept_n: finite(nominal.a_pull_n_per_v2 * line.intercept + mu * nominal.spring_force_n),
+        slope_intercept_covariance_n: finite(
+            k * nominal.a_pull_n_per_v2
+                * (line.cov + line.var_slope * nominal.spring_force_n / nominal.a_clamp_n_per_v2),
+        ),
         points: line.points,
         dof: line.dof,
         r_squared: line.r_squared,
+        weighting: WEIGHTING.into(),
         variance_shares,
         calibration: CalibrationRun {
             draws,
@@ -335,6 +405,7 @@ pub fn fit_eq10(
             failed_draws: failed,
             mu_sd_total: robust_sd(&joint_mu),
             adhesion_force_sd_total_n: robust_sd(&joint_fa0),
+            note: mc_note,
         },
     })
 }

@@ -28,11 +28,12 @@ use stiction_units::UncertainInput;
 pub mod eq10;
 pub mod mle;
 pub mod models;
+pub mod scal;
 pub mod stats;
 pub mod synth;
 
-pub use eq10::{CalibrationSource, Eq10Fit, Estimate, VarianceShares};
-pub use mle::{Free, ModelFit, Noise};
+pub use eq10::{CalibrationSource, Eq10Fit, Eq10Point, Estimate, VarianceShares};
+pub use mle::{Free, ModelFit, Noise, ShearStrength};
 pub use models::{ModelContext, ModelKind};
 pub use stiction_meter::measured::{
     Dataset, Rejected, Row, VoltageCsvError, parse_measured_voltages, read_measured_voltages, select_rows,
@@ -100,6 +101,19 @@ impl Default for FitOptions {
 /// Largest number of calibration draws.
 pub const MAX_DRAWS: usize = 10_000_000;
 
+/// Largest number of data rows `stiction fit` takes (the work and memory are linear in the rows:
+/// about 100 bytes a row).
+pub const MAX_FIT_ROWS: usize = 2_000_000;
+
+/// Largest number of device labels in one file (each gets its own eq. 10 line).
+pub const MAX_DEVICES: usize = 100_000;
+
+/// Largest number of distinct clamp voltages among the used rows: each contact model is evaluated
+/// once per distinct clamp voltage (the explicit ensemble once per voltage and surface), so this
+/// bounds the models' work. A real sweep has tens; a file whose recorded clamp voltages all differ
+/// (measured, not set, voltages) is refused with the advice to round them to the set points.
+pub const MAX_DISTINCT_CLAMP_VOLTAGES: usize = 5_000;
+
 /// A model that could not be fitted.
 #[derive(Debug, Clone, Serialize)]
 pub struct FailedModel {
@@ -156,6 +170,13 @@ pub struct FitReport {
     pub models_failed: Vec<FailedModel>,
     /// Plain sentences on which models the data can and cannot tell apart.
     pub model_selection: Vec<String>,
+    /// With a height-map surface: the summit statistics the statistical models (GW, discrete) use,
+    /// counted on the map (the numbers `stiction topography` prints), and where they come from.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub summit_statistics: Option<stiction_surface::MapSummitStatistics>,
+    /// Sentences on the surface the models stand on (which statistics come from a map, which maps
+    /// are tiled as periodic cells).
+    pub surface_notes: Vec<String>,
 }
 
 /// The reduction's uncertain sources from the scenario's JSON tree (`actuators.clamp.conversion_factor`,
@@ -246,6 +267,36 @@ pub fn analyse(
     if options.curve_points < 2 || options.curve_points > 10_000 {
         return Err(FitError::Setting(format!("curve points {}: expected 2 to 10000", options.curve_points)));
     }
+    if options.surfaces == 0 || options.surfaces > models::MAX_SURFACES {
+        return Err(FitError::Setting(format!(
+            "--surfaces {}: expected 1 to {} surface realisations",
+            options.surfaces,
+            models::MAX_SURFACES
+        )));
+    }
+    if data.rows.len() > MAX_FIT_ROWS {
+        return Err(FitError::TooFewRows(format!(
+            "{}: {} rows; `stiction fit` takes at most {MAX_FIT_ROWS} rows (split the file, e.g. by device)",
+            data.source,
+            data.rows.len()
+        )));
+    }
+    // The rows of each device, in one pass (linear in the rows).
+    let mut by_device: BTreeMap<&str, Vec<eq10::Eq10Point>> = BTreeMap::new();
+    for r in data.rows.iter().filter(|r| r.v_pull_v > 0.0) {
+        by_device.entry(r.device.as_str()).or_default().push(eq10::Eq10Point {
+            v_clamp_v: r.v_clamp_v,
+            v_pull_v: r.v_pull_v,
+            v_pull_sd_v: r.v_pull_sd_v,
+        });
+    }
+    if by_device.len() > MAX_DEVICES {
+        return Err(FitError::TooFewRows(format!(
+            "{}: {} device labels; `stiction fit` takes at most {MAX_DEVICES} devices in one file",
+            data.source,
+            by_device.len()
+        )));
+    }
     let ctx = ModelContext::new(scenario, base_dir)?;
     let (used, rows_rejected) = select_rows(&data.rows, &ctx.device);
     if used.len() < 3 {
@@ -275,26 +326,40 @@ pub fn analyse(
             data.source
         )));
     }
+    if distinct > MAX_DISTINCT_CLAMP_VOLTAGES {
+        return Err(FitError::TooFewRows(format!(
+            "{}: {distinct} distinct clamp voltages among the used rows; the models are evaluated once per clamp voltage and `stiction fit` takes at most {MAX_DISTINCT_CLAMP_VOLTAGES} (round the recorded clamp voltages to the set points of the sweep)",
+            data.source
+        )));
+    }
     let sources = calibration_sources(json, &ctx.device)?;
-    let voltages: Vec<(f64, f64)> =
-        data.rows.iter().filter(|r| r.v_pull_v > 0.0).map(|r| (r.v_clamp_v, r.v_pull_v)).collect();
-    let eq10 = eq10::fit_eq10(&voltages, &ctx.device, &sources, options.calibration_draws, options.seed)?;
+    let all_points: Vec<eq10::Eq10Point> = data
+        .rows
+        .iter()
+        .filter(|r| r.v_pull_v > 0.0)
+        .map(|r| eq10::Eq10Point { v_clamp_v: r.v_clamp_v, v_pull_v: r.v_pull_v, v_pull_sd_v: r.v_pull_sd_v })
+        .collect();
+    let eq10 = eq10::fit_eq10(&all_points, &ctx.device, &sources, options.calibration_draws, options.seed)?;
     let mut devices = Vec::new();
-    let labels: std::collections::BTreeSet<&str> = data.rows.iter().map(|r| r.device.as_str()).collect();
-    if labels.len() > 1 {
-        for label in labels {
-            let v: Vec<(f64, f64)> = data
-                .rows
-                .iter()
-                .filter(|r| r.device == label && r.v_pull_v > 0.0)
-                .map(|r| (r.v_clamp_v, r.v_pull_v))
-                .collect();
-            let n_used = used.iter().filter(|r| r.device == label).count();
-            let (fit, note) = match eq10::fit_eq10(&v, &ctx.device, &sources, options.calibration_draws, options.seed) {
+    if by_device.len() > 1 {
+        let mut used_per_device: BTreeMap<&str, usize> = BTreeMap::new();
+        for r in &used {
+            *used_per_device.entry(r.device.as_str()).or_default() += 1;
+        }
+        for (label, points) in &by_device {
+            // Per device the regression alone: the calibration is common to all devices (the
+            // pooled fit carries it), and a Monte Carlo per device would make the work grow as
+            // devices x draws.
+            let (fit, note) = match eq10::fit_eq10(points, &ctx.device, &sources, 0, options.seed) {
                 Ok(f) => (Some(f), None),
                 Err(e) => (None, Some(e.to_string())),
             };
-            devices.push(DeviceFit { device: label.to_string(), rows_used: n_used, eq10: fit, note });
+            devices.push(DeviceFit {
+                device: label.to_string(),
+                rows_used: used_per_device.get(label).copied().unwrap_or(0),
+                eq10: fit,
+                note,
+            });
         }
     }
     let (noise, noise_note) = if data.has_sd {
@@ -323,7 +388,19 @@ pub fn analyse(
         .collect();
     let mut models = Vec::new();
     let mut models_failed = Vec::new();
+    let flat = used.iter().all(|r| r.v_pull_v == used[0].v_pull_v);
     for kind in &options.models {
+        if flat {
+            models_failed.push(FailedModel {
+                name: kind.name(),
+                reason: format!(
+                    "all {} used rows have the same pull voltage ({} V): the data show no change of friction with load, so no shear strength is fitted and the models are not ranked",
+                    used.len(),
+                    used[0].v_pull_v
+                ),
+            });
+            continue;
+        }
         let result = match kind {
             ModelKind::ExplicitEnsemble => {
                 mle::Ensemble::run(&ctx, options.surfaces, &fd, &grid).and_then(|e| e.fit(&ctx, &fd, noise, &grid))
@@ -333,13 +410,59 @@ pub fn analyse(
                 mle::fit_model(&ctx, kind.name(), &mut src, options.free, &fd, noise, &grid)
             }
         };
+        let result = result.and_then(|mut f| {
+            if let Some(what) = non_finite(&f) {
+                return Err(FitError::Model {
+                    model: kind.name(),
+                    message: format!("the fit gives no finite {what} on these data; the model is not ranked"),
+                });
+            }
+            let p = scal::propagate(
+                &ctx,
+                *kind,
+                &f,
+                &fd,
+                noise,
+                &sources,
+                options.free,
+                options.surfaces,
+                options.calibration_draws,
+                options.seed,
+            )?;
+            f.shear_strength_pa.ci95_with_calibration = p.ci95;
+            f.shear_strength_pa.ci95_with_calibration_note = p.note;
+            f.shear_strength_pa.variance_shares = p.shares;
+            Ok(f)
+        });
         match result {
             Ok(f) => models.push(f),
             Err(e) => models_failed.push(FailedModel { name: kind.name(), reason: e.to_string() }),
         }
     }
     let model_selection = rank(&mut models);
-    let interval_method = "95 % intervals of s by profile likelihood (chi2_prof(s) - chi2_min <= t_0.975(nu)^2): exact for the linear dependence on s, follows the (s, R, F_spring) valley when those are free, and needs a few hundred model evaluations instead of the thousands of refits a bootstrap would (unaffordable for the explicit ensemble). The ensemble's roughness interval is the 2.5-97.5 percentile of the s each surface alone needs.".to_string();
+    let mut surface_notes = Vec::new();
+    let mut summit_statistics = None;
+    if let Some(spec) = scenario.surface.as_ref().filter(|s| s.source == stiction_surface::SurfaceSource::HeightMap) {
+        let map_err = |e: stiction_surface::SurfaceError| FitError::Setting(format!("surface: {e}"));
+        if options.models.iter().any(|k| k.is_cheap()) {
+            let st = stiction_surface::map_summit_statistics(spec, base_dir).map_err(map_err)?;
+            surface_notes.push(format!(
+                "gw-dmt and discrete-nN use the {}: eta = {:.4e} m^-2, sigma = {}, R = {} ({} summits){}",
+                st.source,
+                st.summit_density_per_m2,
+                stiction_units::format_quantity(st.summit_sd_m, stiction_units::Dimension::Length),
+                stiction_units::format_quantity(
+                    spec.summit_radius.unwrap_or(st.summit_radius_m),
+                    stiction_units::Dimension::Length
+                ),
+                st.summit_count,
+                if spec.summit_radius.is_some() { "; R is the given `summit_radius`, not the map's" } else { "" }
+            ));
+            summit_statistics = Some(st);
+        }
+        surface_notes.extend(stiction_surface::height_map_tiling(spec, base_dir).map_err(map_err)?);
+    }
+    let interval_method = "95 % intervals of s: `ci95` from the noise alone (the nominal a_clamp, a_pull and F_spring taken as exact), by profile likelihood (chi2_prof(s) - chi2_min <= t_0.975(nu)^2): exact for the linear dependence on s, follows the (s, R, F_spring) valley when those are free, and needs a few hundred model evaluations instead of the thousands of refits a bootstrap would (unaffordable for the explicit ensemble). `ci95_with_calibration` adds a_clamp, a_pull and F_spring drawn from their stated uncertainties (s refitted per draw, the noise added as se t_nu; 2.5-97.5 percentiles), with the variance shares by source. The ensemble's roughness interval is the 2.5-97.5 percentile of the s each surface alone needs.".to_string();
     Ok(FitReport {
         data: data.source.clone(),
         reduction: ctx.device,
@@ -356,7 +479,31 @@ pub fn analyse(
         models,
         models_failed,
         model_selection,
+        summit_statistics,
+        surface_notes,
     })
+}
+
+/// The first number of a model fit that is not finite, by name (None: all are finite).
+pub fn non_finite(f: &ModelFit) -> Option<&'static str> {
+    let bad = |x: f64| !x.is_finite();
+    let bad_ci = |c: &Option<[f64; 2]>| c.is_some_and(|[a, b]| bad(a) || bad(b));
+    let s = &f.shear_strength_pa;
+    if bad(s.value) {
+        return Some("shear strength");
+    }
+    if bad_ci(&s.ci95) {
+        return Some("interval of the shear strength");
+    }
+    if bad(f.chi2) || bad(f.aic) || bad(f.bic) || f.p_value.is_some_and(bad) || f.sigma_v.is_some_and(bad) {
+        return Some("chi^2 or noise level (the model fits every row exactly or not at all)");
+    }
+    for p in [&f.summit_radius_m, &f.spring_force_n].into_iter().flatten() {
+        if bad(p.value) || bad_ci(&p.ci95) {
+            return Some("nuisance parameter");
+        }
+    }
+    None
 }
 
 /// Orders the models by AIC (comparable ones first), fills delta AIC and Akaike weights, and

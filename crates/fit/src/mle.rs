@@ -108,6 +108,32 @@ pub struct Param {
     pub note: Option<String>,
 }
 
+/// The fitted shear strength with its two intervals.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct ShearStrength {
+    /// Best estimate, Pa.
+    pub value: f64,
+    /// 95 % profile-likelihood interval from the noise of the pull voltages alone (the nominal
+    /// a_clamp, a_pull and F_spring taken as exact), Pa.
+    pub ci95: Option<[f64; 2]>,
+    /// What `ci95` covers, in words.
+    pub ci95_meaning: String,
+    /// Why the interval is null or one-sided, when it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
+    /// 95 % interval with the noise and the calibration (a_clamp, a_pull, F_spring drawn from their
+    /// stated uncertainties) together, Pa (Monte Carlo percentiles; see `crate::scal`).
+    pub ci95_with_calibration: Option<[f64; 2]>,
+    /// How `ci95_with_calibration` was made, or why it is null.
+    pub ci95_with_calibration_note: String,
+    /// Share of the variance of s by source (`noise`, `a_clamp`, `a_pull`, `spring_force`), summing
+    /// to 1 (first order: each source drawn alone); empty when there is no calibration interval.
+    pub variance_shares: std::collections::BTreeMap<String, f64>,
+}
+
+/// What the noise-only interval of s covers.
+pub const S_NOISE_MEANING: &str = "noise only: the spread of the pull voltages, with a_clamp, a_pull and F_spring taken as exact (see ci95_with_calibration for their uncertainty)";
+
 /// The spread over surface realisations (explicit ensemble).
 #[derive(Debug, Clone, Serialize)]
 pub struct Roughness {
@@ -142,7 +168,7 @@ pub struct ModelFit {
     /// Free parameters.
     pub free: Vec<String>,
     /// Shear strength s, Pa.
-    pub shear_strength_pa: Param,
+    pub shear_strength_pa: ShearStrength,
     /// Summit radius R, m (when free).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub summit_radius_m: Option<Param>,
@@ -599,7 +625,13 @@ pub fn fit_model(
     Ok(ModelFit {
         name,
         free: free_names,
-        shear_strength_pa: Param { value: s_hat, ci95, note },
+        shear_strength_pa: ShearStrength {
+            value: s_hat,
+            ci95,
+            ci95_meaning: S_NOISE_MEANING.into(),
+            note,
+            ..ShearStrength::default()
+        },
         summit_radius_m: radius_param,
         spring_force_n: spring_param,
         chi2,
@@ -643,7 +675,7 @@ impl Ensemble {
         Ok(Ensemble { data_parts, grid_parts })
     }
 
-    fn mean(sets: &[Vec<Parts>]) -> Vec<Parts> {
+    pub(crate) fn mean(sets: &[Vec<Parts>]) -> Vec<Parts> {
         let m = sets.first().map_or(0, Vec::len);
         (0..m)
             .map(|j| {

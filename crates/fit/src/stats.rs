@@ -174,6 +174,47 @@ pub fn fit_line(points: &[(f64, f64)]) -> Option<Line> {
     Some(l)
 }
 
+/// A weighted least-squares line through `(x, y, w)` points (`w` proportional to 1 / Var(y)),
+/// with the scale of the variances estimated from the weighted residuals:
+/// `s^2 = sum w (y - a - b x)^2 / (n - 2)`, `Var(b) = s^2 / S_xx`, `Var(a) = s^2 (1 / W + m_x^2 /
+/// S_xx)`, `Cov(a, b) = -m_x s^2 / S_xx` with `W = sum w`, `m_x = sum w x / W`,
+/// `S_xx = sum w (x - m_x)^2` (two-pass, centred). With equal weights this is [`fit_line`]. None
+/// with fewer than three points, all x equal or a weight that is not finite and positive.
+pub fn weighted_line(points: &[(f64, f64, f64)]) -> Option<Line> {
+    if points.len() < 3 || points.iter().any(|p| !(p.2 > 0.0 && p.2.is_finite())) {
+        return None;
+    }
+    let w: f64 = points.iter().map(|p| p.2).sum();
+    let mx = points.iter().map(|p| p.2 * p.0).sum::<f64>() / w;
+    let my = points.iter().map(|p| p.2 * p.1).sum::<f64>() / w;
+    let (mut sxx, mut sxy, mut syy, mut xx) = (0.0, 0.0, 0.0, 0.0);
+    for &(x, y, wi) in points {
+        let (dx, dy) = (x - mx, y - my);
+        sxx += wi * dx * dx;
+        sxy += wi * dx * dy;
+        syy += wi * dy * dy;
+        xx += wi * x * x;
+    }
+    if !(sxx > 1e-12 * xx.max(f64::MIN_POSITIVE)) {
+        return None;
+    }
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let sse = points.iter().map(|&(x, y, wi)| wi * (y - intercept - slope * x).powi(2)).sum::<f64>();
+    let dof = points.len() - 2;
+    let s2 = sse / dof as f64;
+    Some(Line {
+        slope,
+        intercept,
+        var_slope: s2 / sxx,
+        var_intercept: s2 * (1.0 / w + mx * mx / sxx),
+        cov: -mx * s2 / sxx,
+        points: points.len(),
+        dof,
+        r_squared: if syy > 0.0 { (1.0 - sse / syy).max(0.0) } else { 1.0 },
+    })
+}
+
 /// Fieller's 95 % interval for the ratio `a / b` of two jointly normal estimates with variances
 /// `vaa`, `vbb`, covariance `vab` and quantile `t`: the set of `r` with
 /// `(a - r b)^2 <= t^2 (vaa - 2 r vab + r^2 vbb)`. Bounded only when `b` is significantly
@@ -217,6 +258,23 @@ mod tests {
         assert!((l.var_slope - 1.0 / 12.0).abs() < 1e-14);
         assert!((l.var_intercept - 5.0 / 36.0).abs() < 1e-14, "{l:?}");
         assert!((l.cov + 1.0 / 12.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn weighted_line_matches_hand_computation() {
+        // Equal weights: the same line and covariance as the unweighted fit above.
+        let l = weighted_line(&[(0.0, 0.0, 2.0), (1.0, 1.0, 2.0), (2.0, 1.0, 2.0)]).unwrap();
+        let u = fit_line(&[(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)]).unwrap();
+        assert!((l.slope - u.slope).abs() < 1e-14 && (l.intercept - u.intercept).abs() < 1e-14);
+        // Scaling all weights by 2 scales s^2 by 2 and S_xx by 2: the variances are unchanged.
+        assert!((l.var_slope - u.var_slope).abs() < 1e-14 && (l.var_intercept - u.var_intercept).abs() < 1e-14);
+        assert!((l.cov - u.cov).abs() < 1e-14);
+        // A weight of 4 on (2, 1): W = 6, m_x = (1 + 8) / 6 = 1.5, m_y = (1 + 4) / 6 = 5/6,
+        // S_xx = 2.25 + 0.25 + 4 * 0.25 = 3.5, S_xy = 1.5 * 5/6 + 0.5 * (-1/6) + 4 * 0.5 * (1/6) = 1.5,
+        // slope = 3/7, intercept = 5/6 - 1.5 * 3/7 = 4/21.
+        let l = weighted_line(&[(0.0, 0.0, 1.0), (1.0, 1.0, 1.0), (2.0, 1.0, 4.0)]).unwrap();
+        assert!((l.slope - 3.0 / 7.0).abs() < 1e-14 && (l.intercept - 4.0 / 21.0).abs() < 1e-14, "{l:?}");
+        assert!(weighted_line(&[(0.0, 0.0, 1.0), (1.0, 1.0, 0.0), (2.0, 1.0, 1.0)]).is_none());
     }
 
     #[test]

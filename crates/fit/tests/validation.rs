@@ -128,10 +128,11 @@ fn calibration_interval_matches_the_paper() {
     let opts = FitOptions { models: vec![ModelKind::Discrete(3)], calibration_draws: 20_000, ..FitOptions::default() };
     let r = fit_rows(&rows, &sc, &opts);
     let mu = &r.mu_apparent;
+    let mu_value = mu.value.unwrap();
     let sd = mu.sd_calibration.unwrap();
     eprintln!(
         "mu {:.3}, regression se {:.4}, calibration sd {sd:.3}, ci95 with calibration {:?}",
-        mu.value,
+        mu_value,
         mu.stderr.unwrap(),
         mu.ci95_with_calibration
     );
@@ -143,9 +144,9 @@ fn calibration_interval_matches_the_paper() {
     let fa = &r.variance_shares.apparent_adhesion_force_n;
     assert!(fa["spring_force"] > 0.3 && fa["a_clamp"] > 0.2, "{fa:?}");
     let [lo, hi] = mu.ci95_with_calibration.unwrap();
-    assert!(lo < mu.value - 0.2 && hi > mu.value + 0.3, "[{lo}, {hi}]");
+    assert!(lo < mu_value - 0.2 && hi > mu_value + 0.3, "[{lo}, {hi}]");
     let [flo, fhi] = r.apparent_adhesion_force_n.ci95.unwrap();
-    let fa0 = r.apparent_adhesion_force_n.value;
+    let fa0 = r.apparent_adhesion_force_n.value.unwrap();
     assert!(flo < fa0 && fa0 < fhi);
 }
 
@@ -209,8 +210,8 @@ fn devices_get_their_own_line() {
     let d = parse_measured_voltages(text.as_bytes(), "dev.csv").unwrap();
     let r = analyse(&d, &sc.0, &sc.1, &sc.2, &cheap(&[ModelKind::Discrete(3)])).unwrap();
     assert_eq!(r.devices.len(), 2);
-    let mu_a = r.devices[0].eq10.as_ref().unwrap().mu_apparent.value;
-    let mu_b = r.devices[1].eq10.as_ref().unwrap().mu_apparent.value;
+    let mu_a = r.devices[0].eq10.as_ref().unwrap().mu_apparent.value.unwrap();
+    let mu_b = r.devices[1].eq10.as_ref().unwrap().mu_apparent.value.unwrap();
     // Exact lines: mu = (a_pull / a_clamp) * slope.
     let k = 3.8e-9 / 1.4e-8;
     assert!((mu_a - 0.5 * k).abs() < 1e-9 && (mu_b - 0.55 * k).abs() < 1e-9, "{mu_a} {mu_b}");

@@ -513,7 +513,7 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
             Ok(ContactModel::Explicit(Box::new(solver)))
         }
         ModelKind::Gw => {
-            let face = surface_spec.face_params().map_err(|e| MeterError::Surface(e.to_string()))?;
+            let (face, _) = surface_spec.face_params_in(base_dir).map_err(|e| MeterError::Surface(e.to_string()))?;
             let gw = GwSurface {
                 summit_density_per_m2: face.summit_density_per_m2,
                 summit_radius_m: face.summit_radius_m,
@@ -526,7 +526,13 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
         }
         ModelKind::Bem => build_bem(s, material, base_dir).map(|b| ContactModel::Bem(Box::new(b))),
         ModelKind::Discrete => {
-            let radius = model_summit_radius_m(surface_spec, base_dir)?;
+            // On a height map: the mean radius counted on the whole map, as `stiction topography`
+            // prints it.
+            let radius = if surface_spec.source == stiction_surface::SurfaceSource::HeightMap {
+                surface_spec.face_params_in(base_dir).map_err(|e| MeterError::Surface(e.to_string()))?.0.summit_radius_m
+            } else {
+                model_summit_radius_m(surface_spec, base_dir)?
+            };
             Ok(ContactModel::Discrete {
                 contacts: c.contacts.unwrap_or(3),
                 law: c.law,

@@ -5,7 +5,8 @@
 //!
 //! Columns (units in the names): `v_clamp_v` and `v_pull_v` (required), `v_pull_sd_v` (optional,
 //! the standard deviation of each pull voltage, V) and `device` (optional, a label; several devices
-//! in one file each get their own eq. 10 fit in `stiction fit`). Other columns are ignored. A UTF-8
+//! in one file each get their own eq. 10 fit in `stiction fit`). Other columns are ignored. Fields
+//! are separated by commas, semicolons or tabs (the one the header line uses). A UTF-8
 //! byte-order mark, CRLF line ends, `#` comment lines, quoted fields and blanks around fields are
 //! accepted. A bad cell is an error naming the file, line, column and value; rows that are readable
 //! but cannot be used (below first contact, no slip recorded) are listed by [`select_rows`] with
@@ -143,8 +144,13 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
         start = end + 1;
     }
     let bytes = &owned[..];
-    let mut reader =
-        csv::ReaderBuilder::new().has_headers(false).trim(csv::Trim::All).flexible(true).from_reader(bytes);
+    let separator = detect_separator(bytes);
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .delimiter(separator)
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .from_reader(bytes);
     let mut record = csv::ByteRecord::new();
     // The csv crate's own line counter skips comment lines, so lines come from byte offsets.
     let newlines: Vec<usize> = bytes.iter().enumerate().filter(|(_, b)| **b == b'\n').map(|(i, _)| i).collect();
@@ -186,8 +192,9 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
             col[which] = Some(k);
         } else if is_voltage_name_without_unit(name) {
             return Err(header_err(format!(
-                "column `{}` gives no unit; accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
-                crate::short(name)
+                "column `{}` gives no unit (read with the separator {}); accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
+                crate::short(name),
+                separator_name(separator)
             )));
         }
     }
@@ -195,8 +202,9 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
         let missing: Vec<&str> =
             [(col[0], "v_clamp_v"), (col[1], "v_pull_v")].iter().filter(|c| c.0.is_none()).map(|c| c.1).collect();
         return Err(header_err(format!(
-            "missing column(s) {missing:?} in the header {}; accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
-            crate::short(&format!("{names:?}"))
+            "missing column(s) {missing:?} in the header {} (read with the separator {}); accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}; accepted separators: comma, semicolon, tab",
+            crate::short(&format!("{names:?}")),
+            separator_name(separator)
         )));
     };
     let (isd, idev) = (col[2], col[3]);
@@ -231,7 +239,13 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
                 column: Some(name.into()),
                 message: format!("value {:?}: {what}", crate::short(&String::from_utf8_lossy(raw))),
             };
-            let x: f64 = text.parse().map_err(|_| bad("expected a number in volts"))?;
+            let x: f64 = text.parse().map_err(|_| {
+                if separator != b',' && text.contains(',') {
+                    bad("expected a number in volts with a decimal point (the file's separator is a semicolon or tab; a decimal comma is not read)")
+                } else {
+                    bad("expected a number in volts")
+                }
+            })?;
             if !x.is_finite() {
                 return Err(bad("expected a finite number in volts (NaN and infinity are not voltages)"));
             }
@@ -259,6 +273,31 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
         return Err(header_err("no data rows after the header".into()));
     }
     Ok(Dataset { source: source.into(), rows, has_sd: isd.is_some(), has_device: idev.is_some() })
+}
+
+/// The field separator of the file: the one of comma, semicolon and tab that occurs in the first
+/// line that is not blank (comment lines are blank by then); comma when the line has a comma or
+/// none of them.
+fn detect_separator(bytes: &[u8]) -> u8 {
+    let first = bytes.split(|&b| b == b'\n').find(|l| !l.iter().all(|b| b.is_ascii_whitespace())).unwrap_or_default();
+    let count = |c: u8| first.iter().filter(|&&b| b == c).count();
+    if count(b',') > 0 {
+        b','
+    } else if count(b';') > 0 {
+        b';'
+    } else if count(b'\t') > 0 {
+        b'\t'
+    } else {
+        b','
+    }
+}
+
+fn separator_name(sep: u8) -> &'static str {
+    match sep {
+        b';' => "semicolon `;`",
+        b'\t' => "tab",
+        _ => "comma `,`",
+    }
 }
 
 fn csv_error(source: &str, e: &csv::Error) -> VoltageCsvError {
@@ -415,6 +454,24 @@ mod tests {
         assert!(e.contains("v_pull_sd_v") && e.contains("> 0"), "{e}");
         let e = msg("v_clamp_v,v_pull_v\n25,1e200\n");
         assert!(e.contains("line 2") && e.contains("at most"), "{e}");
+    }
+
+    /// Semicolon- and tab-separated files read like comma-separated ones (the separator of the
+    /// header line); a decimal comma in a semicolon file is named in the error.
+    #[test]
+    fn semicolon_and_tab_separators_are_detected() {
+        for sep in [";", "\t"] {
+            let text =
+                format!("# lab export\nv_clamp_v{sep}v_pull_v{sep}device\n25{sep}30.5{sep}d1\n26{sep}31{sep}d2\n");
+            let d = parse_measured_voltages(text.as_bytes(), "m.csv").unwrap();
+            assert_eq!(d.rows.len(), 2, "separator {sep:?}");
+            assert_eq!((d.rows[0].v_clamp_v, d.rows[0].v_pull_v, d.rows[1].device.as_str()), (25.0, 30.5, "d2"));
+            assert_eq!(d.rows[0].line, 3);
+        }
+        let e = msg("v_clamp_v;v_pull_v\n25,5;30\n");
+        assert!(e.contains("line 2") && e.contains("decimal point"), "{e}");
+        let e = msg("v_clamp_v|v_pull_v\n25|30\n");
+        assert!(e.contains("separator comma") && e.contains("semicolon, tab"), "{e}");
     }
 
     /// The rows an analysis leaves out: L <= 0 with the nominal reduction, or no slip.

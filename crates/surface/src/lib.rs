@@ -32,7 +32,7 @@ pub use generate::{
     FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution, generate, generate_composite,
     generate_two_face, generate_two_face_limited, uniform_positions,
 };
-pub use height_map::height_map_patch;
+pub use height_map::{MapSummitStatistics, height_map_patch, height_map_tiling, map_summit_statistics};
 pub use npy_io::{
     NPY_MAX_BYTES_PER_SUMMIT, NPY_MAX_HEADER_BYTES, NpySummits, npy_header, npy_surface, read_npy_summits,
     read_npy_summits_file,

@@ -204,6 +204,30 @@ impl SurfaceSpec {
         })
     }
 
+    /// The parameters the statistical models (GW, discrete) use, with a sentence saying where they
+    /// come from when it is not the section's own fields: for `source` = "height_map", the summit
+    /// density, height SD and mean radius counted on the map(s)
+    /// ([`crate::map_summit_statistics`], the numbers `stiction topography` prints; a
+    /// `summit_radius` given with `--set` overrides the counted radius); otherwise
+    /// [`SurfaceSpec::face_params`].
+    pub fn face_params_in(&self, base_dir: &Path) -> Result<(FaceParams, Option<String>), SurfaceError> {
+        if self.source != SurfaceSource::HeightMap {
+            return Ok((self.face_params()?, None));
+        }
+        let st = crate::map_summit_statistics(self, base_dir)?;
+        Ok((
+            FaceParams {
+                summit_density_per_m2: st.summit_density_per_m2,
+                summit_sd_m: st.summit_sd_m,
+                height_distribution: HeightDistribution::Gaussian,
+                summit_radius_m: self.summit_radius.unwrap_or(st.summit_radius_m),
+                radius_sd_m: 0.0,
+                radius_distribution: RadiusDistribution::Fixed,
+            },
+            Some(st.source),
+        ))
+    }
+
     /// The summit budget: `max_summits` or [`DEFAULT_MAX_SUMMITS`].
     pub fn summit_budget(&self) -> u64 {
         self.max_summits.unwrap_or(DEFAULT_MAX_SUMMITS)

@@ -100,6 +100,11 @@ pub struct HeightMapSpec {
     )]
     #[schemars(with = "Option<stiction_units::QuantityInput>")]
     pub patch_y: Option<f64>,
+    /// Use the map as a periodic cell: when it is smaller than the shoe's apparent area it is
+    /// repeated (tiled) to cover it; default false (a smaller map is an error that names this
+    /// option).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub tile: bool,
 }
 
 /// A generated height map in a scenario: `nx x ny` pixels of `pixel_size`, RMS height

@@ -148,6 +148,10 @@ fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliR
     Ok(())
 }
 
+fn num(v: Option<f64>, scale: f64) -> String {
+    v.map_or("n/a".into(), |x| format!("{:.3}", x * scale))
+}
+
 fn ci(c: Option<[f64; 2]>, scale: f64) -> String {
     c.map_or("n/a".into(), |[a, b]| format!("[{:.3}, {:.3}]", a * scale, b * scale))
 }
@@ -161,58 +165,91 @@ fn print_summary(r: &FitReport) {
         crate::outln!("  ... {} more (see --json)", r.rows_rejected.len() - 10);
     }
     let (mu, fa) = (&r.mu_apparent, &r.apparent_adhesion_force_n);
-    crate::outln!("\neq. 10 (nominal a_clamp, a_pull, F_spring):");
-    crate::outln!(
-        "  mu_e,a = {:.3} +/- {:.3} (regression), 95 %: {} regression, {} with calibration",
-        mu.value,
-        mu.stderr.unwrap_or(f64::NAN),
-        ci(mu.ci95, 1.0),
-        ci(mu.ci95_with_calibration, 1.0)
-    );
-    crate::outln!(
-        "  F_a0   = {:.3} uN +/- {:.3} (regression), 95 %: {} uN regression (Fieller), {} uN with calibration",
-        fa.value * 1e6,
-        fa.stderr.unwrap_or(f64::NAN) * 1e6,
-        ci(fa.ci95, 1e6),
-        ci(fa.ci95_with_calibration, 1e6)
-    );
+    crate::outln!("\neq. 10 (nominal a_clamp, a_pull, F_spring; {}):", "weighted by the noise of V_pull^2");
+    match mu.value {
+        Some(v) => crate::outln!(
+            "  mu_e,a = {:.3} +/- {} (regression), 95 %: {} regression, {} with calibration",
+            v,
+            num(mu.stderr, 1.0),
+            ci(mu.ci95, 1.0),
+            ci(mu.ci95_with_calibration, 1.0)
+        ),
+        None => crate::outln!("  mu_e,a = n/a: {}", mu.value_note.as_deref().unwrap_or("not determined")),
+    }
+    match fa.value {
+        Some(v) => crate::outln!(
+            "  F_a0   = {:.3} uN +/- {} (regression), 95 %: {} uN regression (Fieller), {} uN with calibration",
+            v * 1e6,
+            num(fa.stderr, 1e6),
+            ci(fa.ci95, 1e6),
+            ci(fa.ci95_with_calibration, 1e6)
+        ),
+        None => crate::outln!("  F_a0   = n/a: {}", fa.value_note.as_deref().unwrap_or("not determined")),
+    }
     let shares = |m: &BTreeMap<String, f64>| {
+        if m.is_empty() {
+            return "n/a".to_string();
+        }
         m.iter().map(|(k, v)| format!("{k} {:.1} %", 100.0 * v)).collect::<Vec<_>>().join(", ")
     };
     crate::outln!("  variance shares of mu_e,a: {}", shares(&r.variance_shares.mu_apparent));
     crate::outln!("  variance shares of F_a0:   {}", shares(&r.variance_shares.apparent_adhesion_force_n));
+    if let Some(note) = &r.eq10.calibration.note {
+        crate::outln!("  calibration: {note}");
+    }
     for d in &r.devices {
         match &d.eq10 {
             Some(f) => crate::outln!(
-                "  device {:>8}: mu_e,a {:.3} {}, F_a0 {:.3} uN ({} rows)",
+                "  device {:>8}: mu_e,a {} {}, F_a0 {} uN ({} rows; regression interval only)",
                 d.device,
-                f.mu_apparent.value,
+                num(f.mu_apparent.value, 1.0),
                 ci(f.mu_apparent.ci95, 1.0),
-                f.apparent_adhesion_force_n.value * 1e6,
+                num(f.apparent_adhesion_force_n.value, 1e6),
                 d.rows_used
             ),
             None => crate::outln!("  device {:>8}: {}", d.device, d.note.clone().unwrap_or_default()),
         }
     }
+    for note in &r.surface_notes {
+        crate::outln!("\nsurface: {note}");
+    }
     crate::outln!("\n{}", r.noise_note);
     crate::outln!();
-    let mut t = crate::output::TextTable::new(&["model", "s (GPa)", "95 % (GPa)", "chi2", "dof", "AIC", "dAIC"]);
+    let mut t = crate::output::TextTable::new(&[
+        "model",
+        "s (GPa)",
+        "95 % noise only (GPa)",
+        "95 % with calibration (GPa)",
+        "chi2",
+        "dof",
+        "AIC",
+        "dAIC",
+    ]);
     for m in &r.models {
         t.row(vec![
             m.name.clone(),
             format!("{:.4}", m.shear_strength_pa.value / 1e9),
             ci(m.shear_strength_pa.ci95, 1e-9),
+            ci(m.shear_strength_pa.ci95_with_calibration, 1e-9),
             format!("{:.2}", m.chi2),
             m.dof.to_string(),
             format!("{:.2}", m.aic),
             m.delta_aic.map_or("n/a".into(), |d| format!("{d:.2}")),
         ]);
     }
-    t.print("  ");
+    if !r.models.is_empty() {
+        t.print("  ");
+    }
     for m in &r.models {
         let name = &m.name;
         if let Some(note) = &m.shear_strength_pa.note {
             crate::outln!("  {name}: s: {note}");
+        }
+        let sh = &m.shear_strength_pa.variance_shares;
+        if sh.is_empty() {
+            crate::outln!("  {name}: s with calibration: {}", m.shear_strength_pa.ci95_with_calibration_note);
+        } else {
+            crate::outln!("  {name}: variance shares of s: {}", shares(sh));
         }
         if let Some(rough) = &m.roughness {
             crate::outln!(
@@ -329,21 +366,26 @@ fn write_figures(dir: &Path, data: &Dataset, r: &FitReport, fig: &FigureArgs) ->
     let fe: Vec<f64> = errs.iter().map(|e| red.a_pull_n_per_v2 * e * 1e6).collect();
     let mut rows: CsvRows =
         fl.iter().zip(&fe).map(|(p, e)| ("data".to_string(), p.0, p.1, Some(p.1 - e), Some(p.1 + e))).collect();
-    let mu = r.mu_apparent.value;
-    let fa0 = r.apparent_adhesion_force_n.value * 1e6;
     let (l0, l1) = fl.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-    // From L = -F_a0 (F_f = 0), so the figure shows F_a0 where the line meets the axis.
-    let eq10_line = vec![(-fa0.max(-l0.min(0.0)), mu * (fa0 - fa0.max(-l0.min(0.0)))), (l1, mu * (fa0 + l1))];
-    for p in &eq10_line {
-        rows.push(("eq10".into(), p.0, p.1, None, None));
-    }
     let mut fig7 = Chart::new(
         format!("Friction against load: measured ({file}), nominal a_clamp, a_pull, F_spring"),
         "clamp load L (µN)",
         "friction force F_f (µN)",
     )
-    .with(Series::markers("measured (mean, error bar: SD of repeats)", fl).with_y_err(fe))
-    .with(Series::dashed(format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"), eq10_line));
+    .with(Series::markers("measured (mean, error bar: SD of repeats)", fl).with_y_err(fe));
+    // The eq. 10 line only when both of its numbers exist (a null has its reason in report.json).
+    if let (Some(mu), Some(fa0)) = (r.mu_apparent.value, r.apparent_adhesion_force_n.value) {
+        let fa0 = fa0 * 1e6;
+        // From L = -F_a0 (F_f = 0), so the figure shows F_a0 where the line meets the axis.
+        let eq10_line = vec![(-fa0.max(-l0.min(0.0)), mu * (fa0 - fa0.max(-l0.min(0.0)))), (l1, mu * (fa0 + l1))];
+        for p in &eq10_line {
+            rows.push(("eq10".into(), p.0, p.1, None, None));
+        }
+        fig7 = fig7.with(Series::dashed(
+            format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"),
+            eq10_line,
+        ));
+    }
     fig7.legend = stiction_plot::LegendPosition::LowerRight;
     for (k, m) in r.models.iter().enumerate() {
         let line: Vec<(f64, f64)> =
