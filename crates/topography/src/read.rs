@@ -15,6 +15,7 @@ use std::str::FromStr;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+use stiction_units::text::{MAX_CELL_BYTES, MAX_LINE_BYTES, check_line_bytes, check_lines, excerpt};
 use stiction_units::{Dimension, parse_quantity};
 
 use crate::map::check_grid_size;
@@ -128,8 +129,11 @@ pub struct MapInfo {
 pub fn parse_length_unit(text: &str) -> Result<f64, String> {
     let t = text.trim();
     let q = if t.starts_with(|c: char| c.is_alphabetic()) { format!("1 {t}") } else { t.to_string() };
-    let v = parse_quantity(&q, Dimension::Length).map_err(|e| format!("unit {text:?}: {e}"))?;
-    if v > 0.0 { Ok(v) } else { Err(format!("unit {text:?} must be a positive length")) }
+    if t.len() > MAX_CELL_BYTES {
+        return Err(format!("unit {}: longer than {MAX_CELL_BYTES} bytes", excerpt(t)));
+    }
+    let v = parse_quantity(&q, Dimension::Length).map_err(|e| format!("unit {}", e.brief()))?;
+    if v > 0.0 { Ok(v) } else { Err(format!("unit {} must be a positive length", excerpt(t))) }
 }
 
 fn resolve(
@@ -232,6 +236,12 @@ pub fn read_file(
 // ---------------------------------------------------------------------------------------------
 // .npy
 
+/// Largest `.npy` header accepted, bytes (NumPy writes about 120 for a 2-D float array).
+pub const NPY_MAX_HEADER_BYTES: usize = 1 << 16;
+
+/// Largest `.gsf` text header accepted, bytes (Gwyddion writes a few hundred).
+pub const GSF_MAX_HEADER_BYTES: usize = 1 << 20;
+
 /// Element type of a `.npy` file this crate reads or writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NpyDtype {
@@ -275,9 +285,15 @@ pub fn read_npy(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         .checked_add(header_len)
         .filter(|&e| e <= bytes.len())
         .ok_or_else(|| bad(format!("the header length {header_len} runs past the end of the file")))?;
+    if header_len > NPY_MAX_HEADER_BYTES {
+        return Err(bad(format!(
+            "the header is {header_len} bytes, more than the limit of {NPY_MAX_HEADER_BYTES} bytes (a 2-D float array's \
+             header is about 120)"
+        )));
+    }
     let header =
         std::str::from_utf8(&bytes[header_start..data_start]).map_err(|_| bad("the .npy header is not text".into()))?;
-    let descr = npy_field(header, "descr").ok_or_else(|| bad(format!("no 'descr' in the header {header:?}")))?;
+    let descr = npy_field(header, "descr").ok_or_else(|| bad("no 'descr' in the header".into()))?;
     let descr = descr.trim_matches(|c| c == '\'' || c == '"');
     let (little, size) = match descr {
         "<f8" | "=f8" => (true, 8),
@@ -286,25 +302,27 @@ pub fn read_npy(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         ">f4" => (false, 4),
         other => {
             return Err(bad(format!(
-                "dtype '{other}' is not supported: expected float32 or float64 ('<f4', '<f8', '>f4', '>f8')"
+                "dtype {} is not supported: expected float32 or float64 ('<f4', '<f8', '>f4', '>f8')",
+                excerpt(other)
             )));
         }
     };
     let fortran = match npy_field(header, "fortran_order") {
         Some("False") => false,
         Some("True") => true,
-        other => return Err(bad(format!("'fortran_order' is {other:?}: expected True or False"))),
+        Some(other) => return Err(bad(format!("'fortran_order' is {}: expected True or False", excerpt(other)))),
+        None => return Err(bad("no 'fortran_order' in the header: expected True or False".into())),
     };
-    let shape_text = npy_field(header, "shape").ok_or_else(|| bad(format!("no 'shape' in the header {header:?}")))?;
+    let shape_text = npy_field(header, "shape").ok_or_else(|| bad("no 'shape' in the header".into()))?;
     let dims: Vec<u64> = shape_text
         .trim_matches(|c| c == '(' || c == ')')
         .split(',')
         .map(str::trim)
         .filter(|s| !s.is_empty())
-        .map(|s| s.parse::<u64>().map_err(|_| bad(format!("shape {shape_text} is not a tuple of integers"))))
+        .map(|s| s.parse::<u64>().map_err(|_| bad(format!("shape {} is not a tuple of integers", excerpt(shape_text)))))
         .collect::<Result<_, _>>()?;
     let [ny, nx] = dims[..] else {
-        return Err(bad(format!("shape {shape_text}: expected a 2-D array (rows, columns)")));
+        return Err(bad(format!("shape {}: expected a 2-D array (rows, columns)", excerpt(shape_text))));
     };
     check_grid_size(origin, nx, ny)?;
     let (nx, ny) = (nx as usize, ny as usize);
@@ -377,6 +395,11 @@ impl HeightMap {
 // ---------------------------------------------------------------------------------------------
 // Text grid
 
+/// The line bound of every text format ([`stiction_units::text::check_lines`]), as a format error.
+fn check_text(text: &str, origin: &str) -> Result<(), TopographyError> {
+    check_lines(text, MAX_LINE_BYTES).map_err(|e| TopographyError::format(origin, e.line, e.to_string()))
+}
+
 fn parse_cell(text: &str) -> Option<f64> {
     let t = text.trim();
     if t.is_empty() || t.eq_ignore_ascii_case("nan") {
@@ -391,6 +414,7 @@ fn parse_cell(text: &str) -> Option<f64> {
 /// `# Height: 5.000 µm` (the map's physical size along x and y) and `# Value units: m` give the
 /// pixel size and height unit.
 pub fn read_text_grid(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightMap, MapInfo), TopographyError> {
+    check_text(text, origin)?;
     let (mut width, mut height, mut unit) = (None, None, None);
     let mut first_data: Option<&str> = None;
     for (k, line) in text.lines().enumerate() {
@@ -398,8 +422,16 @@ pub fn read_text_grid(text: &str, origin: &str, meta: &MapMetadata) -> Result<(H
         if let Some(c) = t.strip_prefix('#') {
             if let Some((key, value)) = c.split_once(':') {
                 let parse_len = |v: &str| {
-                    parse_quantity(v.trim(), Dimension::Length).map_err(|e| {
-                        TopographyError::format(origin, k as u64 + 1, format!("header `{}`: {e}", key.trim()))
+                    let v = v.trim();
+                    stiction_units::text::check_cell(v).map_err(|e| {
+                        TopographyError::format(origin, k as u64 + 1, format!("header {}: {e}", excerpt(key.trim())))
+                    })?;
+                    parse_quantity(v, Dimension::Length).map_err(|e| {
+                        TopographyError::format(
+                            origin,
+                            k as u64 + 1,
+                            format!("header {}: {}", excerpt(key.trim()), e.brief()),
+                        )
                     })
                 };
                 match key.trim().to_ascii_lowercase().as_str() {
@@ -429,11 +461,17 @@ pub fn read_text_grid(text: &str, origin: &str, meta: &MapMetadata) -> Result<(H
     let mut push_row = |line: u64, cells: &mut dyn Iterator<Item = &str>| -> Result<(), TopographyError> {
         let before = heights.len();
         for (c, cell) in cells.enumerate() {
+            stiction_units::text::check_cell(cell)
+                .map_err(|e| TopographyError::format(origin, line, format!("column {}: {e}", c + 1)))?;
             let v = parse_cell(cell).ok_or_else(|| {
                 TopographyError::format(
                     origin,
                     line,
-                    format!("column {}: `{}` is not a finite number (or NaN / empty for a missing pixel)", c + 1, cell),
+                    format!(
+                        "column {}: {} is not a finite number (or NaN / empty for a missing pixel)",
+                        c + 1,
+                        excerpt(cell)
+                    ),
                 )
             })?;
             if heights.len() as u64 >= MAX_PIXELS {
@@ -544,6 +582,13 @@ pub fn read_gsf(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         .iter()
         .position(|&b| b == 0)
         .ok_or_else(|| bad(0, "no NUL padding after the header: the file is truncated".into()))?;
+    if nul > GSF_MAX_HEADER_BYTES {
+        return Err(bad(
+            0,
+            format!("the text header is {nul} bytes, more than the limit of {GSF_MAX_HEADER_BYTES} bytes"),
+        ));
+    }
+    check_line_bytes(&bytes[..nul], MAX_LINE_BYTES).map_err(|e| bad(e.line, e.to_string()))?;
     let header = std::str::from_utf8(&bytes[..nul]).map_err(|_| bad(0, "the header is not UTF-8 text".into()))?;
     let data_start = nul + (4 - nul % 4);
     if data_start > bytes.len() || bytes[nul..data_start].iter().any(|&b| b != 0) {
@@ -555,13 +600,18 @@ pub fn read_gsf(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         if t.is_empty() {
             continue;
         }
-        let (key, value) =
-            t.split_once('=').ok_or_else(|| bad(k as u64 + 1, format!("`{t}` is not a `Key = Value` line")))?;
-        keys.insert(key.trim().to_string(), (k as u64 + 1, value.trim().to_string()));
+        let (key, value) = t
+            .split_once('=')
+            .ok_or_else(|| bad(k as u64 + 1, format!("{} is not a `Key = Value` line", excerpt(t))))?;
+        stiction_units::text::check_cell(value.trim())
+            .map_err(|e| bad(k as u64 + 1, format!("{}: {e}", excerpt(key.trim()))))?;
+        if let Some((first, _)) = keys.insert(key.trim().to_string(), (k as u64 + 1, value.trim().to_string())) {
+            return Err(bad(k as u64 + 1, format!("{} appears twice (first on line {first})", excerpt(key.trim()))));
+        }
     }
     let res = |name: &str| -> Result<u64, TopographyError> {
         let (line, v) = keys.get(name).ok_or_else(|| bad(0, format!("`{name}` is missing from the header")))?;
-        v.parse::<u64>().map_err(|_| bad(*line, format!("`{name} = {v}`: expected a positive integer")))
+        v.parse::<u64>().map_err(|_| bad(*line, format!("`{name}` = {}: expected a positive integer", excerpt(v))))
     };
     let (nx, ny) = (res("XRes")?, res("YRes")?);
     check_grid_size(origin, nx, ny)?;
@@ -574,11 +624,12 @@ pub fn read_gsf(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         match keys.get(name) {
             None => Ok(None),
             Some((line, v)) => {
-                let x: f64 = v.parse().map_err(|_| bad(*line, format!("`{name} = {v}`: expected a number")))?;
+                let x: f64 =
+                    v.parse().map_err(|_| bad(*line, format!("`{name}` = {}: expected a number", excerpt(v))))?;
                 if x.is_finite() && x > 0.0 {
                     Ok(Some(x * xy_unit / n as f64))
                 } else {
-                    Err(bad(*line, format!("`{name} = {v}`: expected a finite size > 0")))
+                    Err(bad(*line, format!("`{name}` = {}: expected a finite size > 0", excerpt(v))))
                 }
             }
         }
@@ -667,6 +718,7 @@ pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightM
             "no pixel size for an x-y-z list: the grid step of its coordinates is the pixel size (give `xy_unit`)",
         ));
     }
+    check_text(text, origin)?;
     let mut pts: Vec<[f64; 3]> = Vec::new();
     let mut first = true;
     for (k, line) in text.lines().enumerate() {
@@ -675,21 +727,28 @@ pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightM
             continue;
         }
         let cells: Vec<&str> =
-            t.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|s| !s.is_empty()).collect();
+            t.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|s| !s.is_empty()).take(4).collect();
+        for c in &cells {
+            stiction_units::text::check_cell(c).map_err(|e| TopographyError::format(origin, k as u64 + 1, e))?;
+        }
         let nums: Option<Vec<f64>> = cells.iter().map(|c| c.parse::<f64>().ok()).collect();
         let Some(nums) = nums else {
             if first {
                 first = false;
                 continue; // a header line such as `x,y,z`
             }
-            return Err(TopographyError::format(origin, k as u64 + 1, format!("`{t}` is not three numbers x y z")));
+            return Err(TopographyError::format(
+                origin,
+                k as u64 + 1,
+                format!("{} is not three numbers x y z", excerpt(t)),
+            ));
         };
         first = false;
         if nums.len() != 3 || !nums[0].is_finite() || !nums[1].is_finite() || nums[2].is_infinite() {
             return Err(TopographyError::format(
                 origin,
                 k as u64 + 1,
-                format!("`{t}`: expected three numbers x y z (finite x, y; z finite or NaN)"),
+                format!("{}: expected three numbers x y z (finite x, y; z finite or NaN)", excerpt(t)),
             ));
         }
         if pts.len() as u64 >= MAX_PIXELS {
