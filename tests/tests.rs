@@ -7,6 +7,7 @@ mod bad_inputs;
 mod bem;
 mod figures;
 mod hardening;
+mod hardening_inputs;
 mod models;
 mod outputs;
 mod scenarios;
