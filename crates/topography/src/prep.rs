@@ -126,7 +126,7 @@ pub fn prepare(map: &HeightMap, prep: &Preparation) -> Result<(HeightMap, Prepar
     {
         return Err(TopographyError::invalid(
             "short_cutoff",
-            format!("{s} m"),
+            format!("{s:e} m"),
             format!("a wavelength below the long-wavelength cut-off {l} m"),
         ));
     }

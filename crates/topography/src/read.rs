@@ -150,8 +150,8 @@ fn resolve(
             } else {
                 Err(TopographyError::invalid(
                     what,
-                    format!("{g} m (given)"),
-                    format!("the value in {origin}, {f} m (remove the flag or field, or fix the file)"),
+                    format!("{g:e} m (given)"),
+                    format!("the value in {origin}, {f:e} m (remove the flag or field, or fix the file)"),
                 ))
             }
         }
@@ -184,6 +184,15 @@ fn finish(
     let given_dy = meta.pixel_size_y_m.or(meta.pixel_size_x_m);
     let (dy, _) = resolve(origin, file_dy.or(file_dx), given_dy, "pixel size along y", PIXEL_HOW)?;
     let (unit, src_u) = resolve(origin, file_unit, meta.height_unit_m, "height unit", UNIT_HOW)?;
+    for (what, d) in [("pixel size", dx), ("pixel size along y", dy)] {
+        if !(MIN_PIXEL_SIZE_M..=MAX_PIXEL_SIZE_M).contains(&d) {
+            return Err(TopographyError::invalid(
+                what,
+                format!("{d:e} m"),
+                format!("a pixel size in [{MIN_PIXEL_SIZE_M:e}, {MAX_PIXEL_SIZE_M:e}] m (from {origin})"),
+            ));
+        }
+    }
     let mut missing = 0;
     if unit != 1.0 {
         for h in &mut heights {
@@ -193,8 +202,12 @@ fn finish(
     for h in &heights {
         if h.is_nan() {
             missing += 1;
-        } else if h.is_infinite() {
-            return Err(TopographyError::format(origin, 0, "a height overflows to infinity in SI units"));
+        } else if h.abs() > MAX_HEIGHT_M {
+            return Err(TopographyError::format(
+                origin,
+                0,
+                format!("a height of {h:e} m (in SI units) is beyond the limit of {MAX_HEIGHT_M} m for a height map"),
+            ));
         }
     }
     if missing == heights.len() {
@@ -235,6 +248,16 @@ pub fn read_file(
 
 // ---------------------------------------------------------------------------------------------
 // .npy
+
+/// Largest |height| a map file may hold, in metres after its unit: 1 m (heights beyond it are
+/// not a surface's, and their squares in the statistics would overflow).
+pub const MAX_HEIGHT_M: f64 = 1.0;
+
+/// Smallest pixel size: 1 pm (the differences of the statistics divide by its square).
+pub const MIN_PIXEL_SIZE_M: f64 = 1e-12;
+
+/// Largest pixel size: 1 m.
+pub const MAX_PIXEL_SIZE_M: f64 = 1.0;
 
 /// Largest `.npy` header accepted, bytes (NumPy writes about 120 for a 2-D float array).
 pub const NPY_MAX_HEADER_BYTES: usize = 1 << 16;
@@ -686,7 +709,7 @@ fn grid_axis(origin: &str, name: &str, values: &[f64]) -> Result<(f64, f64, usiz
                 origin,
                 0,
                 format!(
-                    "the {name} coordinates are not on a regular grid: {} follows {} (step {}), expected the step {step} (value {} of {})",
+                    "the {name} coordinates are not on a regular grid: {:e} follows {:e} (step {:e}), expected the step {step:e} (value {} of {})",
                     w[1],
                     w[0],
                     w[1] - w[0],
@@ -770,7 +793,11 @@ pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightM
         let iy = ((p[1] - y0) / sy).round() as usize;
         let k = iy * nx + ix;
         if seen[k] {
-            return Err(TopographyError::format(origin, 0, format!("the point ({}, {}) appears twice", p[0], p[1])));
+            return Err(TopographyError::format(
+                origin,
+                0,
+                format!("the point ({:e}, {:e}) appears twice", p[0], p[1]),
+            ));
         }
         seen[k] = true;
         heights[k] = p[2];
