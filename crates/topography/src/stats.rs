@@ -148,14 +148,26 @@ pub struct Statistics {
     pub nayak_note: Option<&'static str>,
 }
 
-/// Mean, SD (n - 1), min, max; None for an empty list, SD None below 2 values.
+/// Mean, SD (n - 1), min, max; None for an empty list, SD None below 2 values. Sums are taken
+/// on values scaled by the largest magnitude, so finite values (summit radii up to 1e308 m on a map
+/// of subnormal heights) give a finite mean and SD.
 fn moments(v: &[f64]) -> (Option<f64>, Option<f64>, Option<f64>, Option<f64>) {
     if v.is_empty() {
         return (None, None, None, None);
     }
     let n = v.len() as f64;
-    let mean = v.iter().sum::<f64>() / n;
-    let sd = (v.len() > 1).then(|| (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt());
+    let scale = v.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(f64::MIN_POSITIVE);
+    let mean = scale * (v.iter().map(|x| x / scale).sum::<f64>() / n);
+    let sd = (v.len() > 1)
+        .then(|| {
+            let ms = mean / scale;
+            let d = v.iter().fold(0.0f64, |m, x| m.max((x / scale - ms).abs()));
+            if d == 0.0 {
+                return 0.0;
+            }
+            scale * d * (v.iter().map(|x| ((x / scale - ms) / d).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
+        })
+        .filter(|s| s.is_finite());
     let min = v.iter().copied().fold(f64::INFINITY, f64::min);
     let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     (Some(mean), sd, Some(min), Some(max))

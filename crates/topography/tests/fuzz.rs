@@ -11,7 +11,7 @@
 //!   marker a mutation planted in the file (no echo beyond a short excerpt);
 //! * a success has no NaN or infinity in its statistics (a value that cannot be computed is null).
 //!
-//! Short mode (the default, 400 cases per format, a few seconds in release) runs in `cargo test`;
+//! Short mode (the default, 1500 cases per format, a few seconds in release) runs in `cargo test`;
 //! `STICTION_FUZZ_CASES=20000 STICTION_FUZZ_SEED=1` gives a long run (cases per format), see
 //! docs/reliability.md.
 
@@ -56,7 +56,7 @@ impl Rng {
 }
 
 fn cases() -> usize {
-    std::env::var("STICTION_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(400)
+    std::env::var("STICTION_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(1500)
 }
 
 fn seed() -> u64 {
@@ -376,6 +376,9 @@ fn xyz_case(rng: &mut Rng) -> Vec<u8> {
 
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
+        None,
+        None,
+        None,
         None,
         None,
         Some(1e-9),
