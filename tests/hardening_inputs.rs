@@ -174,12 +174,12 @@ fn transients_are_finite_or_null_and_bounded() {
         let f = dir.join("huge.csv");
         std::fs::write(&f, format!("finger_length_um,event,voltage_v,time_us\n{cell}\n")).unwrap();
         let o = stiction(&["actuator", "scenarios/gca-rauf2022.json", "--transients", path(&f)]);
-        assert_refused(&o, &["huge.csv", "line 2", col, "1e300", "must be finite and in (0, 1e"], cell);
+        assert_refused(&o, &["huge.csv", "line 2", col, "1e300", "must be finite and in ["], cell);
     }
     let f = dir.join("validate.csv");
     std::fs::write(&f, "finger_length_drawn_um,pull_in_v_1,release_v\n50,1e300,20\n").unwrap();
     let o = stiction(&["actuator", "scenarios/gca-rauf2022.json", "--validate", path(&f)]);
-    assert_refused(&o, &["validate.csv", "line 2", "pull_in_v_1", "(0, 1e4]"], "validate 1e300 V");
+    assert_refused(&o, &["validate.csv", "line 2", "pull_in_v_1", ", 1e4]"], "validate 1e300 V");
 }
 
 /// `bem --set` without `--scenario` is an error, not ignored; `actuator --out <symlink>` is refused

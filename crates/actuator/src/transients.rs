@@ -56,6 +56,10 @@ pub const MAX_TRANSIENT_FILE_BYTES: u64 = 16 << 20;
 /// Largest number of data rows in a measured-times file.
 pub const MAX_TRANSIENT_ROWS: usize = 200_000;
 
+/// Smallest finger length, voltage and time in a measured file, as a fraction of their largest:
+/// 1e-9 (so 10 nm, 10 uV, 1 ps; a positive 5e-324 us would be 0 s after the conversion to seconds).
+pub const MEASURED_MIN_FRACTION: f64 = 1e-9;
+
 /// Largest finger length in a measured file: 10 000 um (1 cm; the devices' fingers are 10-100 um).
 pub const MAX_FINGER_LENGTH_UM: f64 = 1e4;
 
@@ -144,7 +148,7 @@ pub fn read_transients(path: &Path) -> Result<Vec<MeasuredTransient>, ActuatorEr
 /// `release`), `voltage_v`, `time_us`, optionally `repeat` (a label, not used) and
 /// `external_force_n` (N, opposing closing; default 0), in any order; then one measurement per
 /// row. Lengths, voltages and times must be finite and positive, the force finite, each within its
-/// limit ([`MAX_FINGER_LENGTH_UM`], [`MAX_TRANSIENT_VOLTAGE_V`], [`MAX_TRANSIENT_TIME_US`],
+/// limit (positive values at least [`MEASURED_MIN_FRACTION`] of it) ([`MAX_FINGER_LENGTH_UM`], [`MAX_TRANSIENT_VOLTAGE_V`], [`MAX_TRANSIENT_TIME_US`],
 /// [`MAX_EXTERNAL_FORCE_N`]); no line longer than [`stiction_units::text::MAX_LINE_BYTES`]; errors
 /// quote a cell only through [`stiction_units::text::excerpt`]. Rows with the
 /// same length, event, voltage and force are the repeats of one point (in the order of first
@@ -193,16 +197,20 @@ pub fn parse_transients(bytes: &[u8], source: &str) -> Result<Vec<MeasuredTransi
             return Err(err(line, format!("more than {MAX_TRANSIENT_ROWS} data rows")));
         }
         let cell = |name: &str| rec.get(col[name]).unwrap_or("");
-        // A number in (0, limit] (or [-limit, limit] when it may be negative).
+        // A number in [limit * MEASURED_MIN_FRACTION, limit] (or [-limit, limit] when it may be negative).
         let number = |name: &str, positive_only: bool, limit: f64| -> Result<f64, ActuatorError> {
             let c = cell(name);
             let v: f64 = c.parse().map_err(|_| {
                 err(line, format!("column `{name}`: {} is not a number", stiction_units::text::excerpt(c)))
             })?;
-            let ok = v.is_finite() && v.abs() <= limit && (!positive_only || v > 0.0);
+            let min = limit * MEASURED_MIN_FRACTION;
+            let ok = v.is_finite() && v.abs() <= limit && (!positive_only || v >= min);
             if !ok {
-                let range =
-                    if positive_only { format!("in (0, {limit:e}]") } else { format!("in [-{limit:e}, {limit:e}]") };
+                let range = if positive_only {
+                    format!("in [{min:e}, {limit:e}]")
+                } else {
+                    format!("in [-{limit:e}, {limit:e}]")
+                };
                 return Err(err(line, format!("column `{name}`: {v:e} must be finite and {range}")));
             }
             Ok(v)

@@ -94,10 +94,11 @@ pub fn parse_measurements(text: &str, source: &str) -> Result<Vec<MeasuredPoint>
             } else {
                 crate::transients::MAX_TRANSIENT_VOLTAGE_V
             };
-            if !(v.is_finite() && v > 0.0 && v <= limit) {
+            let min = limit * crate::transients::MEASURED_MIN_FRACTION;
+            if !(v.is_finite() && v >= min && v <= limit) {
                 return Err(err(
                     i + 1,
-                    format!("column {}: {v:e} must be finite and in (0, {limit:e}]", excerpt(name)),
+                    format!("column {}: {v:e} must be finite and in [{min:e}, {limit:e}]", excerpt(name)),
                 ));
             }
             vals.push(v);
