@@ -193,6 +193,13 @@ fn finish(
             ));
         }
     }
+    if !(MIN_UNIT_M..=MAX_UNIT_M).contains(&unit) {
+        return Err(TopographyError::invalid(
+            "height unit",
+            format!("{unit:e} m"),
+            format!("a unit in [{MIN_UNIT_M:e}, {MAX_UNIT_M:e}] m (from {origin})"),
+        ));
+    }
     let mut missing = 0;
     if unit != 1.0 {
         for h in &mut heights {
@@ -252,6 +259,12 @@ pub fn read_file(
 /// Largest |height| a map file may hold, in metres after its unit: 1 m (heights beyond it are
 /// not a surface's, and their squares in the statistics would overflow).
 pub const MAX_HEIGHT_M: f64 = 1.0;
+
+/// Smallest height or coordinate unit of a map file: 1 fm (1e-15 m).
+pub const MIN_UNIT_M: f64 = 1e-15;
+
+/// Largest height or coordinate unit of a map file: 1 km.
+pub const MAX_UNIT_M: f64 = 1e3;
 
 /// Smallest pixel size: 1 pm (the differences of the statistics divide by its square).
 pub const MIN_PIXEL_SIZE_M: f64 = 1e-12;
@@ -734,6 +747,13 @@ pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightM
             "the unit of the x and y coordinates: give it with --xy-unit (e.g. \"um\") or the scenario field `xy_unit`"
                 .into(),
     })?;
+    if !(MIN_UNIT_M..=MAX_UNIT_M).contains(&xy_unit) {
+        return Err(TopographyError::invalid(
+            "xy_unit",
+            format!("{xy_unit:e} m"),
+            format!("a unit in [{MIN_UNIT_M:e}, {MAX_UNIT_M:e}] m"),
+        ));
+    }
     if meta.pixel_size_x_m.is_some() || meta.pixel_size_y_m.is_some() {
         return Err(TopographyError::invalid(
             "pixel_size",

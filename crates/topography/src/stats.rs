@@ -183,7 +183,7 @@ pub fn summit_stats(map: &HeightMap, summits: &Summits) -> SummitStats {
     radii.sort_by(f64::total_cmp);
     let median = (!radii.is_empty()).then(|| {
         let n = radii.len();
-        if n % 2 == 1 { radii[n / 2] } else { 0.5 * (radii[n / 2 - 1] + radii[n / 2]) }
+        if n % 2 == 1 { radii[n / 2] } else { 0.5 * radii[n / 2 - 1] + 0.5 * radii[n / 2] }
     });
     SummitStats {
         count: summits.len(),
