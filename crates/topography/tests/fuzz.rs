@@ -205,7 +205,10 @@ fn npy_case(rng: &mut Rng) -> Vec<u8> {
                 let v = rng.pick(&["true", "1", "None", "'False'", SECRET, ""]);
                 h = h.replacen(if h.contains("True") { "True" } else { "False" }, v, 1);
             }
-            3 => h = h.replacen("'descr'", *rng.pick(&["'desc'", "\"descr\"", "'descr' 'descr'"]), 1),
+            3 => {
+                let d = rng.pick(&["'desc'", "\"descr\"", "'descr' 'descr'"]).to_string();
+                h = h.replacen("'descr'", &d, 1);
+            }
             4 => h.push_str(&SECRET.repeat(1 + rng.below(4))),
             5 => h = h.replacen("'shape'", "'shap'", 1),
             _ => {}
@@ -366,7 +369,10 @@ fn xyz_case(rng: &mut Rng) -> Vec<u8> {
             )),
             4 => lines.insert(1, SECRET.to_string()),
             5 => lines[r].push_str(" 4 5"),
-            6 => lines[r] = lines[r].replace(' ', *rng.pick(&[",", ";", "\t", ", "])),
+            6 => {
+                let d = rng.pick(&[",", ";", "\t", ", "]).to_string();
+                lines[r] = lines[r].replace(' ', &d);
+            }
             7 => lines.truncate(1 + rng.below(3)),
             _ => lines[0] = rng.pick(NASTY).to_string(),
         }
