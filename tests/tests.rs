@@ -9,6 +9,7 @@ mod design;
 mod figures;
 mod fit_hardening;
 mod hardening;
+mod hardening_inputs;
 mod hardening_outputs;
 mod height_map_models;
 mod models;

@@ -46,11 +46,12 @@ pub use spec::{
 };
 pub use spring::{BeamKind, BeamSuspension, Suspension};
 pub use transients::{
+    MAX_EXTERNAL_FORCE_N, MAX_FINGER_LENGTH_UM, MAX_TRANSIENT_TIME_US, MAX_TRANSIENT_VOLTAGE_V, MEASURED_MIN_FRACTION,
     MeasuredTransient, ReleaseKick, TransientComparison, TransientErrors, TransientEvent, TransientModel,
     TransientPhysics, TransientReport, TransientSwitchEffect, compare_transients, parse_transients, read_transients,
     transient_switch_effects,
 };
 pub use validate::{
-    MeasuredPoint, SwitchEffect, ValidationPoint, ValidationReport, fit_stop_contact_standoff, parse_measurements,
-    read_measurements, switch_effects, validate,
+    MAX_VALIDATION_FILE_BYTES, MeasuredPoint, SwitchEffect, ValidationPoint, ValidationReport,
+    fit_stop_contact_standoff, parse_measurements, read_measurements, switch_effects, validate,
 };

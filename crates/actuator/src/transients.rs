@@ -56,6 +56,22 @@ pub const MAX_TRANSIENT_FILE_BYTES: u64 = 16 << 20;
 /// Largest number of data rows in a measured-times file.
 pub const MAX_TRANSIENT_ROWS: usize = 200_000;
 
+/// Smallest finger length, voltage and time in a measured file, as a fraction of their largest:
+/// 1e-9 (so 10 nm, 10 uV, 1 ps; a positive 5e-324 us would be 0 s after the conversion to seconds).
+pub const MEASURED_MIN_FRACTION: f64 = 1e-9;
+
+/// Largest finger length in a measured file: 10 000 um (1 cm; the devices' fingers are 10-100 um).
+pub const MAX_FINGER_LENGTH_UM: f64 = 1e4;
+
+/// Largest voltage in a measured file: 10 kV (as `stiction_scenario::MAX_VOLTAGE_V`).
+pub const MAX_TRANSIENT_VOLTAGE_V: f64 = 1e4;
+
+/// Largest measured time: 1e6 us (1 s; the measured transients are 10-1000 us).
+pub const MAX_TRANSIENT_TIME_US: f64 = 1e6;
+
+/// Largest |external force| in a measured file: 1 N (a GCA's force is of the order of 100 uN).
+pub const MAX_EXTERNAL_FORCE_N: f64 = 1.0;
+
 /// Default number of rapier steps per undamped natural period `2 pi sqrt(m/k)`.
 pub const DEFAULT_TRANSIENT_STEPS_PER_PERIOD: f64 = 2000.0;
 
@@ -131,12 +147,17 @@ pub fn read_transients(path: &Path) -> Result<Vec<MeasuredTransient>, ActuatorEr
 /// Parses measured times: a header with the columns `finger_length_um`, `event` (`pull-in` or
 /// `release`), `voltage_v`, `time_us`, optionally `repeat` (a label, not used) and
 /// `external_force_n` (N, opposing closing; default 0), in any order; then one measurement per
-/// row. Lengths, voltages and times must be finite and positive, the force finite. Rows with the
+/// row. Lengths, voltages and times must be finite and positive, the force finite, each within its
+/// limit (positive values at least [`MEASURED_MIN_FRACTION`] of it) ([`MAX_FINGER_LENGTH_UM`], [`MAX_TRANSIENT_VOLTAGE_V`], [`MAX_TRANSIENT_TIME_US`],
+/// [`MAX_EXTERNAL_FORCE_N`]); no line longer than [`stiction_units::text::MAX_LINE_BYTES`]; errors
+/// quote a cell only through [`stiction_units::text::excerpt`]. Rows with the
 /// same length, event, voltage and force are the repeats of one point (in the order of first
 /// appearance). Lines starting with `#` are comments. Errors carry the 1-based line.
 pub fn parse_transients(bytes: &[u8], source: &str) -> Result<Vec<MeasuredTransient>, ActuatorError> {
     let err =
         |line: u64, message: String| ActuatorError::Data { path: source.to_string(), line: line as usize, message };
+    stiction_units::text::check_line_bytes(bytes, stiction_units::text::MAX_LINE_BYTES)
+        .map_err(|e| err(e.line, e.to_string()))?;
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(bytes);
     let headers = reader.headers().map_err(|e| err(1, format!("cannot read the header: {e}")))?.clone();
     let mut col = HashMap::new();
@@ -151,8 +172,10 @@ pub fn parse_transients(bytes: &[u8], source: &str) -> Result<Vec<MeasuredTransi
                 return Err(err(
                     1,
                     format!(
-                        "unknown column `{other}`: expected finger_length_um, event, voltage_v, time_us, and \
-                         optionally repeat, external_force_n"
+                        "column {}: unknown column {}: expected finger_length_um, event, voltage_v, time_us, and \
+                         optionally repeat, external_force_n",
+                        i + 1,
+                        stiction_units::text::excerpt(other)
                     ),
                 ));
             }
@@ -174,26 +197,45 @@ pub fn parse_transients(bytes: &[u8], source: &str) -> Result<Vec<MeasuredTransi
             return Err(err(line, format!("more than {MAX_TRANSIENT_ROWS} data rows")));
         }
         let cell = |name: &str| rec.get(col[name]).unwrap_or("");
-        let number = |name: &str, positive_only: bool| -> Result<f64, ActuatorError> {
+        // A number in [limit * MEASURED_MIN_FRACTION, limit] (or [-limit, limit] when it may be negative).
+        let number = |name: &str, positive_only: bool, limit: f64| -> Result<f64, ActuatorError> {
             let c = cell(name);
-            let v: f64 = c.parse().map_err(|_| err(line, format!("column `{name}`: `{c}` is not a number")))?;
-            if !v.is_finite() || (positive_only && v <= 0.0) {
-                return Err(err(
-                    line,
-                    format!("column `{name}`: {v} must be finite{}", if positive_only { " and > 0" } else { "" }),
-                ));
+            let v: f64 = c.parse().map_err(|_| {
+                err(line, format!("column `{name}`: {} is not a number", stiction_units::text::excerpt(c)))
+            })?;
+            let min = limit * MEASURED_MIN_FRACTION;
+            let ok = v.is_finite() && v.abs() <= limit && (!positive_only || v >= min);
+            if !ok {
+                let range = if positive_only {
+                    format!("in [{min:e}, {limit:e}]")
+                } else {
+                    format!("in [-{limit:e}, {limit:e}]")
+                };
+                return Err(err(line, format!("column `{name}`: {v:e} must be finite and {range}")));
             }
             Ok(v)
         };
         let event = match cell("event") {
             "pull-in" => TransientEvent::PullIn,
             "release" => TransientEvent::Release,
-            other => return Err(err(line, format!("column `event`: `{other}`, expected `pull-in` or `release`"))),
+            other => {
+                return Err(err(
+                    line,
+                    format!(
+                        "column `event`: {}, expected `pull-in` or `release`",
+                        stiction_units::text::excerpt(other)
+                    ),
+                ));
+            }
         };
-        let length = number("finger_length_um", true)? * 1e-6;
-        let voltage = number("voltage_v", true)?;
-        let time = number("time_us", true)? * 1e-6;
-        let force = if col.contains_key("external_force_n") { number("external_force_n", false)? } else { 0.0 };
+        let length = number("finger_length_um", true, MAX_FINGER_LENGTH_UM)? * 1e-6;
+        let voltage = number("voltage_v", true, MAX_TRANSIENT_VOLTAGE_V)?;
+        let time = number("time_us", true, MAX_TRANSIENT_TIME_US)? * 1e-6;
+        let force = if col.contains_key("external_force_n") {
+            number("external_force_n", false, MAX_EXTERNAL_FORCE_N)?
+        } else {
+            0.0
+        };
         let key = (length.to_bits(), event, voltage.to_bits(), force.to_bits());
         match index.get(&key) {
             Some(&i) => points[i].times_s.push(time),
@@ -593,12 +635,12 @@ pub struct TransientErrors {
     pub points: usize,
     /// Points the model could not predict (excluded from the statistics below).
     pub unpredicted: usize,
-    /// Mean of `|rel_error|`.
-    pub mean_abs_rel_error: f64,
-    /// Mean of `rel_error` (the sign shows the bias).
-    pub mean_rel_error: f64,
-    /// Root mean square of `predicted - measured_mean` (s).
-    pub rmse_s: f64,
+    /// Mean of `|rel_error|` (`null` when no point of the group was predicted).
+    pub mean_abs_rel_error: Option<f64>,
+    /// Mean of `rel_error` (the sign shows the bias; `null` when none was predicted).
+    pub mean_rel_error: Option<f64>,
+    /// Root mean square of `predicted - measured_mean` (s; `null` when none was predicted).
+    pub rmse_s: Option<f64>,
 }
 
 fn errors(points: &[&TransientComparison], event: TransientEvent, length: Option<f64>) -> TransientErrors {
@@ -606,15 +648,19 @@ fn errors(points: &[&TransientComparison], event: TransientEvent, length: Option
         .iter()
         .filter_map(|p| p.predicted_s.map(|t| (t / p.measured_mean_s - 1.0, t - p.measured_mean_s)))
         .collect();
-    let n = ok.len().max(1) as f64;
+    let n = ok.len() as f64;
+    // None for an empty group (0/0) and for a sum that is not finite.
+    let mean = |f: &dyn Fn(&(f64, f64)) -> f64| {
+        (!ok.is_empty()).then(|| ok.iter().map(f).sum::<f64>() / n).filter(|v| v.is_finite())
+    };
     TransientErrors {
         event,
         finger_length_m: length,
         points: points.len(),
         unpredicted: points.len() - ok.len(),
-        mean_abs_rel_error: if ok.is_empty() { f64::NAN } else { ok.iter().map(|e| e.0.abs()).sum::<f64>() / n },
-        mean_rel_error: if ok.is_empty() { f64::NAN } else { ok.iter().map(|e| e.0).sum::<f64>() / n },
-        rmse_s: if ok.is_empty() { f64::NAN } else { (ok.iter().map(|e| e.1 * e.1).sum::<f64>() / n).sqrt() },
+        mean_abs_rel_error: mean(&|e| e.0.abs()),
+        mean_rel_error: mean(&|e| e.0),
+        rmse_s: mean(&|e| e.1 * e.1).map(f64::sqrt),
     }
 }
 
@@ -702,13 +748,12 @@ pub fn compare_transients(
         }
     }
     let overall = |event: TransientEvent| all.iter().find(|e| e.event == event && e.finger_length_m.is_none());
-    let finite = |v: f64| v.is_finite().then_some(v);
     Ok(TransientReport {
         physics,
-        pull_in_time_mean_abs_rel_error: overall(TransientEvent::PullIn).and_then(|e| finite(e.mean_abs_rel_error)),
-        release_time_mean_abs_rel_error: overall(TransientEvent::Release).and_then(|e| finite(e.mean_abs_rel_error)),
-        pull_in_time_rmse_s: overall(TransientEvent::PullIn).and_then(|e| finite(e.rmse_s)),
-        release_time_rmse_s: overall(TransientEvent::Release).and_then(|e| finite(e.rmse_s)),
+        pull_in_time_mean_abs_rel_error: overall(TransientEvent::PullIn).and_then(|e| e.mean_abs_rel_error),
+        release_time_mean_abs_rel_error: overall(TransientEvent::Release).and_then(|e| e.mean_abs_rel_error),
+        pull_in_time_rmse_s: overall(TransientEvent::PullIn).and_then(|e| e.rmse_s),
+        release_time_rmse_s: overall(TransientEvent::Release).and_then(|e| e.rmse_s),
         errors: all,
         points,
     })
@@ -782,13 +827,12 @@ pub fn transient_switch_effects(
     for (name, s, p) in variants {
         let r = compare_transients(&s, p, data)?;
         let get = |event: TransientEvent| r.errors.iter().find(|e| e.event == event && e.finger_length_m.is_none());
-        let finite = |v: f64| v.is_finite().then_some(v);
         out.push(TransientSwitchEffect {
             switch: name,
             pull_in_time_mean_abs_rel_error: r.pull_in_time_mean_abs_rel_error,
             release_time_mean_abs_rel_error: r.release_time_mean_abs_rel_error,
-            pull_in_time_mean_rel_error: get(TransientEvent::PullIn).and_then(|e| finite(e.mean_rel_error)),
-            release_time_mean_rel_error: get(TransientEvent::Release).and_then(|e| finite(e.mean_rel_error)),
+            pull_in_time_mean_rel_error: get(TransientEvent::PullIn).and_then(|e| e.mean_rel_error),
+            release_time_mean_rel_error: get(TransientEvent::Release).and_then(|e| e.mean_rel_error),
             unpredicted: r.errors.iter().filter(|e| e.finger_length_m.is_none()).map(|e| e.unpredicted).sum(),
         });
     }

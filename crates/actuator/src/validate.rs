@@ -23,31 +23,40 @@ pub struct MeasuredPoint {
     pub release_v: Vec<f64>,
 }
 
-/// Reads a measured-data CSV file, see [`parse_measurements`].
+/// Largest measured-voltage file read (bytes), checked before reading.
+pub const MAX_VALIDATION_FILE_BYTES: u64 = 16 << 20;
+
+/// Reads a measured-data CSV file through [`stiction_units::io::read_input_text`] (regular files
+/// only, at most [`MAX_VALIDATION_FILE_BYTES`], checked before reading), see [`parse_measurements`].
 pub fn read_measurements(path: &Path) -> Result<Vec<MeasuredPoint>, ActuatorError> {
-    let text = std::fs::read_to_string(path).map_err(|e| ActuatorError::Data {
-        path: path.display().to_string(),
-        line: 0,
-        message: format!("cannot read: {e}"),
-    })?;
+    let text = stiction_units::io::read_input_text(path, MAX_VALIDATION_FILE_BYTES)
+        .map_err(|e| ActuatorError::Data { path: path.display().to_string(), line: 0, message: e.to_string() })?;
     parse_measurements(&text, &path.display().to_string())
 }
 
 /// Parses measured data: a header `finger_length_drawn_um,pull_in_v_1,...,release_v[,...]`
 /// (first column the drawn finger length in um, then any number of columns whose names start
 /// with `pull_in_v` and `release_v`, at least one of each), then one row per length. Values must
-/// be finite and positive. Blank lines and lines starting with `#` are comments. Errors carry the
-/// 1-based line number.
+/// be finite and positive, lengths at most [`crate::transients::MAX_FINGER_LENGTH_UM`] and voltages
+/// at most [`crate::transients::MAX_TRANSIENT_VOLTAGE_V`]. Blank lines and lines starting with `#`
+/// are comments; no line may be longer than [`stiction_units::text::MAX_LINE_BYTES`]. Errors carry
+/// the 1-based line number and quote a cell only through [`stiction_units::text::excerpt`].
 pub fn parse_measurements(text: &str, source: &str) -> Result<Vec<MeasuredPoint>, ActuatorError> {
+    use stiction_units::text::excerpt;
     let err = |line: usize, message: String| ActuatorError::Data { path: source.to_string(), line, message };
+    stiction_units::text::check_lines(text, stiction_units::text::MAX_LINE_BYTES)
+        .map_err(|e| err(e.line as usize, e.to_string()))?;
     let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     let (hline, header) = lines.next().ok_or_else(|| err(0, "empty file: expected a header line".into()))?;
     let names: Vec<&str> = header.split(',').map(str::trim).collect();
     if names[0] != "finger_length_drawn_um" {
-        return Err(err(hline + 1, format!("first column is `{}`, expected `finger_length_drawn_um`", names[0])));
+        return Err(err(
+            hline + 1,
+            format!("first column is {}, expected `finger_length_drawn_um`", excerpt(names[0])),
+        ));
     }
     let mut kinds = Vec::with_capacity(names.len());
-    for n in &names[1..] {
+    for (k, n) in names.iter().enumerate().skip(1) {
         if n.starts_with("pull_in_v") {
             kinds.push(true);
         } else if n.starts_with("release_v") {
@@ -55,7 +64,11 @@ pub fn parse_measurements(text: &str, source: &str) -> Result<Vec<MeasuredPoint>
         } else {
             return Err(err(
                 hline + 1,
-                format!("unknown column `{n}`: expected names starting with `pull_in_v` or `release_v`"),
+                format!(
+                    "column {}: unknown column {}: expected names starting with `pull_in_v` or `release_v`",
+                    k + 1,
+                    excerpt(n)
+                ),
             ));
         }
     }
@@ -72,10 +85,21 @@ pub fn parse_measurements(text: &str, source: &str) -> Result<Vec<MeasuredPoint>
             ));
         }
         let mut vals = Vec::with_capacity(cells.len());
-        for (c, name) in cells.iter().zip(&names) {
-            let v: f64 = c.parse().map_err(|_| err(i + 1, format!("column `{name}`: `{c}` is not a number")))?;
-            if !(v.is_finite() && v > 0.0) {
-                return Err(err(i + 1, format!("column `{name}`: {v} must be a finite value > 0")));
+        for (k, (c, name)) in cells.iter().zip(&names).enumerate() {
+            let v: f64 = c
+                .parse()
+                .map_err(|_| err(i + 1, format!("column {}: {} is not a number", excerpt(name), excerpt(c))))?;
+            let limit = if k == 0 {
+                crate::transients::MAX_FINGER_LENGTH_UM
+            } else {
+                crate::transients::MAX_TRANSIENT_VOLTAGE_V
+            };
+            let min = limit * crate::transients::MEASURED_MIN_FRACTION;
+            if !(v.is_finite() && v >= min && v <= limit) {
+                return Err(err(
+                    i + 1,
+                    format!("column {}: {v:e} must be finite and in [{min:e}, {limit:e}]", excerpt(name)),
+                ));
             }
             vals.push(v);
         }

@@ -60,9 +60,9 @@ fn gca_times_meet_the_floors() {
             "  {:<8} {:>6} um  {:+6.1} %  {:5.1} %  {:6.2} us  ({} points, {} unpredicted)",
             e.event.name(),
             e.finger_length_m.map_or("all".to_string(), |l| format!("{:.2}", l * 1e6)),
-            100.0 * e.mean_rel_error,
-            100.0 * e.mean_abs_rel_error,
-            e.rmse_s * 1e6,
+            100.0 * e.mean_rel_error.unwrap_or(f64::NAN),
+            100.0 * e.mean_abs_rel_error.unwrap_or(f64::NAN),
+            e.rmse_s.unwrap_or(f64::NAN) * 1e6,
             e.points,
             e.unpredicted
         );

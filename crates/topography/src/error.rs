@@ -69,6 +69,6 @@ pub(crate) fn check_positive(field: &str, value: f64, unit: &str) -> Result<(), 
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(TopographyError::invalid(field, value, format!("a finite value > 0 {unit}")))
+        Err(TopographyError::invalid(field, format!("{value:e}"), format!("a finite value > 0 {unit}")))
     }
 }

@@ -100,12 +100,33 @@ pub fn prepare(map: &HeightMap, prep: &Preparation) -> Result<(HeightMap, Prepar
     if let Some(l) = prep.long_cutoff_m {
         check_positive("long_cutoff", l, "m")?;
     }
+    // A cut-off longer than the map would filter with a kernel wider than the map (at 1 m on a
+    // 5 um map, 10^6-pixel kernels on every line): refused, with the map's size.
+    let longest_m = map.length_x_m().max(map.length_y_m());
+    for (field, cut) in [("short_cutoff", prep.short_cutoff_m), ("long_cutoff", prep.long_cutoff_m)] {
+        if let Some(c) = cut
+            && c > longest_m
+        {
+            return Err(TopographyError::invalid(
+                field,
+                format!("{c:e} m"),
+                format!(
+                    "a wavelength no longer than the map, whose longer side is {:.4} um ({} x {} pixels of {:.4} x {:.4} nm)",
+                    longest_m * 1e6,
+                    map.nx(),
+                    map.ny(),
+                    map.dx_m() * 1e9,
+                    map.dy_m() * 1e9
+                ),
+            ));
+        }
+    }
     if let (Some(s), Some(l)) = (prep.short_cutoff_m, prep.long_cutoff_m)
         && s >= l
     {
         return Err(TopographyError::invalid(
             "short_cutoff",
-            format!("{s} m"),
+            format!("{s:e} m"),
             format!("a wavelength below the long-wavelength cut-off {l} m"),
         ));
     }
@@ -263,7 +284,10 @@ type FftPlan = std::sync::Arc<dyn rustfft::Fft<f64>>;
 
 impl LineFilter {
     fn new(sigma: f64, n: usize) -> Self {
-        let r = ((5.0 * sigma).ceil() as usize).max(1);
+        // Truncated at 5 sigma and at the line's length (weights beyond it never meet a pixel; the
+        // normalised convolution divides the normalisation out), so the kernel is bounded by the
+        // map whatever sigma is.
+        let r = (5.0 * sigma).ceil().clamp(1.0, n.max(1) as f64) as usize;
         let w: Vec<f64> = (0..=r).map(|k| (-(k as f64).powi(2) / (2.0 * sigma * sigma)).exp()).collect();
         let norm: f64 = w[0] + 2.0 * w[1..].iter().sum::<f64>();
         let w: Vec<f64> = w.iter().map(|v| v / norm).collect();

@@ -15,6 +15,7 @@ use std::str::FromStr;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+use stiction_units::text::{MAX_CELL_BYTES, MAX_LINE_BYTES, check_line_bytes, check_lines, excerpt};
 use stiction_units::{Dimension, parse_quantity};
 
 use crate::map::check_grid_size;
@@ -128,8 +129,11 @@ pub struct MapInfo {
 pub fn parse_length_unit(text: &str) -> Result<f64, String> {
     let t = text.trim();
     let q = if t.starts_with(|c: char| c.is_alphabetic()) { format!("1 {t}") } else { t.to_string() };
-    let v = parse_quantity(&q, Dimension::Length).map_err(|e| format!("unit {text:?}: {e}"))?;
-    if v > 0.0 { Ok(v) } else { Err(format!("unit {text:?} must be a positive length")) }
+    if t.len() > MAX_CELL_BYTES {
+        return Err(format!("unit {}: longer than {MAX_CELL_BYTES} bytes", excerpt(t)));
+    }
+    let v = parse_quantity(&q, Dimension::Length).map_err(|e| format!("unit {}", e.brief()))?;
+    if v > 0.0 { Ok(v) } else { Err(format!("unit {} must be a positive length", excerpt(t))) }
 }
 
 fn resolve(
@@ -146,8 +150,8 @@ fn resolve(
             } else {
                 Err(TopographyError::invalid(
                     what,
-                    format!("{g} m (given)"),
-                    format!("the value in {origin}, {f} m (remove the flag or field, or fix the file)"),
+                    format!("{g:e} m (given)"),
+                    format!("the value in {origin}, {f:e} m (remove the flag or field, or fix the file)"),
                 ))
             }
         }
@@ -180,6 +184,22 @@ fn finish(
     let given_dy = meta.pixel_size_y_m.or(meta.pixel_size_x_m);
     let (dy, _) = resolve(origin, file_dy.or(file_dx), given_dy, "pixel size along y", PIXEL_HOW)?;
     let (unit, src_u) = resolve(origin, file_unit, meta.height_unit_m, "height unit", UNIT_HOW)?;
+    for (what, d) in [("pixel size", dx), ("pixel size along y", dy)] {
+        if !(MIN_PIXEL_SIZE_M..=MAX_PIXEL_SIZE_M).contains(&d) {
+            return Err(TopographyError::invalid(
+                what,
+                format!("{d:e} m"),
+                format!("a pixel size in [{MIN_PIXEL_SIZE_M:e}, {MAX_PIXEL_SIZE_M:e}] m (from {origin})"),
+            ));
+        }
+    }
+    if !(MIN_UNIT_M..=MAX_UNIT_M).contains(&unit) {
+        return Err(TopographyError::invalid(
+            "height unit",
+            format!("{unit:e} m"),
+            format!("a unit in [{MIN_UNIT_M:e}, {MAX_UNIT_M:e}] m (from {origin})"),
+        ));
+    }
     let mut missing = 0;
     if unit != 1.0 {
         for h in &mut heights {
@@ -189,8 +209,12 @@ fn finish(
     for h in &heights {
         if h.is_nan() {
             missing += 1;
-        } else if h.is_infinite() {
-            return Err(TopographyError::format(origin, 0, "a height overflows to infinity in SI units"));
+        } else if h.abs() > MAX_HEIGHT_M {
+            return Err(TopographyError::format(
+                origin,
+                0,
+                format!("a height of {h:e} m (in SI units) is beyond the limit of {MAX_HEIGHT_M} m for a height map"),
+            ));
         }
     }
     if missing == heights.len() {
@@ -231,6 +255,28 @@ pub fn read_file(
 
 // ---------------------------------------------------------------------------------------------
 // .npy
+
+/// Largest |height| a map file may hold, in metres after its unit: 1 m (heights beyond it are
+/// not a surface's, and their squares in the statistics would overflow).
+pub const MAX_HEIGHT_M: f64 = 1.0;
+
+/// Smallest height or coordinate unit of a map file: 1 fm (1e-15 m).
+pub const MIN_UNIT_M: f64 = 1e-15;
+
+/// Largest height or coordinate unit of a map file: 1 km.
+pub const MAX_UNIT_M: f64 = 1e3;
+
+/// Smallest pixel size: 1 pm (the differences of the statistics divide by its square).
+pub const MIN_PIXEL_SIZE_M: f64 = 1e-12;
+
+/// Largest pixel size: 1 m.
+pub const MAX_PIXEL_SIZE_M: f64 = 1.0;
+
+/// Largest `.npy` header accepted, bytes (NumPy writes about 120 for a 2-D float array).
+pub const NPY_MAX_HEADER_BYTES: usize = 1 << 16;
+
+/// Largest `.gsf` text header accepted, bytes (Gwyddion writes a few hundred).
+pub const GSF_MAX_HEADER_BYTES: usize = 1 << 20;
 
 /// Element type of a `.npy` file this crate reads or writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -275,9 +321,15 @@ pub fn read_npy(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         .checked_add(header_len)
         .filter(|&e| e <= bytes.len())
         .ok_or_else(|| bad(format!("the header length {header_len} runs past the end of the file")))?;
+    if header_len > NPY_MAX_HEADER_BYTES {
+        return Err(bad(format!(
+            "the header is {header_len} bytes, more than the limit of {NPY_MAX_HEADER_BYTES} bytes (a 2-D float array's \
+             header is about 120)"
+        )));
+    }
     let header =
         std::str::from_utf8(&bytes[header_start..data_start]).map_err(|_| bad("the .npy header is not text".into()))?;
-    let descr = npy_field(header, "descr").ok_or_else(|| bad(format!("no 'descr' in the header {header:?}")))?;
+    let descr = npy_field(header, "descr").ok_or_else(|| bad("no 'descr' in the header".into()))?;
     let descr = descr.trim_matches(|c| c == '\'' || c == '"');
     let (little, size) = match descr {
         "<f8" | "=f8" => (true, 8),
@@ -286,25 +338,27 @@ pub fn read_npy(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         ">f4" => (false, 4),
         other => {
             return Err(bad(format!(
-                "dtype '{other}' is not supported: expected float32 or float64 ('<f4', '<f8', '>f4', '>f8')"
+                "dtype {} is not supported: expected float32 or float64 ('<f4', '<f8', '>f4', '>f8')",
+                excerpt(other)
             )));
         }
     };
     let fortran = match npy_field(header, "fortran_order") {
         Some("False") => false,
         Some("True") => true,
-        other => return Err(bad(format!("'fortran_order' is {other:?}: expected True or False"))),
+        Some(other) => return Err(bad(format!("'fortran_order' is {}: expected True or False", excerpt(other)))),
+        None => return Err(bad("no 'fortran_order' in the header: expected True or False".into())),
     };
-    let shape_text = npy_field(header, "shape").ok_or_else(|| bad(format!("no 'shape' in the header {header:?}")))?;
+    let shape_text = npy_field(header, "shape").ok_or_else(|| bad("no 'shape' in the header".into()))?;
     let dims: Vec<u64> = shape_text
         .trim_matches(|c| c == '(' || c == ')')
         .split(',')
         .map(str::trim)
         .filter(|s| !s.is_empty())
-        .map(|s| s.parse::<u64>().map_err(|_| bad(format!("shape {shape_text} is not a tuple of integers"))))
+        .map(|s| s.parse::<u64>().map_err(|_| bad(format!("shape {} is not a tuple of integers", excerpt(shape_text)))))
         .collect::<Result<_, _>>()?;
     let [ny, nx] = dims[..] else {
-        return Err(bad(format!("shape {shape_text}: expected a 2-D array (rows, columns)")));
+        return Err(bad(format!("shape {}: expected a 2-D array (rows, columns)", excerpt(shape_text))));
     };
     check_grid_size(origin, nx, ny)?;
     let (nx, ny) = (nx as usize, ny as usize);
@@ -377,6 +431,11 @@ impl HeightMap {
 // ---------------------------------------------------------------------------------------------
 // Text grid
 
+/// The line bound of every text format ([`stiction_units::text::check_lines`]), as a format error.
+fn check_text(text: &str, origin: &str) -> Result<(), TopographyError> {
+    check_lines(text, MAX_LINE_BYTES).map_err(|e| TopographyError::format(origin, e.line, e.to_string()))
+}
+
 fn parse_cell(text: &str) -> Option<f64> {
     let t = text.trim();
     if t.is_empty() || t.eq_ignore_ascii_case("nan") {
@@ -391,6 +450,7 @@ fn parse_cell(text: &str) -> Option<f64> {
 /// `# Height: 5.000 µm` (the map's physical size along x and y) and `# Value units: m` give the
 /// pixel size and height unit.
 pub fn read_text_grid(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightMap, MapInfo), TopographyError> {
+    check_text(text, origin)?;
     let (mut width, mut height, mut unit) = (None, None, None);
     let mut first_data: Option<&str> = None;
     for (k, line) in text.lines().enumerate() {
@@ -398,8 +458,16 @@ pub fn read_text_grid(text: &str, origin: &str, meta: &MapMetadata) -> Result<(H
         if let Some(c) = t.strip_prefix('#') {
             if let Some((key, value)) = c.split_once(':') {
                 let parse_len = |v: &str| {
-                    parse_quantity(v.trim(), Dimension::Length).map_err(|e| {
-                        TopographyError::format(origin, k as u64 + 1, format!("header `{}`: {e}", key.trim()))
+                    let v = v.trim();
+                    stiction_units::text::check_cell(v).map_err(|e| {
+                        TopographyError::format(origin, k as u64 + 1, format!("header {}: {e}", excerpt(key.trim())))
+                    })?;
+                    parse_quantity(v, Dimension::Length).map_err(|e| {
+                        TopographyError::format(
+                            origin,
+                            k as u64 + 1,
+                            format!("header {}: {}", excerpt(key.trim()), e.brief()),
+                        )
                     })
                 };
                 match key.trim().to_ascii_lowercase().as_str() {
@@ -429,11 +497,17 @@ pub fn read_text_grid(text: &str, origin: &str, meta: &MapMetadata) -> Result<(H
     let mut push_row = |line: u64, cells: &mut dyn Iterator<Item = &str>| -> Result<(), TopographyError> {
         let before = heights.len();
         for (c, cell) in cells.enumerate() {
+            stiction_units::text::check_cell(cell)
+                .map_err(|e| TopographyError::format(origin, line, format!("column {}: {e}", c + 1)))?;
             let v = parse_cell(cell).ok_or_else(|| {
                 TopographyError::format(
                     origin,
                     line,
-                    format!("column {}: `{}` is not a finite number (or NaN / empty for a missing pixel)", c + 1, cell),
+                    format!(
+                        "column {}: {} is not a finite number (or NaN / empty for a missing pixel)",
+                        c + 1,
+                        excerpt(cell)
+                    ),
                 )
             })?;
             if heights.len() as u64 >= MAX_PIXELS {
@@ -544,6 +618,13 @@ pub fn read_gsf(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         .iter()
         .position(|&b| b == 0)
         .ok_or_else(|| bad(0, "no NUL padding after the header: the file is truncated".into()))?;
+    if nul > GSF_MAX_HEADER_BYTES {
+        return Err(bad(
+            0,
+            format!("the text header is {nul} bytes, more than the limit of {GSF_MAX_HEADER_BYTES} bytes"),
+        ));
+    }
+    check_line_bytes(&bytes[..nul], MAX_LINE_BYTES).map_err(|e| bad(e.line, e.to_string()))?;
     let header = std::str::from_utf8(&bytes[..nul]).map_err(|_| bad(0, "the header is not UTF-8 text".into()))?;
     let data_start = nul + (4 - nul % 4);
     if data_start > bytes.len() || bytes[nul..data_start].iter().any(|&b| b != 0) {
@@ -555,13 +636,18 @@ pub fn read_gsf(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         if t.is_empty() {
             continue;
         }
-        let (key, value) =
-            t.split_once('=').ok_or_else(|| bad(k as u64 + 1, format!("`{t}` is not a `Key = Value` line")))?;
-        keys.insert(key.trim().to_string(), (k as u64 + 1, value.trim().to_string()));
+        let (key, value) = t
+            .split_once('=')
+            .ok_or_else(|| bad(k as u64 + 1, format!("{} is not a `Key = Value` line", excerpt(t))))?;
+        stiction_units::text::check_cell(value.trim())
+            .map_err(|e| bad(k as u64 + 1, format!("{}: {e}", excerpt(key.trim()))))?;
+        if let Some((first, _)) = keys.insert(key.trim().to_string(), (k as u64 + 1, value.trim().to_string())) {
+            return Err(bad(k as u64 + 1, format!("{} appears twice (first on line {first})", excerpt(key.trim()))));
+        }
     }
     let res = |name: &str| -> Result<u64, TopographyError> {
         let (line, v) = keys.get(name).ok_or_else(|| bad(0, format!("`{name}` is missing from the header")))?;
-        v.parse::<u64>().map_err(|_| bad(*line, format!("`{name} = {v}`: expected a positive integer")))
+        v.parse::<u64>().map_err(|_| bad(*line, format!("`{name}` = {}: expected a positive integer", excerpt(v))))
     };
     let (nx, ny) = (res("XRes")?, res("YRes")?);
     check_grid_size(origin, nx, ny)?;
@@ -574,11 +660,12 @@ pub fn read_gsf(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
         match keys.get(name) {
             None => Ok(None),
             Some((line, v)) => {
-                let x: f64 = v.parse().map_err(|_| bad(*line, format!("`{name} = {v}`: expected a number")))?;
+                let x: f64 =
+                    v.parse().map_err(|_| bad(*line, format!("`{name}` = {}: expected a number", excerpt(v))))?;
                 if x.is_finite() && x > 0.0 {
                     Ok(Some(x * xy_unit / n as f64))
                 } else {
-                    Err(bad(*line, format!("`{name} = {v}`: expected a finite size > 0")))
+                    Err(bad(*line, format!("`{name}` = {}: expected a finite size > 0", excerpt(v))))
                 }
             }
         }
@@ -635,7 +722,7 @@ fn grid_axis(origin: &str, name: &str, values: &[f64]) -> Result<(f64, f64, usiz
                 origin,
                 0,
                 format!(
-                    "the {name} coordinates are not on a regular grid: {} follows {} (step {}), expected the step {step} (value {} of {})",
+                    "the {name} coordinates are not on a regular grid: {:e} follows {:e} (step {:e}), expected the step {step:e} (value {} of {})",
                     w[1],
                     w[0],
                     w[1] - w[0],
@@ -660,6 +747,13 @@ pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightM
             "the unit of the x and y coordinates: give it with --xy-unit (e.g. \"um\") or the scenario field `xy_unit`"
                 .into(),
     })?;
+    if !(MIN_UNIT_M..=MAX_UNIT_M).contains(&xy_unit) {
+        return Err(TopographyError::invalid(
+            "xy_unit",
+            format!("{xy_unit:e} m"),
+            format!("a unit in [{MIN_UNIT_M:e}, {MAX_UNIT_M:e}] m"),
+        ));
+    }
     if meta.pixel_size_x_m.is_some() || meta.pixel_size_y_m.is_some() {
         return Err(TopographyError::invalid(
             "pixel_size",
@@ -667,6 +761,7 @@ pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightM
             "no pixel size for an x-y-z list: the grid step of its coordinates is the pixel size (give `xy_unit`)",
         ));
     }
+    check_text(text, origin)?;
     let mut pts: Vec<[f64; 3]> = Vec::new();
     let mut first = true;
     for (k, line) in text.lines().enumerate() {
@@ -675,21 +770,28 @@ pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightM
             continue;
         }
         let cells: Vec<&str> =
-            t.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|s| !s.is_empty()).collect();
+            t.split(|c: char| c == ',' || c == ';' || c.is_whitespace()).filter(|s| !s.is_empty()).take(4).collect();
+        for c in &cells {
+            stiction_units::text::check_cell(c).map_err(|e| TopographyError::format(origin, k as u64 + 1, e))?;
+        }
         let nums: Option<Vec<f64>> = cells.iter().map(|c| c.parse::<f64>().ok()).collect();
         let Some(nums) = nums else {
             if first {
                 first = false;
                 continue; // a header line such as `x,y,z`
             }
-            return Err(TopographyError::format(origin, k as u64 + 1, format!("`{t}` is not three numbers x y z")));
+            return Err(TopographyError::format(
+                origin,
+                k as u64 + 1,
+                format!("{} is not three numbers x y z", excerpt(t)),
+            ));
         };
         first = false;
         if nums.len() != 3 || !nums[0].is_finite() || !nums[1].is_finite() || nums[2].is_infinite() {
             return Err(TopographyError::format(
                 origin,
                 k as u64 + 1,
-                format!("`{t}`: expected three numbers x y z (finite x, y; z finite or NaN)"),
+                format!("{}: expected three numbers x y z (finite x, y; z finite or NaN)", excerpt(t)),
             ));
         }
         if pts.len() as u64 >= MAX_PIXELS {
@@ -711,7 +813,11 @@ pub fn read_xyz(text: &str, origin: &str, meta: &MapMetadata) -> Result<(HeightM
         let iy = ((p[1] - y0) / sy).round() as usize;
         let k = iy * nx + ix;
         if seen[k] {
-            return Err(TopographyError::format(origin, 0, format!("the point ({}, {}) appears twice", p[0], p[1])));
+            return Err(TopographyError::format(
+                origin,
+                0,
+                format!("the point ({:e}, {:e}) appears twice", p[0], p[1]),
+            ));
         }
         seen[k] = true;
         heights[k] = p[2];

@@ -72,6 +72,23 @@ pub struct Nayak {
 }
 
 impl Nayak {
+    /// Whether every prediction is finite.
+    pub fn is_finite(&self) -> bool {
+        [
+            self.m0_m2,
+            self.m2,
+            self.m4_per_m2,
+            self.bandwidth_alpha,
+            self.summit_density_per_m2,
+            self.summit_height_mean_m,
+            self.summit_height_sd_m.unwrap_or(0.0),
+            self.summit_curvature_mean_per_m,
+            self.summit_radius_m,
+        ]
+        .iter()
+        .all(|v| v.is_finite())
+    }
+
     /// The predictions from m0 \[m^2\], m2, m4 \[1/m^2\] (all > 0).
     pub fn from_moments(m0: f64, m2: f64, m4: f64) -> Nayak {
         let alpha = m0 * m4 / (m2 * m2);
@@ -119,20 +136,38 @@ pub struct Statistics {
     pub autocorrelation_length_y_m: Option<f64>,
     /// Mean of the x and y autocorrelation lengths \[m\] (null if either is).
     pub autocorrelation_length_m: Option<f64>,
+    /// Why an autocorrelation length is null (absent when both are known).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub autocorrelation_length_note: Option<&'static str>,
     /// Counted summits.
     pub summits: SummitStats,
-    /// Nayak's predictions (null if a moment is 0).
+    /// Nayak's predictions (null if a moment is 0 or a prediction is not finite).
     pub nayak: Option<Nayak>,
+    /// Why `nayak` is null (absent when it is not).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nayak_note: Option<&'static str>,
 }
 
-/// Mean, SD (n - 1), min, max; None for an empty list, SD None below 2 values.
+/// Mean, SD (n - 1), min, max; None for an empty list, SD None below 2 values. Sums are taken
+/// on values scaled by the largest magnitude, so finite values (summit radii up to 1e308 m on a map
+/// of subnormal heights) give a finite mean and SD.
 fn moments(v: &[f64]) -> (Option<f64>, Option<f64>, Option<f64>, Option<f64>) {
     if v.is_empty() {
         return (None, None, None, None);
     }
     let n = v.len() as f64;
-    let mean = v.iter().sum::<f64>() / n;
-    let sd = (v.len() > 1).then(|| (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt());
+    let scale = v.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(f64::MIN_POSITIVE);
+    let mean = scale * (v.iter().map(|x| x / scale).sum::<f64>() / n);
+    let sd = (v.len() > 1)
+        .then(|| {
+            let ms = mean / scale;
+            let d = v.iter().fold(0.0f64, |m, x| m.max((x / scale - ms).abs()));
+            if d == 0.0 {
+                return 0.0;
+            }
+            scale * d * (v.iter().map(|x| ((x / scale - ms) / d).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
+        })
+        .filter(|s| s.is_finite());
     let min = v.iter().copied().fold(f64::INFINITY, f64::min);
     let max = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     (Some(mean), sd, Some(min), Some(max))
@@ -148,7 +183,7 @@ pub fn summit_stats(map: &HeightMap, summits: &Summits) -> SummitStats {
     radii.sort_by(f64::total_cmp);
     let median = (!radii.is_empty()).then(|| {
         let n = radii.len();
-        if n % 2 == 1 { radii[n / 2] } else { 0.5 * (radii[n / 2 - 1] + radii[n / 2]) }
+        if n % 2 == 1 { radii[n / 2] } else { 0.5 * radii[n / 2 - 1] + 0.5 * radii[n / 2] }
     });
     SummitStats {
         count: summits.len(),
@@ -215,8 +250,15 @@ pub fn statistics(map: &HeightMap, summits: &Summits) -> Statistics {
     let m2 = 0.5 * (zx2 + zy2);
     let m4 = 0.5 * (zxx2 + zyy2);
     let acf = autocorrelation(map);
-    let lx = acf.length_x_m();
-    let ly = acf.length_y_m();
+    let (lx, ly) = (acf.length_x(), acf.length_y());
+    let acf_note = lx.err().or(ly.err());
+    let (lx, ly) = (lx.ok(), ly.ok());
+    let nayak = (m0 > 0.0 && m2 > 0.0 && m4 > 0.0).then(|| Nayak::from_moments(m0, m2, m4));
+    let (nayak, nayak_note) = match nayak {
+        None => (None, Some("a spectral moment (m0, m2 or m4) is 0: the map is flat at the scale of its pixels")),
+        Some(n) if !n.is_finite() => (None, Some("the spectral moments overflow the predictions (not finite)")),
+        Some(n) => (Some(n), None),
+    };
     Statistics {
         nx,
         ny,
@@ -231,8 +273,10 @@ pub fn statistics(map: &HeightMap, summits: &Summits) -> Statistics {
         autocorrelation_length_x_m: lx,
         autocorrelation_length_y_m: ly,
         autocorrelation_length_m: lx.zip(ly).map(|(a, b)| 0.5 * (a + b)),
+        autocorrelation_length_note: acf_note,
         summits: summit_stats(map, summits),
-        nayak: (m0 > 0.0 && m2 > 0.0 && m4 > 0.0).then(|| Nayak::from_moments(m0, m2, m4)),
+        nayak,
+        nayak_note,
     }
 }
 
@@ -249,23 +293,44 @@ pub struct Autocorrelation {
     pub acf_y: Vec<f64>,
 }
 
-fn first_below(acf: &[f64], level: f64, d: f64) -> Option<f64> {
-    let k = acf.iter().position(|&a| a < level)?;
-    if k == 0 {
-        return Some(0.0);
+/// The lag where `acf` first falls below `level` (linear interpolation between the lags around
+/// it), or why there is none: a flat map (the ACF is not defined), a lag without pixel pairs
+/// before the crossing (rows or columns missing), or no crossing within the lags computed.
+fn first_below(acf: &[f64], level: f64, d: f64) -> Result<f64, &'static str> {
+    if acf.first().is_none_or(|a| !a.is_finite()) {
+        return Err("the map is flat or has too few pixels: no autocorrelation");
     }
-    let (a0, a1) = (acf[k - 1], acf[k]);
-    Some(d * ((k - 1) as f64 + (a0 - level) / (a0 - a1)))
+    for (k, &a) in acf.iter().enumerate() {
+        if !a.is_finite() {
+            return Err("a lag before the autocorrelation falls to 1/e has no pixel pairs (rows or columns missing)");
+        }
+        if a < level {
+            if k == 0 {
+                return Ok(0.0);
+            }
+            let a0 = acf[k - 1];
+            return Ok(d * ((k - 1) as f64 + (a0 - level) / (a0 - a)));
+        }
+    }
+    Err("the autocorrelation does not fall to 1/e within half the map")
 }
 
 impl Autocorrelation {
-    /// Lag where the x ACF first falls below 1/e (linear interpolation) \[m\].
-    pub fn length_x_m(&self) -> Option<f64> {
+    /// Lag where the x ACF first falls below 1/e (linear interpolation) \[m\], or why it has none.
+    pub fn length_x(&self) -> Result<f64, &'static str> {
         first_below(&self.acf_x, (-1f64).exp(), self.dx_m)
     }
-    /// Lag where the y ACF first falls below 1/e \[m\].
-    pub fn length_y_m(&self) -> Option<f64> {
+    /// Lag where the y ACF first falls below 1/e \[m\], or why it has none.
+    pub fn length_y(&self) -> Result<f64, &'static str> {
         first_below(&self.acf_y, (-1f64).exp(), self.dy_m)
+    }
+    /// [`Self::length_x`] without the reason.
+    pub fn length_x_m(&self) -> Option<f64> {
+        self.length_x().ok()
+    }
+    /// [`Self::length_y`] without the reason.
+    pub fn length_y_m(&self) -> Option<f64> {
+        self.length_y().ok()
     }
 }
 

@@ -5,7 +5,9 @@
 //! Its curvature is the mean of the two second central differences,
 //! `kappa = -(z_xx + z_yy) / 2`, `z_xx = (z(x+dx) - 2 z + z(x-dx)) / dx^2` (likewise y), in 1/m,
 //! and its radius `R = 1 / kappa`. A strict maximum has `z_xx < 0` and `z_yy < 0`, so `kappa > 0`
-//! always. The summit stands at its pixel's centre `((ix + 1/2) dx, (iy + 1/2) dy)`.
+//! always. The summit stands at its pixel's centre `((ix + 1/2) dx, (iy + 1/2) dy)`. A maximum
+//! whose curvature is so small that its radius `1 / kappa` is not a finite number (differences of
+//! subnormal heights, below about 1e-308 m) is flat, not a summit.
 
 use crate::HeightMap;
 
@@ -70,6 +72,9 @@ pub fn find_summits_in(map: &HeightMap, ix0: usize, iy0: usize, ix1: usize, iy1:
             if n.iter().all(|&v| z > v) {
                 let zxx = (row[ix + 1] - 2.0 * z + row[ix - 1]) * cx;
                 let zyy = (down[ix] - 2.0 * z + up[ix]) * cy;
+                if !(2.0 / (zxx + zyy)).is_finite() {
+                    continue;
+                }
                 s.ix.push(ix as u32);
                 s.iy.push(iy as u32);
                 s.height_m.push(z);

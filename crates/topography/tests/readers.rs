@@ -176,7 +176,7 @@ fn malformed_files_give_clear_errors() {
     let hdr = String::from_utf8_lossy(&b[10..80]).replace("<f8", "<i4");
     b[10..80].copy_from_slice(hdr.as_bytes());
     let e = err(read_npy(&b, "a.npy", &m));
-    assert!(e.contains("'<i4'") && e.contains("float32 or float64"), "{e}");
+    assert!(e.contains("`<i4`") && e.contains("float32 or float64"), "{e}");
     let b = map.to_npy_bytes(NpyDtype::F64, false);
     let e = err(read_npy(&b[..b.len() - 8], "a.npy", &m));
     assert!(e.contains("data bytes") && e.contains("64 x 32 x 8"), "{e}");

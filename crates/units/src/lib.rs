@@ -28,6 +28,7 @@ pub use parse::{format_quantity, parse_any, parse_quantity, parse_quantity_check
 pub mod de;
 pub mod finite;
 pub mod io;
+pub mod text;
 mod uncertain;
 pub use uncertain::{Distribution, ScalarInput, UncertainInput, nominal_from_json};
 

@@ -111,6 +111,11 @@ pub fn pick_array(
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
+    // Check the output folder before the work, so a refusal (a symbolic link, foreign files) comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "actuator", args.force)?),
+        None => None,
+    };
     let (name, spec) = pick_array(&args.scenario, args.array.as_deref(), &args.sets)?;
     let model = spec.to_model().map_err(|e| format!("actuator `{name}`: {e}"))?;
     let pull_in = model.pull_in()?;
@@ -154,8 +159,7 @@ pub fn run(args: Args) -> CliResult {
             summary.transient_switches = Some(transient_switch_effects(&spec, physics, &data)?);
         }
     }
-    if let Some(dir) = &args.out {
-        let mut set = OutputSet::begin(dir, "actuator", args.force)?;
+    if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("results.json", crate::output::json_text(&summary)?.as_bytes())?;
         if let Some(sweep) = &summary.sweep {
             let chart = args.fig.apply(sweep_chart(&name, sweep, &model))?;
@@ -422,9 +426,9 @@ fn print_transients(path: Option<&Path>, r: &TransientReport) {
         t.row(vec![
             e.event.to_string(),
             e.finger_length_m.map_or("all".to_string(), |l| format!("{:.2}", l * 1e6)),
-            format!("{:.1} %", 100.0 * e.mean_abs_rel_error),
-            format!("{:+.1} %", 100.0 * e.mean_rel_error),
-            format!("{:.2}", e.rmse_s * 1e6),
+            e.mean_abs_rel_error.map_or("n/a (no point predicted)".into(), |v| format!("{:.1} %", 100.0 * v)),
+            e.mean_rel_error.map_or("n/a".into(), |v| format!("{:+.1} %", 100.0 * v)),
+            e.rmse_s.map_or("n/a".into(), |v| format!("{:.2}", v * 1e6)),
             e.unpredicted.to_string(),
         ]);
     }
@@ -533,7 +537,8 @@ fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
         r.errors
             .iter()
             .find(|e| e.event == event && e.finger_length_m == Some(length_m))
-            .map_or(String::new(), |e| format!("{:.1} %", 100.0 * e.mean_abs_rel_error))
+            .and_then(|e| e.mean_abs_rel_error)
+            .map_or("n/a".to_string(), |e| format!("{:.1} %", 100.0 * e))
     };
     let mut chart = Chart::new(
         format!(

@@ -249,6 +249,11 @@ fn build_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
+    // clap drops `requires = "scenario"` when a flag that conflicts with --scenario (--grid, --seed,
+    // --map) is given, so the rule is checked here too: an override without a scenario is an error.
+    if let (Some(set), None) = (args.sets.first(), &args.scenario) {
+        return Err(format!("--set {set:?} needs --scenario (it overrides a field of the scenario)").into());
+    }
     if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
         return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
     }

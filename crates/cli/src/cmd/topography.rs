@@ -84,7 +84,11 @@ struct Output {
     rms_slope: f64,
     rms_curvature_per_m: f64,
     autocorrelation_length_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    autocorrelation_length_note: Option<&'static str>,
     nayak: Option<Nayak>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    nayak_note: Option<&'static str>,
     gw: Gw,
     statistics: Statistics,
 }
@@ -122,7 +126,9 @@ pub fn run(args: Args) -> CliResult {
         rms_slope: st.rms_slope,
         rms_curvature_per_m: st.rms_curvature_per_m,
         autocorrelation_length_m: st.autocorrelation_length_m,
+        autocorrelation_length_note: st.autocorrelation_length_note,
         nayak: st.nayak,
+        nayak_note: st.nayak_note,
         gw,
         statistics: st,
     };
@@ -209,8 +215,19 @@ fn print_table_of(o: &Output) {
             ("RMS height", format!("{:.4} nm", o.rms_height_m * 1e9)),
             ("RMS slope", format!("{:.4}", o.rms_slope)),
             ("RMS curvature", format!("{:.4} 1/um", o.rms_curvature_per_m * 1e-6)),
-            ("autocorrelation length", opt(o.autocorrelation_length_m, 1e6, "um")),
-            ("bandwidth alpha", n.map_or("n/a".into(), |n| format!("{:.3}", n.bandwidth_alpha))),
+            (
+                "autocorrelation length",
+                match (o.autocorrelation_length_m, o.autocorrelation_length_note) {
+                    (Some(l), _) => format!("{:.4} um", l * 1e6),
+                    (None, note) => format!("n/a ({})", note.unwrap_or("not computed")),
+                },
+            ),
+            (
+                "bandwidth alpha",
+                n.map_or(format!("n/a ({})", o.nayak_note.unwrap_or("not computed")), |n| {
+                    format!("{:.3}", n.bandwidth_alpha)
+                }),
+            ),
             ("summits", format!("{}", o.summit_count)),
             (
                 "summit density",

@@ -1,0 +1,509 @@
+//! A seeded structured-mutation fuzzer over the height-map formats (stable Rust, no extra tool),
+//! in the style of `crates/meter/tests/fuzz.rs`: `.npy` headers, dtypes, shapes and data; `.gsf`
+//! keys and padding; text grids (cells, headers, delimiters, rows, long lines); x-y-z lists. Each
+//! case starts from a valid file written by this crate's writers, applies one to three mutations
+//! and goes through the library code the binary calls (`read_npy`, `read_gsf`, `read_text_grid`,
+//! `read_xyz`, then `prepare` with hostile cut-offs, `find_summits` and `statistics`). The contract:
+//!
+//! * no panic (caught and reported with the case);
+//! * bounded time (each case under [`CASE_TIME_LIMIT`]);
+//! * an error names the file, is short (under [`MAX_ERROR_CHARS`]) and never holds the secret
+//!   marker a mutation planted in the file (no echo beyond a short excerpt);
+//! * a success has no NaN or infinity in its statistics (a value that cannot be computed is null).
+//!
+//! Short mode (the default, 1500 cases per format, a few seconds in release) runs in `cargo test`;
+//! `STICTION_FUZZ_CASES=20000 STICTION_FUZZ_SEED=1` gives a long run (cases per format), see
+//! docs/reliability.md.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::time::{Duration, Instant};
+
+use stiction_topography::{
+    HeightMap, Levelling, MapMetadata, NpyDtype, Preparation, TopographyError, find_summits, prepare, read_gsf,
+    read_npy, read_text_grid, read_xyz, statistics,
+};
+
+/// Longest a single case may take.
+const CASE_TIME_LIMIT: Duration = Duration::from_secs(10);
+
+/// Longest error message accepted (the origin is short here).
+const MAX_ERROR_CHARS: usize = 400;
+
+/// Planted in files by mutations; an error must never quote it whole.
+const SECRET: &str = "SECRET-do-not-echo-this-line-0123456789";
+
+const ORIGIN: &str = "fuzz-map";
+
+/// SplitMix64, as in the meter's fuzzer.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+    fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
+        &items[self.below(items.len())]
+    }
+    fn chance(&mut self, one_in: usize) -> bool {
+        self.below(one_in) == 0
+    }
+}
+
+fn cases() -> usize {
+    std::env::var("STICTION_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(1500)
+}
+
+fn seed() -> u64 {
+    std::env::var("STICTION_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(20)
+}
+
+/// Numbers and words a hostile file holds.
+const NASTY: &[&str] = &[
+    "0",
+    "-0",
+    "-1",
+    "1e-308",
+    "5e-324",
+    "1e308",
+    "1e400",
+    "-1e400",
+    "inf",
+    "-inf",
+    "NaN",
+    "nan",
+    "",
+    " ",
+    "1,5",
+    "0x10",
+    "1e",
+    "--1",
+    "+",
+    "4294967296",
+    "18446744073709551616",
+    "99999999999999999999999",
+    "1.0.0",
+    "µm",
+    "nm",
+    "furlong",
+    "m^2",
+    "1e300 m",
+    "1e-300 m",
+    "5 um",
+    "-5 um",
+    SECRET,
+    "\u{202e}evil",
+    "\u{1b}[2J",
+];
+
+/// A small random map: `nx x ny` in 2..=24, heights in nm with a few missing pixels.
+fn base_map(rng: &mut Rng) -> HeightMap {
+    let nx = 2 + rng.below(23);
+    let ny = 2 + rng.below(23);
+    let heights = (0..nx * ny)
+        .map(|k| {
+            if rng.chance(40) {
+                f64::NAN
+            } else {
+                let (x, y) = ((k % nx) as f64, (k / nx) as f64);
+                1e-9 * (5.0 * (0.7 * x + 0.3 * y).sin() + (rng.below(1000) as f64) / 100.0)
+            }
+        })
+        .collect();
+    HeightMap::new(nx, ny, 1e-8, 1e-8 * (1.0 + rng.below(3) as f64), heights).unwrap()
+}
+
+/// The metadata a format needs from outside the file (two cases in three), else random.
+fn meta(rng: &mut Rng, format: &str) -> MapMetadata {
+    if !rng.chance(3) {
+        return match format {
+            "npy" => MapMetadata { pixel_size_x_m: Some(1e-8), height_unit_m: Some(1.0), ..Default::default() },
+            "xyz" => MapMetadata { height_unit_m: Some(1.0), xy_unit_m: Some(1.0), ..Default::default() },
+            _ => MapMetadata::default(),
+        };
+    }
+    random_meta(rng)
+}
+
+fn random_meta(rng: &mut Rng) -> MapMetadata {
+    let len = [None, Some(1e-8), Some(1e-300), Some(1e300), Some(1.0), Some(2e-9)];
+    let unit = [None, Some(1e-9), Some(1.0), Some(1e-300), Some(1e300)];
+    MapMetadata {
+        pixel_size_x_m: *rng.pick(&len),
+        pixel_size_y_m: if rng.chance(3) { *rng.pick(&len) } else { None },
+        height_unit_m: *rng.pick(&unit),
+        xy_unit_m: *rng.pick(&unit),
+    }
+}
+
+/// Random byte edits: flip, insert, delete, truncate, append.
+fn byte_noise(rng: &mut Rng, b: &mut Vec<u8>) {
+    if b.is_empty() {
+        b.push(rng.next() as u8);
+        return;
+    }
+    match rng.below(5) {
+        0 => {
+            let k = rng.below(b.len());
+            b[k] ^= 1 << rng.below(8);
+        }
+        1 => {
+            let k = rng.below(b.len() + 1);
+            b.insert(k, rng.next() as u8);
+        }
+        2 => {
+            let k = rng.below(b.len());
+            b.remove(k);
+        }
+        3 => b.truncate(rng.below(b.len())),
+        _ => b.extend(std::iter::repeat_n(rng.next() as u8, 1 + rng.below(64))),
+    }
+}
+
+fn npy_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let dtype = if rng.chance(2) { NpyDtype::F32 } else { NpyDtype::F64 };
+    let mut b = map.to_npy_bytes(dtype, rng.chance(2));
+    let header_end = 10 + u16::from_le_bytes([b[8], b[9]]) as usize;
+    let header = String::from_utf8_lossy(&b[10..header_end]).into_owned();
+    let data = b[header_end..].to_vec();
+    let mut h = header.clone();
+    for _ in 0..1 + rng.below(3) {
+        match rng.below(9) {
+            0 => {
+                let d = rng.pick(&[
+                    "'<f2'", "'|u1'", "'<i8'", "'<c16'", "'>f8'", "'>f4'", "'=f8'", "<f8", "''", "'<f8", SECRET,
+                ]);
+                h = h.replacen(if h.contains("<f4") { "'<f4'" } else { "'<f8'" }, d, 1);
+            }
+            1 => {
+                let s = rng.pick(&[
+                    "(0, 5)",
+                    "(1, 3)",
+                    "(3,)",
+                    "(2, 2, 2)",
+                    "()",
+                    "(-1, 2)",
+                    "(18446744073709551615, 2)",
+                    "(100000, 100000)",
+                    "(4294967296, 4294967296)",
+                    "(a, b)",
+                    "(2, 2",
+                    SECRET,
+                ]);
+                if let Some(start) = h.find("'shape': ").map(|k| k + 9) {
+                    let end = start + h[start..].find(')').map_or(0, |e| e + 1);
+                    h.replace_range(start..end, s);
+                }
+            }
+            2 => {
+                let v = rng.pick(&["true", "1", "None", "'False'", SECRET, ""]);
+                h = h.replacen(if h.contains("True") { "True" } else { "False" }, v, 1);
+            }
+            3 => {
+                let d = rng.pick(&["'desc'", "\"descr\"", "'descr' 'descr'"]).to_string();
+                h = h.replacen("'descr'", &d, 1);
+            }
+            4 => h.push_str(&SECRET.repeat(1 + rng.below(4))),
+            5 => h = h.replacen("'shape'", "'shap'", 1),
+            _ => {}
+        }
+    }
+    let mut out = b[..8].to_vec();
+    if rng.chance(6) {
+        out[6] = *rng.pick(&[0u8, 2, 3, 4, 255]);
+    }
+    if out[6] == 1 {
+        out.extend_from_slice(&(h.len() as u16).to_le_bytes());
+    } else {
+        out.extend_from_slice(&(h.len() as u32).to_le_bytes());
+    }
+    out.extend_from_slice(h.as_bytes());
+    let mut d = data;
+    if rng.chance(3) && d.len() >= 8 {
+        let k = rng.below(d.len() / 8) * 8;
+        let v = *rng.pick(&[f64::INFINITY, f64::NAN, 1e300, -1e300, 5e-324, 1e10]);
+        if dtype == NpyDtype::F64 {
+            d[k..k + 8].copy_from_slice(&v.to_le_bytes());
+        } else {
+            d[k..k + 4].copy_from_slice(&(v as f32).to_le_bytes());
+        }
+    }
+    out.extend_from_slice(&d);
+    if rng.chance(3) {
+        if rng.chance(3) {
+            // A header length that runs past the end or is huge.
+            let n = *rng.pick(&[u32::MAX, 1 << 20, 70_000, 0]);
+            out[8..10].copy_from_slice(&(n as u16).to_le_bytes());
+        } else {
+            byte_noise(rng, &mut out);
+        }
+    }
+    b = out;
+    b
+}
+
+fn gsf_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let b = map.to_gsf_bytes();
+    let nul = b.iter().position(|&c| c == 0).unwrap();
+    let mut header = String::from_utf8(b[..nul].to_vec()).unwrap();
+    let data = b[nul + (4 - nul % 4)..].to_vec();
+    for _ in 0..1 + rng.below(3) {
+        let key = *rng.pick(&["XRes", "YRes", "XReal", "YReal", "XYUnits", "ZUnits", "Title"]);
+        match rng.below(7) {
+            0 => {
+                // Replace a value.
+                let v = rng.pick(NASTY);
+                let lines: Vec<String> = header
+                    .lines()
+                    .map(|l| if l.starts_with(key) { format!("{key} = {v}") } else { l.to_string() })
+                    .collect();
+                header = lines.join("\n") + "\n";
+            }
+            1 => {
+                let lines: Vec<&str> = header.lines().filter(|l| !l.starts_with(key)).collect();
+                header = lines.join("\n") + "\n";
+            }
+            2 => header.push_str(&format!("{key} = {}\n", rng.pick(NASTY))),
+            3 => header.push_str(&format!("{SECRET}\n")),
+            4 => header.push_str(&format!("Title = {}\n", "x".repeat(1 + rng.below(3000)))),
+            5 => {
+                let n = *rng.pick(&["100000", "0", "1", "65536", "4294967296"]);
+                header = header.replacen(&format!("{key} = "), &format!("{key} = {n}"), 1);
+            }
+            _ => {}
+        }
+    }
+    let mut out = header.into_bytes();
+    let pad = 4 - out.len() % 4;
+    let skip_pad = rng.chance(8);
+    if !skip_pad {
+        out.extend(std::iter::repeat_n(0u8, pad));
+    }
+    out.extend_from_slice(&data);
+    if rng.chance(4) {
+        byte_noise(rng, &mut out);
+    }
+    out
+}
+
+fn text_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let text = map.to_text_grid();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let delim = *rng.pick(&["\t", ",", ";", " ", "  "]);
+    for l in lines.iter_mut().filter(|l| !l.starts_with('#')) {
+        *l = l.replace('\t', delim);
+    }
+    for _ in 0..rng.below(3) {
+        let data_rows: Vec<usize> = (0..lines.len()).filter(|&k| !lines[k].starts_with('#')).collect();
+        let Some(&r) = data_rows.get(rng.below(data_rows.len())) else { break };
+        match rng.below(11) {
+            0 | 1 => {
+                let mut cells: Vec<String> = lines[r].split(delim).map(str::to_string).collect();
+                let c = rng.below(cells.len());
+                cells[c] = rng.pick(NASTY).to_string();
+                lines[r] = cells.join(delim);
+            }
+            2 => {
+                let mut cells: Vec<&str> = lines[r].split(delim).collect();
+                cells.pop();
+                lines[r] = cells.join(delim);
+            }
+            3 => lines.insert(r, format!("1{delim}2{delim}3")),
+            4 => {
+                let k = rng.below(4);
+                lines[k] = format!("# {}: {}", rng.pick(&["Width", "Height", "Value units"]), rng.pick(NASTY));
+            }
+            5 => lines.insert(0, SECRET.to_string()),
+            6 => lines[r] = format!("{}{}", lines[r], delim.repeat(1 + rng.below(5000))),
+            7 => lines[r].push_str(&"7".repeat(200 + rng.below(400))),
+            8 => lines.retain(|l| l.starts_with('#')),
+            9 => {
+                // A long line (over the 1 MiB bound now and then).
+                let n = if rng.chance(4) { (1 << 20) + 10 } else { 5000 };
+                lines[r] = ",".repeat(n);
+            }
+            _ => lines.insert(0, "# Width: ".to_string() + &"9".repeat(300)),
+        }
+    }
+    let eol = if rng.chance(5) { "\r\n" } else { "\n" };
+    let mut out = lines.join(eol).into_bytes();
+    if rng.chance(10) {
+        out.splice(0..0, [0xEF, 0xBB, 0xBF]);
+    }
+    if rng.chance(6) {
+        byte_noise(rng, &mut out);
+    }
+    out
+}
+
+fn xyz_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let text = map.to_xyz_text();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    for _ in 0..1 + rng.below(3) {
+        let r = 1 + rng.below(lines.len().saturating_sub(1).max(1));
+        let r = r.min(lines.len() - 1);
+        match rng.below(9) {
+            0 | 1 => {
+                let mut cells: Vec<String> = lines[r].split(' ').map(str::to_string).collect();
+                let c = rng.below(cells.len());
+                cells[c] = rng.pick(NASTY).to_string();
+                lines[r] = cells.join(" ");
+            }
+            2 => {
+                let l = lines[r].clone();
+                lines.push(l);
+            }
+            3 => lines.push(format!(
+                "{} {} 1e-9",
+                rng.pick(&["1e308", "-1e308", "3.3e-8", "1e-300"]),
+                rng.pick(&["0", "1e308"])
+            )),
+            4 => lines.insert(1, SECRET.to_string()),
+            5 => lines[r].push_str(" 4 5"),
+            6 => {
+                let d = rng.pick(&[",", ";", "\t", ", "]).to_string();
+                lines[r] = lines[r].replace(' ', &d);
+            }
+            7 => lines.truncate(1 + rng.below(3)),
+            _ => lines[0] = rng.pick(NASTY).to_string(),
+        }
+    }
+    lines.join("\n").into_bytes()
+}
+
+fn preparation(rng: &mut Rng) -> Preparation {
+    let cut = [
+        None,
+        None,
+        None,
+        None,
+        None,
+        Some(1e-9),
+        Some(5e-8),
+        Some(1e-7),
+        Some(1e-6),
+        Some(1.0),
+        Some(1e300),
+        Some(-1.0),
+        Some(f64::NAN),
+    ];
+    Preparation {
+        levelling: *rng.pick(&[Levelling::None, Levelling::Mean, Levelling::Plane, Levelling::Poly2, Levelling::Poly3]),
+        short_cutoff_m: *rng.pick(&cut),
+        long_cutoff_m: *rng.pick(&cut),
+    }
+}
+
+#[derive(Default, Debug)]
+struct Counts {
+    cases: usize,
+    read: usize,
+    analysed: usize,
+    refused: usize,
+}
+
+fn check_error(e: &TopographyError, case: &str) {
+    let m = e.to_string();
+    assert!(!m.contains(SECRET), "an error echoes the file ({case}): {m}");
+    assert!(m.chars().count() <= MAX_ERROR_CHARS, "an error of {} chars ({case}): {m}", m.chars().count());
+    let names_origin = m.contains(ORIGIN) || matches!(e, TopographyError::InvalidParameter { .. });
+    assert!(names_origin, "an error does not name the file or the field ({case}): {m}");
+    assert!(!m.chars().any(|c| c.is_control() && c != '\n'), "an error holds control characters ({case}): {m:?}");
+}
+
+fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
+    let mut rng = Rng(seed ^ name.bytes().fold(0u64, |h, b| h.wrapping_mul(31).wrapping_add(u64::from(b))));
+    let mut counts = Counts::default();
+    for case in 0..cases() {
+        let bytes = make(&mut rng);
+        let m = meta(&mut rng, name);
+        let prep = preparation(&mut rng);
+        let label = format!("{name} case {case} (seed {seed})");
+        let start = Instant::now();
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            let read = match name {
+                "npy" => read_npy(&bytes, ORIGIN, &m),
+                "gsf" => read_gsf(&bytes, ORIGIN, &m),
+                _ => {
+                    // The text readers take what `read_input_text` gives: UTF-8 without a BOM.
+                    let text = match std::str::from_utf8(&bytes) {
+                        Ok(t) => t.trim_start_matches('\u{feff}').to_string(),
+                        Err(_) => return (false, None),
+                    };
+                    if name == "text" { read_text_grid(&text, ORIGIN, &m) } else { read_xyz(&text, ORIGIN, &m) }
+                }
+            };
+            let (map, _info) = match read {
+                Ok(x) => x,
+                Err(e) => {
+                    check_error(&e, &label);
+                    return (false, None);
+                }
+            };
+            match prepare(&map, &prep) {
+                Err(e) => {
+                    check_error(&e, &label);
+                    (true, None)
+                }
+                Ok((p, _)) => {
+                    let s = find_summits(&p);
+                    let st = statistics(&p, &s);
+                    (true, Some(format!("{st:?}")))
+                }
+            }
+        }));
+        let took = start.elapsed();
+        counts.cases += 1;
+        match result {
+            Err(_) => panic!("{label} panicked (meta {m:?}, preparation {prep:?})"),
+            Ok((read, stats)) => {
+                counts.read += usize::from(read);
+                if let Some(st) = stats {
+                    counts.analysed += 1;
+                    assert!(
+                        !st.contains("NaN") && !st.contains("inf"),
+                        "{label}: a statistic is not finite (meta {m:?}, preparation {prep:?}): {st}"
+                    );
+                } else {
+                    counts.refused += 1;
+                }
+            }
+        }
+        assert!(took < CASE_TIME_LIMIT, "{label} took {took:?}");
+    }
+    eprintln!("fuzz {name}: {counts:?}");
+    counts
+}
+
+#[test]
+fn npy_files_keep_the_contract() {
+    let c = run_format("npy", npy_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn gsf_files_keep_the_contract() {
+    let c = run_format("gsf", gsf_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn text_grids_keep_the_contract() {
+    let c = run_format("text", text_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn xyz_lists_keep_the_contract() {
+    let c = run_format("xyz", xyz_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
