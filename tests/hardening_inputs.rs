@@ -49,7 +49,12 @@ fn cutoffs_longer_than_the_map_are_refused_with_its_size() {
     }
     // A cut-off just inside the map is still filtered.
     let v = stiction_json(&["topography", MAP, "--long-cutoff", "20 um", "--json"]);
-    assert_eq!(v["preparation"]["long_cutoff_m"].as_f64(), Some(20e-6));
+    // "20 um" is 20 x 1e-6 m in f64 (1.9999999999999998e-5); the binary prints it in full, but
+    // serde_json's default decimal parser (without `float_roundtrip`) may land one ulp away, so
+    // the comparison allows 1e-15 relative.
+    let twenty_um = stiction_units::parse_quantity("20 um", stiction_units::Dimension::Length).unwrap();
+    let read = v["preparation"]["long_cutoff_m"].as_f64().expect("long_cutoff_m");
+    assert!((read - twenty_um).abs() <= 1e-15 * twenty_um, "long_cutoff_m {read} != {twenty_um}");
 }
 
 /// A file of another kind (`/etc/passwd`, a secret note) given as a map, a transients or a
