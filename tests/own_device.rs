@@ -76,6 +76,18 @@ fn a_stiffer_spring_is_refused_until_the_spring_force_is_restated() {
     assert!((f - 12.0 * 0.9e-6).abs() < 1e-12 * 10.8e-6, "F_spring = {f}");
     // The paper's own 7 +/- 2 uN against 7.8 N/m x 0.9 um = 7.02 uN agrees: it runs.
     assert_eq!(text(&["run", "scenarios/tas2000.json", "--json"]).0, 0);
+    // `fit` reads the same device and refuses the same contradiction (deliberate bug caught:
+    // skipping `spring_force_conflict` in `fit`, which then fits with the stale 7 uN).
+    let (code, _, err) = text(&[
+        "fit",
+        "data/measured-voltages-synthetic/voltages.csv",
+        "--scenario",
+        "scenarios/tas2000.json",
+        "--set",
+        "actuators.clamp.spring.stiffness=12 N/m",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("meter.spring_force") && err.contains("10.8 uN"), "{err}");
 }
 
 /// Trap 3: a device that never reaches the wall over its clamp voltages. Closed form of the

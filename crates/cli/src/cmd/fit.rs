@@ -70,6 +70,10 @@ pub struct Args {
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     let scenario = Scenario::load(&args.scenario, &args.sets)?;
+    // One source of truth, as in `run`: a given spring force that contradicts the clamp spring is refused.
+    if let Some(conflict) = scenario.spring_force_conflict() {
+        return Err(format!("{}: {conflict}", args.scenario.display()).into());
+    }
     let json = Scenario::load_json(&args.scenario, &args.sets)?;
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
     if let Some(out) = &args.synthesize {
