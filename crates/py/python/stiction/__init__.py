@@ -1,0 +1,164 @@
+"""stiction: a virtual MEMS friction meter (static friction in elastic adhesive MEMS contacts).
+
+The engine is the one of the ``stiction`` command line: ``run``, ``topography`` and ``study``
+return the numbers ``stiction run|topography|study ... --json`` prints, bit for bit. Quantities
+are SI floats inside; arguments that are quantities also take unit strings ("0.5 um", "1.4 GPa").
+
+    >>> import stiction
+    >>> r = stiction.run("scenarios/tas2000.json")
+    >>> r.mu_apparent, r.apparent_adhesion_force_n
+"""
+
+from __future__ import annotations
+
+import json as _json
+import os as _os
+from typing import Any, Callable, Dict, Optional, Union
+
+import numpy as _np
+
+from ._stiction import Scenario, StictionError
+from . import _stiction
+
+__all__ = ["Scenario", "StictionError", "Result", "run", "topography", "study", "gw"]
+
+PathOrScenario = Union[str, "_os.PathLike[str]", Scenario]
+
+
+class Result:
+    """A result: the JSON object the command line prints with ``--json``, with its keys as
+    attributes (``r.mu_apparent``), ``to_dict()`` (equal to that JSON) and ``to_json()``.
+
+    ``columns`` holds the per-point columns as NumPy arrays (float64; None/null becomes NaN,
+    booleans stay bool) where the result has a list of points.
+    """
+
+    def __init__(self, text: str, extra: Optional[Dict[str, Any]] = None):
+        self._text = text
+        self._data = _json.loads(text)
+        self._extra = extra or {}
+        points = self._data.get("points") if isinstance(self._data, dict) else None
+        self.columns: Dict[str, _np.ndarray] = _columns(points) if isinstance(points, list) else {}
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        if name in self._extra:
+            return self._extra[name]
+        try:
+            return self._data[name]
+        except KeyError:
+            raise AttributeError(f"result has no field {name!r}; fields: {sorted(self._data)}") from None
+
+    def __getitem__(self, key: str) -> Any:
+        return self._data[key]
+
+    def keys(self):
+        """The fields of the JSON object."""
+        return self._data.keys()
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The JSON object as a dict (a fresh copy): equals ``json.loads`` of the CLI's ``--json``."""
+        return _json.loads(self._text)
+
+    def to_json(self) -> str:
+        """The JSON object as text (compact; the CLI prints it indented: same values)."""
+        return self._text
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(self._data) | set(self._extra))
+
+    def __repr__(self) -> str:
+        return f"stiction.Result({', '.join(sorted(self._data))})"
+
+
+def _columns(points: list) -> Dict[str, _np.ndarray]:
+    """Per-point columns: numbers (null as NaN) as float64, booleans as bool."""
+    cols: Dict[str, _np.ndarray] = {}
+    if not points or not isinstance(points[0], dict):
+        return cols
+    for key in points[0]:
+        values = [p.get(key) for p in points]
+        if all(isinstance(v, bool) or v is None for v in values) and any(isinstance(v, bool) for v in values):
+            if all(isinstance(v, bool) for v in values):
+                cols[key] = _np.array(values, dtype=bool)
+        elif all(isinstance(v, (int, float)) and not isinstance(v, bool) or v is None for v in values):
+            cols[key] = _np.array([_np.nan if v is None else v for v in values], dtype=float)
+    return cols
+
+
+def run(scenario: PathOrScenario, progress: Optional[Callable[[int, int], Any]] = None) -> Result:
+    """Run the friction-meter experiment of a scenario (the paper's Fig. 5): clamp at each clamp
+    voltage, ramp the pull voltage until slip, fit eq. 10 (F_f = mu_e,a (L + F_a0)).
+
+    scenario: a path to a scenario JSON file, or a ``Scenario``.
+    progress: optional ``progress(done, total)`` called after each clamp voltage.
+
+    Returns a ``Result`` equal to ``stiction run SCENARIO --json``: ``mu_apparent`` (mu_e,a,
+    dimensionless), ``apparent_adhesion_force_n`` (F_a0, N), ``points`` (per clamp voltage: loads in
+    N, voltages in V, areas in m^2), ... and ``columns`` (the points as NumPy arrays).
+    Raises StictionError with the command line's message on bad input. Releases the GIL.
+    """
+    return Result(_stiction.run_json(scenario, progress))
+
+
+def topography(
+    heights: _np.ndarray,
+    pixel_size: Union[str, float, None] = None,
+    pixel_size_y: Union[str, float, None] = None,
+    height_unit: Union[str, float, None] = None,
+    level: str = "plane",
+    cutoff: Union[str, float, None] = None,
+    long_cutoff: Union[str, float, None] = None,
+    scenario: Union[str, "_os.PathLike[str]", None] = None,
+) -> Result:
+    """Analyse a measured height map given as a 2-D NumPy array (rows = y), float32 or float64,
+    C or Fortran order: levelling, cut-offs, summits (8-neighbour maxima, curvature
+    -(z_xx + z_yy)/2) and statistics beside Nayak's predictions, as ``stiction topography
+    FILE.npy --json`` with the same flags.
+
+    pixel_size, pixel_size_y: pixel size, a length ("3.90625 um") or metres.
+    height_unit: the unit of the array's numbers ("nm", "um", "mm") or metres per unit (1e-9).
+    level: "none", "mean", "plane", "poly2" or "poly3".
+    cutoff, long_cutoff: short- and long-wavelength Gaussian cut-offs, lengths or metres.
+    scenario: a scenario file whose material gives the adhesion parameter theta.
+
+    Returns a ``Result`` whose ``to_dict()`` equals the CLI's JSON (its ``file`` field is
+    "<array>") and whose ``summits`` is a dict of arrays: x_m, y_m (pixel centres, m), height_m (m),
+    curvature_per_m (1/m), radius_m (m), ix, iy (pixel indices). Releases the GIL.
+    """
+    text, summits = _stiction.topography_json(
+        heights, pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff,
+        None if scenario is None else _os.fspath(scenario),
+    )
+    return Result(text, {"summits": summits})
+
+
+def study(
+    scenario: PathOrScenario,
+    samples: int = 100,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    fixed_surface: bool = False,
+) -> Result:
+    """Monte Carlo study of a scenario file: every parameter written with an uncertainty is drawn
+    anew and each sample gets its own rough surface (unless fixed_surface); the spread of mu_e,a
+    and F_a0 (eq. 10). Equals ``stiction study SCENARIO --samples N --seed S --threads T --json``;
+    same seed, same numbers whatever ``threads``. Releases the GIL.
+    """
+    return Result(_stiction.study_json(scenario, samples, seed, threads, fixed_surface))
+
+
+def gw(theta: Optional[float], load_star) -> Dict[str, Any]:
+    """Greenwood-Williamson with DMT adhesion in normalized form (eq. 5-9), stable branch.
+
+    theta: the adhesion parameter (eq. 9), or None / inf for plain GW (no adhesion).
+    load_star: normalized loads L* = D L / (eta A_a R^1/2 sigma^3/2), a number or an array.
+
+    Returns a dict of float64 arrays (one value per load): l_star, h (separation d/sigma), n_star,
+    log10_n_star, a_star, log10_a_star, elastic_l_star, adhesive_l_star, elastic_pressure_star; and
+    theta, pull_off_l_star, pull_off_h (None without adhesion). Same numbers as ``stiction gw
+    --json``.
+    """
+    loads = _np.atleast_1d(_np.asarray(load_star, dtype=float)).ravel()
+    return _stiction.gw_arrays(None if theta is None else float(theta), loads.tolist())
