@@ -77,8 +77,12 @@ def _columns(points: list) -> Dict[str, _np.ndarray]:
     cols: Dict[str, _np.ndarray] = {}
     if not points or not isinstance(points[0], dict):
         return cols
-    for key in points[0]:
-        values = [p.get(key) for p in points]
+    keys: Dict[str, None] = {}
+    for p in points:
+        if isinstance(p, dict):
+            keys.update(dict.fromkeys(p))
+    for key in keys:
+        values = [p.get(key) if isinstance(p, dict) else None for p in points]
         if all(isinstance(v, bool) or v is None for v in values) and any(isinstance(v, bool) for v in values):
             if all(isinstance(v, bool) for v in values):
                 cols[key] = _np.array(values, dtype=bool)
