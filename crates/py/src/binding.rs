@@ -290,9 +290,8 @@ fn topography_json<'py>(
     let out = py.detach(|| -> Result<_, String> {
         let (raw, info) = read_npy(&bytes, "heights", &meta).map_err(|e| e.to_string())?;
         drop(bytes);
-        let (json, map, summits) =
-            stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_deref())
-                .map_err(|e| e.to_string())?;
+        let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_deref())
+            .map_err(|e| e.to_string())?;
         Ok((serde_json::to_string(&json).map_err(|e| e.to_string())?, map, summits))
     });
     let (json, map, s): (String, HeightMap, _) = out.map_err(err)?;

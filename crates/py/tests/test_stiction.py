@@ -203,3 +203,9 @@ def test_topography_errors(tmp_path, cli):
         stiction.gw(2.0, [np.nan])
     with pytest.raises(stiction.StictionError, match="samples"):
         stiction.study(TAS, samples=0)
+
+
+def test_point_columns_mark_a_missing_value_as_nan():
+    cols = stiction._columns([{"a": 1.5, "b": True}, {"a": None, "b": False}, {"b": True}])
+    assert np.array_equal(cols["a"], [1.5, np.nan, np.nan], equal_nan=True)
+    assert cols["b"].dtype == bool and list(cols["b"]) == [True, False, True]

@@ -8,8 +8,7 @@ use stiction_scenario::Scenario;
 use stiction_surface::{Radii, Surface};
 use stiction_topography::{
     HeightMap, MapFormat, MapInfo, Nayak, Preparation, PreparationReport, PsdWindow, Statistics, Summits, find_summits,
-    prepare,
-    radial_psd, read_file, statistics,
+    prepare, radial_psd, read_file, statistics,
 };
 use stiction_units::io::write_atomic;
 
