@@ -95,7 +95,7 @@ fn flag_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
         return value.repr()?.extract::<String>();
     }
     let json = value.py().import("json")?;
-    Ok(json.call_method1("dumps", (value,))?.extract()?)
+    json.call_method1("dumps", (value,))?.extract()
 }
 
 #[pymethods]
