@@ -209,3 +209,28 @@ def test_point_columns_mark_a_missing_value_as_nan():
     cols = stiction._columns([{"a": 1.5, "b": True}, {"a": None, "b": False}, {"b": True}])
     assert np.array_equal(cols["a"], [1.5, np.nan, np.nan], equal_nan=True)
     assert cols["b"].dtype == bool and list(cols["b"]) == [True, False, True]
+
+
+def test_study_releases_the_gil(in_root):
+    """While a study runs in one thread, Python code runs in another: with the GIL held through
+    the call, the main thread would not record one tick inside it."""
+    import threading
+    import time
+
+    span = {}
+
+    def work():
+        span["start"] = time.perf_counter()
+        stiction.study(TAS, samples=400, seed=2, threads=1)
+        span["end"] = time.perf_counter()
+
+    t = threading.Thread(target=work)
+    ticks = []
+    t.start()
+    while t.is_alive():
+        ticks.append(time.perf_counter())
+        time.sleep(0.001)
+    t.join()
+    assert span["end"] - span["start"] > 0.05, "the study is too short to tell"
+    inside = [x for x in ticks if span["start"] + 0.02 < x < span["end"] - 0.02]
+    assert len(inside) >= 5, f"{len(inside)} ticks of the main thread during the study"
