@@ -2,6 +2,7 @@
 //! Python module): each function returns what the matching subcommand prints with `--json`, from
 //! the same code.
 
+pub use crate::cmd::discrete::{Args as DiscreteArgs, Law, discrete_json};
 pub use crate::cmd::run::{Experiment, experiment, run_json};
 pub use crate::cmd::study::study_json;
 pub use crate::cmd::topography::topography_json;

@@ -379,6 +379,73 @@ fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: Vec<f64>) -> P
     Ok(d)
 }
 
+/// A quantity argument: a unit string or an SI number, checked as the command line's flag.
+fn quantity(name: &str, value: &Bound<'_, PyAny>, dim: Dimension, constraint: Constraint) -> PyResult<f64> {
+    let text = flag_text(value)?;
+    parse_quantity_checked(&text, dim, constraint).map_err(|e| err(format!("{name}={text}: {e}")))
+}
+
+/// discrete_json(...) -> str: a JSON list, per load, of what `stiction discrete ... --json` prints.
+#[pyfunction]
+#[pyo3(signature = (contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion="dmt", equilibrium_spacing=None, target_slope=None))]
+#[allow(clippy::too_many_arguments)]
+fn discrete_json(
+    py: Python<'_>,
+    contacts: u32,
+    radius: &Bound<'_, PyAny>,
+    work_of_adhesion: &Bound<'_, PyAny>,
+    compliance: &Bound<'_, PyAny>,
+    shear_strength: &Bound<'_, PyAny>,
+    loads: Vec<Bound<'_, PyAny>>,
+    adhesion: &str,
+    equilibrium_spacing: Option<&Bound<'_, PyAny>>,
+    target_slope: Option<f64>,
+) -> PyResult<String> {
+    use stiction_cli::api::{DiscreteArgs, Law};
+    let law = match adhesion.to_ascii_lowercase().as_str() {
+        "dmt" => Law::Dmt,
+        "jkr" => Law::Jkr,
+        "maugis-dugdale" => Law::MaugisDugdale,
+        "hertz" => Law::Hertz,
+        other => return Err(err(format!("adhesion={other}: expected dmt, jkr, maugis-dugdale or hertz"))),
+    };
+    let template = DiscreteArgs {
+        contacts,
+        radius: quantity("radius", radius, Dimension::Length, Constraint::Positive)?,
+        work_of_adhesion: quantity(
+            "work_of_adhesion",
+            work_of_adhesion,
+            Dimension::SurfaceEnergy,
+            Constraint::NonNegative,
+        )?,
+        compliance: quantity("compliance", compliance, Dimension::Compliance, Constraint::Positive)?,
+        shear_strength: quantity("shear_strength", shear_strength, Dimension::Pressure, Constraint::NonNegative)?,
+        load: 0.0,
+        adhesion: law,
+        equilibrium_spacing: match equilibrium_spacing {
+            Some(v) if !v.is_none() => quantity("equilibrium_spacing", v, Dimension::Length, Constraint::Positive)?,
+            // The command line's default, parsed as it parses it.
+            _ => parse_quantity_checked("0.3 nm", Dimension::Length, Constraint::Positive).map_err(err)?,
+        },
+        target_slope,
+        json: true,
+    };
+    let loads: Vec<f64> = loads
+        .iter()
+        .enumerate()
+        .map(|(i, l)| quantity(&format!("load[{i}]"), l, Dimension::Force, Constraint::Finite))
+        .collect::<PyResult<_>>()?;
+    py.detach(|| {
+        let mut out = Vec::with_capacity(loads.len());
+        for (i, &load) in loads.iter().enumerate() {
+            let args = DiscreteArgs { load, ..template };
+            out.push(stiction_cli::api::discrete_json(&args).map_err(|e| format!("load[{i}] = {load} N: {e}"))?);
+        }
+        serde_json::to_string(&out).map_err(|e| e.to_string())
+    })
+    .map_err(err)
+}
+
 /// The extension module `stiction._stiction`.
 #[pymodule]
 fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -388,5 +455,6 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(topography_json, m)?)?;
     m.add_function(wrap_pyfunction!(study_json, m)?)?;
     m.add_function(wrap_pyfunction!(gw_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(discrete_json, m)?)?;
     Ok(())
 }

@@ -234,3 +234,20 @@ def test_study_releases_the_gil(in_root):
     assert span["end"] - span["start"] > 0.05, "the study is too short to tell"
     inside = [x for x in ticks if span["start"] + 0.02 < x < span["end"] - 0.02]
     assert len(inside) >= 5, f"{len(inside)} ticks of the main thread during the study"
+
+
+def test_discrete_at_a_load_vector_equals_cli(cli_json):
+    material = ["--radius", "0.5 um", "--work-of-adhesion", "0.1 J/m^2", "--compliance", "9.1e-12 1/Pa",
+                "--shear-strength", "1.4 GPa"]
+    loads = np.array([-1e-7, 0.0, 3e-6, 1e-5])
+    d = stiction.discrete(3, "0.5 um", "0.1 J/m^2", 9.1e-12, "1.4 GPa", loads, target_slope=0.7)
+    for i, l in enumerate(loads):
+        e = cli_json("discrete", "--contacts", 3, *material, "--load", repr(float(l)), "--target-slope", "0.7")
+        assert d["points"][i] == e
+        assert d["friction_n"][i] == e["friction_n"]
+    jkr = stiction.discrete(1, 5e-7, 0.1, 9.1e-12, 1.4e9, "2 uN", adhesion="jkr")
+    assert jkr["points"][0] == cli_json("discrete", "--contacts", 1, *material, "--load", "2 uN", "--adhesion", "jkr")
+    with pytest.raises(stiction.StictionError, match="radius"):
+        stiction.discrete(3, "-1 um", 0.1, 9.1e-12, 1.4e9, 0.0)
+    with pytest.raises(stiction.StictionError, match="adhesion"):
+        stiction.discrete(3, "1 um", 0.1, 9.1e-12, 1.4e9, 0.0, adhesion="sticky")

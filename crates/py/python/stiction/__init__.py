@@ -20,7 +20,7 @@ import numpy as _np
 from ._stiction import Scenario, StictionError
 from . import _stiction
 
-__all__ = ["Scenario", "StictionError", "Result", "run", "topography", "study", "gw"]
+__all__ = ["Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete"]
 
 PathOrScenario = Union[str, "_os.PathLike[str]", Scenario]
 
@@ -166,3 +166,41 @@ def gw(theta: Optional[float], load_star) -> Dict[str, Any]:
     """
     loads = _np.atleast_1d(_np.asarray(load_star, dtype=float)).ravel()
     return _stiction.gw_arrays(None if theta is None else float(theta), loads.tolist())
+
+
+def discrete(
+    contacts: int,
+    radius: Union[str, float],
+    work_of_adhesion: Union[str, float],
+    compliance: Union[str, float],
+    shear_strength: Union[str, float],
+    load,
+    adhesion: str = "dmt",
+    equilibrium_spacing: Union[str, float, None] = None,
+    target_slope: Optional[float] = None,
+) -> Dict[str, Any]:
+    """The discrete N-contact model (eq. 12): N equally loaded summits, F_f = s N pi a^2 with the
+    contact radius a from the single-asperity law at L/N.
+
+    contacts: N. radius: summit radius R (length, "0.5 um" or m). work_of_adhesion: dgamma
+    ("0.1 J/m^2" or J/m^2). compliance: D = 3/4 ((1-nu1^2)/E1 + (1-nu2^2)/E2) ("9.1e-12 1/Pa").
+    shear_strength: s ("1.4 GPa" or Pa). load: L, a force ("3 uN" or N) or an array of them.
+    adhesion: "dmt" (the paper's), "jkr", "maugis-dugdale" or "hertz". equilibrium_spacing: z0
+    (default "0.3 nm"). target_slope: also the shear strength giving this slope at each load.
+
+    Returns a dict: the fields of ``stiction discrete ... --json`` (one CLI call per load), numbers
+    as float64 arrays over the loads (null as NaN: friction_slope is null where the contact radius
+    is 0), and ``points``, the list of the CLI's objects, equal to its JSON.
+    """
+    loads = load if isinstance(load, str) else _np.atleast_1d(_np.asarray(load, dtype=float)).ravel().tolist()
+    if isinstance(loads, str):
+        loads = [loads]
+    points = _json.loads(
+        _stiction.discrete_json(
+            contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion,
+            equilibrium_spacing, target_slope,
+        )
+    )
+    out: Dict[str, Any] = dict(_columns(points))
+    out["points"] = points
+    return out

@@ -57,3 +57,14 @@ def study(
     fixed_surface: bool = False,
 ) -> Result: ...
 def gw(theta: Optional[float], load_star: Union[float, Sequence[float], npt.NDArray[np.float64]]) -> Dict[str, Any]: ...
+def discrete(
+    contacts: int,
+    radius: Union[str, float],
+    work_of_adhesion: Union[str, float],
+    compliance: Union[str, float],
+    shear_strength: Union[str, float],
+    load: Union[str, float, Sequence[float], npt.NDArray[np.float64]],
+    adhesion: str = "dmt",
+    equilibrium_spacing: Quantity = None,
+    target_slope: Optional[float] = None,
+) -> Dict[str, Any]: ...
