@@ -10,16 +10,17 @@ cd "$(dirname "$0")/.."
 
 cargo test --workspace --release
 
-venv=$(mktemp -d)/venv
-trap 'rm -rf "$(dirname "$venv")"' EXIT
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+venv=$tmp/venv
 python3 -m venv "$venv"
 "$venv/bin/pip" install -q --upgrade pip
 "$venv/bin/pip" install -q maturin pytest numpy
 # The binding with clippy (it is behind the `python` feature, so the workspace lint skips it).
 cargo clippy -p stiction-py --all-targets --release --features python -- -D warnings
 # The wheel (abi3: one wheel for CPython >= 3.9), installed as a user would install it.
-"$venv/bin/maturin" build --release -q -m crates/py/Cargo.toml --out target/wheels
-"$venv/bin/pip" install -q --force-reinstall --no-deps target/wheels/stiction-*.whl
+"$venv/bin/maturin" build --release -q -m crates/py/Cargo.toml --out "$tmp/wheels"
+"$venv/bin/pip" install -q --no-deps "$tmp"/wheels/stiction-*.whl
 cargo build --release -q -p stiction-cli
 # pytest prints its own summary; the line below is read by .ci/run beside cargo's.
 "$venv/bin/python" -m pytest -q -p no:cacheprovider crates/py/tests
