@@ -7,9 +7,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-mod cmd;
-mod figargs;
-mod output;
+use stiction_cli::{cmd, output};
 
 /// stiction: a virtual MEMS friction meter (static friction in elastic adhesive MEMS contacts).
 ///
@@ -74,11 +72,11 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if e.is::<output::Interrupted>() => {
-            crate::errln!("{e}");
+            stiction_cli::errln!("{e}");
             ExitCode::from(130)
         }
         Err(e) => {
-            crate::errln!("error: {e}");
+            stiction_cli::errln!("error: {e}");
             ExitCode::from(2)
         }
     }

@@ -91,8 +91,12 @@ struct Output {
     shear_strength_for_target_slope_pa: Option<f64>,
 }
 
-/// Runs the subcommand.
-pub fn run(args: Args) -> CliResult {
+/// The JSON object `stiction discrete ... --json` prints for `args`.
+pub fn discrete_json(args: &Args) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    Ok(serde_json::to_value(compose(args)?)?)
+}
+
+fn compose(args: &Args) -> Result<Output, Box<dyn std::error::Error>> {
     let params = AsperityParams {
         radius_m: args.radius,
         compliance_per_pa: args.compliance,
@@ -103,7 +107,7 @@ pub fn run(args: Args) -> CliResult {
     let at = model.at_load(args.load)?;
     let zero = model.at_load(0.0)?;
     let rec = params.recommendation();
-    let out = Output {
+    Ok(Output {
         contacts: args.contacts,
         law: args.adhesion.into(),
         load_n: args.load,
@@ -124,7 +128,12 @@ pub fn run(args: Args) -> CliResult {
             .target_slope
             .map(|t| model.shear_strength_for_slope(t, args.load))
             .transpose()?,
-    };
+    })
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> CliResult {
+    let out = compose(&args)?;
     if args.json {
         return print_json(&out);
     }

@@ -55,22 +55,60 @@ pub fn run(args: Args) -> CliResult {
         None => None,
     };
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
-    // One source of truth: a given spring force that contradicts the clamp spring is refused.
-    if let Some(conflict) = scenario.spring_force_conflict() {
-        return Err(format!("{}: {conflict}", args.scenario.display()).into());
-    }
-    let mut meter = Meter::from_scenario(&scenario, &base).map_err(|e| format!("{}: {e}", args.scenario.display()))?;
+    let name = args.scenario.display().to_string();
     let bar = ProgressBar::new(0);
     bar.set_style(
         ProgressStyle::with_template("{spinner} clamp voltages {pos}/{len} [{bar:30}] {elapsed_precise}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let result = meter.run(&mut |done, total| {
+    let Experiment { mut meter, result, measured } = experiment(&scenario, &name, &base, &mut |done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     })?;
     bar.finish_and_clear();
-    let mut result = result;
+    let output = RunOutput { scenario: name, description: &scenario.description, result: &result, measured };
+    if let Some(set) = outputs {
+        write_outputs(set, &output, &scenario, &mut meter, &base, &args.fig)?;
+    }
+    if args.json {
+        return print_json(&output);
+    }
+    print_summary(&output, scenario.reference.as_ref(), scenario.mu_calibration_relative_sd());
+    if let Some(dir) = &args.out {
+        crate::outln!(
+            "\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig5.csv, fig7.svg, fig7.png, fig7.csv, manifest.json",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// A finished friction-meter experiment: the meter (for the figures' curves), its result with the
+/// scenario's notes before the fit's warnings, and the measured voltages beside the model.
+pub struct Experiment {
+    /// The meter that ran (its contact model draws the figures' curves).
+    pub meter: Meter,
+    /// The points and the eq. 10 fit.
+    pub result: MeterResult,
+    /// The scenario's measured voltages beside the model, when it has a `measured` section.
+    pub measured: Option<Comparison>,
+}
+
+/// Runs the friction meter of `scenario` (named `name` in errors; relative paths from `base`):
+/// clamp at each clamp voltage, ramp the pull voltage until slip, fit eq. 10. `progress(done,
+/// total)` after each clamp voltage.
+pub fn experiment(
+    scenario: &Scenario,
+    name: &str,
+    base: &Path,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Experiment, Box<dyn std::error::Error>> {
+    // One source of truth: a given spring force that contradicts the clamp spring is refused.
+    if let Some(conflict) = scenario.spring_force_conflict() {
+        return Err(format!("{name}: {conflict}").into());
+    }
+    let mut meter = Meter::from_scenario(scenario, base).map_err(|e| format!("{name}: {e}"))?;
+    let mut result = meter.run(progress)?;
     // What the scenario's loading and calibrations say comes first, then the fit's own warnings.
     let mut warnings = scenario.notes.clone();
     for (name, spec) in &scenario.actuators {
@@ -87,26 +125,25 @@ pub fn run(args: Args) -> CliResult {
         }
         None => None,
     };
+    Ok(Experiment { meter, result, measured })
+}
+
+/// The JSON object `stiction run SCENARIO --json` prints for `scenario` named `name` (its
+/// `scenario` field) with relative paths from `base`.
+pub fn run_json(
+    scenario: &Scenario,
+    name: &str,
+    base: &Path,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let e = experiment(scenario, name, base, progress)?;
     let output = RunOutput {
-        scenario: args.scenario.display().to_string(),
+        scenario: name.to_string(),
         description: &scenario.description,
-        result: &result,
-        measured,
+        result: &e.result,
+        measured: e.measured,
     };
-    if let Some(set) = outputs {
-        write_outputs(set, &output, &scenario, &mut meter, &base, &args.fig)?;
-    }
-    if args.json {
-        return print_json(&output);
-    }
-    print_summary(&output, scenario.reference.as_ref(), scenario.mu_calibration_relative_sd());
-    if let Some(dir) = &args.out {
-        crate::outln!(
-            "\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig5.csv, fig7.svg, fig7.png, fig7.csv, manifest.json",
-            dir.display()
-        );
-    }
-    Ok(())
+    Ok(serde_json::to_value(&output)?)
 }
 
 fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>, calibration_rel_sd: Option<f64>) {

@@ -200,24 +200,13 @@ pub fn run(args: Args) -> CliResult {
     if !args.vary.is_empty() {
         return crate::cmd::design::run(args, config);
     }
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(t) = args.threads {
-        if t == 0 || t > MAX_THREADS {
-            return Err(format!(
-                "--threads {t}: expected 1 to {MAX_THREADS} (this machine has {} cores; more threads than cores do \
-                 not make a study faster)",
-                std::thread::available_parallelism().map_or(1, |n| n.get())
-            )
-            .into());
-        }
-        pool = pool.num_threads(t);
-    }
+    let pool = thread_pool(args.threads)?;
     let study = Study::prepare(&args.scenario, &args.sets, &config)?;
     let header = study.header();
     // Without --out the log lives in a temporary folder removed at the end.
     let (dir, temporary) = match &args.out {
         Some(d) => (d.clone(), false),
-        None => (std::env::temp_dir().join(format!("stiction-study-{}", std::process::id())), true),
+        None => (temporary_log_dir(), true),
     };
     if temporary {
         let _ = std::fs::remove_dir_all(&dir);
@@ -238,7 +227,6 @@ pub fn run(args: Args) -> CliResult {
         crate::errln!("resuming: {done} of {total} samples found in {}", log.path().display());
     }
     let progress = Progress::new(total, done, args.quiet || args.json);
-    let pool = pool.build()?;
     crate::output::stop_cleanly();
     let ran = pool.install(|| study.run_into_until(&mut log, done, &|n| progress.update(n), &crate::output::INTERRUPT));
     progress.finish(*ran.as_ref().unwrap_or(&done));
@@ -320,6 +308,57 @@ pub(crate) fn interrupted(logged: usize, total: usize, dir: &Path, temporary: bo
         dir.join(stiction_study::log::LOG_NAME).display(),
         words.join(" ")
     ))
+}
+
+/// The worker pool of `--threads` (default: all cores).
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Box<dyn std::error::Error>> {
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = threads {
+        if t == 0 || t > MAX_THREADS {
+            return Err(format!(
+                "--threads {t}: expected 1 to {MAX_THREADS} (this machine has {} cores; more threads than cores do \
+                 not make a study faster)",
+                std::thread::available_parallelism().map_or(1, |n| n.get())
+            )
+            .into());
+        }
+        pool = pool.num_threads(t);
+    }
+    Ok(pool.build()?)
+}
+
+/// A fresh folder name for the log of a study without --out (one per call, so that studies
+/// running at once in one process do not meet).
+fn temporary_log_dir() -> PathBuf {
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    std::env::temp_dir().join(format!("stiction-study-{}-{call}", std::process::id()))
+}
+
+/// The summary `stiction study SCENARIO --json` prints (without --out, --shard or --vary): the
+/// study of the scenario file with the `sets` overrides, `config`'s samples, seed and options, on
+/// `threads` workers; `progress(done)` as samples finish.
+pub fn study_json(
+    scenario: &Path,
+    sets: &[String],
+    config: &StudyConfig,
+    threads: Option<usize>,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    config.validate()?;
+    let pool = thread_pool(threads)?;
+    let study = Study::prepare(scenario, sets, config)?;
+    let dir = temporary_log_dir();
+    let _ = std::fs::remove_dir_all(&dir);
+    ensure_dir(&dir)?;
+    let ran = (|| -> Result<StudySummary, Box<dyn std::error::Error>> {
+        let mut log = LogWriter::create(&dir, &study.header())?;
+        pool.install(|| study.run_into(&mut log, 0, progress))?;
+        drop(log);
+        Ok(stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| s)?)
+    })();
+    let _ = std::fs::remove_dir_all(&dir);
+    Ok(serde_json::to_value(ran?)?)
 }
 
 /// Writes study.json, samples.csv, sensitivity.csv and the figures of the study whose complete

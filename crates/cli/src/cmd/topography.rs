@@ -7,8 +7,8 @@ use stiction_plot::{Chart, ImageMap, Series};
 use stiction_scenario::Scenario;
 use stiction_surface::{Radii, Surface};
 use stiction_topography::{
-    HeightMap, MapFormat, MapInfo, Nayak, PreparationReport, PsdWindow, Statistics, Summits, find_summits, prepare,
-    radial_psd, read_file, statistics,
+    HeightMap, MapFormat, MapInfo, Nayak, Preparation, PreparationReport, PsdWindow, Statistics, Summits, find_summits,
+    prepare, radial_psd, read_file, statistics,
 };
 use stiction_units::io::write_atomic;
 
@@ -104,34 +104,9 @@ pub fn run(args: Args) -> CliResult {
     if let Some(path) = &args.summits {
         crate::output::check_output_flag("--summits", path)?;
     }
-    let prep = args.map.preparation();
-    let (map, report) = prepare(&raw, &prep)?;
-    drop(raw);
-    let summits = find_summits(&map);
-    let st = statistics(&map, &summits);
-    let gw = gw_of(&st, args.scenario.as_deref())?;
-    let out = Output {
-        file: args.file.display().to_string(),
-        format: info.format,
-        read: info,
-        preparation: report,
-        summit_count: st.summits.count,
-        summit_density_per_m2: st.summits.density_per_m2,
-        summit_height_sd_m: st.summits.height_sd_m,
-        summit_height_mean_m: st.summits.height_mean_m,
-        summit_radius_mean_m: st.summits.radius_mean_m,
-        summit_radius_median_m: st.summits.radius_median_m,
-        summit_curvature_mean_per_m: st.summits.curvature_mean_per_m,
-        rms_height_m: st.rms_height_m,
-        rms_slope: st.rms_slope,
-        rms_curvature_per_m: st.rms_curvature_per_m,
-        autocorrelation_length_m: st.autocorrelation_length_m,
-        autocorrelation_length_note: st.autocorrelation_length_note,
-        nayak: st.nayak,
-        nayak_note: st.nayak_note,
-        gw,
-        statistics: st,
-    };
+    let (out, map, summits) =
+        compose(args.file.display().to_string(), raw, info, &args.map.preparation(), args.scenario.as_deref())?;
+    let report = out.preparation;
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("statistics.json", crate::output::json_text(&out)?.as_bytes())?;
         let staging = set.staging_dir().to_path_buf();
@@ -152,6 +127,59 @@ pub fn run(args: Args) -> CliResult {
     }
     print_table_of(&out);
     Ok(())
+}
+
+/// Prepares `raw` (levelling, cut-offs), finds its summits and composes the statistics of the
+/// map named `file`; the prepared map and its summits come back beside them.
+fn compose(
+    file: String,
+    raw: HeightMap,
+    info: MapInfo,
+    prep: &Preparation,
+    scenario: Option<&Path>,
+) -> Result<(Output, HeightMap, Summits), Box<dyn std::error::Error>> {
+    let (map, report) = prepare(&raw, prep)?;
+    drop(raw);
+    let summits = find_summits(&map);
+    let st = statistics(&map, &summits);
+    let gw = gw_of(&st, scenario)?;
+    let out = Output {
+        file,
+        format: info.format,
+        read: info,
+        preparation: report,
+        summit_count: st.summits.count,
+        summit_density_per_m2: st.summits.density_per_m2,
+        summit_height_sd_m: st.summits.height_sd_m,
+        summit_height_mean_m: st.summits.height_mean_m,
+        summit_radius_mean_m: st.summits.radius_mean_m,
+        summit_radius_median_m: st.summits.radius_median_m,
+        summit_curvature_mean_per_m: st.summits.curvature_mean_per_m,
+        rms_height_m: st.rms_height_m,
+        rms_slope: st.rms_slope,
+        rms_curvature_per_m: st.rms_curvature_per_m,
+        autocorrelation_length_m: st.autocorrelation_length_m,
+        autocorrelation_length_note: st.autocorrelation_length_note,
+        nayak: st.nayak,
+        nayak_note: st.nayak_note,
+        gw,
+        statistics: st,
+    };
+    Ok((out, map, summits))
+}
+
+/// The JSON object `stiction topography FILE --json` prints for the map `raw` as read (with
+/// `info`) from `file`, prepared with `prep`, with the material of `scenario` for theta; the
+/// prepared map and its summits beside it.
+pub fn topography_json(
+    file: &str,
+    raw: HeightMap,
+    info: MapInfo,
+    prep: &Preparation,
+    scenario: Option<&Path>,
+) -> Result<(serde_json::Value, HeightMap, Summits), Box<dyn std::error::Error>> {
+    let (out, map, summits) = compose(file.to_string(), raw, info, prep, scenario)?;
+    Ok((serde_json::to_value(&out)?, map, summits))
 }
 
 fn gw_of(st: &Statistics, scenario: Option<&Path>) -> Result<Gw, Box<dyn std::error::Error>> {

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Every test of stiction: the Rust workspace (cargo test), then the Python package built as a
+# wheel into a fresh virtual environment and its pytest tests (crates/py/tests), which compare
+# the module's results with the built `stiction` binary's --json.
+#
+# Needs python3 (>= 3.9, with venv) and network access to PyPI for maturin, pytest and numpy.
+# The wheel is built by maturin in this workspace's target/ folder, so it reuses the Rust build.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+cargo test --workspace --release
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+venv=$tmp/venv
+python3 -m venv "$venv"
+"$venv/bin/pip" install -q --upgrade pip
+"$venv/bin/pip" install -q maturin pytest numpy
+# The binding with clippy (it is behind the `python` feature, so the workspace lint skips it).
+cargo clippy -p stiction-py --all-targets --release --features python -- -D warnings
+# The wheel (abi3: one wheel for CPython >= 3.9), installed as a user would install it.
+"$venv/bin/maturin" build --release -q -m crates/py/Cargo.toml --out "$tmp/wheels"
+"$venv/bin/pip" install -q --no-deps "$tmp"/wheels/stiction-*.whl
+cargo build --release -q -p stiction-cli
+# pytest prints its own summary; the line below is read by .ci/run beside cargo's.
+"$venv/bin/python" -m pytest -q -p no:cacheprovider crates/py/tests
