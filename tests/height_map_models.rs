@@ -32,9 +32,25 @@ fn statistical_models_use_the_maps_summit_statistics() {
     assert!(notes.contains("gw-dmt and discrete-nN use the summit statistics counted on the height map"), "{notes}");
     let names: Vec<&str> = fit["models"].as_array().unwrap().iter().map(|m| m["name"].as_str().unwrap()).collect();
     assert!(names.contains(&"gw-dmt") && names.contains(&"discrete-n3"), "{names:?}; failed: {}", fit["models_failed"]);
-    // `run` with the GW model on the height-map scenario runs too.
+    // `run` with the GW model on the height-map scenario runs too, and says in a warning that its
+    // statistics are the map's, with topography's numbers (printed to 4 significant digits).
     let out = stiction(&["run", "scenarios/tas2000-height-map.json", "--set", "contact.model=\"gw\""]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let run = stiction_json(&["run", "scenarios/tas2000-height-map.json", "--set", "contact.model=\"gw\"", "--json"]);
+    let w = run["warnings"].as_array().unwrap().iter().find(|w| w["code"] == "statistics_from_map");
+    let msg = w.unwrap_or_else(|| panic!("no statistics_from_map warning: {}", run["warnings"]))["message"].to_string();
+    let eta_per_um2 = topo["summit_density_per_m2"].as_f64().unwrap() * 1e-12;
+    let sd_nm = topo["summit_height_sd_m"].as_f64().unwrap() * 1e9;
+    let r_um = topo["summit_radius_mean_m"].as_f64().unwrap() * 1e6;
+    for needle in [
+        format!("{} summits", topo["summit_count"]),
+        format!("eta = {eta_per_um2:.3} 1/um^2"),
+        format!("sigma_s = {sd_nm:.3} nm"),
+        format!("R = {r_um:.3} um"),
+        "wall.gsf".to_string(),
+    ] {
+        assert!(msg.contains(&needle), "missing `{needle}` in {msg}");
+    }
 }
 
 /// A 2 um x 2 um map (200 x 200 pixels of 10 nm, a sum of sines) under the 20 um x 5 um shoe:

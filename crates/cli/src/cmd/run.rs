@@ -116,6 +116,27 @@ pub fn experiment(
             warnings.push(stiction_scenario::Warning::new("calibration_rederived", format!("actuators.{name}: {r}")));
         }
     }
+    // A statistical model on a height-map sidewall takes its summit statistics from the whole map
+    // (the numbers `stiction topography` prints): say so, with the numbers.
+    let model = scenario.contact_or_default().model;
+    if matches!(model, stiction_scenario::ContactModel::Gw | stiction_scenario::ContactModel::Discrete)
+        && let Ok(surface) = scenario.require_surface()
+        && surface.source == stiction_surface::SurfaceSource::HeightMap
+    {
+        let st = stiction_surface::map_summit_statistics(surface, base).map_err(|e| format!("{name}: {e}"))?;
+        warnings.push(stiction_scenario::Warning::new(
+            "statistics_from_map",
+            format!(
+                "the {model} model uses {}: {} summits, eta = {:.3} 1/um^2, sigma_s = {:.3} nm, R = {:.3} um; \
+                 not the patch under the shoe",
+                st.source,
+                st.summit_count,
+                st.summit_density_per_m2 * 1e-12,
+                st.summit_sd_m * 1e9,
+                st.summit_radius_m * 1e6,
+            ),
+        ));
+    }
     warnings.append(&mut result.warnings);
     result.warnings = warnings;
     let measured = match &scenario.measured {
