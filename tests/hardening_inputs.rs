@@ -46,6 +46,9 @@ fn cutoffs_longer_than_the_map_are_refused_with_its_size() {
         let set = format!("surface.height_map.{field}=1 m");
         let o = stiction(&["run", "scenarios/tas2000-height-map.json", "--set", &set]);
         assert_refused(&o, &[field, "25.6000 um"], &set);
+        // `stiction scenario` checks the map as `run` reads it, so it refuses the same scenario.
+        let o = stiction(&["scenario", "scenarios/tas2000-height-map.json", "--set", &set]);
+        assert_refused(&o, &[field, "25.6000 um"], &format!("scenario --set {set}"));
     }
     // A cut-off just inside the map is still filtered.
     let v = stiction_json(&["topography", MAP, "--long-cutoff", "20 um", "--json"]);

@@ -37,6 +37,15 @@ pub fn run(args: Args) -> CliResult {
     }
     let path = args.scenario.ok_or("a scenario file is needed")?;
     let scenario = Scenario::load(&path, &args.sets)?;
+    // A height-map sidewall is checked as `run` reads it: the map is read and prepared (cut-offs no
+    // longer than the map, a map at least as large as the shoe or `tile`), so a scenario that
+    // passes here does not fail there.
+    if let Ok(surface) = scenario.require_surface()
+        && surface.source == stiction_surface::SurfaceSource::HeightMap
+    {
+        let base = path.parent().map(std::path::PathBuf::from).unwrap_or_default();
+        stiction_surface::height_map_patch(surface, &base).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
     if !args.explain {
         for n in &scenario.notes {
             crate::errln!("note [{}]: {}", n.code, n.message);
