@@ -168,3 +168,43 @@ fn bad_grids_are_refused_naming_the_field() {
         assert!(err.contains(needle), "{a:?}: {err}");
     }
 }
+
+/// A range `--vary "PATH=LO..HI"` with `--design-points 3`: three designs whose values fall one in
+/// each third of the range (a centred Latin hypercube, seeded by --seed), each design byte for byte
+/// the single study with that value `--set`; a range without --design-points is refused.
+/// Deliberate bug caught: every range value placed at the range's low end (seen failing: the
+/// three designs share one third).
+#[test]
+fn a_range_is_filled_by_a_seeded_space_filling_design() {
+    let out = temp_dir("design-range");
+    let base = ["study", "scenarios/tas2000.json", "--samples", "12", "--seed", "3", "--threads", "1", "--quiet"];
+    let mut a = base.to_vec();
+    a.extend(["--vary", "meter.clamp_voltages.to=29 V..41 V", "--design-points", "3", "--out", out.to_str().unwrap()]);
+    run(&a);
+    let table = std::fs::read_to_string(out.join("designs.csv")).unwrap();
+    let mut thirds = Vec::new();
+    for (d, line) in table.lines().skip(1).enumerate() {
+        let value = line.split(',').nth(1).unwrap().to_string();
+        let volts: f64 = value.strip_suffix(" V").unwrap_or_else(|| panic!("{value}")).parse().unwrap();
+        assert!((29.0..=41.0).contains(&volts), "{volts}");
+        thirds.push(((volts - 29.0) / 4.0).floor() as usize);
+        let single = out.join(format!("single-{d}"));
+        let set = format!("meter.clamp_voltages.to={value}");
+        let mut s = base.to_vec();
+        s.extend(["--set", &set, "--out", single.to_str().unwrap()]);
+        run(&s);
+        same_folder(&single, &out.join(format!("design-{d:03}")));
+    }
+    thirds.sort_unstable();
+    assert_eq!(thirds, vec![0, 1, 2], "{table}");
+    let o = stiction(&[
+        "study",
+        "scenarios/tas2000.json",
+        "--samples",
+        "4",
+        "--vary",
+        "meter.clamp_voltages.to=29 V..41 V",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--design-points"));
+}

@@ -32,8 +32,83 @@ pub const MAX_DESIGNS: usize = 1000;
 pub struct Vary {
     /// The scenario field, as `--set` names it.
     pub path: String,
-    /// Its values, as `--set` takes them.
+    /// Its values, as `--set` takes them (for a range: filled in by [`grid`] from the
+    /// space-filling design).
     pub values: Vec<String>,
+    /// A continuous range `LO..HI` (`--vary "PATH=20 V..40 V"`): the two ends as numbers in the
+    /// unit written after them (the same unit at both ends, or none), sampled by a Latin hypercube.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<VaryRange>,
+}
+
+/// A continuous range of a varied field: `lo..hi` in `unit` (as written, e.g. "V" or "N/m";
+/// empty for a bare number in SI).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct VaryRange {
+    /// The low end, in `unit`.
+    pub lo: f64,
+    /// The high end, in `unit`.
+    pub hi: f64,
+    /// The unit written after both ends ("" for SI numbers).
+    pub unit: String,
+}
+
+/// Splits `"20 V"` into 20 and "V" (a bare number has the unit "").
+fn number_and_unit(s: &str) -> Option<(f64, String)> {
+    let s = s.trim();
+    let (num, unit) = match s.find(char::is_whitespace) {
+        Some(k) => (&s[..k], s[k..].trim()),
+        None => (s, ""),
+    };
+    let x: f64 = num.parse().ok()?;
+    x.is_finite().then(|| (x, unit.to_string()))
+}
+
+impl VaryRange {
+    /// Parses `LO..HI` (`"20 V..40 V"`, `"1..3"`); `None` when the text is not a range.
+    fn parse(text: &str) -> Option<Result<VaryRange, String>> {
+        let (lo, hi) = text.split_once("..")?;
+        let (Some((lo, u1)), Some((hi, u2))) = (number_and_unit(lo), number_and_unit(hi)) else {
+            return Some(Err("a range is LO..HI with two finite numbers (\"20 V..40 V\")".into()));
+        };
+        if u1 != u2 {
+            return Some(Err(format!(
+                "the two ends of a range have different units ({u1:?} and {u2:?}); write both in one unit"
+            )));
+        }
+        if lo >= hi {
+            return Some(Err(format!("a range LO..HI needs LO < HI (got {lo}..{hi})")));
+        }
+        Some(Ok(VaryRange { lo, hi, unit: u1 }))
+    }
+
+    /// The value at the fraction `t` of the range (0 at `lo`, 1 at `hi`), as `--set` takes it.
+    fn value_at(&self, t: f64) -> String {
+        let x = self.lo + t * (self.hi - self.lo);
+        if self.unit.is_empty() { format!("{x}") } else { format!("{x} {}", self.unit) }
+    }
+}
+
+/// A centred Latin hypercube of `n` points in `dims` dimensions, seeded: in every dimension the
+/// `n` points fall one in each of the `n` equal strata, at the stratum's centre, in an order
+/// drawn (Fisher-Yates, ChaCha8 seeded with `seed` and the dimension) independently per dimension.
+/// Returns `points[i][d]`, fractions in (0, 1).
+pub fn latin_hypercube(n: usize, dims: usize, seed: u64) -> Vec<Vec<f64>> {
+    use rand::{Rng, SeedableRng};
+    let mut points = vec![vec![0.0; dims]; n];
+    for d in 0..dims {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(0x4c48_5300 + d as u64);
+        let mut order: Vec<usize> = (0..n).collect();
+        for i in (1..n).rev() {
+            let j = rng.random_range(0..=i);
+            order.swap(i, j);
+        }
+        for (i, p) in points.iter_mut().enumerate() {
+            p[d] = (order[i] as f64 + 0.5) / n as f64;
+        }
+    }
+    points
 }
 
 /// Splits `V1,V2,...` at the commas outside brackets, braces and quotes (a value may be a JSON
@@ -68,6 +143,10 @@ impl Vary {
         if path.is_empty() {
             return Err(bad("the field path before `=` is empty"));
         }
+        if let Some(range) = VaryRange::parse(values) {
+            let range = range.map_err(|m| bad(&m))?;
+            return Ok(Vary { path: path.to_string(), values: Vec::new(), range: Some(range) });
+        }
         let values = split_values(values);
         if let Some(k) = values.iter().position(String::is_empty) {
             return Err(bad(&format!("value {} is empty (expected V1,V2,... without empty entries)", k + 1)));
@@ -77,14 +156,24 @@ impl Vary {
                 return Err(bad(&format!("the value {v:?} is given twice")));
             }
         }
-        Ok(Vary { path: path.to_string(), values })
+        Ok(Vary { path: path.to_string(), values, range: None })
     }
 }
 
 /// The design points: every combination of the varied values, the first `--vary` slowest.
 /// Refuses a path varied twice, a path also given with `--set` (one source of truth), and more
 /// than [`MAX_DESIGNS`] points.
-pub fn grid(varies: &[Vary], sets: &[String]) -> Result<Vec<Vec<String>>, StudyError> {
+///
+/// Ranges (`PATH=LO..HI`) take `design_points` values each from one centred Latin hypercube over
+/// all ranges (seeded by `seed`, so the same command gives the same designs): the ranges vary
+/// together over `design_points` points, crossed with the grid of the listed values. On return
+/// each range's [`Vary::values`] holds its values in design order of the hypercube.
+pub fn grid(
+    varies: &mut [Vary],
+    sets: &[String],
+    design_points: Option<usize>,
+    seed: u64,
+) -> Result<Vec<Vec<String>>, StudyError> {
     for (k, v) in varies.iter().enumerate() {
         if varies[..k].iter().any(|w| w.path == v.path) {
             return Err(StudyError::Setting(format!("--vary {}: the field is varied twice", v.path)));
@@ -96,26 +185,72 @@ pub fn grid(varies: &[Vary], sets: &[String]) -> Result<Vec<Vec<String>>, StudyE
             )));
         }
     }
-    let count = varies.iter().try_fold(1usize, |n, v| n.checked_mul(v.values.len())).unwrap_or(usize::MAX);
+    let ranged: Vec<usize> = (0..varies.len()).filter(|&k| varies[k].range.is_some()).collect();
+    let lhs_points = match (ranged.is_empty(), design_points) {
+        (true, None) => 1,
+        (true, Some(_)) => {
+            return Err(StudyError::Setting("--design-points needs a range to fill: --vary \"PATH=LO..HI\"".into()));
+        }
+        (false, None) => {
+            return Err(StudyError::Setting(
+                "--vary PATH=LO..HI (a range) needs --design-points N, the number of space-filling design points"
+                    .into(),
+            ));
+        }
+        (false, Some(n)) if !(2..=MAX_DESIGNS).contains(&n) => {
+            return Err(StudyError::Setting(format!("--design-points {n}: expected 2 to {MAX_DESIGNS}")));
+        }
+        (false, Some(n)) => n,
+    };
+    let count = varies
+        .iter()
+        .filter(|v| v.range.is_none())
+        .try_fold(lhs_points, |n, v| n.checked_mul(v.values.len()))
+        .unwrap_or(usize::MAX);
     if count > MAX_DESIGNS {
         return Err(StudyError::Setting(format!(
             "--vary: {count} design points, more than the limit of {MAX_DESIGNS}; vary fewer fields or values"
         )));
     }
-    let mut points: Vec<Vec<String>> = vec![Vec::new()];
-    for v in varies {
+    // The ranges' values, one per hypercube point.
+    if !ranged.is_empty() {
+        let cube = latin_hypercube(lhs_points, ranged.len(), seed);
+        for (d, &k) in ranged.iter().enumerate() {
+            let range = varies[k].range.clone().expect("a ranged field");
+            varies[k].values = cube.iter().map(|p| range.value_at(p[d])).collect();
+        }
+    }
+    // The grid: the listed fields crossed (first --vary slowest), the ranges moving together
+    // through the hypercube's points at the position of the first range.
+    let mut points: Vec<(Vec<String>, usize)> = vec![(vec![String::new(); varies.len()], 0)];
+    for (k, v) in varies.iter().enumerate() {
+        if v.range.is_some() {
+            if ranged.first() != Some(&k) {
+                continue;
+            }
+            points = points.into_iter().flat_map(|(p, _)| (0..lhs_points).map(move |i| (p.clone(), i))).collect();
+            continue;
+        }
         points = points
             .into_iter()
-            .flat_map(|p| {
+            .flat_map(|(p, i)| {
                 v.values.iter().map(move |x| {
                     let mut q = p.clone();
-                    q.push(x.clone());
-                    q
+                    q[k] = x.clone();
+                    (q, i)
                 })
             })
             .collect();
     }
-    Ok(points)
+    Ok(points
+        .into_iter()
+        .map(|(mut p, i)| {
+            for &k in &ranged {
+                p[k] = varies[k].values[i].clone();
+            }
+            p
+        })
+        .collect())
 }
 
 /// The `--set`s of one design point: the user's, then `PATH=V` for each varied field.
@@ -389,7 +524,8 @@ mod tests {
             let text: String = (0..len).map(|_| alphabet[rng.random_range(0..alphabet.len())]).collect();
             if let Ok(v) = Vary::parse(&text) {
                 assert!(!v.path.is_empty() && v.values.iter().all(|x| !x.is_empty()), "{text:?} -> {v:?}");
-                let _ = grid(std::slice::from_ref(&v), &[]);
+                let _ = grid(&mut [v.clone()], &[], Some(3), 1);
+                let _ = grid(&mut [v], &[], None, 1);
             }
         }
     }
@@ -450,18 +586,82 @@ mod tests {
     fn the_grid_is_every_combination_first_vary_slowest() {
         let a = Vary::parse("a=1,2").unwrap();
         let b = Vary::parse("b=x,y,z").unwrap();
-        let g = grid(&[a.clone(), b.clone()], &[]).unwrap();
+        let g = grid(&mut [a.clone(), b.clone()], &[], None, 1).unwrap();
         assert_eq!(g.len(), 6);
         assert_eq!(g[0], vec!["1", "x"]);
         assert_eq!(g[1], vec!["1", "y"]);
         assert_eq!(g[3], vec!["2", "x"]);
         assert_eq!(sets_for(&["c=3".into()], &[a.clone(), b.clone()], &g[5]), vec!["c=3", "a=2", "b=z"]);
         assert!(
-            grid(std::slice::from_ref(&a), &["a=5".into()]).unwrap_err().to_string().contains("both set and varied")
+            grid(&mut [a.clone()], &["a=5".into()], None, 1).unwrap_err().to_string().contains("both set and varied")
         );
-        assert!(grid(&[a.clone(), a.clone()], &[]).unwrap_err().to_string().contains("twice"));
+        assert!(grid(&mut [a.clone(), a.clone()], &[], None, 1).unwrap_err().to_string().contains("twice"));
         let many = Vary::parse(&format!("m={}", (0..40).map(|i| i.to_string()).collect::<Vec<_>>().join(","))).unwrap();
-        let e = grid(&[many.clone(), Vary { path: "n".into(), ..many }], &[]).unwrap_err().to_string();
+        let e = grid(&mut [many.clone(), Vary { path: "n".into(), ..many }], &[], None, 1).unwrap_err().to_string();
         assert!(e.contains("1600 design points") && e.contains("1000"), "{e}");
+    }
+
+    /// A centred Latin hypercube (McKay, Beckman and Conover, Technometrics 21, 239 (1979)): in
+    /// every dimension each of the n equal strata holds exactly one point, at its centre; the
+    /// same seed gives the same points, another seed another order. Deliberate bug caught: one
+    /// permutation shared by all dimensions (the points lie on the diagonal; the correlation test
+    /// fails), and a stratum index off by one (a value outside the range).
+    #[test]
+    fn latin_hypercube_fills_every_stratum_once_in_every_dimension() {
+        for (n, dims) in [(2, 1), (7, 3), (50, 4)] {
+            let cube = latin_hypercube(n, dims, 11);
+            assert_eq!(cube, latin_hypercube(n, dims, 11));
+            for d in 0..dims {
+                let mut strata: Vec<usize> = cube.iter().map(|p| (p[d] * n as f64).floor() as usize).collect();
+                for p in &cube {
+                    let centre = ((p[d] * n as f64).floor() + 0.5) / n as f64;
+                    assert!((p[d] - centre).abs() < 1e-12 && p[d] > 0.0 && p[d] < 1.0, "{p:?}");
+                }
+                strata.sort_unstable();
+                assert_eq!(strata, (0..n).collect::<Vec<_>>(), "dimension {d} of {n}");
+            }
+        }
+        // Independent orders per dimension: at n = 50 the two columns are not the same permutation.
+        let cube = latin_hypercube(50, 2, 11);
+        assert!(cube.iter().any(|p| p[0] != p[1]));
+        assert_ne!(latin_hypercube(50, 2, 11), latin_hypercube(50, 2, 12));
+    }
+
+    /// `PATH=LO..HI` ranges: parsed with their unit, filled by the hypercube, crossed with listed
+    /// values; malformed ranges and a missing --design-points are refused with the reason.
+    #[test]
+    fn ranges_take_space_filling_values_crossed_with_the_lists() {
+        let r = Vary::parse("meter.clamp_voltages.to=29 V..40 V").unwrap();
+        assert_eq!(r.range, Some(VaryRange { lo: 29.0, hi: 40.0, unit: "V".into() }));
+        let k = Vary::parse("k=1..3").unwrap();
+        let list = Vary::parse("n=30,60").unwrap();
+        let mut varies = [list, r, k];
+        let g = grid(&mut varies, &[], Some(4), 7).unwrap();
+        assert_eq!(g.len(), 8);
+        // The listed field is slowest; the four hypercube points repeat for each listed value.
+        assert!(g[..4].iter().all(|p| p[0] == "30") && g[4..].iter().all(|p| p[0] == "60"));
+        assert_eq!(
+            g[..4].iter().map(|p| &p[1..]).collect::<Vec<_>>(),
+            g[4..].iter().map(|p| &p[1..]).collect::<Vec<_>>()
+        );
+        // Each range's four values sit one in each quarter of the range.
+        let mut quarters: Vec<usize> = g[..4]
+            .iter()
+            .map(|p| {
+                let v: f64 = p[1].strip_suffix(" V").unwrap().parse().unwrap();
+                assert!((29.0..=40.0).contains(&v), "{v}");
+                ((v - 29.0) / 11.0 * 4.0).floor() as usize
+            })
+            .collect();
+        quarters.sort_unstable();
+        assert_eq!(quarters, vec![0, 1, 2, 3]);
+        assert_eq!(varies[1].values.len(), 4);
+        for bad in ["a=40 V..29 V", "a=1 V..2 mV", "a=x..2", "a=1..inf"] {
+            assert!(Vary::parse(bad).is_err(), "{bad}");
+        }
+        let e = grid(&mut [Vary::parse("a=1..2").unwrap()], &[], None, 1).unwrap_err().to_string();
+        assert!(e.contains("--design-points"), "{e}");
+        let e = grid(&mut [Vary::parse("a=1,2").unwrap()], &[], Some(3), 1).unwrap_err().to_string();
+        assert!(e.contains("needs a range"), "{e}");
     }
 }

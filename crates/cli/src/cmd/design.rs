@@ -52,8 +52,8 @@ pub fn design_folder(out: &Path, d: usize) -> PathBuf {
 
 /// Runs a design study (the study arguments with at least one --vary).
 pub fn run(args: Args, config: StudyConfig) -> CliResult {
-    let varies: Vec<Vary> = args.vary.iter().map(|v| Vary::parse(v)).collect::<Result<_, _>>()?;
-    let points = design::grid(&varies, &args.sets)?;
+    let mut varies: Vec<Vary> = args.vary.iter().map(|v| Vary::parse(v)).collect::<Result<_, _>>()?;
+    let points = design::grid(&mut varies, &args.sets, args.design_points, args.seed)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
         if t == 0 || t > MAX_THREADS {

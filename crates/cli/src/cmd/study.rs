@@ -75,6 +75,10 @@ pub struct Args {
     /// (each a study folder), designs.csv, designs.json and a design chart per varied field.
     #[arg(long = "vary", value_name = "PATH=V1,V2,...")]
     pub vary: Vec<String>,
+    /// With a range --vary "PATH=LO..HI": the number of design points of the space-filling (Latin
+    /// hypercube, seeded by --seed) design over all ranges.
+    #[arg(long, value_name = "N", requires = "vary")]
+    pub design_points: Option<usize>,
     /// How a design study ranks its designs.
     #[arg(long, value_enum, default_value = "narrowest", requires = "vary")]
     pub rank_by: crate::cmd::design::RankByArg,
