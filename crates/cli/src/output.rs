@@ -270,26 +270,37 @@ pub fn write_manifest(dir: &Path, command: &str, files: &[String]) -> CliResult 
 /// run's manifest nor `own` (this command's files) account for are refused unless `force`.
 pub fn check_foreign(dir: &Path, own: &[&str], force: bool) -> CliResult {
     let Ok(entries) = std::fs::read_dir(dir) else { return Ok(()) };
-    let listed = listed_files(dir)?;
+    let foreign = unlisted_files(entries, &listed_files(dir)?, own);
+    if !foreign.is_empty() && !force {
+        return Err(foreign_refusal(dir, &foreign));
+    }
+    Ok(())
+}
+
+/// The names in a folder listing that are neither the manifest, nor `listed` (an earlier run's
+/// manifest), nor `own` (this command's files), sorted.
+fn unlisted_files(entries: std::fs::ReadDir, listed: &[String], own: &[&str]) -> Vec<String> {
     let mut foreign: Vec<String> = entries
         .flatten()
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .filter(|n| n != MANIFEST && !listed.contains(n) && !own.contains(&n.as_str()))
         .collect();
     foreign.sort();
-    if !foreign.is_empty() && !force {
-        let shown: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
-        return Err(format!(
-            "output folder {} holds {} file(s) that no stiction run listed in its {MANIFEST} ({}{}); \
-             choose a new or empty folder, or pass --force to write beside them",
-            dir.display(),
-            foreign.len(),
-            shown.join(", "),
-            if foreign.len() > 5 { ", ..." } else { "" }
-        )
-        .into());
-    }
-    Ok(())
+    foreign
+}
+
+/// The refusal of an output folder that holds `foreign` files (the first five named) without --force.
+fn foreign_refusal(dir: &Path, foreign: &[String]) -> Box<dyn std::error::Error> {
+    let shown: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
+    format!(
+        "output folder {} holds {} file(s) that no stiction run listed in its {MANIFEST} ({}{}); \
+         choose a new or empty folder, or pass --force to write beside them",
+        dir.display(),
+        foreign.len(),
+        shown.join(", "),
+        if foreign.len() > 5 { ", ..." } else { "" }
+    )
+    .into()
 }
 
 /// One run's output folder, written as a whole.
@@ -362,25 +373,11 @@ impl OutputSet {
             }
             Ok(_) => {
                 old_files = listed_files(dir)?;
-                let mut foreign: Vec<String> = std::fs::read_dir(dir)
-                    .map_err(|e| io_err("list the output folder", dir, e))?
-                    .flatten()
-                    .map(|e| e.file_name().to_string_lossy().into_owned())
-                    .filter(|n| n != MANIFEST && !old_files.contains(n))
-                    .collect();
-                foreign.sort();
+                let entries = std::fs::read_dir(dir).map_err(|e| io_err("list the output folder", dir, e))?;
+                let foreign = unlisted_files(entries, &old_files, &[]);
                 if !foreign.is_empty() {
                     if !force {
-                        let shown: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
-                        return Err(format!(
-                            "output folder {} holds {} file(s) that no stiction run listed in its {MANIFEST} ({}{}); \
-                             choose a new or empty folder, or pass --force to write beside them",
-                            dir.display(),
-                            foreign.len(),
-                            shown.join(", "),
-                            if foreign.len() > 5 { ", ..." } else { "" }
-                        )
-                        .into());
+                        return Err(foreign_refusal(dir, &foreign));
                     }
                     in_place = true;
                 }
