@@ -1,0 +1,865 @@
+//! Layout and drawing of a [`Chart`]: every size comes from the font size and the canvas, so the
+//! same chart fits a journal column at 8 pt and a 400 x 280 px preview.
+//!
+//! Order of decisions: the title is wrapped to the canvas width (shrunk from 1.15 to 1 font size
+//! when it would take more than two lines); the note goes below as a wrapped caption; the axis
+//! labels wrap to the plot's sides; tick counts fall until the labels of an axis do not touch;
+//! the margins follow the widest tick label; the legend goes into the corner of the plot with no
+//! data point under it (the chart's preferred corner first), or below the axes when no corner is
+//! free or it would cover more than two thirds of the plot.
+
+use crate::canvas::{Anchor, Prim, Rgb};
+use crate::style::{self, Marker, PALETTE};
+use crate::text::{text_extent, text_width, wrap};
+use crate::{Chart, LegendPosition, PlotError, Scale, SeriesStyle, tick_label, ticks};
+
+/// A rectangle in pixels, y down.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Rect {
+    /// Left.
+    pub x0: f64,
+    /// Top.
+    pub y0: f64,
+    /// Right.
+    pub x1: f64,
+    /// Bottom.
+    pub y1: f64,
+}
+
+impl Rect {
+    /// Whether the two rectangles share area (touching edges do not count).
+    pub fn overlaps(&self, o: &Rect) -> bool {
+        self.x0 < o.x1 && o.x0 < self.x1 && self.y0 < o.y1 && o.y0 < self.y1
+    }
+    /// Whether `o` lies inside this rectangle, with `tol` px of tolerance.
+    pub fn contains_rect(&self, o: &Rect, tol: f64) -> bool {
+        o.x0 >= self.x0 - tol && o.x1 <= self.x1 + tol && o.y0 >= self.y0 - tol && o.y1 <= self.y1 + tol
+    }
+    /// Whether point `p` lies inside.
+    pub fn contains(&self, p: (f64, f64)) -> bool {
+        p.0 >= self.x0 && p.0 <= self.x1 && p.1 >= self.y0 && p.1 <= self.y1
+    }
+    /// Width.
+    pub fn width(&self) -> f64 {
+        self.x1 - self.x0
+    }
+    /// Height.
+    pub fn height(&self) -> f64 {
+        self.y1 - self.y0
+    }
+    fn grow(&self, d: f64) -> Rect {
+        Rect { x0: self.x0 - d, y0: self.y0 - d, x1: self.x1 + d, y1: self.y1 + d }
+    }
+}
+
+/// A line of text and the box it covers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextBox {
+    /// The text (with its markup).
+    pub text: String,
+    /// Where it is drawn.
+    pub rect: Rect,
+}
+
+/// Where every element of a drawn chart sits, in pixels of the canvas (SVG user units; a PNG is
+/// the same picture scaled by its dpi / 96). For tests and for callers placing annotations.
+#[derive(Clone, Debug, Default)]
+pub struct Layout {
+    /// Canvas width.
+    pub width: f64,
+    /// Canvas height.
+    pub height: f64,
+    /// Font size of tick labels, px.
+    pub font_px: f64,
+    /// The axes' frame.
+    pub plot: Rect,
+    /// Title lines.
+    pub title: Vec<TextBox>,
+    /// Caption lines below the figure (the chart's note).
+    pub caption: Vec<TextBox>,
+    /// x axis label lines.
+    pub x_label: Vec<TextBox>,
+    /// y axis label lines (drawn upright, reading upwards).
+    pub y_label: Vec<TextBox>,
+    /// x tick labels.
+    pub x_ticks: Vec<TextBox>,
+    /// y tick labels.
+    pub y_ticks: Vec<TextBox>,
+    /// The legend's box (None: no legend).
+    pub legend: Option<Rect>,
+    /// Whether the legend sits inside the axes (else below them).
+    pub legend_inside: bool,
+    /// Legend entry texts.
+    pub legend_entries: Vec<TextBox>,
+    /// Drawn data positions inside the plot: markers and line vertices, and points along lines
+    /// and error bars every half font size.
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Layout {
+    /// Every text box.
+    pub fn texts(&self) -> impl Iterator<Item = &TextBox> {
+        self.title
+            .iter()
+            .chain(&self.caption)
+            .chain(&self.x_label)
+            .chain(&self.y_label)
+            .chain(&self.x_ticks)
+            .chain(&self.y_ticks)
+            .chain(&self.legend_entries)
+    }
+
+    /// What is wrong with the layout, one sentence each (empty: nothing): text outside the canvas,
+    /// tick labels touching, the legend over data, text over the plot or over other text.
+    pub fn problems(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let canvas = Rect { x0: 0.0, y0: 0.0, x1: self.width, y1: self.height };
+        for t in self.texts() {
+            if !canvas.contains_rect(&t.rect, 0.5) {
+                out.push(format!("text {:?} at {:?} leaves the {}x{} canvas", t.text, t.rect, self.width, self.height));
+            }
+        }
+        for ticks in [&self.x_ticks, &self.y_ticks] {
+            for (i, a) in ticks.iter().enumerate() {
+                for b in &ticks[i + 1..] {
+                    if a.rect.overlaps(&b.rect) {
+                        out.push(format!("tick labels {:?} and {:?} overlap", a.text, b.text));
+                    }
+                }
+            }
+        }
+        if let Some(l) = self.legend {
+            if let Some(p) = self.points.iter().find(|p| l.contains(**p)) {
+                out.push(format!("legend {l:?} covers the data point at {p:?}"));
+            }
+            if !self.legend_inside && l.overlaps(&self.plot) {
+                out.push("legend outside the axes overlaps them".into());
+            }
+        }
+        let outer: Vec<&TextBox> = self
+            .title
+            .iter()
+            .chain(&self.caption)
+            .chain(&self.x_label)
+            .chain(&self.y_label)
+            .chain(&self.x_ticks)
+            .chain(&self.y_ticks)
+            .collect();
+        for (i, a) in outer.iter().enumerate() {
+            if a.rect.overlaps(&self.plot.grow(-0.5)) {
+                out.push(format!("text {:?} lies over the plot", a.text));
+            }
+            for b in &outer[i + 1..] {
+                if a.rect.overlaps(&b.rect) && !std::ptr::eq(*a, *b) {
+                    out.push(format!("texts {:?} and {:?} overlap", a.text, b.text));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The text box of a horizontal line at baseline `at`.
+fn hbox(text: &str, at: (f64, f64), size: f64, anchor: Anchor) -> Rect {
+    let w = text_width(text, size);
+    let (up, down) = text_extent(text, size);
+    let x0 = match anchor {
+        Anchor::Start => at.0,
+        Anchor::Middle => at.0 - w / 2.0,
+        Anchor::End => at.0 - w,
+    };
+    Rect { x0, y0: at.1 - up, x1: x0 + w, y1: at.1 + down }
+}
+
+/// The box of a line rotated to read upwards, baseline point `at`.
+fn vbox(text: &str, at: (f64, f64), size: f64, anchor: Anchor) -> Rect {
+    let w = text_width(text, size);
+    let (up, down) = text_extent(text, size);
+    let s = match anchor {
+        Anchor::Start => 0.0,
+        Anchor::Middle => -w / 2.0,
+        Anchor::End => -w,
+    };
+    Rect { x0: at.0 - up, x1: at.0 + down, y0: at.1 - s - w, y1: at.1 - s }
+}
+
+const INK: Rgb = Rgb(0x22, 0x22, 0x22);
+const GREY: Rgb = Rgb(0x44, 0x44, 0x44);
+
+/// An axis: how data map to it, its range in axis coordinates and its ticks.
+pub(crate) struct Axis {
+    pub scale: Scale,
+    pub lo: f64,
+    pub hi: f64,
+    pub named: Option<Vec<(f64, String)>>,
+}
+
+/// Tick positions (axis coordinates) with their labels, the light ones, and whether the labels are
+/// set upright (vertical) and their size.
+pub(crate) struct Ticks {
+    pub bold: Vec<(f64, String)>,
+    pub light: Vec<f64>,
+    pub vertical: bool,
+    pub size: f64,
+}
+
+impl Axis {
+    /// Ticks of an upright axis of `length` px (a colour bar).
+    pub(crate) fn ticks_public(&self, length: f64, f: f64) -> Ticks {
+        self.ticks(length, f, false)
+    }
+
+    /// Ticks whose labels do not touch over `length` px along the axis.
+    fn ticks(&self, length: f64, f: f64, horizontal: bool) -> Ticks {
+        if let Some(named) = &self.named {
+            let bold: Vec<(f64, String)> = named.iter().map(|(v, l)| (self.scale.to_axis(*v), l.clone())).collect();
+            let spacing = length / (bold.len().max(1) as f64) * {
+                // Named ticks are usually evenly spaced: the smallest gap between them.
+                let mut pos: Vec<f64> = bold.iter().map(|b| b.0).collect();
+                pos.sort_by(f64::total_cmp);
+                let min_gap = pos.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
+                if min_gap.is_finite() && self.hi > self.lo {
+                    min_gap / (self.hi - self.lo) * bold.len() as f64
+                } else {
+                    1.0
+                }
+            };
+            let names = bold.clone();
+            let widest = |s: f64| names.iter().map(|b| text_width(&b.1, s)).fold(0.0, f64::max);
+            if !horizontal {
+                return Ticks { bold, light: Vec::new(), vertical: false, size: f };
+            }
+            for s in [f, 0.85 * f, 0.75 * f] {
+                if widest(s) + 0.4 * f <= spacing {
+                    return Ticks { bold, light: Vec::new(), vertical: false, size: s };
+                }
+            }
+            return Ticks { bold, light: Vec::new(), vertical: spacing < widest(0.75 * f), size: 0.85 * f };
+        }
+        let mut n = if horizontal { 10.0 } else { (length / (1.9 * f)).clamp(2.0, 10.0) };
+        loop {
+            let (bold, light) = ticks(self.scale, self.lo, self.hi, n);
+            let labelled: Vec<(f64, String)> = bold
+                .into_iter()
+                .map(|v| (v, tick_label(v, self.scale, self.lo, self.hi)))
+                .filter(|(_, l)| !l.is_empty())
+                .collect();
+            let px = |v: f64| (v - self.lo) / (self.hi - self.lo) * length;
+            let fits = labelled.windows(2).all(|w| {
+                let gap = (px(w[1].0) - px(w[0].0)).abs();
+                if horizontal {
+                    gap >= (text_width(&w[0].1, f) + text_width(&w[1].1, f)) / 2.0 + 0.6 * f
+                } else {
+                    gap >= 1.35 * f
+                }
+            });
+            if fits || n <= 1.0 {
+                return Ticks { bold: labelled, light, vertical: false, size: f };
+            }
+            n = (n * 0.7).floor().max(1.0);
+        }
+    }
+}
+
+/// The frame of a plot: where the axes sit and what the margins hold.
+pub(crate) struct Frame {
+    pub plot: Rect,
+    pub xt: Ticks,
+    pub yt: Ticks,
+    pub x_lines: Vec<String>,
+    pub y_lines: Vec<String>,
+    /// Bottom of the x axis' texts.
+    pub below_axis: f64,
+}
+
+/// Geometry of the axes inside `area` (the canvas minus title, caption and what the caller
+/// reserves), with font `f`; `aspect`: data units per px equal on both axes (maps).
+pub(crate) fn frame(
+    area: Rect,
+    f: f64,
+    x: &Axis,
+    y: &Axis,
+    x_label: &str,
+    y_label: &str,
+    aspect: Option<(f64, f64)>,
+) -> Frame {
+    let (tl, g) = (0.35 * f, 0.3 * f);
+    let line = 1.2 * f;
+    let mut plot = Rect { x0: area.x0 + 4.0 * f, y0: area.y0 + 0.6 * f, x1: area.x1 - f, y1: area.y1 - 4.0 * f };
+    let mut out = None;
+    for _ in 0..3 {
+        let x_lines = wrap(x_label, plot.width().max(4.0 * f), f);
+        let y_lines = wrap(y_label, plot.height().max(4.0 * f), f);
+        let xt = x.ticks(plot.width(), f, true);
+        let yt = y.ticks(plot.height(), f, false);
+        let yw = yt.bold.iter().map(|b| text_width(&b.1, yt.size)).fold(0.0, f64::max);
+        let xt_h = if xt.vertical {
+            xt.bold.iter().map(|b| text_width(&b.1, xt.size)).fold(0.0, f64::max)
+        } else {
+            let (u, d) = text_extent("0", xt.size);
+            u + d
+        };
+        let last_half = xt.bold.last().map_or(0.0, |b| if xt.vertical { 0.0 } else { text_width(&b.1, xt.size) / 2.0 });
+        let y_top_half = 0.5 * f;
+        let x0 = area.x0 + y_lines.len() as f64 * line + g + yw + g + tl;
+        let x1 = area.x1 - last_half.max(0.3 * f);
+        let y0 = area.y0 + y_top_half;
+        let y1 = area.y1 - (x_lines.len() as f64 * line + g + xt_h + g + tl);
+        plot = Rect { x0, y0, x1: x1.max(x0 + 2.0 * f), y1: y1.max(y0 + 2.0 * f) };
+        if let Some((xs, ys)) = aspect {
+            let ppu = (plot.width() / xs).min(plot.height() / ys);
+            let (w, h) = (ppu * xs, ppu * ys);
+            plot.x1 = plot.x0 + w;
+            let spare = plot.height() - h;
+            plot.y0 += spare / 2.0;
+            plot.y1 = plot.y0 + h;
+        }
+        let below_axis = plot.y1 + tl + g + xt_h + g + x_lines.len() as f64 * line;
+        out = Some(Frame { plot, xt, yt, x_lines, y_lines, below_axis });
+    }
+    out.expect("three passes")
+}
+
+/// Draws the axes of `fr` (grid, frame, ticks, labels); returns their text boxes
+/// (x ticks, y ticks, x label, y label).
+#[allow(clippy::type_complexity)]
+pub(crate) fn draw_axes(
+    prims: &mut Vec<Prim>,
+    fr: &Frame,
+    x: &Axis,
+    y: &Axis,
+    f: f64,
+    grid: bool,
+    area_left: f64,
+) -> (Vec<TextBox>, Vec<TextBox>, Vec<TextBox>, Vec<TextBox>) {
+    let p = fr.plot;
+    let (tl, g, line) = (0.35 * f, 0.3 * f, 1.2 * f);
+    let px = |v: f64| p.x0 + (v - x.lo) / (x.hi - x.lo) * p.width();
+    let py = |v: f64| p.y1 - (v - y.lo) / (y.hi - y.lo) * p.height();
+    let thin = (0.05 * f).max(0.5);
+    if grid {
+        for &v in &fr.xt.light {
+            prims.push(Prim::Path { pts: vec![(px(v), p.y0), (px(v), p.y1)], color: Rgb(0xf0, 0xf0, 0xf0), width: thin, dash: None });
+        }
+        for &v in &fr.yt.light {
+            prims.push(Prim::Path { pts: vec![(p.x0, py(v)), (p.x1, py(v))], color: Rgb(0xf0, 0xf0, 0xf0), width: thin, dash: None });
+        }
+        for (v, _) in &fr.xt.bold {
+            prims.push(Prim::Path { pts: vec![(px(*v), p.y0), (px(*v), p.y1)], color: Rgb(0xdd, 0xdd, 0xdd), width: thin, dash: None });
+        }
+        for (v, _) in &fr.yt.bold {
+            prims.push(Prim::Path { pts: vec![(p.x0, py(*v)), (p.x1, py(*v))], color: Rgb(0xdd, 0xdd, 0xdd), width: thin, dash: None });
+        }
+    }
+    let axis_w = (0.07 * f).max(0.75);
+    let mut xb = Vec::new();
+    for (v, l) in &fr.xt.bold {
+        let xp = px(*v);
+        prims.push(Prim::Path { pts: vec![(xp, p.y1), (xp, p.y1 + tl)], color: INK, width: axis_w, dash: None });
+        let (at, rect, vertical, anchor) = if fr.xt.vertical {
+            let (u, d) = text_extent(l, fr.xt.size);
+            let at = (xp + (u - d) / 2.0, p.y1 + tl + g);
+            (at, vbox(l, at, fr.xt.size, Anchor::End), true, Anchor::End)
+        } else {
+            let (u, _) = text_extent("0", fr.xt.size);
+            let at = (xp, p.y1 + tl + g + u);
+            (at, hbox(l, at, fr.xt.size, Anchor::Middle), false, Anchor::Middle)
+        };
+        prims.push(Prim::Text { at, text: l.clone(), size: fr.xt.size, color: INK, anchor, vertical });
+        xb.push(TextBox { text: l.clone(), rect });
+    }
+    let mut yb = Vec::new();
+    for (v, l) in &fr.yt.bold {
+        let yp = py(*v);
+        prims.push(Prim::Path { pts: vec![(p.x0 - tl, yp), (p.x0, yp)], color: INK, width: axis_w, dash: None });
+        let (u, d) = text_extent(l, fr.yt.size);
+        let at = (p.x0 - tl - g, yp + (u - d) / 2.0);
+        prims.push(Prim::Text { at, text: l.clone(), size: fr.yt.size, color: INK, anchor: Anchor::End, vertical: false });
+        yb.push(TextBox { text: l.clone(), rect: hbox(l, at, fr.yt.size, Anchor::End) });
+    }
+    prims.push(Prim::Path {
+        pts: vec![(p.x0, p.y0), (p.x1, p.y0), (p.x1, p.y1), (p.x0, p.y1), (p.x0, p.y0)],
+        color: INK,
+        width: axis_w,
+        dash: None,
+    });
+    let xt_h = fr.below_axis - p.y1 - tl - g - g - fr.x_lines.len() as f64 * line;
+    let mut xl = Vec::new();
+    for (i, l) in fr.x_lines.iter().enumerate() {
+        let (u, _) = text_extent("Ag", f);
+        let at = ((p.x0 + p.x1) / 2.0, p.y1 + tl + g + xt_h + g + i as f64 * line + u);
+        prims.push(Prim::Text { at, text: l.clone(), size: f, color: INK, anchor: Anchor::Middle, vertical: false });
+        xl.push(TextBox { text: l.clone(), rect: hbox(l, at, f, Anchor::Middle) });
+    }
+    let mut yl = Vec::new();
+    for (i, l) in fr.y_lines.iter().enumerate() {
+        let (u, _) = text_extent("Ag", f);
+        let at = (area_left + u + i as f64 * line, (p.y0 + p.y1) / 2.0);
+        prims.push(Prim::Text { at, text: l.clone(), size: f, color: INK, anchor: Anchor::Middle, vertical: true });
+        yl.push(TextBox { text: l.clone(), rect: vbox(l, at, f, Anchor::Middle) });
+    }
+    (xb, yb, xl, yl)
+}
+
+/// Title lines from the top of the canvas; returns the boxes and the bottom of the last line.
+pub(crate) fn draw_title(prims: &mut Vec<Prim>, title: &str, w: f64, f: f64) -> (Vec<TextBox>, f64) {
+    let pad = 0.5 * f;
+    let mut size = 1.15 * f;
+    let mut lines = wrap(title, w - 2.0 * pad, size);
+    if lines.len() > 2 {
+        size = f;
+        lines = wrap(title, w - 2.0 * pad, size);
+    }
+    let mut y = pad;
+    let mut out = Vec::new();
+    for l in lines {
+        let (u, d) = text_extent(&l, size);
+        let at = (pad, y + u);
+        prims.push(Prim::Text { at, text: l.clone(), size, color: INK, anchor: Anchor::Start, vertical: false });
+        out.push(TextBox { rect: hbox(&l, at, size, Anchor::Start), text: l });
+        y += (u + d).max(1.2 * size);
+    }
+    let bottom = if out.is_empty() { pad } else { y };
+    (out, bottom)
+}
+
+/// Caption lines at the bottom of the canvas; returns the boxes and the top of the first line.
+pub(crate) fn draw_caption(prims: &mut Vec<Prim>, note: Option<&str>, w: f64, h: f64, f: f64) -> (Vec<TextBox>, f64) {
+    let pad = 0.5 * f;
+    let size = 0.9 * f;
+    let lines = note.map(|n| wrap(n, w - 2.0 * pad, size)).unwrap_or_default();
+    let step = 1.2 * size;
+    let top = h - pad - lines.len() as f64 * step;
+    let mut out = Vec::new();
+    for (i, l) in lines.into_iter().enumerate() {
+        let (u, _) = text_extent("Ag", size);
+        let at = (pad, top + i as f64 * step + u);
+        prims.push(Prim::Text { at, text: l.clone(), size, color: GREY, anchor: Anchor::Start, vertical: false });
+        out.push(TextBox { rect: hbox(&l, at, size, Anchor::Start), text: l });
+    }
+    let top = if out.is_empty() { h - pad } else { top - 0.3 * f };
+    (out, top)
+}
+
+/// A marker polygon or circle.
+fn marker_prim(shape: Marker, c: (f64, f64), r: f64, color: Rgb) -> Prim {
+    let poly = |pts: &[(f64, f64)]| Prim::Fill { pts: pts.iter().map(|p| (c.0 + p.0 * r, c.1 + p.1 * r)).collect(), color, opacity: 1.0 };
+    match shape {
+        Marker::Circle => Prim::Circle { c, r, color },
+        Marker::Square => poly(&[(-0.85, -0.85), (0.85, -0.85), (0.85, 0.85), (-0.85, 0.85)]),
+        Marker::Diamond => poly(&[(0.0, -1.2), (1.2, 0.0), (0.0, 1.2), (-1.2, 0.0)]),
+        Marker::Triangle => poly(&[(0.0, -1.2), (1.1, 0.75), (-1.1, 0.75)]),
+        Marker::TriangleDown => poly(&[(0.0, 1.2), (1.1, -0.75), (-1.1, -0.75)]),
+    }
+}
+
+/// Points every `step` px along a polyline (vertices included).
+fn samples(pts: &[(f64, f64)], step: f64, out: &mut Vec<(f64, f64)>) {
+    if let Some(&p) = pts.first() {
+        out.push(p);
+    }
+    for w in pts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+        let k = (len / step).ceil().min(10_000.0) as usize;
+        for i in 1..=k {
+            let t = i as f64 / k as f64;
+            out.push((a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t));
+        }
+    }
+}
+
+/// What a series looks like once resolved.
+struct Resolved {
+    color: Rgb,
+    marker: Marker,
+    on_top: bool,
+}
+
+struct Entry {
+    lines: Vec<String>,
+    style: SeriesStyle,
+    color: Rgb,
+    marker: Marker,
+}
+
+impl Chart {
+    /// The canvas size in px (1/96 in): from `size_mm`, else `size_px`, else 800 x 560.
+    pub fn canvas_px(&self) -> (f64, f64) {
+        match (self.size_mm, self.size_px) {
+            (Some((w, h)), _) => (w / 25.4 * 96.0, h / 25.4 * 96.0),
+            (None, Some((w, h))) => (w as f64, h as f64),
+            _ => (800.0, 560.0),
+        }
+    }
+
+    /// Tick-label font size in px: `font_px`, else 8 pt at a physical size, else 15 px.
+    pub fn font_size_px(&self) -> f64 {
+        self.font_px.unwrap_or(if self.size_mm.is_some() { 8.0 * 4.0 / 3.0 } else { 15.0 })
+    }
+
+    /// PNG device pixels per canvas px: `dpi` / 96; by default 300 dpi at a physical size, 1 at a
+    /// pixel size, 1.5 without either.
+    pub fn png_scale(&self) -> f64 {
+        match (self.dpi, self.size_mm, self.size_px) {
+            (Some(d), ..) => d / 96.0,
+            (None, Some(_), _) => 300.0 / 96.0,
+            (None, None, Some(_)) => 1.0,
+            _ => 1.5,
+        }
+    }
+
+    fn resolve(&self) -> Vec<Resolved> {
+        let mut free = 0usize;
+        let registry: Vec<Rgb> = style::STYLES.iter().map(|s| s.1).collect();
+        self.series
+            .iter()
+            .map(|s| {
+                let look = style::look(s.key.as_deref().unwrap_or(&s.name));
+                let color = match (s.color, look) {
+                    (Some(i), _) => PALETTE[i % PALETTE.len()],
+                    (None, Some(l)) => l.color,
+                    (None, None) => {
+                        // The palette's colours not taken by the registry first.
+                        let open: Vec<Rgb> = PALETTE.iter().copied().filter(|c| !registry.contains(c)).collect();
+                        let c = open[free % open.len()];
+                        free += 1;
+                        c
+                    }
+                };
+                Resolved {
+                    color,
+                    marker: s.marker.or(look.map(|l| l.marker)).unwrap_or_default(),
+                    on_top: s.on_top || look.is_some_and(|l| l.on_top && s.style == SeriesStyle::Markers),
+                }
+            })
+            .collect()
+    }
+
+    /// Where every element of the chart is drawn (see [`Layout`]), on the canvas of
+    /// [`Chart::canvas_px`].
+    pub fn layout(&self) -> Result<Layout, PlotError> {
+        Ok(self.render()?.1)
+    }
+
+    /// The display list and the layout.
+    pub(crate) fn render(&self) -> Result<(Vec<Prim>, Layout), PlotError> {
+        let ((x0, x1), (y0, y1)) = self.ranges().ok_or_else(|| PlotError::Empty { title: self.title.clone() })?;
+        let (w, h) = self.canvas_px();
+        let f = self.font_size_px();
+        let pad = 0.5 * f;
+        let looks = self.resolve();
+        let xa = Axis { scale: self.x_scale(), lo: x0, hi: x1, named: self.x_ticks.clone() };
+        let ya = Axis { scale: self.y_scale(), lo: y0, hi: y1, named: None };
+        let mut top_prims = Vec::new();
+        let (title, title_bottom) = draw_title(&mut top_prims, &self.title, w, f);
+        let (caption, caption_top) = draw_caption(&mut top_prims, self.note.as_deref(), w, h, f);
+        let area = Rect { x0: pad, y0: title_bottom + 0.3 * f, x1: w - pad, y1: caption_top };
+
+        // Legend entries, in series order.
+        let ls = 0.9 * f;
+        let sw = 2.0 * f;
+        let entries_for = |max_w: f64| -> Vec<Entry> {
+            self.series
+                .iter()
+                .zip(&looks)
+                .filter(|(s, _)| !s.name.is_empty())
+                .map(|(s, l)| Entry { lines: wrap(&s.name, max_w, ls), style: s.style, color: l.color, marker: l.marker })
+                .collect()
+        };
+        let entry_h = |e: &Entry| e.lines.len() as f64 * 1.15 * ls + 0.25 * ls;
+        let entry_w = |e: &Entry| sw + 0.5 * f + e.lines.iter().map(|l| text_width(l, ls)).fold(0.0, f64::max);
+
+        // First pass: legend inside.
+        let fr = frame(area, f, &xa, &ya, &self.x_label, &self.y_label, None);
+        let inside_entries = entries_for(0.55 * fr.plot.width() - sw - 1.5 * f);
+        let mut legend_box = None;
+        let mut fr = fr;
+        let mut below: Option<(f64, usize)> = None; // (height, columns)
+        if !inside_entries.is_empty() {
+            let bw = 0.4 * f + inside_entries.iter().map(entry_w).fold(0.0, f64::max) + 0.4 * f;
+            let bh = 0.3 * f + inside_entries.iter().map(entry_h).sum::<f64>() + 0.2 * f;
+            let p = fr.plot;
+            let pts = self.data_samples(&p, &xa, &ya, 0.5 * f);
+            let inset = 0.3 * f;
+            let corner = |pos: LegendPosition| -> Rect {
+                let (left, upper) = match pos {
+                    LegendPosition::UpperLeft => (true, true),
+                    LegendPosition::UpperRight => (false, true),
+                    LegendPosition::LowerLeft => (true, false),
+                    LegendPosition::LowerRight => (false, false),
+                };
+                let x = if left { p.x0 + inset } else { p.x1 - inset - bw };
+                let y = if upper { p.y0 + inset } else { p.y1 - inset - bh };
+                Rect { x0: x, y0: y, x1: x + bw, y1: y + bh }
+            };
+            let mut order = vec![self.legend];
+            order.extend(
+                [LegendPosition::UpperRight, LegendPosition::UpperLeft, LegendPosition::LowerRight, LegendPosition::LowerLeft]
+                    .into_iter()
+                    .filter(|c| *c != self.legend),
+            );
+            let fits = bw <= 0.65 * p.width() && bh <= 0.65 * p.height();
+            let r = 0.3 * f + 1.0;
+            legend_box = fits
+                .then(|| order.into_iter().map(corner).find(|b| !pts.iter().any(|q| b.grow(r).contains(*q))))
+                .flatten();
+            if legend_box.is_none() {
+                // Below the axes, in as many columns as fit.
+                let entries = entries_for(w - 2.0 * pad - sw - 1.5 * f);
+                let col_w = entries.iter().map(entry_w).fold(0.0, f64::max) + 1.2 * f;
+                let cols = (((w - 2.0 * pad) + 1.2 * f) / col_w).floor().max(1.0) as usize;
+                let height: f64 =
+                    entries.chunks(cols).map(|row| row.iter().map(entry_h).fold(0.0, f64::max)).sum::<f64>() + 0.4 * f;
+                below = Some((height, cols));
+                let area2 = Rect { y1: area.y1 - height, ..area };
+                fr = frame(area2, f, &xa, &ya, &self.x_label, &self.y_label, None);
+            }
+        }
+
+        let mut prims = Vec::new();
+        let (xt, yt, xl, yl) = draw_axes(&mut prims, &fr, &xa, &ya, f, true, pad);
+        let p = fr.plot;
+        prims.push(Prim::ClipBegin { x0: p.x0, y0: p.y0, x1: p.x1, y1: p.y1 });
+        let points = self.draw_series(&mut prims, &p, &xa, &ya, f, &looks);
+        prims.push(Prim::ClipEnd);
+        prims.extend(top_prims);
+
+        // The legend.
+        let mut legend_entries = Vec::new();
+        let mut legend = None;
+        let draw_entry = |prims: &mut Vec<Prim>, e: &Entry, x: f64, y: f64, out: &mut Vec<TextBox>| {
+            let (u, _) = text_extent("Ag", ls);
+            let mid = y + 0.6 * ls;
+            let stroke = 0.14 * f;
+            match e.style {
+                SeriesStyle::Line | SeriesStyle::Step => {
+                    prims.push(Prim::Path { pts: vec![(x, mid), (x + sw, mid)], color: e.color, width: stroke, dash: None })
+                }
+                SeriesStyle::Dashed => prims.push(Prim::Path {
+                    pts: vec![(x, mid), (x + sw, mid)],
+                    color: e.color,
+                    width: stroke,
+                    dash: Some((0.5 * f, 0.3 * f)),
+                }),
+                SeriesStyle::Markers => prims.push(marker_prim(e.marker, (x + sw / 2.0, mid), 0.3 * f, e.color)),
+                _ => prims.push(Prim::Fill {
+                    pts: vec![(x, mid - 0.35 * f), (x + sw, mid - 0.35 * f), (x + sw, mid + 0.35 * f), (x, mid + 0.35 * f)],
+                    color: e.color,
+                    opacity: 0.3,
+                }),
+            }
+            for (i, l) in e.lines.iter().enumerate() {
+                let at = (x + sw + 0.5 * f, y + u + i as f64 * 1.15 * ls);
+                prims.push(Prim::Text { at, text: l.clone(), size: ls, color: INK, anchor: Anchor::Start, vertical: false });
+                out.push(TextBox { text: l.clone(), rect: hbox(l, at, ls, Anchor::Start) });
+            }
+        };
+        if let Some(b) = legend_box {
+            prims.push(Prim::Outlined {
+                pts: vec![(b.x0, b.y0), (b.x1, b.y0), (b.x1, b.y1), (b.x0, b.y1)],
+                fill: Rgb(255, 255, 255),
+                opacity: 0.9,
+                stroke: Rgb(0x99, 0x99, 0x99),
+                width: (0.05 * f).max(0.5),
+            });
+            let mut y = b.y0 + 0.3 * f;
+            for e in &inside_entries {
+                draw_entry(&mut prims, e, b.x0 + 0.4 * f, y, &mut legend_entries);
+                y += entry_h(e);
+            }
+            legend = Some(b);
+        } else if let Some((height, cols)) = below {
+            let entries = entries_for(w - 2.0 * pad - sw - 1.5 * f);
+            let col_w = entries.iter().map(entry_w).fold(0.0, f64::max) + 1.2 * f;
+            let top = fr.below_axis + 0.4 * f;
+            let mut y = top;
+            for row in entries.chunks(cols) {
+                for (c, e) in row.iter().enumerate() {
+                    draw_entry(&mut prims, e, pad + c as f64 * col_w, y, &mut legend_entries);
+                }
+                y += row.iter().map(entry_h).fold(0.0, f64::max);
+            }
+            let used = (cols.min(entries.len()) as f64 * col_w - 1.2 * f).max(0.0);
+            legend = Some(Rect { x0: pad, y0: top, x1: pad + used, y1: top + height - 0.4 * f });
+        }
+        let layout = Layout {
+            width: w,
+            height: h,
+            font_px: f,
+            plot: p,
+            title,
+            caption,
+            x_label: xl,
+            y_label: yl,
+            x_ticks: xt,
+            y_ticks: yt,
+            legend,
+            legend_inside: legend_box.is_some(),
+            legend_entries,
+            points,
+        };
+        Ok((prims, layout))
+    }
+
+    /// Pixel positions of the drawn data for placing the legend: points along lines and error
+    /// bars every `step` px, markers, band edges.
+    fn data_samples(&self, p: &Rect, xa: &Axis, ya: &Axis, step: f64) -> Vec<(f64, f64)> {
+        let mut out = Vec::new();
+        for geom in self.geometry(p, xa, ya) {
+            for line in geom {
+                samples(&line, step, &mut out);
+            }
+        }
+        out.retain(|q| p.contains(*q));
+        out
+    }
+
+    /// The drawn polylines of each series (markers as one-point lines), in px.
+    fn geometry(&self, p: &Rect, xa: &Axis, ya: &Axis) -> Vec<Vec<Vec<(f64, f64)>>> {
+        let px = |v: f64| p.x0 + (v - xa.lo) / (xa.hi - xa.lo) * p.width();
+        let py = |v: f64| p.y1 - (v - ya.lo) / (ya.hi - ya.lo) * p.height();
+        let to = |x: f64, y: f64| -> Option<(f64, f64)> {
+            let (a, b) = (px(self.tx(x)), py(self.ty(y)));
+            (a.is_finite() && b.is_finite()).then_some((a, b))
+        };
+        self.series
+            .iter()
+            .map(|s| {
+                let pts: Vec<(f64, f64)> = s.points.iter().filter_map(|&(x, y)| to(x, y)).collect();
+                match s.style {
+                    SeriesStyle::XSpan | SeriesStyle::YSpan => Vec::new(),
+                    SeriesStyle::Band => {
+                        let upper = s.upper.clone().unwrap_or_default();
+                        let top: Vec<(f64, f64)> =
+                            s.points.iter().zip(&upper).filter_map(|(&(x, _), &u)| to(x, u)).collect();
+                        vec![pts, top]
+                    }
+                    SeriesStyle::Step => {
+                        let mut stairs = Vec::with_capacity(2 * pts.len());
+                        for (i, &q) in pts.iter().enumerate() {
+                            if i > 0 {
+                                stairs.push((q.0, pts[i - 1].1));
+                            }
+                            stairs.push(q);
+                        }
+                        vec![stairs]
+                    }
+                    SeriesStyle::Markers => {
+                        let mut v: Vec<Vec<(f64, f64)>> = pts.iter().map(|q| vec![*q]).collect();
+                        for (i, &(x, y)) in s.points.iter().enumerate() {
+                            if let Some(e) = s.y_err.as_ref().and_then(|e| e.get(i)).filter(|e| e.is_finite() && **e > 0.0) {
+                                let lo = to(x, y - e).map(|q| q.1).unwrap_or(p.y1);
+                                if let (Some(a), Some(_)) = (to(x, y + e), to(x, y)) {
+                                    v.push(vec![(a.0, lo), a]);
+                                }
+                            }
+                            if let Some(e) = s.x_err.as_ref().and_then(|e| e.get(i)).filter(|e| e.is_finite() && **e > 0.0) {
+                                let lo = to(x - e, y).map(|q| q.0).unwrap_or(p.x0);
+                                if let (Some(a), Some(_)) = (to(x + e, y), to(x, y)) {
+                                    v.push(vec![(lo, a.1), a]);
+                                }
+                            }
+                        }
+                        v
+                    }
+                    SeriesStyle::Line | SeriesStyle::Dashed => vec![pts],
+                }
+            })
+            .collect()
+    }
+
+    /// Draws the series (spans and bands first, then lines, then markers, then the series drawn
+    /// on top); returns the drawn data positions inside the plot.
+    fn draw_series(&self, prims: &mut Vec<Prim>, p: &Rect, xa: &Axis, ya: &Axis, f: f64, looks: &[Resolved]) -> Vec<(f64, f64)> {
+        let geom = self.geometry(p, xa, ya);
+        let px = |v: f64| p.x0 + (v - xa.lo) / (xa.hi - xa.lo) * p.width();
+        let py = |v: f64| p.y1 - (v - ya.lo) / (ya.hi - ya.lo) * p.height();
+        let mut order: Vec<usize> = (0..self.series.len()).collect();
+        order.sort_by_key(|&k| {
+            let s = &self.series[k];
+            let base = match s.style {
+                SeriesStyle::XSpan | SeriesStyle::YSpan | SeriesStyle::Band => 0,
+                SeriesStyle::Markers => 2,
+                _ => 1,
+            };
+            if looks[k].on_top { 3 } else { base }
+        });
+        let stroke = 0.14 * f;
+        let r = 0.3 * f;
+        let mut points = Vec::new();
+        for k in order {
+            let s = &self.series[k];
+            let color = looks[k].color;
+            match s.style {
+                SeriesStyle::XSpan => {
+                    for &(a, b) in &s.points {
+                        let (a, b) = (px(self.tx(a)).max(p.x0), px(self.tx(b)).min(p.x1));
+                        if a.is_finite() && b.is_finite() {
+                            prims.push(Prim::Fill { pts: vec![(a, p.y0), (b, p.y0), (b, p.y1), (a, p.y1)], color, opacity: 0.22 });
+                        }
+                    }
+                }
+                SeriesStyle::YSpan => {
+                    for &(a, b) in &s.points {
+                        let (a, b) = (py(self.ty(a)).min(p.y1), py(self.ty(b)).max(p.y0));
+                        if a.is_finite() && b.is_finite() {
+                            prims.push(Prim::Fill { pts: vec![(p.x0, a), (p.x1, a), (p.x1, b), (p.x0, b)], color, opacity: 0.22 });
+                        }
+                    }
+                }
+                SeriesStyle::Band => {
+                    if let [lower, upper] = geom[k].as_slice() {
+                        let mut poly = lower.clone();
+                        poly.extend(upper.iter().rev());
+                        if poly.len() >= 3 {
+                            prims.push(Prim::Fill { pts: poly, color, opacity: 0.22 });
+                        }
+                    }
+                }
+                SeriesStyle::Line | SeriesStyle::Step | SeriesStyle::Dashed => {
+                    for line in &geom[k] {
+                        if line.len() >= 2 {
+                            let dash = (s.style == SeriesStyle::Dashed).then_some((0.55 * f, 0.35 * f));
+                            prims.push(Prim::Path { pts: line.clone(), color, width: stroke, dash });
+                        }
+                        let mut s = Vec::new();
+                        samples(line, 0.5 * f, &mut s);
+                        points.extend(s.into_iter().filter(|q| p.contains(*q)));
+                    }
+                }
+                SeriesStyle::Markers => {
+                    let cap = 0.25 * f;
+                    let bar_w = (0.07 * f).max(0.75);
+                    for line in &geom[k] {
+                        match line.as_slice() {
+                            [c] => {
+                                prims.push(marker_prim(looks[k].marker, *c, r, color));
+                                if p.contains(*c) {
+                                    points.push(*c);
+                                }
+                            }
+                            [a, b] => {
+                                prims.push(Prim::Path { pts: vec![*a, *b], color, width: bar_w, dash: None });
+                                let vertical = (a.0 - b.0).abs() < 1e-9;
+                                for e in [a, b] {
+                                    let cap_pts = if vertical {
+                                        vec![(e.0 - cap, e.1), (e.0 + cap, e.1)]
+                                    } else {
+                                        vec![(e.0, e.1 - cap), (e.0, e.1 + cap)]
+                                    };
+                                    prims.push(Prim::Path { pts: cap_pts, color, width: bar_w, dash: None });
+                                }
+                                let mut s = Vec::new();
+                                samples(line, 0.5 * f, &mut s);
+                                points.extend(s.into_iter().filter(|q| p.contains(*q)));
+                            }
+                            _ => {}
+                        }
+                    }
+                }
+            }
+        }
+        points
+    }
+}
