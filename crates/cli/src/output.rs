@@ -477,11 +477,12 @@ impl OutputSet {
         Ok(())
     }
 
-    /// Adds a colour image (a field drawn as a heat map with a colour bar) as PNG.
-    /// Its drawn cells go beside it as CSV under the same name (`height.png`, `height.csv`).
+    /// Adds a colour image (a field drawn as a heat map with a colour bar) as SVG or PNG by the
+    /// name's extension. Its drawn cells go beside it as CSV under the same name (`height.png`,
+    /// `height.csv`).
     pub fn add_image_map(&mut self, name: &str, map: &stiction_plot::ImageMap) -> CliResult {
         let path = self.claim(name)?;
-        map.write_png(&path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
+        map.write(&path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
         let csv_name = Path::new(name).with_extension("csv").to_string_lossy().into_owned();
         self.add_bytes(&csv_name, map.data_csv().as_bytes())
     }

@@ -349,7 +349,9 @@ impl Raster {
 
     fn text(&mut self, at: (f64, f64), markup: &str, size: f64, color: Rgb, anchor: Anchor, vertical: bool) {
         let width = text::text_width(markup, size);
+        // Room for accents and parentheses above the layout's text box.
         let (up, down) = text::text_extent(markup, size);
+        let (up, down) = (up + 0.3 * size, down + 0.15 * size);
         let start = match anchor {
             Anchor::Start => 0.0,
             Anchor::Middle => -width / 2.0,

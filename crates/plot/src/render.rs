@@ -542,11 +542,26 @@ impl Chart {
         Ok(self.render()?.1)
     }
 
-    /// The display list and the layout.
+    /// The display list and the layout: at the chart's font size when the plot keeps at least
+    /// 40 % of the canvas height and 45 % of its width with nothing out of place, else at the
+    /// largest of 0.9, 0.8, 0.7 and 0.6 times it that does (else the smallest).
     pub(crate) fn render(&self) -> Result<(Vec<Prim>, Layout), PlotError> {
+        let (w, h) = self.canvas_px();
+        let f0 = self.font_size_px();
+        let mut last = None;
+        for k in [1.0, 0.9, 0.8, 0.7, 0.6] {
+            let r = self.render_with(f0 * k)?;
+            if r.1.plot.height() >= 0.4 * h && r.1.plot.width() >= 0.45 * w && r.1.problems().is_empty() {
+                return Ok(r);
+            }
+            last = Some(r);
+        }
+        Ok(last.expect("five tries"))
+    }
+
+    fn render_with(&self, f: f64) -> Result<(Vec<Prim>, Layout), PlotError> {
         let ((x0, x1), (y0, y1)) = self.ranges().ok_or_else(|| PlotError::Empty { title: self.title.clone() })?;
         let (w, h) = self.canvas_px();
-        let f = self.font_size_px();
         let pad = 0.5 * f;
         let looks = self.resolve();
         let xa = Axis { scale: self.x_scale(), lo: x0, hi: x1, named: self.x_ticks.clone() };
@@ -575,7 +590,7 @@ impl Chart {
         let inside_entries = entries_for(0.55 * fr.plot.width() - sw - 1.5 * f);
         let mut legend_box = None;
         let mut fr = fr;
-        let mut below: Option<(f64, usize)> = None; // (height, columns)
+        let mut below: Option<(f64, usize, f64)> = None; // (height, columns, label width)
         if !inside_entries.is_empty() {
             let bw = 0.4 * f + inside_entries.iter().map(entry_w).fold(0.0, f64::max) + 0.4 * f;
             let bh = 0.3 * f + inside_entries.iter().map(entry_h).sum::<f64>() + 0.2 * f;
@@ -605,13 +620,26 @@ impl Chart {
                 .then(|| order.into_iter().map(corner).find(|b| !pts.iter().any(|q| b.grow(r).contains(*q))))
                 .flatten();
             if legend_box.is_none() {
-                // Below the axes, in as many columns as fit.
-                let entries = entries_for(w - 2.0 * pad - sw - 1.5 * f);
-                let col_w = entries.iter().map(entry_w).fold(0.0, f64::max) + 1.2 * f;
-                let cols = (((w - 2.0 * pad) + 1.2 * f) / col_w).floor().max(1.0) as usize;
-                let height: f64 =
-                    entries.chunks(cols).map(|row| row.iter().map(entry_h).fold(0.0, f64::max)).sum::<f64>() + 0.4 * f;
-                below = Some((height, cols));
+                // Below the axes, in the number of columns (1 to 4, labels wrapped to the column)
+                // that takes the least height.
+                for cols in 1..=4usize {
+                    let col_w = (w - 2.0 * pad - (cols - 1) as f64 * 1.2 * f) / cols as f64;
+                    let label_w = col_w - sw - 0.5 * f;
+                    if label_w < 6.0 * f && cols > 1 {
+                        break;
+                    }
+                    let entries = entries_for(label_w);
+                    let used = entries.iter().map(entry_w).fold(0.0, f64::max);
+                    if cols > 1 && used > col_w + 1e-9 {
+                        continue;
+                    }
+                    let height: f64 = entries.chunks(cols).map(|row| row.iter().map(entry_h).fold(0.0, f64::max)).sum::<f64>()
+                        + 0.4 * f;
+                    if below.is_none_or(|b| height < b.0 - 1e-9) {
+                        below = Some((height, cols, label_w));
+                    }
+                }
+                let height = below.map_or(0.0, |b| b.0);
                 let area2 = Rect { y1: area.y1 - height, ..area };
                 fr = frame(area2, f, &xa, &ya, &self.x_label, &self.y_label, None);
             }
@@ -669,9 +697,9 @@ impl Chart {
                 y += entry_h(e);
             }
             legend = Some(b);
-        } else if let Some((height, cols)) = below {
-            let entries = entries_for(w - 2.0 * pad - sw - 1.5 * f);
-            let col_w = entries.iter().map(entry_w).fold(0.0, f64::max) + 1.2 * f;
+        } else if let Some((height, cols, label_w)) = below {
+            let entries = entries_for(label_w);
+            let col_w = (w - 2.0 * pad - (cols - 1) as f64 * 1.2 * f) / cols as f64 + 1.2 * f;
             let top = fr.below_axis + 0.4 * f;
             let mut y = top;
             for row in entries.chunks(cols) {

@@ -23,8 +23,9 @@ pub const FONT_FAMILY: &str = "DejaVu Sans, Bitstream Vera Sans, Verdana, sans-s
 pub(crate) static FONT: LazyLock<FontRef<'static>> =
     LazyLock::new(|| FontRef::try_from_slice(FONT_BYTES).expect("the embedded DejaVu Sans parses"));
 
-/// Ascent and descent of the font as fractions of the em size.
-pub(crate) const ASCENT: f64 = 0.93;
+/// Ascent and descent of the ink of ordinary characters (ascender of `d`, `l` and descender of
+/// `p`, `g` in DejaVu Sans) as fractions of the em size: the text boxes of a layout.
+pub(crate) const ASCENT: f64 = 0.76;
 /// See [`ASCENT`].
 pub(crate) const DESCENT: f64 = 0.24;
 /// Size of a subscript or superscript relative to the text around it.

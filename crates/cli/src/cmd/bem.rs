@@ -534,7 +534,6 @@ fn heat_map(field: &[f64], g: Grid, title: &str, value_label: &str, scale: f64) 
         x_max: g.nx as f64 * g.dx_m * 1e6,
         y_max: g.ny as f64 * g.dy_m * 1e6,
         markers: Vec::new(),
-        size_px: None,
-        font_px: None,
+        ..ImageMap::default()
     }
 }
