@@ -40,7 +40,8 @@ pub fn parse_length(s: &str) -> Result<Length, String> {
     let t = s.trim();
     let split = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
     let (num, unit) = (t[..split].trim(), t[split..].trim().to_ascii_lowercase());
-    let v: f64 = num.parse().map_err(|_| format!("{s:?} is not a size: expected pixels (800) or a length (85 mm, 3.5 in)"))?;
+    let v: f64 =
+        num.parse().map_err(|_| format!("{s:?} is not a size: expected pixels (800) or a length (85 mm, 3.5 in)"))?;
     if !v.is_finite() {
         return Err(format!("{s:?} is not a finite size"));
     }

@@ -2,7 +2,14 @@
 use stiction_plot::{Chart, ImageMap, Series};
 
 fn chart() -> Chart {
-    let model = |a: f64| (0..60).map(|i| { let x = i as f64 * 0.5; (x, a * x + 2.0 + 0.3 * (x * 0.4).sin()) }).collect::<Vec<_>>();
+    let model = |a: f64| {
+        (0..60)
+            .map(|i| {
+                let x = i as f64 * 0.5;
+                (x, a * x + 2.0 + 0.3 * (x * 0.4).sin())
+            })
+            .collect::<Vec<_>>()
+    };
     let mut c = Chart::new(
         "Static friction F_f against load L: virtual meter, eq. 10 fit and the paper's measurement (Tas et al. 2000)",
         "load L (µN)",
@@ -25,14 +32,37 @@ fn main() {
     c.clone().physical((85.0, 60.0), None).unwrap().write(&out.join("journal.svg")).unwrap();
     c.clone().sized(Some((400, 280)), None).unwrap().write(&out.join("small.png")).unwrap();
     c.write(&out.join("default.png")).unwrap();
-    for (name, l) in [("journal", chart().physical((85.0, 60.0), None).unwrap().layout().unwrap()), ("small", chart().sized(Some((400, 280)), None).unwrap().layout().unwrap())] {
+    for (name, l) in [
+        ("journal", chart().physical((85.0, 60.0), None).unwrap().layout().unwrap()),
+        ("small", chart().sized(Some((400, 280)), None).unwrap().layout().unwrap()),
+    ] {
         println!("{name}: {:?}", l.problems());
     }
     let n = 64;
-    let values: Vec<f64> = (0..n * n).map(|i| { let (x, y) = ((i % n) as f64, (i / n) as f64); 1e9 * (1.0 + (x * 0.2).sin() * (y * 0.15).cos()) * 14.0 }).collect();
-    let m = ImageMap { title: "Pressure at the last state, load 3 µN".into(), x_label: "x (µm)".into(), y_label: "y (µm)".into(), value_label: "pressure".into(), value_unit: Some("Pa".into()), nx: n, ny: n, values, x_max: 6.4, y_max: 6.4, markers: vec![(1.0, 2.0), (3.0, 3.5)], ..Default::default() };
+    let values: Vec<f64> = (0..n * n)
+        .map(|i| {
+            let (x, y) = ((i % n) as f64, (i / n) as f64);
+            1e9 * (1.0 + (x * 0.2).sin() * (y * 0.15).cos()) * 14.0
+        })
+        .collect();
+    let m = ImageMap {
+        title: "Pressure at the last state, load 3 µN".into(),
+        x_label: "x (µm)".into(),
+        y_label: "y (µm)".into(),
+        value_label: "pressure".into(),
+        value_unit: Some("Pa".into()),
+        nx: n,
+        ny: n,
+        values,
+        x_max: 6.4,
+        y_max: 6.4,
+        markers: vec![(1.0, 2.0), (3.0, 3.5)],
+        ..Default::default()
+    };
     m.write(&out.join("map.png")).unwrap();
     m.write(&out.join("map.svg")).unwrap();
-    let mut j = m.clone(); j.size_mm = Some((85.0, 70.0)); j.write(&out.join("map_journal.png")).unwrap();
+    let mut j = m.clone();
+    j.size_mm = Some((85.0, 70.0));
+    j.write(&out.join("map_journal.png")).unwrap();
     println!("map: {:?}", j.layout().unwrap().problems());
 }

@@ -130,7 +130,11 @@ pub fn svg(prims: &[Prim], w: f64, h: f64, physical: Option<(String, String)>) -
                     Anchor::Middle => "middle",
                     Anchor::End => "end",
                 };
-                let rot = if *vertical { format!(" transform=\"rotate(-90 {} {})\"", n(at.0), n(at.1)) } else { String::new() };
+                let rot = if *vertical {
+                    format!(" transform=\"rotate(-90 {} {})\"", n(at.0), n(at.1))
+                } else {
+                    String::new()
+                };
                 s.push_str(&format!(
                     "<text x=\"{}\" y=\"{}\" font-family=\"{}\" font-size=\"{}\" fill=\"{}\" text-anchor=\"{anchor}\"{rot}>",
                     n(at.0),
@@ -319,8 +323,8 @@ impl Raster {
             let a = a.min(1.0) * op;
             if a > 0.0 {
                 let i = ((by0 + y as usize) * self.w + bx0 + x as usize) * 3;
-                for k in 0..3 {
-                    self.rgb[i + k] += (col[k] - self.rgb[i + k]) * a;
+                for (d, c) in self.rgb[i..i + 3].iter_mut().zip(col) {
+                    *d += (c - *d) * a;
                 }
             }
         });
@@ -401,8 +405,8 @@ impl Raster {
                     continue;
                 }
                 let i = (py as usize * self.w + px as usize) * 3;
-                for k in 0..3 {
-                    self.rgb[i + k] += (col[k] - self.rgb[i + k]) * a;
+                for (d, c) in self.rgb[i..i + 3].iter_mut().zip(col) {
+                    *d += (c - *d) * a;
                 }
             }
         }
@@ -504,7 +508,12 @@ mod tests {
 
     #[test]
     fn svg_keeps_sub_pixel_coordinates() {
-        let s = svg(&[Prim::Path { pts: vec![(1.234, 5.0), (7.5, 9.876)], color: Rgb(0, 0, 0), width: 1.5, dash: None }], 10.0, 10.0, None);
+        let s = svg(
+            &[Prim::Path { pts: vec![(1.234, 5.0), (7.5, 9.876)], color: Rgb(0, 0, 0), width: 1.5, dash: None }],
+            10.0,
+            10.0,
+            None,
+        );
         assert!(s.contains("points=\"1.23,5 7.5,9.88\""), "{s}");
         assert_eq!(base64(b"Man"), "TWFu");
         assert_eq!(base64(b"Ma"), "TWE=");

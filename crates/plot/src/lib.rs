@@ -546,7 +546,6 @@ impl Chart {
         };
         Some((if self.x_range.is_some() { xs } else { pad(xs) }, if self.y_range.is_some() { ys } else { pad(ys) }))
     }
-
 }
 
 /// A millimetre value as written in an SVG size (to 0.01 mm).
@@ -557,7 +556,11 @@ fn mm(v: f64) -> String {
 /// Rasterises a display list and writes it as PNG, atomically.
 fn write_raster(path: &Path, prims: &[canvas::Prim], w: u32, h: u32, scale: f64, dpi: f64) -> Result<(), PlotError> {
     if (w as u64) * (h as u64) > 80_000_000 {
-        return Err(PlotError::Option { what: "PNG pixel count", value: (w as f64) * (h as f64), expected: "at most 80 million" });
+        return Err(PlotError::Option {
+            what: "PNG pixel count",
+            value: (w as f64) * (h as f64),
+            expected: "at most 80 million",
+        });
     }
     let mut r = canvas::Raster::new(w as usize, h as usize, scale);
     r.draw(prims);

@@ -215,7 +215,10 @@ impl ImageMap {
         let red = Rgb(0xd6, 0x27, 0x28);
         let r = 0.22 * f;
         let ring = |c: (f64, f64)| -> Vec<(f64, f64)> {
-            (0..=16).map(|i| i as f64 / 16.0 * std::f64::consts::TAU).map(|t| (c.0 + r * t.cos(), c.1 + r * t.sin())).collect()
+            (0..=16)
+                .map(|i| i as f64 / 16.0 * std::f64::consts::TAU)
+                .map(|t| (c.0 + r * t.cos(), c.1 + r * t.sin()))
+                .collect()
         };
         let mut points = Vec::new();
         prims.push(Prim::ClipBegin { x0: p.x0, y0: p.y0, x1: p.x1, y1: p.y1 });
@@ -232,12 +235,27 @@ impl ImageMap {
             let label = self.marker_label.clone().unwrap_or_else(|| "summits".into());
             let (u, _) = text_extent("Ag", 0.9 * f);
             let y = fr.below_axis + 0.3 * f + u;
-            prims.push(Prim::Path { pts: ring((p.x0 + r, y - 0.3 * f)), color: red, width: (0.07 * f).max(0.75), dash: None });
+            prims.push(Prim::Path {
+                pts: ring((p.x0 + r, y - 0.3 * f)),
+                color: red,
+                width: (0.07 * f).max(0.75),
+                dash: None,
+            });
             let at = (p.x0 + 2.0 * r + 0.4 * f, y);
-            prims.push(Prim::Text { at, text: label.clone(), size: 0.9 * f, color: Rgb(0x22, 0x22, 0x22), anchor: Anchor::Start, vertical: false });
+            prims.push(Prim::Text {
+                at,
+                text: label.clone(),
+                size: 0.9 * f,
+                color: Rgb(0x22, 0x22, 0x22),
+                anchor: Anchor::Start,
+                vertical: false,
+            });
             let wl = text_width(&label, 0.9 * f);
             let (u2, d2) = text_extent(&label, 0.9 * f);
-            legend_entries.push(crate::TextBox { text: label, rect: Rect { x0: at.0, y0: at.1 - u2, x1: at.0 + wl, y1: at.1 + d2 } });
+            legend_entries.push(crate::TextBox {
+                text: label,
+                rect: Rect { x0: at.0, y0: at.1 - u2, x1: at.0 + wl, y1: at.1 + d2 },
+            });
         }
         // Colour bar beside the image, as tall as it.
         let bx0 = p.x1 + 0.8 * f;
@@ -248,7 +266,15 @@ impl ImageMap {
             let c = viridis(i as f64 / (steps - 1) as f64);
             bar_rgb.extend([c.0, c.1, c.2]);
         }
-        prims.push(Prim::Image { x0: bar_rect.x0, y0: bar_rect.y0, x1: bar_rect.x1, y1: bar_rect.y1, nx: 1, ny: steps, rgb: bar_rgb });
+        prims.push(Prim::Image {
+            x0: bar_rect.x0,
+            y0: bar_rect.y0,
+            x1: bar_rect.x1,
+            y1: bar_rect.y1,
+            nx: 1,
+            ny: steps,
+            rgb: bar_rgb,
+        });
         let bar_fr = crate::render::Frame {
             plot: bar_rect,
             xt: crate::render::Ticks { bold: Vec::new(), light: Vec::new(), vertical: false, size: f },
@@ -262,14 +288,35 @@ impl ImageMap {
         let axis_w = (0.07 * f).max(0.75);
         for (v, l) in &bar_fr.yt.bold {
             let yp = bar_rect.y1 - (v - bar.lo) / (bar.hi - bar.lo) * bar_rect.height();
-            prims.push(Prim::Path { pts: vec![(bar_rect.x1, yp), (bar_rect.x1 + tl, yp)], color: Rgb(0x22, 0x22, 0x22), width: axis_w, dash: None });
+            prims.push(Prim::Path {
+                pts: vec![(bar_rect.x1, yp), (bar_rect.x1 + tl, yp)],
+                color: Rgb(0x22, 0x22, 0x22),
+                width: axis_w,
+                dash: None,
+            });
             let (u, d) = text_extent(l, f);
             let at = (bar_rect.x1 + tl + g, yp + (u - d) / 2.0);
-            prims.push(Prim::Text { at, text: l.clone(), size: f, color: Rgb(0x22, 0x22, 0x22), anchor: Anchor::Start, vertical: false });
-            bar_ticks.push(crate::TextBox { text: l.clone(), rect: Rect { x0: at.0, y0: at.1 - u, x1: at.0 + text_width(l, f), y1: at.1 + d } });
+            prims.push(Prim::Text {
+                at,
+                text: l.clone(),
+                size: f,
+                color: Rgb(0x22, 0x22, 0x22),
+                anchor: Anchor::Start,
+                vertical: false,
+            });
+            bar_ticks.push(crate::TextBox {
+                text: l.clone(),
+                rect: Rect { x0: at.0, y0: at.1 - u, x1: at.0 + text_width(l, f), y1: at.1 + d },
+            });
         }
         prims.push(Prim::Path {
-            pts: vec![(bar_rect.x0, bar_rect.y0), (bar_rect.x1, bar_rect.y0), (bar_rect.x1, bar_rect.y1), (bar_rect.x0, bar_rect.y1), (bar_rect.x0, bar_rect.y0)],
+            pts: vec![
+                (bar_rect.x0, bar_rect.y0),
+                (bar_rect.x1, bar_rect.y0),
+                (bar_rect.x1, bar_rect.y1),
+                (bar_rect.x0, bar_rect.y1),
+                (bar_rect.x0, bar_rect.y0),
+            ],
             color: Rgb(0x22, 0x22, 0x22),
             width: axis_w,
             dash: None,
@@ -278,10 +325,20 @@ impl ImageMap {
         for (i, l) in bar_lines.iter().enumerate() {
             let (u, _) = text_extent("Ag", f);
             let at = (label_x + u + i as f64 * 1.2 * f, (bar_rect.y0 + bar_rect.y1) / 2.0);
-            prims.push(Prim::Text { at, text: l.clone(), size: f, color: Rgb(0x22, 0x22, 0x22), anchor: Anchor::Middle, vertical: true });
+            prims.push(Prim::Text {
+                at,
+                text: l.clone(),
+                size: f,
+                color: Rgb(0x22, 0x22, 0x22),
+                anchor: Anchor::Middle,
+                vertical: true,
+            });
             let (u2, d2) = text_extent(l, f);
             let tw = text_width(l, f);
-            legend_entries.push(crate::TextBox { text: l.clone(), rect: Rect { x0: at.0 - u2, x1: at.0 + d2, y0: at.1 - tw / 2.0, y1: at.1 + tw / 2.0 } });
+            legend_entries.push(crate::TextBox {
+                text: l.clone(),
+                rect: Rect { x0: at.0 - u2, x1: at.0 + d2, y0: at.1 - tw / 2.0, y1: at.1 + tw / 2.0 },
+            });
         }
         let mut y_ticks = yt;
         y_ticks.extend(bar_ticks);

@@ -339,16 +339,36 @@ pub(crate) fn draw_axes(
     let thin = (0.05 * f).max(0.5);
     if grid {
         for &v in &fr.xt.light {
-            prims.push(Prim::Path { pts: vec![(px(v), p.y0), (px(v), p.y1)], color: Rgb(0xf0, 0xf0, 0xf0), width: thin, dash: None });
+            prims.push(Prim::Path {
+                pts: vec![(px(v), p.y0), (px(v), p.y1)],
+                color: Rgb(0xf0, 0xf0, 0xf0),
+                width: thin,
+                dash: None,
+            });
         }
         for &v in &fr.yt.light {
-            prims.push(Prim::Path { pts: vec![(p.x0, py(v)), (p.x1, py(v))], color: Rgb(0xf0, 0xf0, 0xf0), width: thin, dash: None });
+            prims.push(Prim::Path {
+                pts: vec![(p.x0, py(v)), (p.x1, py(v))],
+                color: Rgb(0xf0, 0xf0, 0xf0),
+                width: thin,
+                dash: None,
+            });
         }
         for (v, _) in &fr.xt.bold {
-            prims.push(Prim::Path { pts: vec![(px(*v), p.y0), (px(*v), p.y1)], color: Rgb(0xdd, 0xdd, 0xdd), width: thin, dash: None });
+            prims.push(Prim::Path {
+                pts: vec![(px(*v), p.y0), (px(*v), p.y1)],
+                color: Rgb(0xdd, 0xdd, 0xdd),
+                width: thin,
+                dash: None,
+            });
         }
         for (v, _) in &fr.yt.bold {
-            prims.push(Prim::Path { pts: vec![(p.x0, py(*v)), (p.x1, py(*v))], color: Rgb(0xdd, 0xdd, 0xdd), width: thin, dash: None });
+            prims.push(Prim::Path {
+                pts: vec![(p.x0, py(*v)), (p.x1, py(*v))],
+                color: Rgb(0xdd, 0xdd, 0xdd),
+                width: thin,
+                dash: None,
+            });
         }
     }
     let axis_w = (0.07 * f).max(0.75);
@@ -374,7 +394,14 @@ pub(crate) fn draw_axes(
         prims.push(Prim::Path { pts: vec![(p.x0 - tl, yp), (p.x0, yp)], color: INK, width: axis_w, dash: None });
         let (u, d) = text_extent(l, fr.yt.size);
         let at = (p.x0 - tl - g, yp + (u - d) / 2.0);
-        prims.push(Prim::Text { at, text: l.clone(), size: fr.yt.size, color: INK, anchor: Anchor::End, vertical: false });
+        prims.push(Prim::Text {
+            at,
+            text: l.clone(),
+            size: fr.yt.size,
+            color: INK,
+            anchor: Anchor::End,
+            vertical: false,
+        });
         yb.push(TextBox { text: l.clone(), rect: hbox(l, at, fr.yt.size, Anchor::End) });
     }
     prims.push(Prim::Path {
@@ -443,7 +470,11 @@ pub(crate) fn draw_caption(prims: &mut Vec<Prim>, note: Option<&str>, w: f64, h:
 
 /// A marker polygon or circle.
 fn marker_prim(shape: Marker, c: (f64, f64), r: f64, color: Rgb) -> Prim {
-    let poly = |pts: &[(f64, f64)]| Prim::Fill { pts: pts.iter().map(|p| (c.0 + p.0 * r, c.1 + p.1 * r)).collect(), color, opacity: 1.0 };
+    let poly = |pts: &[(f64, f64)]| Prim::Fill {
+        pts: pts.iter().map(|p| (c.0 + p.0 * r, c.1 + p.1 * r)).collect(),
+        color,
+        opacity: 1.0,
+    };
     match shape {
         Marker::Circle => Prim::Circle { c, r, color },
         Marker::Square => poly(&[(-0.85, -0.85), (0.85, -0.85), (0.85, 0.85), (-0.85, 0.85)]),
@@ -579,7 +610,12 @@ impl Chart {
                 .iter()
                 .zip(&looks)
                 .filter(|(s, _)| !s.name.is_empty())
-                .map(|(s, l)| Entry { lines: wrap(&s.name, max_w, ls), style: s.style, color: l.color, marker: l.marker })
+                .map(|(s, l)| Entry {
+                    lines: wrap(&s.name, max_w, ls),
+                    style: s.style,
+                    color: l.color,
+                    marker: l.marker,
+                })
                 .collect()
         };
         let entry_h = |e: &Entry| e.lines.len() as f64 * 1.15 * ls + 0.25 * ls;
@@ -610,9 +646,14 @@ impl Chart {
             };
             let mut order = vec![self.legend];
             order.extend(
-                [LegendPosition::UpperRight, LegendPosition::UpperLeft, LegendPosition::LowerRight, LegendPosition::LowerLeft]
-                    .into_iter()
-                    .filter(|c| *c != self.legend),
+                [
+                    LegendPosition::UpperRight,
+                    LegendPosition::UpperLeft,
+                    LegendPosition::LowerRight,
+                    LegendPosition::LowerLeft,
+                ]
+                .into_iter()
+                .filter(|c| *c != self.legend),
             );
             let fits = bw <= 0.65 * p.width() && bh <= 0.65 * p.height();
             let r = 0.3 * f + 1.0;
@@ -633,8 +674,9 @@ impl Chart {
                     if cols > 1 && used > col_w + 1e-9 {
                         continue;
                     }
-                    let height: f64 = entries.chunks(cols).map(|row| row.iter().map(entry_h).fold(0.0, f64::max)).sum::<f64>()
-                        + 0.4 * f;
+                    let height: f64 =
+                        entries.chunks(cols).map(|row| row.iter().map(entry_h).fold(0.0, f64::max)).sum::<f64>()
+                            + 0.4 * f;
                     if below.is_none_or(|b| height < b.0 - 1e-9) {
                         below = Some((height, cols, label_w));
                     }
@@ -661,9 +703,12 @@ impl Chart {
             let mid = y + 0.6 * ls;
             let stroke = 0.14 * f;
             match e.style {
-                SeriesStyle::Line | SeriesStyle::Step => {
-                    prims.push(Prim::Path { pts: vec![(x, mid), (x + sw, mid)], color: e.color, width: stroke, dash: None })
-                }
+                SeriesStyle::Line | SeriesStyle::Step => prims.push(Prim::Path {
+                    pts: vec![(x, mid), (x + sw, mid)],
+                    color: e.color,
+                    width: stroke,
+                    dash: None,
+                }),
                 SeriesStyle::Dashed => prims.push(Prim::Path {
                     pts: vec![(x, mid), (x + sw, mid)],
                     color: e.color,
@@ -672,14 +717,26 @@ impl Chart {
                 }),
                 SeriesStyle::Markers => prims.push(marker_prim(e.marker, (x + sw / 2.0, mid), 0.3 * f, e.color)),
                 _ => prims.push(Prim::Fill {
-                    pts: vec![(x, mid - 0.35 * f), (x + sw, mid - 0.35 * f), (x + sw, mid + 0.35 * f), (x, mid + 0.35 * f)],
+                    pts: vec![
+                        (x, mid - 0.35 * f),
+                        (x + sw, mid - 0.35 * f),
+                        (x + sw, mid + 0.35 * f),
+                        (x, mid + 0.35 * f),
+                    ],
                     color: e.color,
                     opacity: 0.3,
                 }),
             }
             for (i, l) in e.lines.iter().enumerate() {
                 let at = (x + sw + 0.5 * f, y + u + i as f64 * 1.15 * ls);
-                prims.push(Prim::Text { at, text: l.clone(), size: ls, color: INK, anchor: Anchor::Start, vertical: false });
+                prims.push(Prim::Text {
+                    at,
+                    text: l.clone(),
+                    size: ls,
+                    color: INK,
+                    anchor: Anchor::Start,
+                    vertical: false,
+                });
                 out.push(TextBox { text: l.clone(), rect: hbox(l, at, ls, Anchor::Start) });
             }
         };
@@ -776,13 +833,17 @@ impl Chart {
                     SeriesStyle::Markers => {
                         let mut v: Vec<Vec<(f64, f64)>> = pts.iter().map(|q| vec![*q]).collect();
                         for (i, &(x, y)) in s.points.iter().enumerate() {
-                            if let Some(e) = s.y_err.as_ref().and_then(|e| e.get(i)).filter(|e| e.is_finite() && **e > 0.0) {
+                            if let Some(e) =
+                                s.y_err.as_ref().and_then(|e| e.get(i)).filter(|e| e.is_finite() && **e > 0.0)
+                            {
                                 let lo = to(x, y - e).map(|q| q.1).unwrap_or(p.y1);
                                 if let (Some(a), Some(_)) = (to(x, y + e), to(x, y)) {
                                     v.push(vec![(a.0, lo), a]);
                                 }
                             }
-                            if let Some(e) = s.x_err.as_ref().and_then(|e| e.get(i)).filter(|e| e.is_finite() && **e > 0.0) {
+                            if let Some(e) =
+                                s.x_err.as_ref().and_then(|e| e.get(i)).filter(|e| e.is_finite() && **e > 0.0)
+                            {
                                 let lo = to(x - e, y).map(|q| q.0).unwrap_or(p.x0);
                                 if let (Some(a), Some(_)) = (to(x + e, y), to(x, y)) {
                                     v.push(vec![(lo, a.1), a]);
@@ -799,7 +860,15 @@ impl Chart {
 
     /// Draws the series (spans and bands first, then lines, then markers, then the series drawn
     /// on top); returns the drawn data positions inside the plot.
-    fn draw_series(&self, prims: &mut Vec<Prim>, p: &Rect, xa: &Axis, ya: &Axis, f: f64, looks: &[Resolved]) -> Vec<(f64, f64)> {
+    fn draw_series(
+        &self,
+        prims: &mut Vec<Prim>,
+        p: &Rect,
+        xa: &Axis,
+        ya: &Axis,
+        f: f64,
+        looks: &[Resolved],
+    ) -> Vec<(f64, f64)> {
         let geom = self.geometry(p, xa, ya);
         let px = |v: f64| p.x0 + (v - xa.lo) / (xa.hi - xa.lo) * p.width();
         let py = |v: f64| p.y1 - (v - ya.lo) / (ya.hi - ya.lo) * p.height();
@@ -824,7 +893,11 @@ impl Chart {
                     for &(a, b) in &s.points {
                         let (a, b) = (px(self.tx(a)).max(p.x0), px(self.tx(b)).min(p.x1));
                         if a.is_finite() && b.is_finite() {
-                            prims.push(Prim::Fill { pts: vec![(a, p.y0), (b, p.y0), (b, p.y1), (a, p.y1)], color, opacity: 0.22 });
+                            prims.push(Prim::Fill {
+                                pts: vec![(a, p.y0), (b, p.y0), (b, p.y1), (a, p.y1)],
+                                color,
+                                opacity: 0.22,
+                            });
                         }
                     }
                 }
@@ -832,7 +905,11 @@ impl Chart {
                     for &(a, b) in &s.points {
                         let (a, b) = (py(self.ty(a)).min(p.y1), py(self.ty(b)).max(p.y0));
                         if a.is_finite() && b.is_finite() {
-                            prims.push(Prim::Fill { pts: vec![(p.x0, a), (p.x1, a), (p.x1, b), (p.x0, b)], color, opacity: 0.22 });
+                            prims.push(Prim::Fill {
+                                pts: vec![(p.x0, a), (p.x1, a), (p.x1, b), (p.x0, b)],
+                                color,
+                                opacity: 0.22,
+                            });
                         }
                     }
                 }

@@ -68,7 +68,8 @@ pub(crate) const PALETTE: [Rgb; 8] = [
 /// Whether `key` appears in `name` as a whole word (not inside a longer word).
 fn has_word(name: &str, key: &str) -> bool {
     let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '-');
-    name.match_indices(key).any(|(i, _)| !word(name[..i].chars().next_back()) && !word(name[i + key.len()..].chars().next()))
+    name.match_indices(key)
+        .any(|(i, _)| !word(name[..i].chars().next_back()) && !word(name[i + key.len()..].chars().next()))
 }
 
 /// The registered look of a series key or name (case-insensitive), if any.

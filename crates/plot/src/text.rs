@@ -120,9 +120,7 @@ pub fn typeset(markup: &str) -> Vec<Run> {
                 continue;
             }
             // A one-letter symbol before the mark: `F_a0`, not `file_name`.
-            let one_letter = i >= 1
-                && chars[i - 1].is_alphabetic()
-                && (i < 2 || !chars[i - 2].is_alphanumeric())
+            let one_letter = i >= 1 && chars[i - 1].is_alphabetic() && (i < 2 || !chars[i - 2].is_alphanumeric())
                 || i >= 1 && matches!(chars[i - 1], '*' | '\'' | ')');
             if c == '_' && one_letter {
                 let mut j = i + 1;

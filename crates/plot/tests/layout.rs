@@ -29,14 +29,19 @@ fn fig7_like() -> Chart {
 fn sensitivity_like() -> Chart {
     let names = ["a_clamp", "a_pull", "F_spring", "summit radius R", "sidewall + interactions", "surface.sigma"];
     let series = |name: &str, off: f64, k: f64| {
-        let pts: Vec<(f64, f64)> = (0..names.len()).map(|i| (i as f64 + 1.0 + off, k * (0.1 + 0.12 * i as f64))).collect();
+        let pts: Vec<(f64, f64)> =
+            (0..names.len()).map(|i| (i as f64 + 1.0 + off, k * (0.1 + 0.12 * i as f64))).collect();
         Series::markers(name, pts).with_y_err(vec![0.05; names.len()])
     };
-    let mut c = Chart::new("Share of the variance by input (160 samples with a fit)", "input", "Sobol index (95 % bootstrap intervals)")
-        .with(series("μ_e,a, first order", -0.15, 1.0))
-        .with(series("μ_e,a, total order", -0.05, 1.2))
-        .with(series("F_a0, first order", 0.05, 0.8))
-        .with(series("F_a0, total order", 0.15, 0.9));
+    let mut c = Chart::new(
+        "Share of the variance by input (160 samples with a fit)",
+        "input",
+        "Sobol index (95 % bootstrap intervals)",
+    )
+    .with(series("μ_e,a, first order", -0.15, 1.0))
+    .with(series("μ_e,a, total order", -0.05, 1.2))
+    .with(series("F_a0, first order", 0.05, 0.8))
+    .with(series("F_a0, total order", 0.15, 0.9));
     c.x_ticks = Some(names.iter().enumerate().map(|(i, n)| (i as f64 + 1.0, n.to_string())).collect());
     c.x_range = Some((0.5, names.len() as f64 + 0.5));
     c.legend = LegendPosition::UpperRight;
@@ -44,11 +49,20 @@ fn sensitivity_like() -> Chart {
 }
 
 fn psd_like() -> Chart {
-    let pts: Vec<(f64, f64)> = (0..200).map(|i| { let q = 10f64.powf(-2.0 + i as f64 * 0.02); (q, 1e-3 * q.powf(-3.0)) }).collect();
+    let pts: Vec<(f64, f64)> = (0..200)
+        .map(|i| {
+            let q = 10f64.powf(-2.0 + i as f64 * 0.02);
+            (q, 1e-3 * q.powf(-3.0))
+        })
+        .collect();
     let fit: Vec<(f64, f64)> = pts.iter().map(|&(q, _)| (q, 1.2e-3 * q.powf(-3.0))).collect();
-    Chart { x_log: true, y_log: true, ..Chart::new("Power spectral density of the measured height map", "wavenumber q (1/µm)", "PSD C(q) (nm² µm²)") }
-        .with(Series::markers("measured", pts))
-        .with(Series::dashed("self-affine fit, H = 0.9", fit))
+    Chart {
+        x_log: true,
+        y_log: true,
+        ..Chart::new("Power spectral density of the measured height map", "wavenumber q (1/µm)", "PSD C(q) (nm² µm²)")
+    }
+    .with(Series::markers("measured", pts))
+    .with(Series::dashed("self-affine fit, H = 0.9", fit))
 }
 
 fn residuals_like() -> Chart {
@@ -81,7 +95,14 @@ fn inside(canvas: &Rect, r: &Rect) -> bool {
 fn check(name: &str, l: &Layout) {
     let canvas = Rect { x0: 0.0, y0: 0.0, x1: l.width, y1: l.height };
     for t in l.texts() {
-        assert!(inside(&canvas, &t.rect), "{name}: {:?} at {:?} leaves the {} x {} canvas", t.text, t.rect, l.width, l.height);
+        assert!(
+            inside(&canvas, &t.rect),
+            "{name}: {:?} at {:?} leaves the {} x {} canvas",
+            t.text,
+            t.rect,
+            l.width,
+            l.height
+        );
     }
     for (axis, ticks) in [("x", &l.x_ticks), ("y", &l.y_ticks)] {
         assert!(ticks.len() >= 2, "{name}: fewer than two {axis} tick labels: {ticks:?}");
@@ -101,7 +122,15 @@ fn check(name: &str, l: &Layout) {
     if !l.legend_inside {
         assert!(!legend.overlaps(&l.plot), "{name}: a legend below the axes overlaps them");
     }
-    let outer: Vec<_> = l.title.iter().chain(&l.caption).chain(&l.x_label).chain(&l.y_label).chain(&l.x_ticks).chain(&l.y_ticks).collect();
+    let outer: Vec<_> = l
+        .title
+        .iter()
+        .chain(&l.caption)
+        .chain(&l.x_label)
+        .chain(&l.y_label)
+        .chain(&l.x_ticks)
+        .chain(&l.y_ticks)
+        .collect();
     for (i, a) in outer.iter().enumerate() {
         assert!(!a.rect.overlaps(&l.plot), "{name}: {:?} lies over the plot area {:?}", a.text, l.plot);
         for b in &outer[i + 1..] {
@@ -112,12 +141,21 @@ fn check(name: &str, l: &Layout) {
         }
     }
     // A plot big enough to read: at least a third of the canvas each way.
-    assert!(l.plot.width() >= l.width / 3.0 && l.plot.height() >= l.height / 3.0, "{name}: plot {:?} too small", l.plot);
+    assert!(
+        l.plot.width() >= l.width / 3.0 && l.plot.height() >= l.height / 3.0,
+        "{name}: plot {:?} too small",
+        l.plot
+    );
 }
 
 #[test]
 fn charts_like_the_programs_fit_a_journal_column_and_a_small_preview() {
-    for (name, c) in [("fig7", fig7_like()), ("sensitivity", sensitivity_like()), ("psd", psd_like()), ("residuals", residuals_like())] {
+    for (name, c) in [
+        ("fig7", fig7_like()),
+        ("sensitivity", sensitivity_like()),
+        ("psd", psd_like()),
+        ("residuals", residuals_like()),
+    ] {
         let j = journal(c.clone()).layout().unwrap();
         // 85 mm at 96 px per inch.
         assert!((j.width - 85.0 / 25.4 * 96.0).abs() < 1e-9);
