@@ -74,8 +74,9 @@ pub struct Series {
     pub upper: Option<Vec<f64>>,
     /// How the series is drawn.
     pub style: SeriesStyle,
-    /// Colour index into the palette (default: from the style registry by key or name, see
-    /// [`style`], else the series' position).
+    /// Colour index into the palette, for a series the style registry does not know (a series
+    /// whose key or name the registry knows always takes the registry's colour, see [`style`]);
+    /// default: the next palette colour.
     pub color: Option<usize>,
     /// Style key in the registry ([`style::STYLES`], e.g. `measured`, `explicit`, `gw-dmt`);
     /// default: looked up from the name.

@@ -253,6 +253,22 @@ impl Axis {
                     gap >= 1.35 * f
                 }
             });
+            if fits && labelled.len() < 2 && self.scale == Scale::Linear && self.hi > self.lo && length >= 1.5 * f {
+                // A short axis (a colour bar) with at most one nice tick: label both ends, to
+                // three significant digits.
+                let digits = (2.0 - (self.hi.abs().max(self.lo.abs())).log10().floor()).clamp(0.0, 12.0) as usize;
+                let label = |v: f64| {
+                    let t = format!("{v:.digits$}");
+                    let t = if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t };
+                    t.replace('-', "−")
+                };
+                return Ticks {
+                    bold: vec![(self.lo, label(self.lo)), (self.hi, label(self.hi))],
+                    light,
+                    vertical: false,
+                    size: f,
+                };
+            }
             if fits || n <= 1.0 {
                 return Ticks { bold: labelled, light, vertical: false, size: f };
             }
@@ -540,16 +556,19 @@ impl Chart {
         }
     }
 
+    /// Colour, marker and drawing order of each series. Two marker series that would look the
+    /// same (two `measured` sets) get different marker shapes, in the order of [`Marker`].
     fn resolve(&self) -> Vec<Resolved> {
         let mut free = 0usize;
         let registry: Vec<Rgb> = style::STYLES.iter().map(|s| s.1).collect();
-        self.series
+        let mut looks: Vec<Resolved> = self
+            .series
             .iter()
             .map(|s| {
                 let look = style::look(s.key.as_deref().unwrap_or(&s.name));
-                let color = match (s.color, look) {
-                    (Some(i), _) => PALETTE[i % PALETTE.len()],
-                    (None, Some(l)) => l.color,
+                let color = match (look, s.color) {
+                    (Some(l), _) => l.color,
+                    (None, Some(i)) => PALETTE[i % PALETTE.len()],
                     (None, None) => {
                         // The palette's colours not taken by the registry first.
                         let open: Vec<Rgb> = PALETTE.iter().copied().filter(|c| !registry.contains(c)).collect();
@@ -564,7 +583,30 @@ impl Chart {
                     on_top: s.on_top || look.is_some_and(|l| l.on_top && s.style == SeriesStyle::Markers),
                 }
             })
-            .collect()
+            .collect();
+        const SHAPES: [Marker; 5] =
+            [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond, Marker::TriangleDown];
+        for k in 0..looks.len() {
+            if self.series[k].style != SeriesStyle::Markers || self.series[k].marker.is_some() {
+                continue;
+            }
+            let taken = |m: Marker, looks: &[Resolved]| {
+                (0..k).any(|j| {
+                    self.series[j].style == SeriesStyle::Markers
+                        && looks[j].color == looks[k].color
+                        && looks[j].marker == m
+                })
+            };
+            if taken(looks[k].marker, &looks) {
+                let start = SHAPES.iter().position(|m| *m == looks[k].marker).unwrap_or(0);
+                if let Some(m) =
+                    (1..SHAPES.len()).map(|i| SHAPES[(start + i) % SHAPES.len()]).find(|m| !taken(*m, &looks))
+                {
+                    looks[k].marker = m;
+                }
+            }
+        }
+        looks
     }
 
     /// Where every element of the chart is drawn (see [`Layout`]), on the canvas of

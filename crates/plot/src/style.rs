@@ -1,10 +1,14 @@
 //! One style for every figure: a series keeps its colour and marker by name.
 //!
 //! A series is looked up by its style key ([`crate::Series::key`]) or, without one, by its legend
-//! name: the longest registry key that appears in the name as a whole word (`gw-dmt fit` ->
-//! `gw-dmt`, `measured (mean, error bar: SD of repeats)` -> `measured`). A series that matches no
-//! key takes the palette colour of its position, skipping the registry's colours. Series styled
-//! as measured are drawn last, on top of the models.
+//! name: the registry key that appears first in the name as a whole word (`gw-dmt fit` ->
+//! `gw-dmt`, `measured (mean, error bar: SD of repeats)` -> `measured`, `eq. 10 fit of the
+//! measured points` -> `eq. 10`). A series that matches no
+//! key takes the colour index it was given ([`crate::Series::with_color`]) or the next palette
+//! colour. The registry wins over a colour index, so a model has one colour in every figure; to
+//! pair a band or an unnamed line with a registered series, give it the same key
+//! ([`crate::Series::keyed`]). Marker series styled as measured are drawn last, on top of the
+//! models; two marker series that would look alike get different shapes.
 
 use crate::canvas::Rgb;
 
@@ -42,7 +46,7 @@ pub const STYLES: &[(&str, Rgb, Marker, bool)] = &[
     ("virtual meter", Rgb(0x00, 0x72, 0xb2), Marker::Square, false),
     ("virtual meters", Rgb(0x00, 0x72, 0xb2), Marker::Square, false),
     ("explicit", Rgb(0xd5, 0x5e, 0x00), Marker::Square, false),
-    ("explicit-ensemble", Rgb(0xd5, 0x5e, 0x00), Marker::Square, false),
+    ("explicit-ensemble", Rgb(0x99, 0x33, 0x00), Marker::Square, false),
     ("gw", Rgb(0x00, 0x9e, 0x73), Marker::Triangle, false),
     ("gw-dmt", Rgb(0x56, 0xb4, 0xe9), Marker::Diamond, false),
     ("dmt", Rgb(0xcc, 0x79, 0xa7), Marker::TriangleDown, false),
@@ -65,21 +69,24 @@ pub(crate) const PALETTE: [Rgb; 8] = [
     Rgb(0x17, 0xbe, 0xcf),
 ];
 
-/// Whether `key` appears in `name` as a whole word (not inside a longer word).
-fn has_word(name: &str, key: &str) -> bool {
+/// Where `key` first appears in `name` as a whole word.
+fn word_at(name: &str, key: &str) -> Option<usize> {
     let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '-');
     name.match_indices(key)
-        .any(|(i, _)| !word(name[..i].chars().next_back()) && !word(name[i + key.len()..].chars().next()))
+        .map(|(i, _)| i)
+        .find(|&i| !word(name[..i].chars().next_back()) && !word(name[i + key.len()..].chars().next()))
 }
 
-/// The registered look of a series key or name (case-insensitive), if any.
+/// The registered look of a series key or name (case-insensitive), if any: the key that appears
+/// first in the name (`eq. 10 fit of the measured points` -> `eq. 10`), the longer of two at the
+/// same place.
 pub fn look(name: &str) -> Option<Look> {
     let lower = name.to_lowercase();
     STYLES
         .iter()
-        .filter(|(k, ..)| has_word(&lower, k))
-        .max_by_key(|(k, ..)| k.len())
-        .map(|&(_, color, marker, on_top)| Look { color, marker, on_top })
+        .filter_map(|s| word_at(&lower, s.0).map(|i| (i, s)))
+        .min_by_key(|(i, s)| (*i, std::cmp::Reverse(s.0.len())))
+        .map(|(_, &(_, color, marker, on_top))| Look { color, marker, on_top })
 }
 
 #[cfg(test)]
@@ -94,5 +101,8 @@ mod tests {
         assert!(look("measured (mean, error bar: SD of repeats)").unwrap().on_top);
         assert!(look("unmeasured thing").is_none());
         assert!(look("4 contacts").is_none());
+        assert_eq!(look("eq. 10 fit of the measured points").unwrap().color, look("eq. 10").unwrap().color);
+        assert_eq!(look("pull-in, measured (mean, SD of 3)").unwrap().color, look("measured").unwrap().color);
+        assert_ne!(look("explicit-ensemble").unwrap().color, look("explicit").unwrap().color);
     }
 }
