@@ -729,7 +729,8 @@ fn nice_step(span: f64, n: f64) -> f64 {
 /// The labelled (bold) and light tick positions of an axis over `[lo, hi]` in axis coordinates,
 /// about `n` labelled intervals. Linear: multiples of a nice step, light lines at a fifth of it. Log: every decade (every
 /// second or more on long axes), 2 and 5 times a power of ten on axes shorter than about two
-/// decades, light lines at 2..9 times each power. Symmetric log: 0 and plus and minus powers of ten.
+/// decades, light lines at 2..9 times each power. Symmetric log: 0 and plus and minus powers of
+/// ten, every one or every few decades counted from the largest.
 pub(crate) fn ticks(scale: Scale, lo: f64, hi: f64, n: f64) -> (Vec<f64>, Vec<f64>) {
     let span = (hi - lo).abs().max(1e-300);
     let within = |v: &f64| *v >= lo - 1e-9 * span && *v <= hi + 1e-9 * span;
@@ -776,9 +777,12 @@ pub(crate) fn ticks(scale: Scale, lo: f64, hi: f64, n: f64) -> (Vec<f64>, Vec<f6
             let mut light = Vec::new();
             let decades = (k1 - k0).clamp(0, 400);
             let every = (decades as f64 / (n * 0.8).max(1.0)).ceil().max(1.0) as i64;
+            // Every `every`-th decade counted down from the largest on the axis, none closer to 0
+            // than three quarters of the spacing (its label would touch the 0).
+            let kt = top.log10().floor() as i64;
             for k in k0..=k0 + decades {
                 let p = 10f64.powi(k as i32);
-                if (k - k0) % every == 0 {
+                if (kt - k).rem_euclid(every) == 0 && scale.to_axis(p) >= 0.75 * every as f64 {
                     bold.extend([scale.to_axis(p), scale.to_axis(-p)]);
                 }
                 for m in 2..10 {
