@@ -93,6 +93,12 @@ fn inside(canvas: &Rect, r: &Rect) -> bool {
 /// The checks, written out here rather than through `Layout::problems`, so the test does not
 /// trust the code it tests.
 fn check(name: &str, l: &Layout) {
+    check_sized(name, l, false)
+}
+
+/// As [`check`]; `fixed_aspect`: the plot keeps its data's aspect ratio (a map), so it need only
+/// fill half the canvas one way.
+fn check_sized(name: &str, l: &Layout, fixed_aspect: bool) {
     let canvas = Rect { x0: 0.0, y0: 0.0, x1: l.width, y1: l.height };
     for t in l.texts() {
         assert!(
@@ -140,12 +146,13 @@ fn check(name: &str, l: &Layout) {
             assert!(!a.rect.overlaps(&legend), "{name}: {:?} lies under the legend", a.text);
         }
     }
-    // A plot big enough to read: at least a third of the canvas each way.
-    assert!(
-        l.plot.width() >= l.width / 3.0 && l.plot.height() >= l.height / 3.0,
-        "{name}: plot {:?} too small",
-        l.plot
-    );
+    // A plot big enough to read: at least a third of the canvas each way (a map: half one way).
+    let big = if fixed_aspect {
+        l.plot.width() >= l.width / 2.0 || l.plot.height() >= l.height / 2.0
+    } else {
+        l.plot.width() >= l.width / 3.0 && l.plot.height() >= l.height / 3.0
+    };
+    assert!(big, "{name}: plot {:?} too small", l.plot);
 }
 
 #[test]
@@ -173,4 +180,37 @@ fn ordinary_charts_keep_the_font_size_asked_for() {
     assert!(l.legend_inside, "{:?}", l.legend);
     let l = residuals_like().layout().unwrap();
     assert!(!l.legend_inside, "no corner is free of data: the legend goes below the axes");
+}
+
+/// A wide height map with summits and a pressure map in Pa, at both sizes: the same checks
+/// (the colour bar is the legend, its labels among the y tick labels).
+#[test]
+fn maps_fit_a_journal_column_and_a_small_preview() {
+    use stiction_plot::ImageMap;
+    let (nx, ny) = (256, 80);
+    let values: Vec<f64> =
+        (0..nx * ny).map(|i| 2.8e10 * (((i % nx) as f64 * 0.1).sin() * ((i / nx) as f64 * 0.2).cos()).abs()).collect();
+    let map = ImageMap {
+        title: "Pressure at the last state of the sweep, load 2 GPa nominal (BEM, 256 x 80 cells)".into(),
+        x_label: "x (µm)".into(),
+        y_label: "y (µm)".into(),
+        value_label: "pressure".into(),
+        value_unit: Some("Pa".into()),
+        nx,
+        ny,
+        values,
+        x_max: 25.6,
+        y_max: 8.0,
+        markers: vec![(3.0, 4.0), (20.0, 1.0)],
+        ..ImageMap::default()
+    };
+    assert_eq!(map.display_scale().1, "pressure (GPa)");
+    let journal = ImageMap { size_mm: Some((85.0, 60.0)), font_px: Some(8.0 * 4.0 / 3.0), ..map.clone() };
+    let small = ImageMap { size_px: Some((400, 280)), ..map };
+    for (name, m) in [("map at 85 mm", journal), ("map at 400 x 280", small)] {
+        let l = m.layout().unwrap();
+        check_sized(name, &l, true);
+        // square cells: the image keeps the map's aspect ratio
+        assert!((l.plot.width() / l.plot.height() - 25.6 / 8.0).abs() < 1e-6, "{name}: {:?}", l.plot);
+    }
 }
