@@ -521,6 +521,9 @@ struct Resolved {
     color: Rgb,
     marker: Marker,
     on_top: bool,
+    /// Marker radius as a fraction of the font size: 0.3, smaller for series of many points
+    /// (0.3 sqrt(30 / n), at least 0.17), so a scatter of hundreds stays readable.
+    marker_r: f64,
 }
 
 struct Entry {
@@ -528,6 +531,7 @@ struct Entry {
     style: SeriesStyle,
     color: Rgb,
     marker: Marker,
+    marker_r: f64,
 }
 
 impl Chart {
@@ -581,6 +585,7 @@ impl Chart {
                     color,
                     marker: s.marker.or(look.map(|l| l.marker)).unwrap_or_default(),
                     on_top: s.on_top || look.is_some_and(|l| l.on_top && s.style == SeriesStyle::Markers),
+                    marker_r: 0.3 * (30.0 / s.points.len().max(1) as f64).sqrt().clamp(0.57, 1.0),
                 }
             })
             .collect();
@@ -657,6 +662,7 @@ impl Chart {
                     style: s.style,
                     color: l.color,
                     marker: l.marker,
+                    marker_r: l.marker_r,
                 })
                 .collect()
         };
@@ -757,7 +763,7 @@ impl Chart {
                     width: stroke,
                     dash: Some((0.5 * f, 0.3 * f)),
                 }),
-                SeriesStyle::Markers => prims.push(marker_prim(e.marker, (x + sw / 2.0, mid), 0.3 * f, e.color)),
+                SeriesStyle::Markers => prims.push(marker_prim(e.marker, (x + sw / 2.0, mid), e.marker_r * f, e.color)),
                 _ => prims.push(Prim::Fill {
                     pts: vec![
                         (x, mid - 0.35 * f),
@@ -925,7 +931,6 @@ impl Chart {
             if looks[k].on_top { 3 } else { base }
         });
         let stroke = 0.14 * f;
-        let r = 0.3 * f;
         let mut points = Vec::new();
         for k in order {
             let s = &self.series[k];
@@ -981,7 +986,7 @@ impl Chart {
                     for line in &geom[k] {
                         match line.as_slice() {
                             [c] => {
-                                prims.push(marker_prim(looks[k].marker, *c, r, color));
+                                prims.push(marker_prim(looks[k].marker, *c, looks[k].marker_r * f, color));
                                 if p.contains(*c) {
                                     points.push(*c);
                                 }
