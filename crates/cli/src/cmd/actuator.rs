@@ -167,7 +167,7 @@ pub fn run(args: Args) -> CliResult {
             set.add_chart("hysteresis.png", &chart)?;
         }
         if let Some(report) = &summary.validation {
-            let chart = args.fig.apply(validation_chart(report))?;
+            let chart = args.fig.apply(validation_chart(&spec, report)?)?;
             set.add_chart("validation.svg", &chart)?;
             set.add_chart("validation.png", &chart)?;
         }
@@ -302,29 +302,47 @@ fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
     let (mut up, down) = (finite(&sweep.loading), finite(&sweep.unloading));
     // The sweep's voltage steps end below pull-in, where x(V) turns vertical; the stable branch is
     // closed up to the pull-in point from the equilibrium voltage V(x) at 24 travels between the
-    // last stable step and x_pi (exact points of the same curve, not an interpolation).
-    if let (Ok(pi), Some(&(v_last, x_last_um))) = (model.pull_in(), up.last())
+    // last stable step and x_pi (exact points of the same curve, not an interpolation). With a stop,
+    // the curve then jumps at V_pi from x_pi to the stop, so the pull-in marker lies where the drawn
+    // curve jumps.
+    if let Ok(pi) = model.pull_in()
         && !pi.limited_by_stop
-        && pi.travel_m * 1e6 > x_last_um
     {
-        let x_last = x_last_um * 1e-6;
-        for k in 1..=24 {
-            let x = x_last + (pi.travel_m - x_last) * f64::from(k) / 24.0;
-            let v = if k == 24 { pi.voltage_v } else { model.equilibrium_voltage_v(x) };
-            if v.is_finite() && v >= v_last {
-                up.push((v, x * 1e6));
+        let x_pi_um = pi.travel_m * 1e6;
+        // The stable branch: the sweep's points below the pull-in travel and voltage.
+        let split = up.iter().position(|&(v, x)| x > x_pi_um || v > pi.voltage_v).unwrap_or(up.len());
+        let rest = up.split_off(split);
+        if let Some(&(v_last, x_last_um)) = up.last()
+            && x_pi_um > x_last_um
+        {
+            let x_last = x_last_um * 1e-6;
+            for k in 1..=24 {
+                let x = x_last + (pi.travel_m - x_last) * f64::from(k) / 24.0;
+                let v = if k == 24 { pi.voltage_v } else { model.equilibrium_voltage_v(x) };
+                if v.is_finite() && v >= v_last && v <= pi.voltage_v {
+                    up.push((v, x * 1e6));
+                }
             }
         }
+        if let (Some(stop), Some(_)) = (model.stop_travel_m, rest.first()) {
+            // The jump to the stop at V_pi, then the sweep's points on the stop.
+            up.push((pi.voltage_v, stop * 1e6));
+            up.extend(rest.into_iter().filter(|p| p.0 > pi.voltage_v));
+        }
     }
+    // Without a stop the unloading branch is collapsed down to 0 V: at most its last point is finite.
+    let both = down.len() >= 2;
     let mut chart = Chart::new(
-        format!("Actuator `{name}`: travel against voltage, loading and unloading"),
+        format!(
+            "Actuator {name}: travel against voltage, {}",
+            if both { "loading and unloading" } else { "loading" }
+        ),
         "voltage V (V)",
         "travel x (µm)",
     )
     .keys("voltage_v", "travel_um")
     .with(Series::line("loading (increasing V)", up.clone()));
-    // Without a stop the unloading branch is collapsed down to 0 V: at most its last point is finite.
-    if down.len() >= 2 {
+    if both {
         chart.series.push(Series::dashed("unloading (decreasing V)", down.clone()));
     }
     let mut marks = Vec::new();
@@ -358,10 +376,30 @@ fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
     chart
 }
 
-/// Measured pull-in and release (mean, with the spread of repeats) against finger length, with the model lines.
-pub fn validation_chart(r: &stiction_actuator::ValidationReport) -> Chart {
+/// Measured pull-in and release (mean, with the spread of repeats) against finger length, with the
+/// model curves evaluated at 24 finger lengths spread evenly over the measured range (the same model
+/// as the report's points, not straight segments between the measured lengths).
+pub fn validation_chart(
+    spec: &stiction_actuator::ArraySpec,
+    r: &stiction_actuator::ValidationReport,
+) -> Result<Chart, Box<dyn std::error::Error>> {
     let um = |p: &stiction_actuator::ValidationPoint| p.finger_length_m * 1e6;
-    Chart::new(
+    let lo = r.points.iter().map(|p| p.finger_length_m).fold(f64::INFINITY, f64::min);
+    let hi = r.points.iter().map(|p| p.finger_length_m).fold(f64::NEG_INFINITY, f64::max);
+    let n = if hi > lo { 24 } else { 1 };
+    let grid: Vec<stiction_actuator::MeasuredPoint> = (0..n)
+        .map(|k| stiction_actuator::MeasuredPoint {
+            finger_length_m: if n == 1 { lo } else { lo + (hi - lo) * k as f64 / (n - 1) as f64 },
+            pull_in_v: vec![1.0],
+            release_v: vec![1.0],
+        })
+        .collect();
+    let model = stiction_actuator::validate(spec, &grid)?;
+    let curve = |f: fn(&stiction_actuator::ValidationPoint) -> f64| -> Vec<(f64, f64)> {
+        model.points.iter().map(|p| (um(p), f(p))).collect()
+    };
+    let n_rep = r.points.len();
+    let mut chart = Chart::new(
         format!(
             "GCA pull-in and release: model vs measured (mean |err| {:.1} % / {:.1} %)",
             100.0 * r.pull_in_mean_abs_rel_error,
@@ -370,16 +408,27 @@ pub fn validation_chart(r: &stiction_actuator::ValidationReport) -> Chart {
         "drawn finger length (µm)",
         "voltage (V)",
     )
+    .keys("finger_length_um", "voltage_v")
+    .with(Series::line("pull-in, model", curve(|p| p.pull_in_v_model)).with_color(0))
+    .with(Series::dashed("release, model", curve(|p| p.release_v_model)).with_color(1))
     .with(
         Series::markers(
-            "pull-in, measured (mean, SD of 3)",
+            format!("pull-in, measured (mean, SD of repeats; {n_rep} lengths)"),
             r.points.iter().map(|p| (um(p), p.pull_in_v_measured)).collect(),
         )
-        .with_y_err(r.points.iter().map(|p| p.pull_in_v_spread).collect()),
+        .with_y_err(r.points.iter().map(|p| p.pull_in_v_spread).collect())
+        .with_color(0),
     )
-    .with(Series::line("pull-in, model", r.points.iter().map(|p| (um(p), p.pull_in_v_model)).collect()))
-    .with(Series::markers("release, measured", r.points.iter().map(|p| (um(p), p.release_v_measured)).collect()))
-    .with(Series::dashed("release, model", r.points.iter().map(|p| (um(p), p.release_v_model)).collect()))
+    .with(
+        Series::markers(
+            "release, measured (mean, SD of repeats)",
+            r.points.iter().map(|p| (um(p), p.release_v_measured)).collect(),
+        )
+        .with_y_err(r.points.iter().map(|p| p.release_v_spread).collect())
+        .with_color(1),
+    );
+    chart.legend = stiction_plot::LegendPosition::UpperRight;
+    Ok(chart)
 }
 
 /// The hysteresis chart of `stiction plot actuator`.
