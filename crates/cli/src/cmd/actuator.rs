@@ -162,12 +162,12 @@ pub fn run(args: Args) -> CliResult {
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("results.json", crate::output::json_text(&summary)?.as_bytes())?;
         if let Some(sweep) = &summary.sweep {
-            let chart = args.fig.apply(sweep_chart(&name, sweep, &model))?;
+            let chart = args.fig.apply(crate::cmd::plot::typeset_chart(sweep_chart(&name, sweep, &model)))?;
             set.add_chart("hysteresis.svg", &chart)?;
             set.add_chart("hysteresis.png", &chart)?;
         }
         if let Some(report) = &summary.validation {
-            let chart = args.fig.apply(validation_chart(&spec, report)?)?;
+            let chart = args.fig.apply(crate::cmd::plot::typeset_chart(validation_chart(&spec, report)?))?;
             set.add_chart("validation.svg", &chart)?;
             set.add_chart("validation.png", &chart)?;
         }
@@ -572,7 +572,7 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport, fig: &FigureArgs) 
     lengths.sort_by(f64::total_cmp);
     lengths.dedup();
     for l in lengths {
-        let chart = fig.apply(transient_chart(r, l))?;
+        let chart = fig.apply(crate::cmd::plot::typeset_chart(transient_chart(r, l)))?;
         let stem = format!("transients_L{:.2}um", l * 1e6);
         set.add_chart(&format!("{stem}.svg"), &chart)?;
         set.add_chart(&format!("{stem}.png"), &chart)?;
@@ -598,7 +598,8 @@ fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
         ),
         "voltage (V): pull-in step / release hold",
         "time (µs)",
-    );
+    )
+    .keys("voltage_v", "time_us");
     for (event, label) in [(TransientEvent::PullIn, "pull-in"), (TransientEvent::Release, "release")] {
         let pts: Vec<&stiction_actuator::TransientComparison> =
             r.points.iter().filter(|p| p.event == event && p.finger_length_m == length_m).collect();

@@ -123,7 +123,7 @@ pub fn run(args: Args) -> CliResult {
             crate::cmd::actuator::hysteresis_chart(path, args.array.as_deref(), &args.sets)?
         }
     };
-    write_chart(&args.fig.apply(chart)?, &args.out)?;
+    write_chart(&args.fig.apply(typeset_chart(chart))?, &args.out)?;
     crate::errln!("wrote {} and {}", args.out.display(), stiction_plot::data_path(&args.out).display());
     Ok(())
 }
@@ -193,7 +193,7 @@ pub fn fig2(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
 pub fn fig3(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::error::Error>> {
     let mut chart = Chart::new(
         "Fig. 3: real area against load (GW + DMT, eq. 5b, 8)",
-        "normalized load L* (eq. 8), symmetric-log axis: linear within ±10⁻⁶",
+        "normalized load L* (eq. 8), axis sign(L*)·log₁₀(1 + |L*|/10⁻⁶)",
         "normalized real area A* (eq. 5b)",
     )
     .keys("l_star", "a_star")
