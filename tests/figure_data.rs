@@ -200,7 +200,7 @@ fn pull_in_on_curve(csv: &Path) {
         .position(|p| (p.0 - v).abs() <= 1e-9 * v && (p.1 - x).abs() <= 1e-9 * x)
         .unwrap_or_else(|| panic!("{}: pull-in ({v}, {x}) is not on the loading curve", csv.display()));
     // Next: the jump at the same voltage to the stop.
-    let next = loading[k + 1];
+    let next = *loading.get(k + 1).unwrap_or_else(|| panic!("{}: the loading curve ends at pull-in", csv.display()));
     assert!(next.0 == v && next.1 > x, "{}: no jump at V_pi after the pull-in point: {next:?}", csv.display());
     // Below it the curve rises with the voltage (the stable branch).
     assert!(loading[..=k].windows(2).all(|w| w[1].0 >= w[0].0 && w[1].1 >= w[0].1), "{}", csv.display());
