@@ -40,7 +40,9 @@ impl Data {
                     .zip(rec.iter())
                     .skip(2)
                     .filter(|(_, v)| !v.is_empty())
-                    .map(|(k, v)| (k.clone(), v.parse::<f64>().unwrap_or_else(|e| panic!("{}: {v}: {e}", path.display()))))
+                    .map(|(k, v)| {
+                        (k.clone(), v.parse::<f64>().unwrap_or_else(|e| panic!("{}: {v}: {e}", path.display())))
+                    })
                     .collect();
                 (rec[0].to_string(), rec[1].to_string(), fields)
             })
@@ -125,7 +127,7 @@ fn check_shape(figure: &Path) {
     if svg.is_file() {
         let texts = svg_texts(&svg);
         for name in data.names() {
-            assert!(texts.iter().any(|t| *t == name), "{what}: series `{name}` is not a legend entry of {}", svg.display());
+            assert!(texts.contains(&name), "{what}: series `{name}` is not a legend entry of {}", svg.display());
         }
     }
     for name in data.names() {
@@ -210,7 +212,14 @@ fn pull_in_on_curve(csv: &Path) {
 fn actuator_figures_put_the_pull_in_on_the_curve_and_draw_the_model_over_the_whole_range() {
     let dir = temp_dir("figdata-actuator");
     let out = dir.to_string_lossy().into_owned();
-    draw(&["actuator", "scenarios/gca-rauf2022.json", "--validate", "data/gca-pullin-release/measured.csv", "--out", &out]);
+    draw(&[
+        "actuator",
+        "scenarios/gca-rauf2022.json",
+        "--validate",
+        "data/gca-pullin-release/measured.csv",
+        "--out",
+        &out,
+    ]);
     assert_eq!(check_folder(&dir), ["hysteresis", "validation"]);
     // The GCA has a stop: the curve ended at 1.386 um, 18.01 V and the marker sat at 1.607 um.
     pull_in_on_curve(&dir.join("hysteresis.csv"));
@@ -231,7 +240,14 @@ fn actuator_figures_put_the_pull_in_on_the_curve_and_draw_the_model_over_the_who
 
     let tr = dir.join("transients");
     let out = tr.to_string_lossy().into_owned();
-    draw(&["actuator", "scenarios/gca-rauf2022.json", "--transients", "data/gca-transients/measured_times.csv", "--out", &out]);
+    draw(&[
+        "actuator",
+        "scenarios/gca-rauf2022.json",
+        "--transients",
+        "data/gca-transients/measured_times.csv",
+        "--out",
+        &out,
+    ]);
     let stems = check_folder(&tr);
     assert!(stems.iter().filter(|s| s.starts_with("transients_L")).count() >= 2, "{stems:?}");
 }
@@ -257,7 +273,8 @@ fn study_fit_topography_and_bem_figures_have_one_data_shape() {
     for want in ["first order", "total order"] {
         assert!(names.iter().filter(|n| n.ends_with(want)).count() == 2, "{want}: {names:?}");
     }
-    let segments: Vec<(f64, f64)> = s.rows.iter().filter(|r| r.0.is_empty()).map(|r| (r.2[s.x()], r.2[s.y()])).collect();
+    let segments: Vec<(f64, f64)> =
+        s.rows.iter().filter(|r| r.0.is_empty()).map(|r| (r.2[s.x()], r.2[s.y()])).collect();
     assert!(!segments.is_empty() && segments.len().is_multiple_of(2));
     for pair in segments.chunks(2) {
         assert!(pair[0].0 == pair[1].0 && pair[0].1 <= pair[1].1, "{pair:?}");

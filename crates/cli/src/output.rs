@@ -306,7 +306,11 @@ fn foreign_refusal(dir: &Path, foreign: &[String]) -> Box<dyn std::error::Error>
 /// Writes a chart straight into `dir` as `{stem}.svg`, `{stem}.png` and its data `{stem}.csv` (the
 /// files [`OutputSet::add_chart`] writes, in the same CSV shape), for a folder that is not an
 /// [`OutputSet`] (a study's resumable log folder). Returns the names written.
-pub fn write_chart_files(dir: &Path, stem: &str, chart: &stiction_plot::Chart) -> Result<Vec<String>, Box<dyn std::error::Error>> {
+pub fn write_chart_files(
+    dir: &Path,
+    stem: &str,
+    chart: &stiction_plot::Chart,
+) -> Result<Vec<String>, Box<dyn std::error::Error>> {
     for ext in ["svg", "png"] {
         crate::cmd::plot::render_chart(chart, &dir.join(format!("{stem}.{ext}")))?;
     }

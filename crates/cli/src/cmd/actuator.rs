@@ -333,10 +333,7 @@ fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
     // Without a stop the unloading branch is collapsed down to 0 V: at most its last point is finite.
     let both = down.len() >= 2;
     let mut chart = Chart::new(
-        format!(
-            "Actuator {name}: travel against voltage, {}",
-            if both { "loading and unloading" } else { "loading" }
-        ),
+        format!("Actuator {name}: travel against voltage, {}", if both { "loading and unloading" } else { "loading" }),
         "voltage V (V)",
         "travel x (µm)",
     )

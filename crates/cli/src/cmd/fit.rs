@@ -345,10 +345,13 @@ fn fit_charts(data: &Dataset, r: &FitReport) -> Vec<(&'static str, Chart)> {
         let line: Vec<(f64, f64)> =
             m.curve.iter().filter_map(|c| c.v_pull_sq_v2.map(|y| (c.v_clamp_sq_v2, y))).collect();
         let s_gpa = m.shear_strength_pa.value / 1e9;
-        fig5 = fig5.with(Series::line(format!("{} (s = {s_gpa:.3} GPa)", m.name), line).with_color(model_color(&m.name)));
+        fig5 =
+            fig5.with(Series::line(format!("{} (s = {s_gpa:.3} GPa)", m.name), line).with_color(model_color(&m.name)));
     }
     fig5 = fig5.with(
-        Series::markers("measured (mean, error bar: SD of repeats)", pts.clone()).with_y_err(errs.clone()).with_color(0),
+        Series::markers("measured (mean, error bar: SD of repeats)", pts.clone())
+            .with_y_err(errs.clone())
+            .with_color(0),
     );
 
     // F_f against L (uN), the paper's Fig. 7 view.
@@ -374,8 +377,11 @@ fn fit_charts(data: &Dataset, r: &FitReport) -> Vec<(&'static str, Chart)> {
         // From L = -F_a0 (F_f = 0), so the figure shows F_a0 where the line meets the axis.
         let eq10_line = vec![(-fa0.max(-l0.min(0.0)), mu * (fa0 - fa0.max(-l0.min(0.0)))), (l1, mu * (fa0 + l1))];
         fig7 = fig7.with(
-            Series::dashed(format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"), eq10_line)
-                .with_color(0),
+            Series::dashed(
+                format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"),
+                eq10_line,
+            )
+            .with_color(0),
         );
     }
     fig7 = fig7.with(Series::markers("measured (mean, error bar: SD of repeats)", fl).with_y_err(fe).with_color(0));

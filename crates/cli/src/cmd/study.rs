@@ -568,10 +568,7 @@ fn cdf_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>) -> 
         "cumulative fraction of samples",
     )
     .keys("mu_apparent", "cumulative_fraction")
-    .with(Series::step(
-        format!("virtual meters, empirical CDF i/n (n = {})", fig.mu_sorted.len()),
-        cdf_points(fig),
-    ));
+    .with(Series::step(format!("virtual meters, empirical CDF i/n (n = {})", fig.mu_sorted.len()), cdf_points(fig)));
     if let Some(r) = r
         && let (Some((a, b)), Some(label)) = (reference::mu_range(r), reference::mu_label(r))
     {
