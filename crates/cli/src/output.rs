@@ -464,8 +464,8 @@ impl OutputSet {
         Ok(())
     }
 
-    /// The staging folder, for a writer that takes a folder (the figures of `fit` and
-    /// `topography`); [`OutputSet::adopt_staged`] then adds what it wrote.
+    /// The staging folder, for a writer that takes a folder (the study folder `merge` writes);
+    /// [`OutputSet::adopt_staged`] then adds what it wrote.
     pub fn staging_dir(&self) -> &Path {
         &self.staging
     }
