@@ -250,6 +250,10 @@ fn actuator_figures_put_the_pull_in_on_the_curve_and_draw_the_model_over_the_who
     ]);
     let stems = check_folder(&tr);
     assert!(stems.iter().filter(|s| s.starts_with("transients_L")).count() >= 2, "{stems:?}");
+    // The model as a curve over the measured voltages, not segments between them.
+    let t = Data::read(&tr.join("transients_L38.25um.csv"));
+    let (model, measured) = (t.series("pull-in, model"), t.series("pull-in, measured"));
+    assert!(model.len() > measured.len() + 5, "{} model points for {} measured", model.len(), measured.len());
 }
 
 #[test]

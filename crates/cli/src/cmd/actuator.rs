@@ -172,7 +172,7 @@ pub fn run(args: Args) -> CliResult {
             set.add_chart("validation.png", &chart)?;
         }
         if let Some(report) = &summary.transients {
-            write_transients(&mut set, report, &args.fig)?;
+            write_transients(&mut set, report, &model_curves(&spec, report)?, &args.fig)?;
         }
         set.commit()?;
         crate::errln!("wrote {}", dir.display());
@@ -537,7 +537,7 @@ fn print_sweep(sweep: &Sweep) {
 
 /// `transients.csv` (every point) and one figure per finger length (`transients_L<um>.svg/.png`):
 /// measured mean with the SD of the repeats as error bars, and the model, time against voltage.
-fn write_transients(set: &mut OutputSet, r: &TransientReport, fig: &FigureArgs) -> CliResult {
+fn write_transients(set: &mut OutputSet, r: &TransientReport, curves: &TransientReport, fig: &FigureArgs) -> CliResult {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "finger_length_um",
@@ -569,7 +569,7 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport, fig: &FigureArgs) 
     lengths.sort_by(f64::total_cmp);
     lengths.dedup();
     for l in lengths {
-        let chart = fig.apply(crate::cmd::plot::typeset_chart(transient_chart(r, l)))?;
+        let chart = fig.apply(crate::cmd::plot::typeset_chart(transient_chart(r, curves, l)))?;
         let stem = format!("transients_L{:.2}um", l * 1e6);
         set.add_chart(&format!("{stem}.svg"), &chart)?;
         set.add_chart(&format!("{stem}.png"), &chart)?;
@@ -577,8 +577,40 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport, fig: &FigureArgs) 
     Ok(())
 }
 
+/// The transient model evaluated at 24 voltages evenly over the measured range of each finger
+/// length and event (at the external force of its measurements, when they share one): the model
+/// curves of the figures, not straight segments between the measured voltages.
+fn model_curves(
+    spec: &stiction_actuator::ArraySpec,
+    r: &TransientReport,
+) -> Result<TransientReport, Box<dyn std::error::Error>> {
+    let mut grid = Vec::new();
+    let mut keys: Vec<(u64, TransientEvent)> =
+        r.points.iter().map(|p| (p.finger_length_m.to_bits(), p.event)).collect();
+    keys.dedup();
+    for (bits, event) in keys {
+        let pts: Vec<_> = r.points.iter().filter(|p| p.finger_length_m.to_bits() == bits && p.event == event).collect();
+        let force = pts[0].external_force_n;
+        let (lo, hi) = pts.iter().fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.voltage_v), a.1.max(p.voltage_v)));
+        if pts.iter().any(|p| p.external_force_n != force) || hi <= lo {
+            continue;
+        }
+        grid.extend((0..24).map(|k| stiction_actuator::MeasuredTransient {
+            finger_length_m: f64::from_bits(bits),
+            event,
+            voltage_v: lo + (hi - lo) * f64::from(k) / 23.0,
+            external_force_n: force,
+            times_s: vec![1e-6],
+        }));
+    }
+    if grid.is_empty() {
+        return Ok(TransientReport { points: Vec::new(), ..r.clone() });
+    }
+    Ok(compare_transients(spec, TransientPhysics::default(), &grid)?)
+}
+
 /// Time against voltage at one finger length: measured (mean, SD of repeats) and model.
-fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
+fn transient_chart(r: &TransientReport, curves: &TransientReport, length_m: f64) -> Chart {
     let err = |event: TransientEvent| {
         r.errors
             .iter()
@@ -609,17 +641,20 @@ fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
                     format!("{label}, measured (mean, SD of repeats)"),
                     pts.iter().map(|p| (p.voltage_v, p.measured_mean_s * 1e6)).collect(),
                 )
-                .with_y_err(pts.iter().map(|p| p.measured_sd_s * 1e6).collect()),
+                .with_y_err(pts.iter().map(|p| p.measured_sd_s * 1e6).collect())
+                .with_color(if event == TransientEvent::PullIn { 0 } else { 1 }),
             )
-            .with(match event {
-                TransientEvent::PullIn => Series::line(
-                    format!("{label}, model"),
-                    pts.iter().filter_map(|p| p.predicted_s.map(|t| (p.voltage_v, t * 1e6))).collect(),
-                ),
-                TransientEvent::Release => Series::dashed(
-                    format!("{label}, model"),
-                    pts.iter().filter_map(|p| p.predicted_s.map(|t| (p.voltage_v, t * 1e6))).collect(),
-                ),
+            .with({
+                // The model curve where there is one, else the model at the measured voltages.
+                let on_curve: Vec<&stiction_actuator::TransientComparison> =
+                    curves.points.iter().filter(|p| p.event == event && p.finger_length_m == length_m).collect();
+                let src = if on_curve.is_empty() { &pts } else { &on_curve };
+                let line: Vec<(f64, f64)> =
+                    src.iter().filter_map(|p| p.predicted_s.map(|t| (p.voltage_v, t * 1e6))).collect();
+                match event {
+                    TransientEvent::PullIn => Series::line(format!("{label}, model"), line).with_color(0),
+                    TransientEvent::Release => Series::dashed(format!("{label}, model"), line).with_color(1),
+                }
             });
     }
     let top = r
