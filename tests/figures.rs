@@ -161,7 +161,8 @@ fn plot_follows_the_scenario_and_set() {
     let curve = |p: &std::path::Path| -> Vec<(f64, f64)> {
         read_data_csv(&p.with_extension("csv"))
             .into_iter()
-            .filter(|r| r.0.starts_with("F_f = s A_r"))
+            // F_f = s A_r, however its symbols are typeset.
+            .filter(|r| r.0.contains(" = s A") && r.1 == "line")
             .map(|r| (r.2["load_un"], r.2["friction_un"]))
             .collect()
     };

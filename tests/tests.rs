@@ -6,6 +6,7 @@ mod util;
 mod bad_inputs;
 mod bem;
 mod design;
+mod figure_data;
 mod figures;
 mod fit_hardening;
 mod hardening;

@@ -303,6 +303,21 @@ fn foreign_refusal(dir: &Path, foreign: &[String]) -> Box<dyn std::error::Error>
     .into()
 }
 
+/// Writes a chart straight into `dir` as `{stem}.svg`, `{stem}.png` and its data `{stem}.csv` (the
+/// files [`OutputSet::add_chart`] writes, in the same CSV shape), for a folder that is not an
+/// [`OutputSet`] (a study's resumable log folder). Returns the names written.
+pub fn write_chart_files(
+    dir: &Path,
+    stem: &str,
+    chart: &stiction_plot::Chart,
+) -> Result<Vec<String>, Box<dyn std::error::Error>> {
+    for ext in ["svg", "png"] {
+        crate::cmd::plot::render_chart(chart, &dir.join(format!("{stem}.{ext}")))?;
+    }
+    stiction_units::io::write_atomic(&dir.join(format!("{stem}.csv")), chart.data_csv().as_bytes())?;
+    Ok(["svg", "png", "csv"].map(|e| format!("{stem}.{e}")).to_vec())
+}
+
 /// One run's output folder, written as a whole.
 ///
 /// The files go to a hidden staging folder beside the target (same file system). On
@@ -449,8 +464,8 @@ impl OutputSet {
         Ok(())
     }
 
-    /// The staging folder, for a writer that takes a folder (the figures of `fit` and
-    /// `topography`); [`OutputSet::adopt_staged`] then adds what it wrote.
+    /// The staging folder, for a writer that takes a folder (the study folder `merge` writes);
+    /// [`OutputSet::adopt_staged`] then adds what it wrote.
     pub fn staging_dir(&self) -> &Path {
         &self.staging
     }

@@ -162,17 +162,17 @@ pub fn run(args: Args) -> CliResult {
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("results.json", crate::output::json_text(&summary)?.as_bytes())?;
         if let Some(sweep) = &summary.sweep {
-            let chart = args.fig.apply(sweep_chart(&name, sweep, &model))?;
+            let chart = args.fig.apply(crate::cmd::plot::typeset_chart(sweep_chart(&name, sweep, &model)))?;
             set.add_chart("hysteresis.svg", &chart)?;
             set.add_chart("hysteresis.png", &chart)?;
         }
         if let Some(report) = &summary.validation {
-            let chart = args.fig.apply(validation_chart(report))?;
+            let chart = args.fig.apply(crate::cmd::plot::typeset_chart(validation_chart(&spec, report)?))?;
             set.add_chart("validation.svg", &chart)?;
             set.add_chart("validation.png", &chart)?;
         }
         if let Some(report) = &summary.transients {
-            write_transients(&mut set, report, &args.fig)?;
+            write_transients(&mut set, report, &model_curves(&spec, report)?, &args.fig)?;
         }
         set.commit()?;
         crate::errln!("wrote {}", dir.display());
@@ -302,29 +302,44 @@ fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
     let (mut up, down) = (finite(&sweep.loading), finite(&sweep.unloading));
     // The sweep's voltage steps end below pull-in, where x(V) turns vertical; the stable branch is
     // closed up to the pull-in point from the equilibrium voltage V(x) at 24 travels between the
-    // last stable step and x_pi (exact points of the same curve, not an interpolation).
-    if let (Ok(pi), Some(&(v_last, x_last_um))) = (model.pull_in(), up.last())
+    // last stable step and x_pi (exact points of the same curve, not an interpolation). With a stop,
+    // the curve then jumps at V_pi from x_pi to the stop, so the pull-in marker lies where the drawn
+    // curve jumps.
+    if let Ok(pi) = model.pull_in()
         && !pi.limited_by_stop
-        && pi.travel_m * 1e6 > x_last_um
     {
-        let x_last = x_last_um * 1e-6;
-        for k in 1..=24 {
-            let x = x_last + (pi.travel_m - x_last) * f64::from(k) / 24.0;
-            let v = if k == 24 { pi.voltage_v } else { model.equilibrium_voltage_v(x) };
-            if v.is_finite() && v >= v_last {
-                up.push((v, x * 1e6));
+        let x_pi_um = pi.travel_m * 1e6;
+        // The stable branch: the sweep's points below the pull-in travel and voltage.
+        let split = up.iter().position(|&(v, x)| x > x_pi_um || v > pi.voltage_v).unwrap_or(up.len());
+        let rest = up.split_off(split);
+        if let Some(&(v_last, x_last_um)) = up.last()
+            && x_pi_um > x_last_um
+        {
+            let x_last = x_last_um * 1e-6;
+            for k in 1..=24 {
+                let x = x_last + (pi.travel_m - x_last) * f64::from(k) / 24.0;
+                let v = if k == 24 { pi.voltage_v } else { model.equilibrium_voltage_v(x) };
+                if v.is_finite() && v >= v_last && v <= pi.voltage_v {
+                    up.push((v, x * 1e6));
+                }
             }
         }
+        if let (Some(stop), Some(_)) = (model.stop_travel_m, rest.first()) {
+            // The jump to the stop at V_pi, then the sweep's points on the stop.
+            up.push((pi.voltage_v, stop * 1e6));
+            up.extend(rest.into_iter().filter(|p| p.0 > pi.voltage_v));
+        }
     }
+    // Without a stop the unloading branch is collapsed down to 0 V: at most its last point is finite.
+    let both = down.len() >= 2;
     let mut chart = Chart::new(
-        format!("Actuator `{name}`: travel against voltage, loading and unloading"),
+        format!("Actuator {name}: travel against voltage, {}", if both { "loading and unloading" } else { "loading" }),
         "voltage V (V)",
         "travel x (µm)",
     )
     .keys("voltage_v", "travel_um")
     .with(Series::line("loading (increasing V)", up.clone()));
-    // Without a stop the unloading branch is collapsed down to 0 V: at most its last point is finite.
-    if down.len() >= 2 {
+    if both {
         chart.series.push(Series::dashed("unloading (decreasing V)", down.clone()));
     }
     let mut marks = Vec::new();
@@ -358,10 +373,30 @@ fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
     chart
 }
 
-/// Measured pull-in and release (mean, with the spread of repeats) against finger length, with the model lines.
-pub fn validation_chart(r: &stiction_actuator::ValidationReport) -> Chart {
+/// Measured pull-in and release (mean, with the spread of repeats) against finger length, with the
+/// model curves evaluated at 24 finger lengths spread evenly over the measured range (the same model
+/// as the report's points, not straight segments between the measured lengths).
+pub fn validation_chart(
+    spec: &stiction_actuator::ArraySpec,
+    r: &stiction_actuator::ValidationReport,
+) -> Result<Chart, Box<dyn std::error::Error>> {
     let um = |p: &stiction_actuator::ValidationPoint| p.finger_length_m * 1e6;
-    Chart::new(
+    let lo = r.points.iter().map(|p| p.finger_length_m).fold(f64::INFINITY, f64::min);
+    let hi = r.points.iter().map(|p| p.finger_length_m).fold(f64::NEG_INFINITY, f64::max);
+    let n = if hi > lo { 24 } else { 1 };
+    let grid: Vec<stiction_actuator::MeasuredPoint> = (0..n)
+        .map(|k| stiction_actuator::MeasuredPoint {
+            finger_length_m: if n == 1 { lo } else { lo + (hi - lo) * k as f64 / (n - 1) as f64 },
+            pull_in_v: vec![1.0],
+            release_v: vec![1.0],
+        })
+        .collect();
+    let model = stiction_actuator::validate(spec, &grid)?;
+    let curve = |f: fn(&stiction_actuator::ValidationPoint) -> f64| -> Vec<(f64, f64)> {
+        model.points.iter().map(|p| (um(p), f(p))).collect()
+    };
+    let n_rep = r.points.len();
+    let mut chart = Chart::new(
         format!(
             "GCA pull-in and release: model vs measured (mean |err| {:.1} % / {:.1} %)",
             100.0 * r.pull_in_mean_abs_rel_error,
@@ -370,16 +405,27 @@ pub fn validation_chart(r: &stiction_actuator::ValidationReport) -> Chart {
         "drawn finger length (µm)",
         "voltage (V)",
     )
+    .keys("finger_length_um", "voltage_v")
+    .with(Series::line("pull-in, model", curve(|p| p.pull_in_v_model)).with_color(0))
+    .with(Series::dashed("release, model", curve(|p| p.release_v_model)).with_color(1))
     .with(
         Series::markers(
-            "pull-in, measured (mean, SD of 3)",
+            format!("pull-in, measured (mean, SD of repeats; {n_rep} lengths)"),
             r.points.iter().map(|p| (um(p), p.pull_in_v_measured)).collect(),
         )
-        .with_y_err(r.points.iter().map(|p| p.pull_in_v_spread).collect()),
+        .with_y_err(r.points.iter().map(|p| p.pull_in_v_spread).collect())
+        .with_color(0),
     )
-    .with(Series::line("pull-in, model", r.points.iter().map(|p| (um(p), p.pull_in_v_model)).collect()))
-    .with(Series::markers("release, measured", r.points.iter().map(|p| (um(p), p.release_v_measured)).collect()))
-    .with(Series::dashed("release, model", r.points.iter().map(|p| (um(p), p.release_v_model)).collect()))
+    .with(
+        Series::markers(
+            "release, measured (mean, SD of repeats)",
+            r.points.iter().map(|p| (um(p), p.release_v_measured)).collect(),
+        )
+        .with_y_err(r.points.iter().map(|p| p.release_v_spread).collect())
+        .with_color(1),
+    );
+    chart.legend = stiction_plot::LegendPosition::UpperRight;
+    Ok(chart)
 }
 
 /// The hysteresis chart of `stiction plot actuator`.
@@ -491,7 +537,7 @@ fn print_sweep(sweep: &Sweep) {
 
 /// `transients.csv` (every point) and one figure per finger length (`transients_L<um>.svg/.png`):
 /// measured mean with the SD of the repeats as error bars, and the model, time against voltage.
-fn write_transients(set: &mut OutputSet, r: &TransientReport, fig: &FigureArgs) -> CliResult {
+fn write_transients(set: &mut OutputSet, r: &TransientReport, curves: &TransientReport, fig: &FigureArgs) -> CliResult {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "finger_length_um",
@@ -523,7 +569,7 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport, fig: &FigureArgs) 
     lengths.sort_by(f64::total_cmp);
     lengths.dedup();
     for l in lengths {
-        let chart = fig.apply(transient_chart(r, l))?;
+        let chart = fig.apply(crate::cmd::plot::typeset_chart(transient_chart(r, curves, l)))?;
         let stem = format!("transients_L{:.2}um", l * 1e6);
         set.add_chart(&format!("{stem}.svg"), &chart)?;
         set.add_chart(&format!("{stem}.png"), &chart)?;
@@ -531,8 +577,40 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport, fig: &FigureArgs) 
     Ok(())
 }
 
+/// The transient model evaluated at 24 voltages evenly over the measured range of each finger
+/// length and event (at the external force of its measurements, when they share one): the model
+/// curves of the figures, not straight segments between the measured voltages.
+fn model_curves(
+    spec: &stiction_actuator::ArraySpec,
+    r: &TransientReport,
+) -> Result<TransientReport, Box<dyn std::error::Error>> {
+    let mut grid = Vec::new();
+    let mut keys: Vec<(u64, TransientEvent)> =
+        r.points.iter().map(|p| (p.finger_length_m.to_bits(), p.event)).collect();
+    keys.dedup();
+    for (bits, event) in keys {
+        let pts: Vec<_> = r.points.iter().filter(|p| p.finger_length_m.to_bits() == bits && p.event == event).collect();
+        let force = pts[0].external_force_n;
+        let (lo, hi) = pts.iter().fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.voltage_v), a.1.max(p.voltage_v)));
+        if pts.iter().any(|p| p.external_force_n != force) || hi <= lo {
+            continue;
+        }
+        grid.extend((0..24).map(|k| stiction_actuator::MeasuredTransient {
+            finger_length_m: f64::from_bits(bits),
+            event,
+            voltage_v: lo + (hi - lo) * f64::from(k) / 23.0,
+            external_force_n: force,
+            times_s: vec![1e-6],
+        }));
+    }
+    if grid.is_empty() {
+        return Ok(TransientReport { points: Vec::new(), ..r.clone() });
+    }
+    Ok(compare_transients(spec, TransientPhysics::default(), &grid)?)
+}
+
 /// Time against voltage at one finger length: measured (mean, SD of repeats) and model.
-fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
+fn transient_chart(r: &TransientReport, curves: &TransientReport, length_m: f64) -> Chart {
     let err = |event: TransientEvent| {
         r.errors
             .iter()
@@ -549,7 +627,8 @@ fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
         ),
         "voltage (V): pull-in step / release hold",
         "time (µs)",
-    );
+    )
+    .keys("voltage_v", "time_us");
     for (event, label) in [(TransientEvent::PullIn, "pull-in"), (TransientEvent::Release, "release")] {
         let pts: Vec<&stiction_actuator::TransientComparison> =
             r.points.iter().filter(|p| p.event == event && p.finger_length_m == length_m).collect();
@@ -562,17 +641,20 @@ fn transient_chart(r: &TransientReport, length_m: f64) -> Chart {
                     format!("{label}, measured (mean, SD of repeats)"),
                     pts.iter().map(|p| (p.voltage_v, p.measured_mean_s * 1e6)).collect(),
                 )
-                .with_y_err(pts.iter().map(|p| p.measured_sd_s * 1e6).collect()),
+                .with_y_err(pts.iter().map(|p| p.measured_sd_s * 1e6).collect())
+                .with_color(if event == TransientEvent::PullIn { 0 } else { 1 }),
             )
-            .with(match event {
-                TransientEvent::PullIn => Series::line(
-                    format!("{label}, model"),
-                    pts.iter().filter_map(|p| p.predicted_s.map(|t| (p.voltage_v, t * 1e6))).collect(),
-                ),
-                TransientEvent::Release => Series::dashed(
-                    format!("{label}, model"),
-                    pts.iter().filter_map(|p| p.predicted_s.map(|t| (p.voltage_v, t * 1e6))).collect(),
-                ),
+            .with({
+                // The model curve where there is one, else the model at the measured voltages.
+                let on_curve: Vec<&stiction_actuator::TransientComparison> =
+                    curves.points.iter().filter(|p| p.event == event && p.finger_length_m == length_m).collect();
+                let src = if on_curve.is_empty() { &pts } else { &on_curve };
+                let line: Vec<(f64, f64)> =
+                    src.iter().filter_map(|p| p.predicted_s.map(|t| (p.voltage_v, t * 1e6))).collect();
+                match event {
+                    TransientEvent::PullIn => Series::line(format!("{label}, model"), line).with_color(0),
+                    TransientEvent::Release => Series::dashed(format!("{label}, model"), line).with_color(1),
+                }
             });
     }
     let top = r

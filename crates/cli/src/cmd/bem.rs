@@ -470,49 +470,54 @@ fn write_outputs(
         "height.png",
         &fig.apply_map(heat_map(heights, g, "Height of the composite surface", "height (nm)", 1e9)),
     )?;
+    // The load of the drawn state: the last point of the path.
+    let state = out.points.last().map_or(String::new(), |p| {
+        format!(
+            " at mean pressure {} MPa (load {} mN)",
+            crate::cmd::plot::sig3(p.mean_pressure_pa * 1e-6),
+            crate::cmd::plot::sig3(p.load_n * 1e3)
+        )
+    });
+    // Elastic contact pressure peaks at several times E* at the summits: GPa, not MPa.
     set.add_image_map(
         "pressure.png",
-        &fig.apply_map(heat_map(&last.pressure_pa, g, "Pressure (last state)", "pressure (MPa)", 1e-6)),
+        &fig.apply_map(heat_map(&last.pressure_pa, g, &format!("Pressure{state}"), "pressure (GPa)", 1e-9)),
     )?;
-    set.add_image_map("gap.png", &fig.apply_map(heat_map(&last.gap_m, g, "Gap (last state)", "gap (nm)", 1e9)))?;
+    set.add_image_map("gap.png", &fig.apply_map(heat_map(&last.gap_m, g, &format!("Gap{state}"), "gap (nm)", 1e9)))?;
     let pts = &out.points;
+    // The solved loads as markers (not joined: a path may leave decades between them), on a log
+    // axis where the values span two decades or more.
+    let decades = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v.fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+        lo > 0.0 && hi / lo >= 100.0
+    };
+    let p_log = decades(&mut pts.iter().map(|p| p.mean_pressure_pa));
     if pts.len() > 1 {
         let area: Vec<(f64, f64)> = pts.iter().map(|p| (p.mean_pressure_pa * 1e-6, p.contact_fraction)).collect();
-        set.add_chart(
-            "load_area.png",
-            &fig.apply(
-                Chart::new("Load - area (BEM)", "mean pressure p (MPa)", "contact fraction A_r/A_0")
-                    .keys("mean_pressure_mpa", "contact_fraction")
-                    .with(Series::line("BEM", area.clone()))
-                    .with(Series::markers("solved", area)),
-            )?,
-        )?;
+        let mut chart = Chart::new("Load-area (BEM)", "mean pressure p (MPa)", "contact fraction A_r/A_0")
+            .keys("mean_pressure_mpa", "contact_fraction")
+            .with(Series::markers("BEM, solved loads", area).with_color(0));
+        chart.x_log = p_log;
+        chart.y_log = decades(&mut pts.iter().map(|p| p.contact_fraction));
+        set.add_chart("load_area.png", &fig.apply(crate::cmd::plot::typeset_chart(chart))?)?;
         let gap: Vec<(f64, f64)> = pts.iter().map(|p| (p.mean_gap_m * 1e9, p.mean_pressure_pa * 1e-6)).collect();
-        set.add_chart(
-            "load_gap.png",
-            &fig.apply(
-                Chart::new("Load - mean gap (BEM)", "mean gap (nm)", "mean pressure p (MPa)")
-                    .keys("mean_gap_nm", "mean_pressure_mpa")
-                    .with(Series::line("BEM", gap.clone()))
-                    .with(Series::markers("solved", gap)),
-            )?,
-        )?;
+        let mut chart = Chart::new("Load-mean gap (BEM)", "mean gap (nm)", "mean pressure p (MPa)")
+            .keys("mean_gap_nm", "mean_pressure_mpa")
+            .with(Series::markers("BEM, solved loads", gap).with_color(0));
+        chart.y_log = p_log;
+        set.add_chart("load_gap.png", &fig.apply(crate::cmd::plot::typeset_chart(chart))?)?;
         let ratio: Vec<(f64, f64)> =
             pts.iter().filter_map(|p| p.area_ratio_bem_over_asperity.map(|r| (p.mean_pressure_pa * 1e-6, r))).collect();
         if ratio.len() > 1 {
-            set.add_chart(
-                "area_ratio.png",
-                &fig.apply(
-                    Chart::new(
-                        "Real contact area: BEM / asperity model",
-                        "mean pressure p (MPa)",
-                        "A_r(BEM) / A_r(asperity)",
-                    )
-                    .keys("mean_pressure_mpa", "area_ratio")
-                    .with(Series::line("BEM / independent Hertz summits", ratio.clone()))
-                    .with(Series::markers("solved", ratio)),
-                )?,
-            )?;
+            let mut chart = Chart::new(
+                "Real contact area: BEM / asperity model",
+                "mean pressure p (MPa)",
+                "A_r(BEM) / A_r(asperity)",
+            )
+            .keys("mean_pressure_mpa", "area_ratio")
+            .with(Series::markers("BEM / independent Hertz summits, solved loads", ratio).with_color(0));
+            chart.x_log = p_log;
+            set.add_chart("area_ratio.png", &fig.apply(crate::cmd::plot::typeset_chart(chart))?)?;
         }
     }
     set.commit()

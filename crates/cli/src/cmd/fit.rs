@@ -106,9 +106,7 @@ pub fn run(args: Args) -> CliResult {
     let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options)?;
     if let Some(mut set) = outputs {
         set.add_bytes("report.json", crate::output::json_text(&report)?.as_bytes())?;
-        let staging = set.staging_dir().to_path_buf();
-        write_figures(&staging, &data, &report, &args.fig)?;
-        set.adopt_staged()?;
+        write_figures(&mut set, &data, &report, &args.fig)?;
         set.commit()?;
     }
     if args.json {
@@ -278,32 +276,25 @@ fn print_summary(r: &FitReport) {
     }
 }
 
-/// Long-format CSV of the series behind a chart: series, x, y, y_low, y_high.
-fn chart_csv(path: &Path, x_name: &str, y_name: &str, rows: &[CsvRow]) -> CliResult {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(["series", x_name, y_name, &format!("{y_name}_low"), &format!("{y_name}_high")])?;
-    let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:e}"));
-    for (s, x, y, lo, hi) in rows {
-        w.write_record([s.clone(), format!("{x:e}"), format!("{y:e}"), opt(*lo), opt(*hi)])?;
-    }
-    write_atomic(path, &w.into_inner().map_err(|e| e.to_string())?)?;
-    Ok(())
-}
-
-fn write_chart(dir: &Path, stem: &str, chart: Chart, fig: &FigureArgs) -> CliResult {
-    let chart = fig.apply(chart)?;
-    chart.write_svg(&dir.join(format!("{stem}.svg")))?;
-    chart.write_png(&dir.join(format!("{stem}.png")))?;
-    Ok(())
-}
-
-/// One row of a figure's CSV: series, x, y, y_low, y_high.
-type CsvRow = (String, f64, f64, Option<f64>, Option<f64>);
-type CsvRows = Vec<CsvRow>;
 /// Repeats of one (device, clamp voltage): pull voltage and its SD.
 type Groups = BTreeMap<(String, u64), Vec<(f64, Option<f64>)>>;
 
-fn write_figures(dir: &Path, data: &Dataset, r: &FitReport, fig: &FigureArgs) -> CliResult {
+/// Writes the three figures through [`OutputSet::add_chart`] (SVG, PNG and the data CSV of each).
+fn write_figures(set: &mut OutputSet, data: &Dataset, r: &FitReport, fig: &FigureArgs) -> CliResult {
+    for (stem, chart) in fit_charts(data, r) {
+        let chart = fig.apply(crate::cmd::plot::typeset_chart(chart))?;
+        set.add_chart(&format!("{stem}.svg"), &chart)?;
+        set.add_chart(&format!("{stem}.png"), &chart)?;
+    }
+    Ok(())
+}
+
+/// The fit's figures: V_pull² against V_clamp² (`fit-vpull2`), friction against load
+/// (`fit-friction-load`) and the residuals (`fit-residuals`). Each model has its colour
+/// ([`crate::cmd::plot::model_color`]) in all three; the models are drawn from the worst to the
+/// best (AIC), and the measured points last, on top.
+fn fit_charts(data: &Dataset, r: &FitReport) -> Vec<(&'static str, Chart)> {
+    use crate::cmd::plot::model_color;
     let red = r.reduction;
     let file = Path::new(&r.data).file_name().map_or_else(|| r.data.clone(), |n| n.to_string_lossy().into_owned());
     // Data grouped by (device, V_clamp): mean V_pull^2 and its error bar (SD of the repeats, or
@@ -328,97 +319,86 @@ fn write_figures(dir: &Path, data: &Dataset, r: &FitReport, fig: &FigureArgs) ->
         pts.push((x, m));
         errs.push(err);
     }
-    let mut rows: CsvRows =
-        pts.iter().zip(&errs).map(|(p, e)| ("data".to_string(), p.0, p.1, Some(p.1 - e), Some(p.1 + e))).collect();
     let mut fig5 = Chart::new(
         format!("Pull voltage at slip: measured ({file}) and each model's fit of s"),
         "clamp voltage squared V_clamp² (V²)",
         "pull voltage squared at slip V_pull² (V²)",
     )
-    .with(Series::markers("data (mean, error bar: SD of repeats)", pts.clone()).with_y_err(errs.clone()));
+    .keys("v_clamp_squared_v2", "v_pull_squared_v2");
     let best = r.models.first().map(|m| m.name.clone());
-    let mut bands = Vec::new();
-    for (k, m) in r.models.iter().enumerate() {
+    // Bands first (under every line), then the models from the worst to the best.
+    for m in r.models.iter().rev() {
+        let what = match &m.roughness {
+            Some(rough) => format!("roughness band 95 %, {} surfaces", rough.surfaces - rough.surfaces_failed),
+            None if Some(&m.name) == best.as_ref() && r.models.iter().all(|o| o.roughness.is_none()) => {
+                "95 % band of s".to_string()
+            }
+            None => continue,
+        };
+        let band: Vec<(f64, f64, f64)> =
+            m.curve.iter().filter_map(|c| c.band_v2.map(|b| (c.v_clamp_sq_v2, b[0], b[1]))).collect();
+        if !band.is_empty() {
+            fig5 = fig5.with(Series::band(format!("{} {what}", m.name), band).with_color(model_color(&m.name)));
+        }
+    }
+    for m in r.models.iter().rev() {
         let line: Vec<(f64, f64)> =
             m.curve.iter().filter_map(|c| c.v_pull_sq_v2.map(|y| (c.v_clamp_sq_v2, y))).collect();
         let s_gpa = m.shear_strength_pa.value / 1e9;
-        fig5 = fig5.with(Series::line(format!("{} (s = {s_gpa:.3} GPa)", m.name), line).with_color(k + 1));
-        for c in &m.curve {
-            if let Some(y) = c.v_pull_sq_v2 {
-                rows.push((m.name.clone(), c.v_clamp_sq_v2, y, c.band_v2.map(|b| b[0]), c.band_v2.map(|b| b[1])));
-            }
-        }
-        if m.roughness.is_some() || (Some(&m.name) == best.as_ref() && r.models.iter().all(|o| o.roughness.is_none())) {
-            let what = if m.roughness.is_some() { "roughness band 95 %" } else { "95 % band of s" };
-            let band: Vec<(f64, f64, f64)> =
-                m.curve.iter().filter_map(|c| c.band_v2.map(|b| (c.v_clamp_sq_v2, b[0], b[1]))).collect();
-            if !band.is_empty() {
-                bands.push(Series::band(format!("{} {what}", m.name), band).with_color(k + 1));
-            }
-        }
+        fig5 =
+            fig5.with(Series::line(format!("{} (s = {s_gpa:.3} GPa)", m.name), line).with_color(model_color(&m.name)));
     }
-    for b in bands {
-        fig5 = fig5.with(b);
-    }
-    write_chart(dir, "fit-vpull2", fig5, fig)?;
-    chart_csv(&dir.join("fit-vpull2.csv"), "v_clamp_sq_v2", "v_pull_sq_v2", &rows)?;
+    fig5 = fig5.with(
+        Series::markers("measured (mean, error bar: SD of repeats)", pts.clone())
+            .with_y_err(errs.clone())
+            .with_color(0),
+    );
 
     // F_f against L (uN), the paper's Fig. 7 view.
     let to_l = |x: f64| (red.a_clamp_n_per_v2 * x - red.spring_force_n) * 1e6;
     let to_f = |y: f64| red.a_pull_n_per_v2 * y * 1e6;
     let fl: Vec<(f64, f64)> = pts.iter().map(|p| (to_l(p.0), to_f(p.1))).collect();
     let fe: Vec<f64> = errs.iter().map(|e| red.a_pull_n_per_v2 * e * 1e6).collect();
-    let mut rows: CsvRows =
-        fl.iter().zip(&fe).map(|(p, e)| ("data".to_string(), p.0, p.1, Some(p.1 - e), Some(p.1 + e))).collect();
     let (l0, l1) = fl.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
     let mut fig7 = Chart::new(
         format!("Friction against load: measured ({file}), nominal a_clamp, a_pull, F_spring"),
         "clamp load L (µN)",
         "friction force F_f (µN)",
     )
-    .with(Series::markers("measured (mean, error bar: SD of repeats)", fl).with_y_err(fe));
+    .keys("load_un", "friction_un");
+    for m in r.models.iter().rev() {
+        let line: Vec<(f64, f64)> =
+            m.curve.iter().filter_map(|c| c.v_pull_sq_v2.map(|y| (c.load_n * 1e6, to_f(y)))).collect();
+        fig7 = fig7.with(Series::line(m.name.clone(), line).with_color(model_color(&m.name)));
+    }
     // The eq. 10 line only when both of its numbers exist (a null has its reason in report.json).
     if let (Some(mu), Some(fa0)) = (r.mu_apparent.value, r.apparent_adhesion_force_n.value) {
         let fa0 = fa0 * 1e6;
         // From L = -F_a0 (F_f = 0), so the figure shows F_a0 where the line meets the axis.
         let eq10_line = vec![(-fa0.max(-l0.min(0.0)), mu * (fa0 - fa0.max(-l0.min(0.0)))), (l1, mu * (fa0 + l1))];
-        for p in &eq10_line {
-            rows.push(("eq10".into(), p.0, p.1, None, None));
-        }
-        fig7 = fig7.with(Series::dashed(
-            format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"),
-            eq10_line,
-        ));
+        fig7 = fig7.with(
+            Series::dashed(
+                format!("eq. 10 fit of the measured points: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"),
+                eq10_line,
+            )
+            .with_color(0),
+        );
     }
+    fig7 = fig7.with(Series::markers("measured (mean, error bar: SD of repeats)", fl).with_y_err(fe).with_color(0));
     fig7.legend = stiction_plot::LegendPosition::LowerRight;
-    for (k, m) in r.models.iter().enumerate() {
-        let line: Vec<(f64, f64)> =
-            m.curve.iter().filter_map(|c| c.v_pull_sq_v2.map(|y| (c.load_n * 1e6, to_f(y)))).collect();
-        for (c, p) in m.curve.iter().zip(&line) {
-            rows.push((m.name.clone(), p.0, p.1, c.band_v2.map(|b| to_f(b[0])), c.band_v2.map(|b| to_f(b[1]))));
-        }
-        fig7 = fig7.with(Series::line(m.name.clone(), line).with_color(k + 2));
-    }
-    write_chart(dir, "fit-friction-load", fig7, fig)?;
-    chart_csv(&dir.join("fit-friction-load.csv"), "load_un", "friction_un", &rows)?;
 
-    // Residuals.
-    let mut rows: CsvRows = Vec::new();
+    // Residuals: one series per model.
     let mut res_chart = Chart::new(
         format!("Residuals of each model's best fit to {file}"),
         "clamp voltage squared V_clamp² (V²)",
         "V_pull² measured − model (V²)",
-    );
+    )
+    .keys("v_clamp_squared_v2", "residual_v_pull_squared_v2");
     let (x0, x1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-    res_chart = res_chart.with(Series::dashed("zero", vec![(x0, 0.0), (x1, 0.0)]));
-    for m in r.models.iter().filter(|m| m.comparable) {
+    res_chart = res_chart.with(Series::dashed("zero", vec![(x0, 0.0), (x1, 0.0)]).with_color(7));
+    for m in r.models.iter().rev().filter(|m| m.comparable) {
         let p: Vec<(f64, f64)> = m.residuals.iter().map(|(_, x, res)| (*x, *res)).collect();
-        for (line, x, res) in &m.residuals {
-            rows.push((format!("{} (line {line})", m.name), *x, *res, None, None));
-        }
-        res_chart = res_chart.with(Series::markers(m.name.clone(), p));
+        res_chart = res_chart.with(Series::markers(m.name.clone(), p).with_color(model_color(&m.name)));
     }
-    write_chart(dir, "fit-residuals", res_chart, fig)?;
-    chart_csv(&dir.join("fit-residuals.csv"), "v_clamp_sq_v2", "residual_v2", &rows)?;
-    Ok(())
+    vec![("fit-vpull2", fig5), ("fit-friction-load", fig7), ("fit-residuals", res_chart)]
 }

@@ -123,7 +123,7 @@ pub fn run(args: Args) -> CliResult {
             crate::cmd::actuator::hysteresis_chart(path, args.array.as_deref(), &args.sets)?
         }
     };
-    write_chart(&args.fig.apply(chart)?, &args.out)?;
+    write_chart(&args.fig.apply(typeset_chart(chart))?, &args.out)?;
     crate::errln!("wrote {} and {}", args.out.display(), stiction_plot::data_path(&args.out).display());
     Ok(())
 }
@@ -193,7 +193,7 @@ pub fn fig2(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
 pub fn fig3(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::error::Error>> {
     let mut chart = Chart::new(
         "Fig. 3: real area against load (GW + DMT, eq. 5b, 8)",
-        "normalized load L* (eq. 8), symmetric-log axis: linear within ±10⁻⁶",
+        "normalized load L* (eq. 8), axis sign(L*)·log₁₀(1 + |L*|/10⁻⁶)",
         "normalized real area A* (eq. 5b)",
     )
     .keys("l_star", "a_star")
@@ -274,6 +274,94 @@ fn symlog_series(
     Ok(out)
 }
 
+/// A label as drawn: every `symbol_subscript` written as the symbol with its subscript (`F_a0` ->
+/// `Fₐ₀`, `μ_e,a` -> `μₑ,ₐ`, `A_r/A_0` -> `Aᵣ/A₀`), where the symbol is one letter. Unicode has subscript forms for digits and
+/// some letters only; a subscript with any other character (`V_clamp`) stays as written. Every
+/// figure's text goes through here ([`typeset_chart`]), so the typesetting changes in one place.
+pub fn typeset(label: &str) -> String {
+    fn low(c: char) -> Option<char> {
+        Some(match c {
+            '0'..='9' => char::from_u32(0x2080 + (c as u32 - '0' as u32))?,
+            'a' => 'ₐ',
+            'e' => 'ₑ',
+            'o' => 'ₒ',
+            'x' => 'ₓ',
+            'h' => 'ₕ',
+            'k' => 'ₖ',
+            'l' => 'ₗ',
+            'm' => 'ₘ',
+            'n' => 'ₙ',
+            'p' => 'ₚ',
+            's' => 'ₛ',
+            't' => 'ₜ',
+            'i' => 'ᵢ',
+            'r' => 'ᵣ',
+            'u' => 'ᵤ',
+            'v' => 'ᵥ',
+            ',' => ',',
+            _ => return None,
+        })
+    }
+    let chars: Vec<char> = label.chars().collect();
+    let mut out = String::with_capacity(label.len());
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        // A symbol is one letter (not the end of a word such as a file name's `my_file`).
+        let symbol = i > 0 && chars[i - 1].is_alphabetic() && (i < 2 || !chars[i - 2].is_alphanumeric());
+        if c == '_' && symbol {
+            // The subscript: letters, digits and commas up to the next other character; a trailing
+            // comma is punctuation, not subscript.
+            let mut j = i + 1;
+            while j < chars.len() && (chars[j].is_ascii_alphanumeric() || chars[j] == ',') {
+                j += 1;
+            }
+            while j > i + 1 && chars[j - 1] == ',' {
+                j -= 1;
+            }
+            let run: Option<String> = chars[i + 1..j].iter().map(|&c| low(c)).collect();
+            if let Some(run) = run.filter(|r| !r.is_empty()) {
+                out.push_str(&run);
+                i = j;
+                continue;
+            }
+        }
+        out.push(c);
+        i += 1;
+    }
+    out
+}
+
+/// The chart with its title, note, axis labels and legend names typeset ([`typeset`]); the data
+/// columns keep the names of the labels as written (`f_a0_un`), fixed before the labels change.
+pub fn typeset_chart(mut chart: Chart) -> Chart {
+    let (xk, yk) = chart.column_keys();
+    chart.x_key = Some(xk);
+    chart.y_key = Some(yk);
+    chart.title = typeset(&chart.title);
+    chart.note = chart.note.as_deref().map(typeset);
+    chart.x_label = typeset(&chart.x_label);
+    chart.y_label = typeset(&chart.y_label);
+    for s in &mut chart.series {
+        s.name = typeset(&s.name);
+    }
+    chart
+}
+
+/// Palette colour of a fit model, the same in every figure: the measured data 0, `gw-dmt` 1,
+/// `explicit` 2, `explicit-ensemble` 3, `discrete-nN` 4, 5, 6 for N = 1, 2, 3 (then repeating).
+pub fn model_color(model: &str) -> usize {
+    match model {
+        "gw-dmt" => 1,
+        "explicit" => 2,
+        "explicit-ensemble" => 3,
+        m => match m.strip_prefix("discrete-n").and_then(|n| n.parse::<usize>().ok()) {
+            Some(n) => 4 + (n + 2) % 3,
+            None => 0,
+        },
+    }
+}
+
 /// Three significant digits without trailing zeros, plain or a·10ⁿ: 0.5, 1.4, 12400, 9.1·10⁻¹².
 pub fn sig3(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
@@ -295,7 +383,31 @@ pub fn sig3(v: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::sig3;
+    use super::{model_color, sig3, typeset};
+
+    #[test]
+    fn subscripts_typeset_where_unicode_has_them() {
+        assert_eq!(typeset("F_a0 = 2 µN"), "Fₐ₀ = 2 µN");
+        assert_eq!(typeset("μ_e,a, F_a0"), "μₑ,ₐ, Fₐ₀");
+        assert_eq!(typeset("A_r/A_0"), "Aᵣ/A₀");
+        assert_eq!(typeset("V_pull² (V²)"), "Vₚᵤₗₗ² (V²)");
+        // No subscript c or g in Unicode: left as written.
+        assert_eq!(typeset("V_clamp"), "V_clamp");
+        // Words with underscores (file names) are not symbols.
+        assert_eq!(typeset("fit_vpull2.csv, x_a"), "fit_vpull2.csv, xₐ");
+    }
+
+    #[test]
+    fn each_model_has_its_own_colour() {
+        let names = ["gw-dmt", "explicit", "explicit-ensemble", "discrete-n1", "discrete-n2", "discrete-n3"];
+        let c: Vec<usize> = names.iter().map(|n| model_color(n)).collect();
+        for (i, a) in c.iter().enumerate() {
+            assert_ne!(*a, 0, "{} shares the data's colour", names[i]);
+            for b in &c[i + 1..] {
+                assert_ne!(a, b, "{c:?}");
+            }
+        }
+    }
 
     #[test]
     fn three_significant_digits_without_trailing_zeros() {

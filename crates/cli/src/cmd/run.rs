@@ -303,10 +303,16 @@ fn write_outputs(
         m.voltages_csv.file_name().map_or_else(|| m.voltages_csv.display().to_string(), |n| n.to_string_lossy().into())
     });
     let fig5 = fig.apply(fig5_chart(o, scenario, base, measured_name.as_deref())?)?;
-    let fig7 = fig.apply(fig7_chart(o, scenario, meter, base, measured_name.as_deref())?)?;
+    let (fig7, fig7_notes) = fig7_chart(o, scenario, meter, base, measured_name.as_deref())?;
+    let fig7 = fig.apply(fig7)?;
     let mut json = serde_json::to_value(o)?;
     if let Some(obj) = json.as_object_mut() {
-        obj.insert("figures".into(), serde_json::json!({"fig5": fig5.data_json(), "fig7": fig7.data_json()}));
+        let mut fig7_json = fig7.data_json();
+        if let Some(f) = fig7_json.as_object_mut() {
+            // What the figure's short caption leaves out.
+            f.insert("notes".into(), serde_json::json!(fig7_notes));
+        }
+        obj.insert("figures".into(), serde_json::json!({"fig5": fig5.data_json(), "fig7": fig7_json}));
     }
     set.add_bytes("results.json", crate::output::json_text(&json)?.as_bytes())?;
     let mut w = csv::Writer::from_writer(Vec::new());
@@ -415,49 +421,65 @@ fn fig5_chart(
         crate::cmd::plot::sig3(red.a_pull_n_per_v2),
         crate::cmd::plot::sig3(red.spring_force_n * 1e6)
     ))
-    .with(Series::markers("virtual meter", pts).with_color(0))
     .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete).with_color(1));
+    // eq. 10 in voltages: V_pull^2 = (intercept + slope (a_clamp V_clamp^2 - F_spring)) / a_pull,
+    // over the virtual meter's slips.
+    let eq10 = |fit: &stiction_meter::fit::LineFit, x: f64| {
+        (fit.intercept + fit.slope * (red.a_clamp_n_per_v2 * x - red.spring_force_n)) / red.a_pull_n_per_v2
+    };
+    if let (Some(fit), Some(fa0)) = (&r.fit, r.apparent_adhesion_force_n) {
+        let x0 = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min).max(v2_min);
+        let x1 = pts.iter().map(|p| p.0).fold(0.0, f64::max);
+        chart.series.push(
+            Series::dashed(
+                format!("eq. 10 fit of the virtual meter: μ_e,a = {:.2}, F_a0 = {:.2} µN", fit.slope, fa0 * 1e6),
+                vec![(x0, eq10(fit, x0)), (x1, eq10(fit, x1))],
+            )
+            .with_color(3),
+        );
+    }
+    chart.series.push(Series::markers("virtual meter", pts.clone()).with_color(0));
     if let Some(c) = &o.measured {
-        // Drawn first, so that the virtual meter's points at the same voltages stay visible on top.
+        if let (Some(fit), Some(mu), Some(fa0)) =
+            (&c.measured_fit, c.mu_apparent_measured, c.apparent_adhesion_force_measured_n)
+        {
+            let x0 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(f64::INFINITY, f64::min).max(v2_min);
+            let x1 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(0.0, f64::max);
+            // Under the virtual meter's dashed line, so both stay visible where they coincide.
+            chart.series.insert(
+                0,
+                Series::line(
+                    format!("eq. 10 fit of the measured slips: μ_e,a = {mu:.2}, F_a0 = {:.2} µN", fa0 * 1e6),
+                    vec![(x0, eq10(fit, x0)), (x1, eq10(fit, x1))],
+                )
+                .with_color(4),
+            );
+        }
+        // Under the virtual meter's points at the same voltages.
+        let at = chart.series.len() - 1;
         chart.series.insert(
-            0,
+            at,
             Series::markers(
                 "measured",
                 c.points.iter().map(|p| (p.v_clamp * p.v_clamp, p.v_pull_measured * p.v_pull_measured)).collect(),
             )
             .with_color(4),
         );
-        if let (Some(fit), Some(mu), Some(fa0)) =
-            (&c.measured_fit, c.mu_apparent_measured, c.apparent_adhesion_force_measured_n)
-        {
-            // eq. 10 in voltages: V_pull^2 = (intercept + slope (a_clamp V_clamp^2 - F_spring)) / a_pull.
-            let x0 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(f64::INFINITY, f64::min).max(v2_min);
-            let x1 = c.points.iter().map(|p| p.v_clamp * p.v_clamp).fold(0.0, f64::max);
-            let y = |x: f64| {
-                (fit.intercept + fit.slope * (red.a_clamp_n_per_v2 * x - red.spring_force_n)) / red.a_pull_n_per_v2
-            };
-            chart.series.push(
-                Series::line(
-                    format!("eq. 10 fit of the measured slips: μ_e,a = {mu:.2}, F_a0 = {:.2} µN", fa0 * 1e6),
-                    vec![(x0, y(x0)), (x1, y(x1))],
-                )
-                .with_color(4),
-            );
-        }
     }
-    Ok(chart)
+    Ok(crate::cmd::plot::typeset_chart(chart))
 }
 
 /// Fig. 7: friction against load: the meter's points, the contact model's curve from pull-off,
 /// the discrete N = 3 model (eq. 12), the eq. 10 lines of the virtual (and measured) points and
-/// the reference F_a0 band when the scenario has one.
+/// the reference F_a0 band when the scenario has one. Returns the chart (with a one-line caption)
+/// and the notes that explain it, for results.json.
 fn fig7_chart(
     o: &RunOutput,
     scenario: &Scenario,
     meter: &mut Meter,
     base: &Path,
     measured: Option<&str>,
-) -> Result<Chart, Box<dyn std::error::Error>> {
+) -> Result<(Chart, Vec<String>), Box<dyn std::error::Error>> {
     let r = o.result;
     let material = scenario.require_material()?;
     let radius = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
@@ -478,6 +500,7 @@ fn fig7_chart(
             .with_color(0),
     );
     let mut notes = vec!["Meter points: the shoe comes down anew at each clamp voltage (meter.reclamp).".to_string()];
+    let mut caption = "points: shoe clamped anew at each load".to_string();
     // The contact model's own curve s A_r(L), from its pull-off where it has one.
     if let ContactModel::Explicit(solver) = meter.contact_model() {
         solver.reset();
@@ -485,26 +508,15 @@ fn fig7_chart(
             let pts = sweep.points.iter().map(|e| (e.load_n * 1e6, e.friction_capacity_n * 1e6)).collect();
             chart.series.push(Series::line("explicit solver, one loading path from pull-off", pts).with_color(1));
             notes.push(
-                "Solid line: one shoe loaded up from pull-off may rest on another set of summits (below the points)"
+                "Solid line: one shoe loaded up from pull-off may rest on another set of summits (below the points) \
+                 and jumps where it changes set: static friction depends on the load path (docs/experiment.md)."
                     .into(),
             );
-            notes.push(
-                "and jumps where it changes set: static friction depends on the load path (docs/experiment.md).".into(),
-            );
+            caption.push_str("; line: one loading path (friction depends on the path)");
         }
     }
     let discrete = crate::cmd::discrete::friction_curve_n3(material, radius, max_load)?;
     chart.series.push(Series::dashed("discrete model N = 3 (eq. 12)", discrete).with_color(2));
-    if let (Some(fit), Some(fa0)) = (&r.fit, r.apparent_adhesion_force_n) {
-        let line = vec![(-fa0 * 1e6, 0.0), (max_load * 1e6, (fit.intercept + fit.slope * max_load) * 1e6)];
-        chart.series.push(
-            Series::dashed(
-                format!("eq. 10 fit of the virtual meter: μ_e,a = {:.2}, F_a0 = {:.2} µN", fit.slope, fa0 * 1e6),
-                line,
-            )
-            .with_color(3),
-        );
-    }
     if let Some(c) = &o.measured {
         // Drawn first, so that the virtual meter's points at the same loads stay visible on top.
         chart.series.insert(
@@ -528,6 +540,18 @@ fn fig7_chart(
             );
         }
     }
+    // The virtual meter's eq. 10 line after the measured one: dashed on top of solid, both visible
+    // where they coincide.
+    if let (Some(fit), Some(fa0)) = (&r.fit, r.apparent_adhesion_force_n) {
+        let line = vec![(-fa0 * 1e6, 0.0), (max_load * 1e6, (fit.intercept + fit.slope * max_load) * 1e6)];
+        chart.series.push(
+            Series::dashed(
+                format!("eq. 10 fit of the virtual meter: μ_e,a = {:.2}, F_a0 = {:.2} µN", fit.slope, fa0 * 1e6),
+                line,
+            )
+            .with_color(3),
+        );
+    }
     if let Some(rf) = &scenario.reference
         && let (Some((a, b)), Some(label)) = (reference::adhesion_range_un(rf), reference::adhesion_label(rf))
     {
@@ -537,7 +561,7 @@ fn fig7_chart(
             notes.push(n);
         }
     }
-    chart.note = Some(notes.join("\n"));
+    chart.note = Some(caption);
     chart.legend = stiction_plot::LegendPosition::UpperLeft;
     let top = chart
         .series
@@ -547,5 +571,5 @@ fn fig7_chart(
         .fold(0.0, f64::max);
     // Headroom above the data for the legend (upper left).
     chart.y_range = Some((0.0, top * 1.2));
-    Ok(chart)
+    Ok((crate::cmd::plot::typeset_chart(chart), notes))
 }

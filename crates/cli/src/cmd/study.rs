@@ -538,24 +538,25 @@ fn write_figures(
         ("sensitivity_indices", has_sens, sensitivity_chart(summary)),
     ];
     for (name, _, chart) in charts.into_iter().filter(|c| c.1) {
-        let chart = figargs.apply(chart)?;
-        // The plot crate writes each file atomically.
-        crate::cmd::plot::render_chart(&chart, &dir.join(format!("{name}.svg")))?;
-        crate::cmd::plot::render_chart(&chart, &dir.join(format!("{name}.png")))?;
-        stiction_units::io::write_atomic(&dir.join(format!("{name}.csv")), chart.data_csv().as_bytes())?;
-        written.extend(["svg", "png", "csv"].map(|e| format!("{name}.{e}")));
+        let chart = figargs.apply(crate::cmd::plot::typeset_chart(chart))?;
+        written.extend(crate::output::write_chart_files(dir, name, &chart)?);
     }
     Ok(written)
 }
 
-/// At most 2000 points of the empirical CDF (every k-th sorted value).
+/// The empirical CDF F(x_(i)) = i/n (i = 1..n) of the sorted values, as the corners of its
+/// staircase: (x_(1), 0), then (x_(i), i/n). Above 2000 values, every k-th value (and the last),
+/// so each drawn step may hold k values.
 fn cdf_points(fig: &FigureData) -> Vec<(f64, f64)> {
     let n = fig.mu_sorted.len();
+    if n == 0 {
+        return Vec::new();
+    }
     let step = n.div_ceil(2000).max(1);
-    let mut pts: Vec<(f64, f64)> =
-        (0..n).step_by(step).map(|i| (fig.mu_sorted[i], (i as f64 + 0.5) / n as f64)).collect();
-    if n > 0 && !(n - 1).is_multiple_of(step) {
-        pts.push((fig.mu_sorted[n - 1], (n as f64 - 0.5) / n as f64));
+    let mut pts = vec![(fig.mu_sorted[0], 0.0)];
+    pts.extend((step - 1..n).step_by(step).map(|i| (fig.mu_sorted[i], (i + 1) as f64 / n as f64)));
+    if !n.is_multiple_of(step) {
+        pts.push((fig.mu_sorted[n - 1], 1.0));
     }
     pts
 }
@@ -567,7 +568,7 @@ fn cdf_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>) -> 
         "cumulative fraction of samples",
     )
     .keys("mu_apparent", "cumulative_fraction")
-    .with(Series::step("virtual meters (empirical CDF)", cdf_points(fig)));
+    .with(Series::step(format!("virtual meters, empirical CDF i/n (n = {})", fig.mu_sorted.len()), cdf_points(fig)));
     if let Some(r) = r
         && let (Some((a, b)), Some(label)) = (reference::mu_range(r), reference::mu_label(r))
     {
@@ -625,7 +626,8 @@ fn scatter_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>)
     chart
 }
 
-/// First-order Sobol indices as markers at x = input number (1, 2, ...), mu_e,a and F_a0 side by side.
+/// First- and total-order Sobol indices with their 95 % bootstrap intervals at x = input number
+/// (1, 2, ...), mu_e,a and F_a0 side by side.
 fn sensitivity_chart(summary: &StudySummary) -> Chart {
     let rows = &summary.sensitivity.inputs;
     // Short names that fit under a tick: the paper's symbols for the inputs it names
@@ -644,27 +646,36 @@ fn sensitivity_chart(summary: &StudySummary) -> Chart {
     };
     let names: Vec<String> = rows.iter().map(|r| short(&r.input)).collect();
     type Pick = dyn Fn(&stiction_study::sensitivity::InputShare) -> (Option<f64>, Option<[f64; 2]>);
-    // Markers at the index, error bars of the mean half-width of its 95 % bootstrap interval.
-    let series = |name: &str, off: f64, f: &Pick| -> Series {
-        let (mut pts, mut err) = (Vec::new(), Vec::new());
-        for (i, r) in rows.iter().enumerate() {
-            if let (Some(v), ci) = f(r) {
-                pts.push((i as f64 + 1.0 + off, v));
-                err.push(ci.map_or(0.0, |[a, b]| 0.5 * (b - a)));
-            }
-        }
-        Series::markers(name, pts).with_y_err(err)
-    };
+    // One series of markers per index (at the input's number, offset), drawn over its 95 % bootstrap
+    // intervals: a vertical segment from the interval's low to its high end (the intervals are
+    // not symmetric about the estimate), unnamed, so the legend lists each index once.
     let mut chart = Chart::new(
         format!("Share of the variance by input ({} samples with a fit)", summary.sensitivity.samples),
         "input",
-        "Sobol index (95 % bootstrap intervals)",
+        "Sobol index (bars: 95 % bootstrap intervals)",
     )
-    .keys("input_number", "sobol_index")
-    .with(series("μ_e,a, first order", -0.15, &|r| (r.mu_first_order, r.mu_first_order_ci)))
-    .with(series("μ_e,a, total order", -0.05, &|r| (r.mu_total_order, r.mu_total_order_ci)))
-    .with(series("F_a0, first order", 0.05, &|r| (r.fa0_first_order, r.fa0_first_order_ci)))
-    .with(series("F_a0, total order", 0.15, &|r| (r.fa0_total_order, r.fa0_total_order_ci)));
+    .keys("input_number", "sobol_index");
+    let picks: [(&str, f64, &Pick); 4] = [
+        ("μ_e,a, first order", -0.15, &|r| (r.mu_first_order, r.mu_first_order_ci)),
+        ("μ_e,a, total order", -0.05, &|r| (r.mu_total_order, r.mu_total_order_ci)),
+        ("F_a0, first order", 0.05, &|r| (r.fa0_first_order, r.fa0_first_order_ci)),
+        ("F_a0, total order", 0.15, &|r| (r.fa0_total_order, r.fa0_total_order_ci)),
+    ];
+    let mut marks = Vec::new();
+    for (k, (name, off, f)) in picks.iter().enumerate() {
+        let mut pts = Vec::new();
+        for (i, r) in rows.iter().enumerate() {
+            if let (Some(v), ci) = f(r) {
+                let x = i as f64 + 1.0 + off;
+                pts.push((x, v));
+                if let Some([lo, hi]) = ci {
+                    chart.series.push(Series::line("", vec![(x, lo), (x, hi)]).with_color(k));
+                }
+            }
+        }
+        marks.push(Series::markers(*name, pts).with_color(k));
+    }
+    chart.series.extend(marks);
     chart.x_ticks = Some(names.iter().enumerate().map(|(i, n)| (i as f64 + 1.0, n.clone())).collect());
     chart.x_range = Some((0.5, rows.len() as f64 + 0.5));
     chart.legend = stiction_plot::LegendPosition::UpperRight;

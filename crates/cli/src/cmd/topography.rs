@@ -109,17 +109,17 @@ pub fn run(args: Args) -> CliResult {
     let report = out.preparation;
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("statistics.json", crate::output::json_text(&out)?.as_bytes())?;
-        let staging = set.staging_dir().to_path_buf();
-        write_summit_csv(&map, &summits, &staging.join("summits.csv"))?;
-        figures(&map, &summits, &report, &staging, &args.fig)?;
-        set.adopt_staged()?;
+        set.add_bytes("summits.csv", &summit_file_bytes(&map, &summits, false)?)?;
+        figures(&map, &summits, &report, out.nayak.as_ref(), &mut set, &args.fig)?;
         set.commit()?;
         crate::errln!("wrote figures, their data, summits.csv, statistics.json and manifest.json to {}", dir.display());
     }
     // After the --out folder is in place, so a --summits file inside it is not swept away with the
     // folder's earlier contents.
     if let Some(path) = &args.summits {
-        write_summit_csv(&map, &summits, path)?;
+        // A name ending in .npy gets the N x 4 float64 array (x, y, height, radius) of `stiction surface --npy`.
+        let npy = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+        write_atomic(path, &summit_file_bytes(&map, &summits, npy)?)?;
         crate::errln!("wrote {} summits to {}", summits.len(), path.display());
     }
     if args.json {
@@ -296,32 +296,20 @@ fn print_table_of(o: &Output) {
     );
 }
 
-/// Summits as the CSV scenarios read (x_m, y_m, height_m, radius_m over the map's area).
-fn write_summit_csv(map: &HeightMap, s: &Summits, path: &Path) -> CliResult {
+/// Summits as the CSV scenarios read (x_m, y_m, height_m, radius_m over the map's area), or with
+/// `npy` the N x 4 float64 array of `stiction surface --npy`.
+fn summit_file_bytes(map: &HeightMap, s: &Summits, npy: bool) -> Result<Vec<u8>, Box<dyn std::error::Error>> {
     let (lx, ly) = (map.length_x_m(), map.length_y_m());
     let xs = s.ix.iter().map(|&i| ((f64::from(i) + 0.5) * map.dx_m()) as f32).collect();
     let ys = s.iy.iter().map(|&i| ((f64::from(i) + 0.5) * map.dy_m()) as f32).collect();
     let radii = (0..s.len()).map(|i| s.radius_m(i)).collect();
     let surface = Surface::new(lx, ly, xs, ys, s.height_m.clone(), Radii::PerSummit(radii))?;
-    // A name ending in .npy gets the N x 4 float64 array (x, y, height, radius) of `stiction surface --npy`.
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy")) {
-        write_atomic(path, &surface.to_npy_bytes())?;
-        return Ok(());
+    if npy {
+        return Ok(surface.to_npy_bytes());
     }
     let mut bytes = Vec::new();
     surface.write_csv(&mut bytes)?;
-    write_atomic(path, &bytes)?;
-    Ok(())
-}
-
-fn write_csv_rows(path: &Path, header: &[&str], rows: impl Iterator<Item = Vec<f64>>) -> CliResult {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(header)?;
-    for r in rows {
-        w.write_record(r.iter().map(|v| v.to_string()))?;
-    }
-    write_atomic(path, &w.into_inner().map_err(|e| e.to_string())?)?;
-    Ok(())
+    Ok(bytes)
 }
 
 /// Histogram (lower edge, upper edge, count) of `v` in `bins` equal bins over [lo, hi].
@@ -336,15 +324,25 @@ fn histogram(v: &[f64], lo: f64, hi: f64, bins: usize) -> Vec<(f64, f64, usize)>
     (0..bins).map(|k| (lo + k as f64 * w, lo + (k + 1) as f64 * w, c[k])).collect()
 }
 
-fn steps(h: &[(f64, f64, usize)], scale: f64) -> Vec<(f64, f64)> {
-    h.iter().flat_map(|&(a, b, c)| [(a * scale, c as f64), (b * scale, c as f64)]).collect()
+/// A histogram as the corners of its staircase ([`Series::step`]), x scaled by `scale`: from 0 up
+/// at the first edge, each bin's count from its lower edge, down to 0 at the last edge.
+fn histogram_steps(h: &[(f64, f64, usize)], scale: f64) -> Vec<(f64, f64)> {
+    let (Some(first), Some(last)) = (h.first(), h.last()) else { return Vec::new() };
+    let mut pts = vec![(first.0 * scale, 0.0)];
+    pts.extend(h.iter().map(|&(a, _, c)| (a * scale, c as f64)));
+    pts.push((last.1 * scale, last.2 as f64));
+    pts.push((last.1 * scale, 0.0));
+    pts
 }
 
+/// The figures (height map, PSD, summit heights and radii), each with its data CSV in the units its
+/// axes show, through the output set.
 fn figures(
     map: &HeightMap,
     s: &Summits,
     report: &PreparationReport,
-    dir: &Path,
+    nayak: Option<&Nayak>,
+    set: &mut OutputSet,
     fig: &crate::figargs::FigureArgs,
 ) -> CliResult {
     // Height map, block-averaged to at most 400 x 400 cells, with the summits.
@@ -354,7 +352,7 @@ fn figures(
     let markers: Vec<(f64, f64)> = (0..s.len())
         .map(|i| ((f64::from(s.ix[i]) + 0.5) * map.dx_m() * 1e6, (f64::from(s.iy[i]) + 0.5) * map.dy_m() * 1e6))
         .collect();
-    fig.apply_map(ImageMap {
+    let height_map = fig.apply_map(ImageMap {
         title: format!(
             "Height map ({} summits{})",
             s.len(),
@@ -365,28 +363,13 @@ fn figures(
         value_label: "height (nm)".into(),
         nx: cx,
         ny: cy,
-        values: cells.clone(),
+        values: cells,
         x_max: xmax,
         y_max: ymax,
         markers: if s.len() <= 5000 { markers } else { Vec::new() },
         ..Default::default()
-    })
-    .write_png(&dir.join("height_map.png"))?;
-    let bw = block as f64;
-    write_csv_rows(
-        &dir.join("height_map.csv"),
-        &["x_um", "y_um", "height_nm"],
-        (0..cy).flat_map(|by| {
-            let cells = &cells;
-            (0..cx).map(move |bx| {
-                vec![
-                    (bx as f64 + 0.5) * bw * map.dx_m() * 1e6,
-                    (by as f64 + 0.5) * bw * map.dy_m() * 1e6,
-                    cells[by * cx + bx],
-                ]
-            })
-        }),
-    )?;
+    });
+    set.add_image_map("height_map.png", &height_map)?;
 
     // PSD with the cut-offs.
     let psd = radial_psd(map, PsdWindow::Hann);
@@ -396,6 +379,7 @@ fn figures(
         "spatial frequency 1/λ (1/µm)",
         "PSD C (m⁴)",
     )
+    .keys("spatial_frequency_per_um", "psd_m4")
     .with(Series::line("map", pts.clone()));
     chart.x_log = true;
     chart.y_log = true;
@@ -408,35 +392,54 @@ fn figures(
             chart = chart.with(Series::dashed(name, vec![(1e-6 / l, ylo), (1e-6 / l, yhi)]));
         }
     }
-    fig.apply(chart)?.write_png(&dir.join("psd.png"))?;
-    write_csv_rows(
-        &dir.join("psd.csv"),
-        &["f_per_m", "wavelength_m", "psd_m4", "dft_bins"],
-        psd.f_per_m.iter().zip(&psd.psd_m4).zip(&psd.bins).map(|((f, p), b)| vec![*f, 1.0 / f, *p, f64::from(*b)]),
-    )?;
+    add_chart(set, "psd", chart, fig)?;
 
-    // Summit height and radius histograms.
+    // Summit height and radius histograms, with Nayak's predictions from the spectral moments.
     if s.len() >= 2 {
         let (lo, hi) = s.height_m.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| (a.min(h), b.max(h)));
         let bins = (s.len() as f64).sqrt().clamp(5.0, 60.0) as usize;
         let hh = histogram(&s.height_m, lo, hi, bins);
-        let heights = Chart::new(
+        let mut heights = Chart::new(
             format!("Summit heights ({} summits)", s.len()),
             "summit height above the mean plane (nm)",
             "summits per bin",
         )
-        .with(Series::line("", steps(&hh, 1e9)));
-        fig.apply(heights)?.write_png(&dir.join("summit_heights.png"))?;
-        write_csv_rows(
-            &dir.join("summit_heights.csv"),
-            &["height_lo_m", "height_hi_m", "count"],
-            hh.iter().map(|&(a, b, c)| vec![a, b, c as f64]),
-        )?;
+        .keys("summit_height_nm", "summits_per_bin")
+        .with(Series::step(format!("map: {} summits", s.len()), histogram_steps(&hh, 1e9)).with_color(0));
+        if let Some(n) = nayak
+            && let Some(sd) = n.summit_height_sd_m.filter(|sd| *sd > 0.0)
+        {
+            // Expected summits per bin: N w p(z), p the normal density with Nayak's large-alpha mean and SD.
+            let w = (hi - lo) / bins as f64;
+            let mean = n.summit_height_mean_m;
+            let curve: Vec<(f64, f64)> = (0..=120)
+                .map(|k| {
+                    let z = lo + (hi - lo) * f64::from(k) / 120.0;
+                    let p = (-0.5 * ((z - mean) / sd).powi(2)).exp() / (sd * (2.0 * std::f64::consts::PI).sqrt());
+                    (z * 1e9, s.len() as f64 * w * p)
+                })
+                .collect();
+            heights.series.insert(
+                0,
+                Series::line(
+                    format!(
+                        "Nayak (α = {}, large-α normal): mean {} nm, SD {} nm",
+                        crate::cmd::plot::sig3(n.bandwidth_alpha),
+                        crate::cmd::plot::sig3(mean * 1e9),
+                        crate::cmd::plot::sig3(sd * 1e9)
+                    ),
+                    curve,
+                )
+                .with_color(1),
+            );
+        }
+        add_chart(set, "summit_heights", heights, fig)?;
         let mut radii: Vec<f64> = (0..s.len()).map(|i| s.radius_m(i)).collect();
         radii.sort_by(f64::total_cmp);
         let p99 = radii[((radii.len() - 1) as f64 * 0.99) as usize];
         let rh = histogram(&radii, 0.0, p99, bins);
-        let radii_chart = Chart::new(
+        let top = rh.iter().map(|b| b.2).max().unwrap_or(0) as f64;
+        let mut radii_chart = Chart::new(
             format!(
                 "Summit radii 1/κ ({} summits; {} above the 99th percentile not shown)",
                 s.len(),
@@ -445,13 +448,39 @@ fn figures(
             "summit radius (µm)",
             "summits per bin",
         )
-        .with(Series::line("", steps(&rh, 1e6)));
-        fig.apply(radii_chart)?.write_png(&dir.join("summit_radii.png"))?;
-        write_csv_rows(
-            &dir.join("summit_radii.csv"),
-            &["radius_lo_m", "radius_hi_m", "count"],
-            rh.iter().map(|&(a, b, c)| vec![a, b, c as f64]),
-        )?;
+        .keys("summit_radius_um", "summits_per_bin")
+        .with(Series::step(format!("map: {} summits", s.len()), histogram_steps(&rh, 1e6)).with_color(0));
+        // Nayak's radius of the mean curvature (solid) under the map's own (dashed), both visible
+        // where they coincide.
+        if let Some(n) = nayak.filter(|n| n.summit_radius_m.is_finite() && n.summit_radius_m > 0.0) {
+            let r_um = n.summit_radius_m * 1e6;
+            radii_chart.series.push(
+                Series::line(
+                    format!("Nayak: 1/(mean curvature) = {} µm", crate::cmd::plot::sig3(r_um)),
+                    vec![(r_um, 0.0), (r_um, top)],
+                )
+                .with_color(1),
+            );
+        }
+        let curvatures: Vec<f64> = radii.iter().filter(|r| r.is_finite() && **r > 0.0).map(|r| 1.0 / r).collect();
+        if !curvatures.is_empty() {
+            let mean_k = curvatures.iter().sum::<f64>() / curvatures.len() as f64;
+            radii_chart.series.push(
+                Series::dashed(
+                    format!("map: 1/(mean curvature) = {} µm", crate::cmd::plot::sig3(1e6 / mean_k)),
+                    vec![(1e6 / mean_k, 0.0), (1e6 / mean_k, top)],
+                )
+                .with_color(0),
+            );
+        }
+        add_chart(set, "summit_radii", radii_chart, fig)?;
     }
     Ok(())
+}
+
+/// Adds a chart as `{stem}.svg` and `{stem}.png` with its data CSV.
+fn add_chart(set: &mut OutputSet, stem: &str, chart: Chart, fig: &crate::figargs::FigureArgs) -> CliResult {
+    let chart = fig.apply(crate::cmd::plot::typeset_chart(chart))?;
+    set.add_chart(&format!("{stem}.svg"), &chart)?;
+    set.add_chart(&format!("{stem}.png"), &chart)
 }
