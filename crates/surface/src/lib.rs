@@ -21,6 +21,7 @@
 mod csv_io;
 mod error;
 mod generate;
+mod generate_v2;
 mod height_map;
 mod npy_io;
 mod spec;
@@ -32,6 +33,7 @@ pub use generate::{
     FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution, generate, generate_composite,
     generate_two_face, generate_two_face_limited, uniform_positions,
 };
+pub use generate_v2::{Xoshiro256pp, generate_composite_v2, generate_v2};
 pub use height_map::{MapSummitStatistics, height_map_patch, height_map_tiling, map_summit_statistics};
 pub use npy_io::{
     NPY_MAX_BYTES_PER_SUMMIT, NPY_MAX_HEADER_BYTES, NpySummits, npy_header, npy_surface, read_npy_summits,
