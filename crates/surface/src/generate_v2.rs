@@ -122,6 +122,9 @@ const STREAM_SECOND_RADII: u64 = 6;
 const BLOCK: usize = 1 << 16;
 /// Bins per height group at most (a group holds about `BLOCK` summits).
 const GROUP_BINS_LOG2: u32 = 12;
+/// A bin edge is computed as a quantile at least every this many edges (the others by a Taylor
+/// step from the previous edge, [`Law::next_edge`]).
+const EXACT_EDGE_EVERY: usize = 32;
 /// Mean summits per height bin at least (up to twice this).
 const BIN_MEAN: usize = 8;
 
@@ -192,6 +195,29 @@ impl Law {
         }
     }
 
+    /// The next bin edge below `x = U(q)`, `U(q + h)`, by the Taylor series of the normal
+    /// quantile function Q = Phi^-1 in p = 1 - q to fourth order (Q' = 1/phi, Q'' = x/phi^2,
+    /// Q^(3) = (1 + 2x^2)/phi^3, Q^(4) = x(7 + 6x^2)/phi^4; with d = h/phi(x),
+    /// U(q + h) = x - d + x d^2/2 - (1 + 2x^2) d^3/6 + x(7 + 6x^2) d^4/24), when the first omitted
+    /// term, (7 + 46x^2 + 24x^4) d^5/120, is below 1e-18 (well under the rounding of x); `None`
+    /// (compute the quantile) otherwise and for the exponential law.
+    #[inline]
+    fn next_edge(self, x: f64, h: f64) -> Option<f64> {
+        match self {
+            Law::Normal => {
+                let x2 = x * x;
+                let d = h * (2.0 * std::f64::consts::PI).sqrt() * (0.5 * x2).exp();
+                let d2 = d * d;
+                let omitted = (7.0 + x2 * (46.0 + 24.0 * x2)) * d2 * d2 * d * (1.0 / 120.0);
+                (omitted < 1e-18).then(|| {
+                    x - d + x * d2 * 0.5 - (1.0 + 2.0 * x2) * d2 * d * (1.0 / 6.0)
+                        + x * (7.0 + 6.0 * x2) * d2 * d2 * (1.0 / 24.0)
+                })
+            }
+            Law::Exponential => None,
+        }
+    }
+
     /// Lower end of the support.
     fn support_min(self) -> f64 {
         match self {
@@ -223,15 +249,22 @@ impl Law {
             Law::Exponential => lo,
         };
         loop {
-            let x = lo + (hi - lo) * unit(r);
+            let bits = r.next_u64();
+            let x = lo + (hi - lo) * ((bits >> 11) as f64 * (1.0 / (1u64 << 53) as f64));
             // log f(m) - log f(x) >= 0
             let t = match self {
                 Law::Normal => 0.5 * (x * x - m * m),
                 Law::Exponential => x - m,
             };
-            let u = unit(r);
-            // exp(-t) >= 1 - t: most draws are accepted without the exponential.
-            if u < 1.0 - t || u < (-t).exp() {
+            // The acceptance draw u = (c + v) / 2048 is uniform on [0, 1): its coarse part c is
+            // the 11 bits x left unused, v a fresh uniform drawn only when c cannot decide.
+            // exp(-t) >= 1 - t: almost every draw of a narrow bin is accepted on c alone.
+            let coarse = (bits & 2047) as f64;
+            if (coarse + 1.0) * (1.0 / 2048.0) <= 1.0 - t {
+                break x;
+            }
+            let u = (coarse + unit(r)) * (1.0 / 2048.0);
+            if u < (-t).exp() {
                 break x;
             }
         }
@@ -288,6 +321,7 @@ fn sorted_heights(seed: u64, law: Law, sd: f64, n: usize) -> Vec<f64> {
     let fill = |(g, chunk): (usize, &mut [f64])| {
         let mut r = Xoshiro256pp::for_block(seed, STREAM_HEIGHTS, g as u64);
         let mut per_bin = vec![0u32; k_bins];
+        let mut scratch = Vec::with_capacity(4 * BIN_MEAN);
         for _ in 0..chunk.len() {
             per_bin[(r.next_u64() >> (64 - bins_log2)) as usize] += 1;
         }
@@ -295,11 +329,26 @@ fn sorted_heights(seed: u64, law: Law, sd: f64, n: usize) -> Vec<f64> {
         let edge = |b: usize| if b == 0 { f64::INFINITY } else if b == m { law.support_min() } else { law.upper_quantile(b, m) };
         let mut hi = edge(b0);
         let mut pos = 0;
+        let h = 1.0 / m as f64;
+        let mut steps = 0;
         for (j, &c) in per_bin.iter().enumerate() {
-            let lo = edge(b0 + j + 1);
+            let b = b0 + j + 1;
+            // Every EXACT_EDGE_EVERY-th edge is a quantile, the ones between Taylor steps from it.
+            let stepped = if b < m && hi.is_finite() && steps < EXACT_EDGE_EVERY { law.next_edge(hi, h) } else { None };
+            let lo = match stepped {
+                Some(x) => {
+                    steps += 1;
+                    x
+                }
+                None => {
+                    steps = 0;
+                    edge(b)
+                }
+            };
             let c = c as usize;
             let bin = &mut chunk[pos..pos + c];
-            for v in bin.iter_mut() {
+            scratch.clear();
+            for _ in 0..c {
                 let x = if hi.is_infinite() {
                     law.upper_tail(&mut r, lo)
                 } else if lo.is_infinite() {
@@ -308,9 +357,9 @@ fn sorted_heights(seed: u64, law: Law, sd: f64, n: usize) -> Vec<f64> {
                 } else {
                     law.in_bin(&mut r, lo, hi)
                 };
-                *v = to_height(law, sd, x);
+                scratch.push(to_height(law, sd, x));
             }
-            insertion_sort_desc(bin);
+            place_descending(&scratch, bin);
             pos += c;
             hi = lo;
         }
@@ -323,15 +372,27 @@ fn sorted_heights(seed: u64, law: Law, sd: f64, n: usize) -> Vec<f64> {
     out
 }
 
-fn insertion_sort_desc(v: &mut [f64]) {
-    for i in 1..v.len() {
-        let x = v[i];
-        let mut j = i;
-        while j > 0 && v[j - 1] < x {
-            v[j] = v[j - 1];
-            j -= 1;
-        }
-        v[j] = x;
+/// Writes `src` into `dst` in descending order: each value goes to its rank (the number of
+/// larger values, plus the equal ones before it), counted without branches, which beats an
+/// insertion sort's mispredicted branches on the 8-16 values of a bin; long bins (rare) use the
+/// comparison sort.
+fn place_descending(src: &[f64], dst: &mut [f64]) {
+    if src.len() > 64 {
+        dst.copy_from_slice(src);
+        dst.sort_unstable_by(|a, b| b.total_cmp(a));
+        return;
+    }
+    // Without ties the ranks are 0..c, summing to c (c - 1) / 2; tied values share a rank, so a
+    // smaller sum reveals a tie and the comparison sort places the values instead.
+    let mut rank_sum = 0;
+    for &x in src {
+        let larger: usize = src.iter().map(|&y| usize::from(y > x)).sum();
+        dst[larger] = x;
+        rank_sum += larger;
+    }
+    if rank_sum != src.len() * src.len().saturating_sub(1) / 2 {
+        dst.copy_from_slice(src);
+        dst.sort_unstable_by(|a, b| b.total_cmp(a));
     }
 }
 
@@ -347,6 +408,27 @@ fn blockwise<T: Send>(out: &mut [T], seed: u64, stream: u64, f: impl Fn(&mut Xos
         out.par_chunks_mut(BLOCK).enumerate().for_each(run);
     } else {
         out.chunks_mut(BLOCK).enumerate().for_each(run);
+    }
+}
+
+/// [`blockwise`] over two arrays of the same length, `f(rng, index, a, b)`.
+fn blockwise2<T: Send, U: Send>(
+    a: &mut [T],
+    b: &mut [U],
+    seed: u64,
+    stream: u64,
+    f: impl Fn(&mut Xoshiro256pp, usize, &mut T, &mut U) + Sync,
+) {
+    let run = |(k, (ca, cb)): (usize, (&mut [T], &mut [U]))| {
+        let mut r = Xoshiro256pp::for_block(seed, stream, k as u64);
+        for (i, (x, y)) in ca.iter_mut().zip(cb).enumerate() {
+            f(&mut r, k * BLOCK + i, x, y);
+        }
+    };
+    if a.len() > BLOCK {
+        a.par_chunks_mut(BLOCK).zip(b.par_chunks_mut(BLOCK)).enumerate().for_each(run);
+    } else {
+        a.chunks_mut(BLOCK).zip(b.chunks_mut(BLOCK)).enumerate().for_each(run);
     }
 }
 
@@ -377,34 +459,35 @@ fn positions(layout: &Layout, density: f64, field: &str) -> Result<(Vec<f32>, Ve
             } else {
                 0
             };
-            let mut xy = vec![(0.0f32, 0.0f32); n];
-            blockwise(&mut xy, layout.seed, STREAM_POSITIONS, |r, p| {
-                *p = (crate::generate::clamp_f32(unit(r) * l, l), crate::generate::clamp_f32(unit(r) * w, w));
+            let (mut xs, mut ys) = (vec![0.0f32; n], vec![0.0f32; n]);
+            // One 64-bit draw per summit: x from its high 32 bits, y from its low 32 bits, each
+            // uniform on a grid of 2^32 steps (finer than f32 resolves near the far edge).
+            let (sx, sy) = (l / 4_294_967_296.0, w / 4_294_967_296.0);
+            blockwise2(&mut xs, &mut ys, layout.seed, STREAM_POSITIONS, |r, _, x, y| {
+                let bits = r.next_u64();
+                *x = crate::generate::clamp_f32((bits >> 32) as f64 * sx, l);
+                *y = crate::generate::clamp_f32((bits & 0xFFFF_FFFF) as f64 * sy, w);
             });
-            Ok(xy.into_iter().unzip())
+            Ok((xs, ys))
         }
         Placement::JitteredGrid => {
             let target = mean.round().max(1.0);
             let nx = ((target * l / w).sqrt().round().clamp(1.0, target)) as usize;
             let ny = ((target / nx as f64).round() as usize).max(1);
             let (cx, cy) = (l / nx as f64, w / ny as f64);
-            let mut xy = vec![(0.0f32, 0.0f32); nx * ny];
-            let cells: Vec<(usize, &mut (f32, f32))> = xy.iter_mut().enumerate().collect();
-            let mut cells = cells;
-            blockwise(&mut cells, layout.seed, STREAM_POSITIONS, |r, (k, p)| {
-                let (i, j) = (*k % nx, *k / nx);
-                **p = (
-                    crate::generate::clamp_f32((i as f64 + unit(r)) * cx, l),
-                    crate::generate::clamp_f32((j as f64 + unit(r)) * cy, w),
-                );
+            let (mut xs, mut ys) = (vec![0.0f32; nx * ny], vec![0.0f32; nx * ny]);
+            blockwise2(&mut xs, &mut ys, layout.seed, STREAM_POSITIONS, |r, k, x, y| {
+                *x = crate::generate::clamp_f32(((k % nx) as f64 + unit(r)) * cx, l);
+                *y = crate::generate::clamp_f32(((k / nx) as f64 + unit(r)) * cy, w);
             });
             // Fisher-Yates shuffle so that the summit order carries no spatial information.
             let mut r = Xoshiro256pp::for_block(layout.seed, STREAM_COUNT, 0);
-            for k in (1..xy.len()).rev() {
+            for k in (1..xs.len()).rev() {
                 let m = r.random_range(0..=k);
-                xy.swap(k, m);
+                xs.swap(k, m);
+                ys.swap(k, m);
             }
-            Ok(xy.into_iter().unzip())
+            Ok((xs, ys))
         }
     }
 }
@@ -439,7 +522,7 @@ pub fn generate_v2(layout: &Layout, face: &FaceParams) -> Result<Surface, Surfac
         Some(r) => Radii::PerSummit(r),
         None => Radii::Uniform(face.summit_radius_m),
     };
-    Surface::new(layout.apparent_length_m, layout.apparent_width_m, xs, ys, heights, radii)
+    Surface::from_generated_descending(layout.apparent_length_m, layout.apparent_width_m, xs, ys, heights, radii)
 }
 
 /// Version 2 of [`crate::generate_composite`]: two Gaussian faces give Gaussian heights of SD
@@ -475,7 +558,7 @@ pub fn generate_composite_v2(layout: &Layout, wall: &FaceParams, shoe: &FacePara
             Radii::PerSummit(a.iter().zip(&b).map(|(x, y)| x * y / (x + y)).collect())
         }
     };
-    Surface::new(layout.apparent_length_m, layout.apparent_width_m, xs, ys, heights, radii)
+    Surface::from_generated_descending(layout.apparent_length_m, layout.apparent_width_m, xs, ys, heights, radii)
 }
 
 #[cfg(test)]
