@@ -580,6 +580,24 @@ mod tests {
     }
 
     #[test]
+    fn taylor_edges_equal_the_quantiles() {
+        // Every edge a Taylor step gives must be the quantile to 1e-14 (relative to max(1, |x|)):
+        // the bins' probabilities are then 1/M to far better than any test of the law resolves.
+        for m in [1usize << 16, 1 << 20, 1 << 23] {
+            let h = 1.0 / m as f64;
+            let mut stepped = 0;
+            for k in (1..m - 1).step_by(m / 5000 + 1) {
+                let (x, exact) = (Law::Normal.upper_quantile(k, m), Law::Normal.upper_quantile(k + 1, m));
+                if let Some(next) = Law::Normal.next_edge(x, h) {
+                    assert!((next - exact).abs() < 1e-14 * exact.abs().max(1.0), "m {m} k {k}: {next} vs {exact}");
+                    stepped += 1;
+                }
+            }
+            assert!(stepped > 4000, "m {m}: only {stepped} Taylor steps");
+        }
+    }
+
+    #[test]
     fn xoshiro_matches_the_reference_output() {
         // Reference: the C implementation (xoshiro256plusplus.c) from state {1, 2, 3, 4}.
         let mut r = Xoshiro256pp { s: [1, 2, 3, 4] };

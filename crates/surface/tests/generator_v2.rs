@@ -89,7 +89,7 @@ fn gaussian_heights_are_normal_with_the_requested_sd_and_descend() {
 }
 
 #[test]
-fn small_surfaces_have_normal_heights_too() {
+fn small_surfaces_follow_the_height_laws_too() {
     // The paper's 20 um x 5 um shoe (about 400 summits: two height bins per group), pooled over
     // 300 seeds: the bins of a small surface are as exact as those of a large one.
     let sigma = 0.04e-6;
@@ -103,6 +103,15 @@ fn small_surfaces_have_normal_heights_too() {
     }
     let ks = ks_statistic(&all, |x| 1.0 - normal_q(x / sigma));
     assert!(ks < KS_THRESHOLD, "sqrt(n) D = {ks} over {} heights", all.len());
+    // The same for exponential heights sigma (E - 1), whose top bin is E's memoryless tail.
+    let face = FaceParams { height_distribution: HeightDistribution::Exponential, ..table1_face() };
+    let mut all = Vec::new();
+    for seed in 0..300 {
+        let layout = Layout { apparent_length_m: 20e-6, apparent_width_m: 5e-6, placement: Placement::Poisson, seed };
+        all.extend(heights(&generate_v2(&layout, &face).unwrap()));
+    }
+    let ks = ks_statistic(&all, |x| if x < -sigma { 0.0 } else { 1.0 - (-(x / sigma + 1.0)).exp() });
+    assert!(ks < KS_THRESHOLD, "exponential: sqrt(n) D = {ks} over {} heights", all.len());
 }
 
 #[test]
