@@ -3,7 +3,8 @@
 //!
 //! # Random streams
 //!
-//! All randomness comes from [`ChaCha8Rng`] seeded with [`SeedableRng::seed_from_u64`]`(seed)`,
+//! This is version 1 of the generator (the default; `surface.generator: 2` selects
+//! [`crate::generate_v2`], another stream for the same random field). All randomness comes from [`ChaCha8Rng`] seeded with [`SeedableRng::seed_from_u64`]`(seed)`,
 //! a portable generator: the same seed gives the same surface, bit for bit, on every machine.
 //! Independent quantities use independent ChaCha streams ([`ChaCha8Rng::set_stream`]):
 //! stream 0 positions (and the Poisson count), 1 heights, 2 radii of the wall (or only) face,

@@ -8,7 +8,9 @@
 //! * generates it from the statistical parameters with a portable seeded generator ([`generate`]:
 //!   Poisson or jittered-grid positions of density eta, Gaussian or exponential heights of SD sigma,
 //!   fixed or lognormal radii), for two faces as the paper's composite ([`generate_composite`]) or
-//!   explicitly, shoe summits meeting wall summits ([`generate_two_face`]),
+//!   explicitly, shoe summits meeting wall summits ([`generate_two_face`]); version 2 of the
+//!   random stream ([`generate_v2`], [`generate_composite_v2`], `surface.generator: 2`) draws the
+//!   same field about twice as fast, block-wise and on several threads,
 //! * reports sample statistics to compare with the requested parameters ([`Surface::stats`]),
 //! * writes and reads CSV (`x_m,y_m,height_m,radius_m`, SI) and NumPy `.npy` (an N x 4 float64
 //!   array, a structured array, or heights alone) so measured summit lists can be used,

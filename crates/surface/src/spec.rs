@@ -365,7 +365,6 @@ impl SurfaceSpec {
             ("height_distribution", self.height_distribution != HeightDistribution::Gaussian),
             ("placement", self.placement != Placement::Poisson),
             ("pair_reach", self.pair_reach.is_some()),
-            ("generator", self.generator.is_some()),
         ] {
             if present {
                 return Err(SurfaceError::Spec(format!(
@@ -404,6 +403,11 @@ impl SurfaceSpec {
         if self.source != SurfaceSource::HeightMap && (self.height_map.is_some() || self.counter_height_map.is_some()) {
             return Err(SurfaceError::Spec(
                 "`height_map` and `counter_height_map` are only allowed when `source` is \"height_map\"".into(),
+            ));
+        }
+        if self.source != SurfaceSource::Generated && self.generator.is_some() {
+            return Err(SurfaceError::Spec(
+                "`generator` is only allowed when `source` is \"generated\" (it versions the random stream)".into(),
             ));
         }
         if self.source != SurfaceSource::Npy && self.npy_path.is_some() {

@@ -249,6 +249,12 @@ fn generator_version_comes_from_the_scenario() {
     assert_eq!(v2, GOLDEN_V2_TABLE1_SEED42, "golden hash of generator 2");
     let err = spec(r#", "generator": 3"#).build(dir).unwrap_err().to_string();
     assert!(err.contains("generator") && err.contains("expected 1 or 2"), "{err}");
+    let csv: SurfaceSpec = serde_json::from_str(
+        r#"{"apparent_length": "20 um", "apparent_width": "5 um", "source": "csv", "csv_path": "x.csv", "generator": 2}"#,
+    )
+    .unwrap();
+    let err = csv.build(dir).unwrap_err().to_string();
+    assert!(err.contains("`generator` is only allowed"), "{err}");
     // The field is not written back when absent (old scenarios serialise as before).
     assert!(!serde_json::to_string(&spec("")).unwrap().contains("generator"));
 }
