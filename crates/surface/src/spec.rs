@@ -152,11 +152,12 @@ pub struct SurfaceSpec {
     /// Seed of the random generator; default 0.
     #[serde(default)]
     pub seed: u64,
-    /// Version of the summit generator's random stream: 1 (default when absent; ChaCha8 streams
-    /// and a sort of the heights, see [`crate::generate`]) or 2 (xoshiro256++ blocks, heights drawn
-    /// in descending order, about twice as fast and parallel; see [`crate::generate_v2`]). Both
-    /// draw the same random field; a given version and seed always give the same summits.
+    /// Version of the summit generator's random stream: 1 (default when absent: ChaCha8 streams,
+    /// the heights sorted after drawing) or 2 (xoshiro256++ blocks, the heights drawn in descending
+    /// order: 1.5-2x faster, parallel). Both draw the same random field; a version and a seed
+    /// always give the same summits. Only with `source` = "generated".
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1, max = 2))]
     pub generator: Option<u32>,
     /// The shoe's rough face, when both faces are described separately.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -136,13 +136,15 @@ impl Surface {
         height_m: Vec<f64>,
         radius_m: Radii,
     ) -> Result<Self, SurfaceError> {
-        let ends_finite = height_m.first().is_none_or(|v| v.is_finite()) && height_m.last().is_none_or(|v| v.is_finite());
+        let ends_finite =
+            height_m.first().is_none_or(|v| v.is_finite()) && height_m.last().is_none_or(|v| v.is_finite());
         if !ends_finite {
             // Not expected (finite draws of a finite SD); the full check names the summit.
             return Self::new(apparent_length_m, apparent_width_m, x_m, y_m, height_m, radius_m);
         }
         debug_assert!(height_m.windows(2).all(|w| w[0] >= w[1]));
-        let heightless = Self::new(apparent_length_m, apparent_width_m, Vec::new(), Vec::new(), Vec::new(), Radii::Uniform(1.0))?;
+        let heightless =
+            Self::new(apparent_length_m, apparent_width_m, Vec::new(), Vec::new(), Vec::new(), Radii::Uniform(1.0))?;
         let n = height_m.len();
         if x_m.len() != n || y_m.len() != n {
             return Err(SurfaceError::Inconsistent(format!(

@@ -153,7 +153,8 @@ fn positions_are_uniform_and_independent_of_the_height_order() {
 
 #[test]
 fn jittered_grid_keeps_one_summit_per_cell() {
-    let layout = Layout { apparent_length_m: 1e-4, apparent_width_m: 0.25e-4, placement: Placement::JitteredGrid, seed: 4 };
+    let layout =
+        Layout { apparent_length_m: 1e-4, apparent_width_m: 0.25e-4, placement: Placement::JitteredGrid, seed: 4 };
     let s = generate_v2(&layout, &table1_face()).unwrap();
     // 1e4 cells of 100 x 100: nx = 200, ny = 50.
     assert_eq!(s.len(), 10_000);
