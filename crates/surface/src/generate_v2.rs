@@ -298,8 +298,10 @@ fn sorted_heights(seed: u64, law: Law, sd: f64, n: usize) -> Vec<f64> {
     if n == 0 {
         return out;
     }
-    // Bins: M = groups * 2^bins_log2, about BIN_MEAN..2 BIN_MEAN summits each, at least 2.
-    let bins_total_log2 = (n / BIN_MEAN).max(2).ilog2().max(1);
+    // Bins: M = groups * 2^bins_log2, about BIN_MEAN..2 BIN_MEAN summits each, at least 4 so that
+    // the outer bins of the normal law start away from 0 (|U(1/4)| = 0.674: the tail sampler
+    // divides by its start).
+    let bins_total_log2 = (n / BIN_MEAN).max(4).ilog2();
     let bins_log2 = bins_total_log2.min(GROUP_BINS_LOG2);
     let groups = 1usize << (bins_total_log2 - bins_log2);
     let k_bins = 1usize << bins_log2;
