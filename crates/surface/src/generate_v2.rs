@@ -380,7 +380,7 @@ fn sorted_heights(seed: u64, law: Law, sd: f64, n: usize) -> Vec<f64> {
             hi = lo;
         }
     };
-    if groups > 1 {
+    if groups > 1 && parallel() {
         chunks.into_par_iter().enumerate().for_each(fill);
     } else {
         chunks.into_iter().enumerate().for_each(fill);
@@ -412,6 +412,12 @@ fn place_descending(src: &[f64], dst: &mut [f64]) {
     }
 }
 
+/// True when rayon has more than one thread: with one, the blocks run on the calling thread (the
+/// same bytes, without handing the work to the pool's thread and waiting for it).
+fn parallel() -> bool {
+    rayon::current_num_threads() > 1
+}
+
 /// Fills `out` block by block (in parallel when there are several blocks) with `f(rng, slot)`.
 fn blockwise<T: Send>(out: &mut [T], seed: u64, stream: u64, f: impl Fn(&mut Xoshiro256pp, &mut T) + Sync) {
     let run = |(k, chunk): (usize, &mut [T])| {
@@ -420,7 +426,7 @@ fn blockwise<T: Send>(out: &mut [T], seed: u64, stream: u64, f: impl Fn(&mut Xos
             f(&mut r, v);
         }
     };
-    if out.len() > BLOCK {
+    if out.len() > BLOCK && parallel() {
         out.par_chunks_mut(BLOCK).enumerate().for_each(run);
     } else {
         out.chunks_mut(BLOCK).enumerate().for_each(run);
@@ -441,7 +447,7 @@ fn blockwise2<T: Send, U: Send>(
             f(&mut r, k * BLOCK + i, x, y);
         }
     };
-    if a.len() > BLOCK {
+    if a.len() > BLOCK && parallel() {
         a.par_chunks_mut(BLOCK).zip(b.par_chunks_mut(BLOCK)).enumerate().for_each(run);
     } else {
         a.chunks_mut(BLOCK).zip(b.chunks_mut(BLOCK)).enumerate().for_each(run);
