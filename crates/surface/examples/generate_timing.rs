@@ -1,17 +1,24 @@
 //! Thread CPU time of summit generation (docs/performance.md), for a machine shared with other
 //! work where criterion's wall times are inflated.
 //!
-//! `cargo run --release -p stiction-surface --example generate_timing -- N [--repeat K]`
+//! `cargo run --release -p stiction-surface --example generate_timing -- N [--repeat K] [--generator 2]`
 //!
 //! Generates the Table 1 surface (eta = 4e12 m^-2, sigma = 0.04 um, R = 0.5 um, Poisson, seed
-//! 2000) on a 4:1 rectangle holding about N summits, K times, and prints the median thread CPU
-//! time per run and per summit and the mean over all runs (`/proc/thread-self/schedstat`, Linux).
+//! 2000) on a 4:1 rectangle holding about N summits, K times, with generator version 1 (default)
+//! or 2, and prints the median CPU time per run and per summit and the mean over all runs, summed
+//! over all threads of the process (`/proc/self/task/*/schedstat`, Linux; version 2 draws its
+//! blocks on rayon's threads: `RAYON_NUM_THREADS=1` for one core).
 
-use stiction_surface::{FaceParams, Layout, Placement, generate};
+use stiction_surface::{FaceParams, Layout, Placement, generate, generate_v2};
 
+/// CPU time of all threads of this process, ns.
 fn thread_cpu_ns() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    text.split_whitespace().next()?.parse().ok()
+    let mut total = 0;
+    for task in std::fs::read_dir("/proc/self/task").ok()? {
+        let text = std::fs::read_to_string(task.ok()?.path().join("schedstat")).ok()?;
+        total += text.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(total)
 }
 
 fn main() {
@@ -23,6 +30,12 @@ fn main() {
         .and_then(|k| args.get(k + 1))
         .and_then(|s| s.parse().ok())
         .unwrap_or(5);
+    let version: u32 = args
+        .iter()
+        .position(|a| a == "--generator")
+        .and_then(|k| args.get(k + 1))
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
     let area = n / 4e12;
     let width = (area / 4.0).sqrt();
     let layout =
@@ -34,7 +47,7 @@ fn main() {
     let mut count = 0;
     for _ in 0..repeat {
         let (c0, t0) = (thread_cpu_ns(), std::time::Instant::now());
-        let s = generate(&layout, &face).expect("generate");
+        let s = if version == 2 { generate_v2(&layout, &face) } else { generate(&layout, &face) }.expect("generate");
         let (c1, dt) = (thread_cpu_ns(), t0.elapsed().as_secs_f64());
         count = s.len();
         drop(s);
@@ -54,7 +67,7 @@ fn main() {
         v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
     };
     let (c, w) = (median(&mut cpu), median(&mut wall));
-    println!("summits {count}  runs {repeat}");
+    println!("summits {count}  runs {repeat}  generator {version}");
     println!("cpu_s {c:.4}  cpu_ns_per_summit {:.1}  (median of runs)", c / count as f64 * 1e9);
     let mean = cpu_total / repeat as f64;
     println!(

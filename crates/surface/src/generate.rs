@@ -3,7 +3,8 @@
 //!
 //! # Random streams
 //!
-//! All randomness comes from [`ChaCha8Rng`] seeded with [`SeedableRng::seed_from_u64`]`(seed)`,
+//! This is version 1 of the generator (the default; `surface.generator: 2` selects
+//! [`crate::generate_v2`], another stream for the same random field). All randomness comes from [`ChaCha8Rng`] seeded with [`SeedableRng::seed_from_u64`]`(seed)`,
 //! a portable generator: the same seed gives the same surface, bit for bit, on every machine.
 //! Independent quantities use independent ChaCha streams ([`ChaCha8Rng::set_stream`]):
 //! stream 0 positions (and the Poisson count), 1 heights, 2 radii of the wall (or only) face,
@@ -113,7 +114,7 @@ impl FaceParams {
         }
     }
 
-    fn validate(&self, prefix: &str) -> Result<(), SurfaceError> {
+    pub(crate) fn validate(&self, prefix: &str) -> Result<(), SurfaceError> {
         check_positive(&format!("{prefix}summit_density"), self.summit_density_per_m2, "m^-2")?;
         check_nonnegative(&format!("{prefix}summit_sd"), self.summit_sd_m, "m")?;
         check_positive(&format!("{prefix}summit_radius"), self.summit_radius_m, "m")?;
@@ -148,7 +149,7 @@ pub struct Layout {
 }
 
 impl Layout {
-    fn validate(&self) -> Result<(), SurfaceError> {
+    pub(crate) fn validate(&self) -> Result<(), SurfaceError> {
         check_positive("apparent_length", self.apparent_length_m, "m")?;
         check_positive("apparent_width", self.apparent_width_m, "m")
     }
@@ -242,7 +243,7 @@ pub fn uniform_positions(layout: &Layout, n: usize) -> (Vec<f32>, Vec<f32>) {
 }
 
 /// Rounds to f32, keeping the value inside [0, lim] (rounding up could leave the area).
-fn clamp_f32(v: f64, lim: f64) -> f32 {
+pub(crate) fn clamp_f32(v: f64, lim: f64) -> f32 {
     let mut f = v as f32;
     while f64::from(f) > lim {
         f = f.next_down();
@@ -296,7 +297,7 @@ fn draw_radii(seed: u64, stream: u64, n: usize, face: &FaceParams) -> Option<Vec
 /// every case. About 90 instructions per summit against about 300 for the comparison sort
 /// (docs/performance.md). Extra memory: one `u64` buffer of the same length (the heights are
 /// turned into keys in place).
-fn sort_desc(h: Vec<f64>) -> Vec<f64> {
+pub(crate) fn sort_desc(h: Vec<f64>) -> Vec<f64> {
     if h.len() < RADIX_MIN_LEN {
         let mut h = h;
         h.sort_unstable_by(|a, b| b.total_cmp(a));

@@ -149,9 +149,16 @@ pub struct SurfaceSpec {
     /// "fixed" (default) or "lognormal".
     #[serde(default)]
     pub radius_distribution: RadiusDistribution,
-    /// Seed of the ChaCha8 generator; default 0.
+    /// Seed of the random generator; default 0.
     #[serde(default)]
     pub seed: u64,
+    /// Version of the summit generator's random stream: 1 (default when absent: ChaCha8 streams,
+    /// the heights sorted after drawing) or 2 (xoshiro256++ blocks, the heights drawn in descending
+    /// order: 1.5-2x faster, parallel). Both draw the same random field; a version and a seed
+    /// always give the same summits. Only with `source` = "generated".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1, max = 2))]
+    pub generator: Option<u32>,
     /// The shoe's rough face, when both faces are described separately.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub counter_face: Option<FaceSpec>,
@@ -274,6 +281,18 @@ impl SurfaceSpec {
                     .into(),
             ));
         }
+        if let Some(v) = self.generator
+            && v != 1
+            && v != 2
+        {
+            return Err(("generator".into(), format!("{v}: expected 1 or 2 (the version of the summit generator)")));
+        }
+        if self.generator == Some(2) && self.counter_face.is_some() && self.two_face == TwoFaceMode::Explicit {
+            return Err((
+                "generator".into(),
+                "2 is not available with `two_face` = \"explicit\" (use generator 1, the default)".into(),
+            ));
+        }
         if self.max_summits == Some(0) {
             return Err(("max_summits".into(), "0: expected a positive number of summits".into()));
         }
@@ -387,6 +406,11 @@ impl SurfaceSpec {
                 "`height_map` and `counter_height_map` are only allowed when `source` is \"height_map\"".into(),
             ));
         }
+        if self.source != SurfaceSource::Generated && self.generator.is_some() {
+            return Err(SurfaceError::Spec(
+                "`generator` is only allowed when `source` is \"generated\" (it versions the random stream)".into(),
+            ));
+        }
         if self.source != SurfaceSource::Npy && self.npy_path.is_some() {
             return Err(SurfaceError::Spec("`npy_path` is only allowed when `source` is \"npy\"".into()));
         }
@@ -427,13 +451,21 @@ impl SurfaceSpec {
                         if self.pair_reach.is_some() {
                             return Err(SurfaceError::Spec("`pair_reach` needs `two_face` = \"explicit\"".into()));
                         }
-                        generate(&layout, &wall)
+                        if self.generator == Some(2) {
+                            crate::generate_v2(&layout, &wall)
+                        } else {
+                            generate(&layout, &wall)
+                        }
                     }
                     (Some(shoe), TwoFaceMode::Composite) => {
                         if self.pair_reach.is_some() {
                             return Err(SurfaceError::Spec("`pair_reach` needs `two_face` = \"explicit\"".into()));
                         }
-                        generate_composite(&layout, &wall, &shoe.params())
+                        if self.generator == Some(2) {
+                            crate::generate_composite_v2(&layout, &wall, &shoe.params())
+                        } else {
+                            generate_composite(&layout, &wall, &shoe.params())
+                        }
                     }
                     (Some(shoe), TwoFaceMode::Explicit) => {
                         let shoe = shoe.params();

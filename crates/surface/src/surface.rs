@@ -123,6 +123,47 @@ impl Surface {
         Ok(Self { apparent_length_m, apparent_width_m, x_m, y_m, height_m, radius_m })
     }
 
+    /// [`Surface::new`] for the arrays of the version 2 generator, whose values are valid by
+    /// construction: positions come from `clamp_f32` of values in [0, limit] (inside the area),
+    /// heights are finite draws in descending order (so only the first and last are checked), and
+    /// per-summit radii are checked as by [`Surface::new`]. Saves the pass over the positions
+    /// and heights (about 1-2 ns per summit, docs/performance.md).
+    pub(crate) fn from_generated_descending(
+        apparent_length_m: f64,
+        apparent_width_m: f64,
+        x_m: Vec<f32>,
+        y_m: Vec<f32>,
+        height_m: Vec<f64>,
+        radius_m: Radii,
+    ) -> Result<Self, SurfaceError> {
+        let ends_finite =
+            height_m.first().is_none_or(|v| v.is_finite()) && height_m.last().is_none_or(|v| v.is_finite());
+        if !ends_finite {
+            // Not expected (finite draws of a finite SD); the full check names the summit.
+            return Self::new(apparent_length_m, apparent_width_m, x_m, y_m, height_m, radius_m);
+        }
+        debug_assert!(height_m.windows(2).all(|w| w[0] >= w[1]));
+        let heightless =
+            Self::new(apparent_length_m, apparent_width_m, Vec::new(), Vec::new(), Vec::new(), Radii::Uniform(1.0))?;
+        let n = height_m.len();
+        if x_m.len() != n || y_m.len() != n {
+            return Err(SurfaceError::Inconsistent(format!(
+                "x_m has {} entries, y_m {}, height_m {n}: expected equal lengths",
+                x_m.len(),
+                y_m.len()
+            )));
+        }
+        match &radius_m {
+            Radii::Uniform(r) => check_positive("summit_radius", *r, "m")?,
+            Radii::PerSummit(r) => {
+                if r.len() != n || r.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+                    return Self::new(apparent_length_m, apparent_width_m, x_m, y_m, height_m, radius_m);
+                }
+            }
+        }
+        Ok(Self { x_m, y_m, height_m, radius_m, ..heightless })
+    }
+
     /// Number of summits.
     pub fn len(&self) -> usize {
         self.height_m.len()
