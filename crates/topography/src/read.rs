@@ -475,7 +475,9 @@ pub fn read_array(
     let mut out = Vec::with_capacity(nx * ny);
     match heights {
         BorrowedHeights::F64(d) if contiguous_rows => out.extend_from_slice(&d[offset..offset + nx * ny]),
-        BorrowedHeights::F32(d) if contiguous_rows => out.extend(d[offset..offset + nx * ny].iter().map(|&v| f64::from(v))),
+        BorrowedHeights::F32(d) if contiguous_rows => {
+            out.extend(d[offset..offset + nx * ny].iter().map(|&v| f64::from(v)))
+        }
         BorrowedHeights::F64(d) => {
             for iy in 0..ny {
                 out.extend((0..nx).map(|ix| d[index(iy, ix)]));

@@ -25,19 +25,24 @@ fn via_npy(c_order: &[f64], ny: usize, nx: usize, dtype: NpyDtype) -> HeightMap 
 fn c_and_fortran_order_f64_and_f32_equal_the_npy_reader_bit_for_bit() {
     let (ny, nx) = (5, 7);
     let c = values(ny, nx);
-    let fortran: Vec<f64> = (0..nx).flat_map(|ix| (0..ny).map(move |iy| (ix, iy))).map(|(ix, iy)| c[iy * nx + ix]).collect();
+    let fortran: Vec<f64> =
+        (0..nx).flat_map(|ix| (0..ny).map(move |iy| (ix, iy))).map(|(ix, iy)| c[iy * nx + ix]).collect();
     let want = via_npy(&c, ny, nx, NpyDtype::F64);
     let (got, info) = read_array(BorrowedHeights::F64(&c), ArrayLayout::c_order(ny, nx), "heights", &meta()).unwrap();
     assert_eq!(got, want);
     assert_eq!(info.height_unit_m, 1e-3);
-    let got = read_array(BorrowedHeights::F64(&fortran), ArrayLayout::fortran_order(ny, nx), "heights", &meta()).unwrap().0;
+    let got =
+        read_array(BorrowedHeights::F64(&fortran), ArrayLayout::fortran_order(ny, nx), "heights", &meta()).unwrap().0;
     assert_eq!(got, want);
     let c32: Vec<f32> = c.iter().map(|&v| v as f32).collect();
     let f32s: Vec<f32> = fortran.iter().map(|&v| v as f32).collect();
     let want32 = via_npy(&c, ny, nx, NpyDtype::F32);
     assert_ne!(want32, want, "float32 rounding must show, or the dtype is not tested");
     assert_eq!(read_array(BorrowedHeights::F32(&c32), ArrayLayout::c_order(ny, nx), "h", &meta()).unwrap().0, want32);
-    assert_eq!(read_array(BorrowedHeights::F32(&f32s), ArrayLayout::fortran_order(ny, nx), "h", &meta()).unwrap().0, want32);
+    assert_eq!(
+        read_array(BorrowedHeights::F32(&f32s), ArrayLayout::fortran_order(ny, nx), "h", &meta()).unwrap().0,
+        want32
+    );
 }
 
 #[test]
@@ -52,7 +57,8 @@ fn strided_and_reversed_views_read_the_elements_they_name() {
     // The transpose of the C-ordered buffer (a.T): 7 rows of 10.
     let t = ArrayLayout { ny: nx, nx: ny, row_stride: 1, col_stride: nx as isize, offset: 0 };
     let got = read_array(BorrowedHeights::F64(&buf), t, "h", &meta()).unwrap().0;
-    let transposed: Vec<f64> = (0..nx).flat_map(|ix| (0..ny).map(move |iy| (iy, ix))).map(|(iy, ix)| buf[iy * nx + ix]).collect();
+    let transposed: Vec<f64> =
+        (0..nx).flat_map(|ix| (0..ny).map(move |iy| (iy, ix))).map(|(iy, ix)| buf[iy * nx + ix]).collect();
     assert_eq!(got, via_npy(&transposed, nx, ny, NpyDtype::F64));
 }
 
