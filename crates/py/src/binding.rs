@@ -577,7 +577,7 @@ fn study_json(
 fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
     let theta = theta.filter(|t| !t.is_infinite());
     let model = stiction_contact::gw::GwModel::new(theta).map_err(err)?;
-    let states = py.detach(|| {
+    let solve = || {
         load_star
             .iter()
             .enumerate()
@@ -588,7 +588,9 @@ fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: Vec<f64>) -> P
                 model.solve(l).map_err(|e| format!("load_star[{i}] = {l}: {e}"))
             })
             .collect::<Result<Vec<_>, String>>()
-    });
+    };
+    // A few loads take microseconds: releasing the GIL would cost more than it frees.
+    let states = if load_star.len() < 64 { solve() } else { py.detach(solve) };
     let states = states.map_err(err)?;
     let d = PyDict::new(py);
     let col = |f: &dyn Fn(&stiction_contact::gw::GwState) -> f64| states.iter().map(f).collect::<Vec<f64>>();

@@ -88,7 +88,7 @@ def test_contact_at_a_load_and_a_sweep_equal_cli(in_root, cli_json):
     assert stiction.contact(TAS, 3e-6).to_dict() == e
     # A load vector is the sweep of those loads: FROM:TO:STEPS gives from + (to - from) i / (n - 1).
     loads = [0.0 + (5e-6 - 0.0) * i / 4 for i in range(5)]
-    e = cli_json("contact", TAS, "--sweep", "0uN:5uN:5")
+    e = cli_json("contact", TAS, "--sweep", "0:5e-6:5")
     s = stiction.contact(TAS, np.array(loads))
     assert s.to_dict() == e
     assert np.array_equal(s.columns["load_n"], [p["load_n"] for p in e["points"]])
@@ -167,8 +167,12 @@ def test_fit_with_a_csv_path_and_with_arrays_equals_cli(in_root, cli_json):
     e = cli_json("fit", VOLTAGES, "--scenario", FIT, "--models", "discrete-n1,gw-dmt", "--draws", 200)
     assert stiction.fit(VOLTAGES, FIT, **flags).to_dict() == e
     assert stiction.fit(None, FIT, **flags).to_dict()["eq10"] == e["eq10"]
-    data = np.genfromtxt(VOLTAGES, delimiter=",", names=True, comments="#")
-    arrays = {"v_clamp_v": data["v_clamp_v"], "v_pull_v": data["v_pull_v"]}
+    import csv
+
+    with open(VOLTAGES) as f:
+        rows = list(csv.reader(line for line in f if not line.startswith("#")))
+    arrays = {name: np.array([float(r[k]) for r in rows[1:]]) for k, name in enumerate(rows[0])}
+    assert set(arrays) == {"v_clamp_v", "v_pull_v"} and len(arrays["v_pull_v"]) > 5
     got = stiction.fit(arrays, FIT, **flags).to_dict()
     # Same rows, same numbers: only the name of the data source may differ.
     text_e, text_g = json.dumps(e), json.dumps(got).replace("<data>", VOLTAGES)
@@ -249,7 +253,7 @@ def test_ctrl_c_interrupts_a_long_study_within_a_second(in_root, cli_json):
     start = time.perf_counter()
     timer.start()
     with pytest.raises(KeyboardInterrupt):
-        stiction.study(TAS, samples=100000, seed=1, threads=2)
+        stiction.study(TAS, samples=200000, seed=1, threads=2)  # about a minute uninterrupted
     raised = time.perf_counter()
     timer.join()
     assert raised - sent["t"] < 1.0, f"KeyboardInterrupt {raised - sent['t']:.2f} s after SIGINT"
@@ -266,28 +270,33 @@ def test_ctrl_c_interrupts_a_long_study_within_a_second(in_root, cli_json):
     assert not any(n.startswith(prefix) for n in os.listdir(tempfile.gettempdir()))
 
 
-def test_two_threads_solve_in_less_than_one_and_a_half_times_one(in_root):
-    """GIL release: two single-threaded studies in two threads against one, best of 3 (the
-    machine may be shared), on two cores or more."""
+def test_two_threads_solve_in_less_than_one_and_a_half_times_one():
+    """GIL release: two boundary-element solves (CPU-bound, single-threaded) in two threads against
+    one, on two cores or more. The machine may be shared, so each is timed up to 5 times and the
+    fastest pair is compared with the fastest single solve (holding the GIL makes every pair take
+    twice a single solve at best)."""
     if (os.cpu_count() or 1) < 2:
         pytest.skip("needs two cores")
+    y, x = np.mgrid[0:256, 0:256] / 256.0
+    heights = 30 * np.sin(2 * np.pi * 3 * x) * np.cos(2 * np.pi * 2 * y) + 10 * np.sin(2 * np.pi * 7 * (x + y))
 
     def one():
-        stiction.study(TAS, samples=40, seed=4, threads=1)
+        stiction.bem(heights, [5e6, 2e7, 8e7, 1.5e8], pixel_size="0.1 um", height_unit="nm")
 
-    one()  # warm up (caches, first allocation of the pools)
-    ratios = []
-    for _ in range(3):
+    one()  # warm up
+    singles, pairs = [], []
+    for _ in range(5):
         t0 = time.perf_counter()
         one()
-        single = time.perf_counter() - t0
+        singles.append(time.perf_counter() - t0)
         threads = [threading.Thread(target=one) for _ in range(2)]
         t0 = time.perf_counter()
         for t in threads:
             t.start()
         for t in threads:
             t.join()
-        ratios.append((time.perf_counter() - t0) / single)
-        if ratios[-1] < 1.5:
+        pairs.append(time.perf_counter() - t0)
+        if min(pairs) / min(singles) < 1.5:
             break
-    assert min(ratios) < 1.5, f"two in parallel took {min(ratios):.2f} x one (best of {len(ratios)})"
+    ratio = min(pairs) / min(singles)
+    assert ratio < 1.5, f"two in parallel took {ratio:.2f} x one (fastest of {len(pairs)})"

@@ -213,8 +213,11 @@ def gw(theta: Optional[float], load_star) -> Dict[str, Any]:
     theta, pull_off_l_star, pull_off_h (None without adhesion). Same numbers as ``stiction gw
     --json``.
     """
-    loads = _np.atleast_1d(_np.asarray(load_star, dtype=float)).ravel()
-    return _stiction.gw_arrays(None if theta is None else float(theta), loads.tolist())
+    if isinstance(load_star, (int, float)) and not isinstance(load_star, bool):
+        loads = [float(load_star)]  # one load: no array round trip
+    else:
+        loads = _np.atleast_1d(_np.asarray(load_star, dtype=float)).ravel().tolist()
+    return _stiction.gw_arrays(None if theta is None else float(theta), loads)
 
 
 def discrete(
@@ -282,10 +285,12 @@ def _flag(name: str, value) -> list:
     flag = "--" + name.replace("_", "-")
     if value is True:
         return [flag]
+    # FLAG=VALUE, so that a value starting with "-" ("-3 GPa", -1e-7) is read as the flag's value.
     if isinstance(value, str):
-        return [flag, value]
+        return [f"{flag}={value}"]
     if isinstance(value, (int, float, _np.floating, _np.integer)) and not isinstance(value, bool):
-        return [flag, repr(float(value)) if isinstance(value, (float, _np.floating)) else str(int(value))]
+        text = repr(float(value)) if isinstance(value, (float, _np.floating)) else str(int(value))
+        return [f"{flag}={text}"]
     raise TypeError(f"{name}: expected a number or a unit string, got {type(value).__name__}")
 
 
