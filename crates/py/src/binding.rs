@@ -1,15 +1,22 @@
 //! The `#[pymodule]`: functions and the `Scenario` class.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::RecvTimeoutError;
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
-use numpy::{PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArray1, PyReadonlyArray2};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use stiction_scenario::Scenario;
-use stiction_study::{Calibration, StudyConfig};
-use stiction_topography::{HeightMap, Levelling, MapMetadata, Preparation, parse_length_unit, read_npy};
+use stiction_study::{Calibration, Study, StudyConfig};
+use stiction_topography::{
+    ArrayLayout, BorrowedHeights, HeightMap, Levelling, MapInfo, MapMetadata, Preparation, parse_length_unit,
+    read_array,
+};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 create_exception!(
@@ -188,25 +195,121 @@ fn run_json(py: Python<'_>, scenario: &Bound<'_, PyAny>, progress: Option<Py<PyA
     let s = PyScenario::extract(scenario)?;
     let parsed = s.parse().map_err(err)?;
     let name = s.name();
-    let mut callback_error: Option<PyErr> = None;
-    let out = py.detach(|| {
-        let mut report = |done: usize, total: usize| {
-            if let (Some(cb), None) = (&progress, &callback_error) {
-                Python::attach(|py| {
-                    if let Err(e) = cb.call1(py, (done, total)) {
-                        callback_error = Some(e);
-                    }
-                });
-            }
+    let progress = Progress::new(progress);
+    let report = progress.clone();
+    let out = interruptible(py, move |_| {
+        let mut on_point = |done: usize, total: usize| {
+            report.report(done, total);
         };
-        stiction_cli::api::run_json(&parsed, &name, &s.base, &mut report)
+        stiction_cli::api::run_json(&parsed, &name, &s.base, &mut on_point)
             .map_err(|e| e.to_string())
             .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-    });
-    if let Some(e) = callback_error {
+    })?;
+    if let Some(e) = progress.take_error() {
         return Err(e);
     }
     out.map_err(err)
+}
+
+/// The scenario file of a call that reads it by name (contact, fit) and its overrides as
+/// `--set` flags.
+fn file_flags(command: &str, scenario: &Bound<'_, PyAny>) -> PyResult<(PathBuf, Vec<String>)> {
+    let s = PyScenario::extract(scenario)?;
+    let Some(path) = s.path.clone() else {
+        return Err(err(format!("{command}: the scenario must come from a file (Scenario.load or a path)")));
+    };
+    let mut flags = Vec::new();
+    for set in &s.sets {
+        flags.push("--set".to_string());
+        flags.push(set.clone());
+    }
+    Ok((path, flags))
+}
+
+/// contact_json(scenario, flags, loads=None) -> str: what `stiction contact SCENARIO FLAGS --json`
+/// prints with the explicit solver; `loads` (N, in order) is a sweep of those loads. The GIL is
+/// released; Ctrl-C raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (scenario, flags, loads=None))]
+fn contact_json(
+    py: Python<'_>,
+    scenario: &Bound<'_, PyAny>,
+    flags: Vec<String>,
+    loads: Option<Vec<f64>>,
+) -> PyResult<String> {
+    let (path, mut all) = file_flags("contact", scenario)?;
+    all.insert(0, path.display().to_string());
+    all.extend(flags);
+    if let Some(loads) = &loads {
+        if loads.is_empty() {
+            return Err(err("loads: expected at least one load"));
+        }
+        if let Some((i, l)) = loads.iter().enumerate().find(|(_, l)| !l.is_finite()) {
+            return Err(err(format!("loads[{i}] = {l}: expected a finite load in N")));
+        }
+        all.extend(["--load".to_string(), format!("{:?}", loads[0])]);
+    }
+    all.push("--json".into());
+    let args: stiction_cli::api::ContactArgs = stiction_cli::api::parse_args("contact", &all).map_err(err)?;
+    interruptible(py, move |_| {
+        stiction_cli::api::contact_json(&args, loads.as_deref())
+            .map_err(|e| e.to_string())
+            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
+    })?
+    .map_err(err)
+}
+
+/// bem_json(heights, flags, pressures=None) -> str: what `stiction bem --map FILE.npy FLAGS
+/// --json` prints for the height map `heights` (a 2-D array, read in place), its `file` being
+/// "<array>"; `pressures` (Pa, in order) instead of --pressure/--sweep. The GIL is released;
+/// Ctrl-C raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (heights, flags, pressures=None))]
+fn bem_json(
+    py: Python<'_>,
+    heights: &Bound<'_, PyAny>,
+    flags: Vec<String>,
+    pressures: Option<Vec<f64>>,
+) -> PyResult<String> {
+    let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(err)?;
+    if let Some(p) = &pressures
+        && p.is_empty()
+    {
+        return Err(err("pressures: expected at least one mean pressure"));
+    }
+    let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
+    interruptible(py, move |_| {
+        stiction_cli::api::bem_json_of_map(&args, "<array>", raw, info, pressures.as_deref())
+            .map_err(|e| e.to_string())
+            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
+    })?
+    .map_err(err)
+}
+
+/// fit_json(scenario, flags, data_csv=None, data_name="<data>") -> str: what `stiction fit [DATA]
+/// --scenario SCENARIO FLAGS --json` prints; `data_csv`, the CSV text of the measured voltages,
+/// instead of a file. The GIL is released; Ctrl-C raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (scenario, flags, data_csv=None, data_name=None))]
+fn fit_json(
+    py: Python<'_>,
+    scenario: &Bound<'_, PyAny>,
+    flags: Vec<String>,
+    data_csv: Option<String>,
+    data_name: Option<String>,
+) -> PyResult<String> {
+    let (path, mut all) = file_flags("fit", scenario)?;
+    all.extend(["--scenario".to_string(), path.display().to_string()]);
+    all.extend(flags);
+    all.push("--json".into());
+    let args: stiction_cli::api::FitArgs = stiction_cli::api::parse_args("fit", &all).map_err(err)?;
+    let name = data_name.unwrap_or_else(|| "<data>".into());
+    interruptible(py, move |_| {
+        stiction_cli::api::fit_json(&args, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
+            .map_err(|e| e.to_string())
+            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
+    })?
+    .map_err(err)
 }
 
 /// A length flag value: a unit string ("3.9 um") or an SI number, checked as the command line
@@ -224,25 +327,41 @@ fn length(name: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64>>
     }
 }
 
-/// A height map's values in C order (rows = y) as .npy bytes, so that it is read by the same
-/// reader as a .npy file.
-fn npy_bytes<T: Copy>(view: numpy::ndarray::ArrayView2<'_, T>, descr: &str, le: impl Fn(T) -> Vec<u8>) -> Vec<u8> {
+/// The heights of a 2-D float32/float64 NumPy array as a height map in metres, read in place
+/// (no copy of the array, whatever its order or strides: [`read_array`]) while the GIL is held, so
+/// that no Python code writes the array while it is read. A view that is not contiguous (`a[:, ::2]`)
+/// is read through its strides as well.
+fn read_heights(heights: &Bound<'_, PyAny>, meta: &MapMetadata) -> PyResult<(HeightMap, MapInfo)> {
+    if let Ok(a) = heights.extract::<PyReadonlyArray2<'_, f64>>() {
+        let (data, layout) = in_place(a.as_array());
+        return read_array(BorrowedHeights::F64(data), layout, "heights", meta).map_err(err);
+    }
+    if let Ok(a) = heights.extract::<PyReadonlyArray2<'_, f32>>() {
+        let (data, layout) = in_place(a.as_array());
+        return read_array(BorrowedHeights::F32(data), layout, "heights", meta).map_err(err);
+    }
+    Err(err("heights: expected a 2-D NumPy array of float32 or float64 (rows = y)"))
+}
+
+/// The memory of a 2-D view as a slice (from its lowest to its highest element) and where its
+/// elements lie in it: strides in elements, negative ones included, without a copy.
+fn in_place<'a, T>(view: numpy::ndarray::ArrayView2<'a, T>) -> (&'a [T], ArrayLayout) {
     let (ny, nx) = view.dim();
-    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({ny}, {nx}), }}");
-    while (10 + header.len() + 1) % 64 != 0 {
-        header.push(' ');
+    let (rs, cs) = (view.strides()[0], view.strides()[1]);
+    let reach = |len: usize, stride: isize| len.saturating_sub(1) * stride.unsigned_abs();
+    // Element (0, 0) lies this many elements above the lowest address (negative strides).
+    let offset = if rs < 0 { reach(ny, rs) } else { 0 } + if cs < 0 { reach(nx, cs) } else { 0 };
+    let layout = ArrayLayout { ny, nx, row_stride: rs, col_stride: cs, offset };
+    if ny == 0 || nx == 0 {
+        return (&[], layout);
     }
-    header.push('\n');
-    let size = if descr.ends_with('8') { 8 } else { 4 };
-    let mut out = Vec::with_capacity(10 + header.len() + nx * ny * size);
-    out.extend_from_slice(b"\x93NUMPY\x01\x00");
-    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    out.extend_from_slice(header.as_bytes());
-    match view.as_slice() {
-        Some(slice) => slice.iter().for_each(|&v| out.extend_from_slice(&le(v))),
-        None => view.iter().for_each(|&v| out.extend_from_slice(&le(v))),
-    }
-    out
+    let len = reach(ny, rs) + reach(nx, cs) + 1;
+    // SAFETY: a NumPy array (and so the view of it) holds every element between the lowest and the
+    // highest address of its elements, which is `len` elements from `as_ptr() - offset`; the view
+    // borrows the array for 'a (a readonly borrow, so no Rust code writes it), and the caller holds
+    // the GIL while it reads, so no Python thread writes it either.
+    let data = unsafe { std::slice::from_raw_parts(view.as_ptr().sub(offset), len) };
+    (data, layout)
 }
 
 /// topography(heights, ...) -> (json text, summits): see the Python wrapper's docstring.
@@ -277,19 +396,8 @@ fn topography_json<'py>(
         short_cutoff_m: length("cutoff", cutoff)?,
         long_cutoff_m: length("long_cutoff", long_cutoff)?,
     };
-    let bytes = if let Ok(a) = heights.extract::<PyReadonlyArray2<'py, f64>>() {
-        if !a.is_c_contiguous() && !a.is_fortran_contiguous() {
-            return Err(err("heights: expected a C- or Fortran-ordered 2-D array"));
-        }
-        npy_bytes(a.as_array(), "<f8", |v: f64| v.to_le_bytes().to_vec())
-    } else if let Ok(a) = heights.extract::<PyReadonlyArray2<'py, f32>>() {
-        npy_bytes(a.as_array(), "<f4", |v: f32| v.to_le_bytes().to_vec())
-    } else {
-        return Err(err("heights: expected a 2-D NumPy array of float32 or float64 (rows = y)"));
-    };
+    let (raw, info) = read_heights(heights, &meta)?;
     let out = py.detach(|| -> Result<_, String> {
-        let (raw, info) = read_npy(&bytes, "heights", &meta).map_err(|e| e.to_string())?;
-        drop(bytes);
         let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_deref())
             .map_err(|e| e.to_string())?;
         Ok((serde_json::to_string(&json).map_err(|e| e.to_string())?, map, summits))
@@ -309,11 +417,98 @@ fn topography_json<'py>(
     Ok((json, d))
 }
 
-/// study_json(scenario, samples=100, seed=1, threads=None, fixed_surface=False) -> str: the JSON
-/// text `stiction study SCENARIO --json --samples N --seed S --threads T` prints (same seed, same
-/// numbers, whatever the thread count). The GIL is released while the study runs.
+/// Runs `work` on a worker thread with the GIL released, while the calling thread waits and
+/// checks Python's signal handlers every 50 ms: Ctrl-C (KeyboardInterrupt, or any exception a
+/// signal handler raises) sets the flag `work` is given (a study stops at the next sample), waits
+/// at most half a second more for the worker and raises; a worker still running then finishes in
+/// the background and its result is dropped (it owns everything it touches, so nothing a caller
+/// holds is left half-written).
+fn interruptible<T: Send + 'static>(
+    py: Python<'_>,
+    work: impl FnOnce(&AtomicBool) -> T + Send + 'static,
+) -> PyResult<T> {
+    let interrupt = Arc::new(AtomicBool::new(false));
+    let (tx, rx) = std::sync::mpsc::channel();
+    let flag = Arc::clone(&interrupt);
+    std::thread::Builder::new()
+        .name("stiction-call".into())
+        .spawn(move || {
+            let start = std::time::Instant::now();
+            let out = work(&flag);
+            LAST_ENGINE_NANOS.store(start.elapsed().as_nanos() as u64, Ordering::Relaxed);
+            let _ = tx.send(out);
+        })
+        .map_err(|e| err(format!("cannot start a worker thread: {e}")))?;
+    // The receiver goes into each GIL-free wait and comes back (it is Send, not Sync).
+    let mut rx = rx;
+    loop {
+        let (back, got) = py.detach(move || {
+            let got = rx.recv_timeout(Duration::from_millis(50));
+            (rx, got)
+        });
+        rx = back;
+        match got {
+            Ok(v) => return Ok(v),
+            Err(RecvTimeoutError::Disconnected) => return Err(err("internal error: the worker thread panicked")),
+            Err(RecvTimeoutError::Timeout) => {}
+        }
+        if let Err(e) = py.check_signals() {
+            interrupt.store(true, Ordering::Relaxed);
+            let _ = py.detach(move || rx.recv_timeout(Duration::from_millis(500)).is_ok());
+            return Err(e);
+        }
+    }
+}
+
+/// How long the last call's engine work took on its worker thread, ns (for the overhead benchmark).
+static LAST_ENGINE_NANOS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// _last_engine_seconds() -> float: the engine time of the last long call (run, study, contact,
+/// bem, fit) on its worker thread, without the binding (arguments, thread, JSON to Python).
 #[pyfunction]
-#[pyo3(signature = (scenario, samples=100, seed=1, threads=None, fixed_surface=false))]
+fn _last_engine_seconds() -> f64 {
+    LAST_ENGINE_NANOS.load(Ordering::Relaxed) as f64 * 1e-9
+}
+
+/// A progress callback for a worker thread: `cb(done, total)` with the GIL taken for the call;
+/// the first exception it raises is kept (and stops a study through `stop`).
+#[derive(Clone)]
+struct Progress {
+    cb: Option<Arc<Py<PyAny>>>,
+    error: Arc<Mutex<Option<PyErr>>>,
+}
+
+impl Progress {
+    fn new(cb: Option<Py<PyAny>>) -> Progress {
+        Progress { cb: cb.map(Arc::new), error: Arc::new(Mutex::new(None)) }
+    }
+
+    fn report(&self, done: usize, total: usize) -> bool {
+        let Some(cb) = &self.cb else { return true };
+        let mut error = self.error.lock().unwrap_or_else(|e| e.into_inner());
+        if error.is_some() {
+            return false;
+        }
+        Python::attach(|py| {
+            if let Err(e) = cb.call1(py, (done, total)) {
+                *error = Some(e);
+            }
+        });
+        error.is_none()
+    }
+
+    fn take_error(&self) -> Option<PyErr> {
+        self.error.lock().unwrap_or_else(|e| e.into_inner()).take()
+    }
+}
+
+/// study_json(scenario, samples=100, seed=1, threads=None, fixed_surface=False, progress=None)
+/// -> (summary JSON text, samples CSV text): the JSON `stiction study SCENARIO --json --samples N
+/// --seed S --threads T` prints (same seed, same numbers, whatever the thread count), and the
+/// samples as `stiction study --out` writes samples.csv. The scenario is a file or one built from
+/// a dict (its relative paths from its base_dir). The GIL is released; Ctrl-C stops the study.
+#[pyfunction]
+#[pyo3(signature = (scenario, samples=100, seed=1, threads=None, fixed_surface=false, progress=None))]
 fn study_json(
     py: Python<'_>,
     scenario: &Bound<'_, PyAny>,
@@ -321,11 +516,9 @@ fn study_json(
     seed: u64,
     threads: Option<usize>,
     fixed_surface: bool,
-) -> PyResult<String> {
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(String, String)> {
     let s = PyScenario::extract(scenario)?;
-    let Some(path) = s.path.clone() else {
-        return Err(err("study: the scenario must come from a file (Scenario.load or a path)"));
-    };
     let config = StudyConfig {
         calibration: Calibration::Nominal,
         slip_path: stiction_meter::SlipPath::Light,
@@ -335,12 +528,47 @@ fn study_json(
         shard_index: 0,
         shard_count: 1,
     };
-    py.detach(|| {
-        stiction_cli::api::study_json(&path, &s.sets, &config, threads, &|_| {})
-            .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-    })
-    .map_err(err)
+    config.validate().map_err(err)?;
+    let pool = stiction_cli::api::study_pool(threads).map_err(err)?;
+    let study = match (&s.path, &s.text) {
+        (Some(path), _) => Study::prepare(path, &s.sets, &config),
+        (None, text) => {
+            s.parse().map_err(err)?;
+            let mut value: serde_json::Value = serde_json::from_str(text.as_deref().unwrap_or("{}")).map_err(err)?;
+            for set in &s.sets {
+                stiction_scenario::apply_set(&mut value, set).map_err(err)?;
+            }
+            Study::prepare_value(value, Path::new("<scenario>"), &s.base, &config)
+        }
+    }
+    .map_err(err)?;
+    let progress = Progress::new(progress);
+    let report = progress.clone();
+    let out = interruptible(py, move |interrupt| {
+        let total = study.config.shard_len();
+        // An exception of the callback stops the study as Ctrl-C does (and is raised).
+        let on_sample = |done: usize| {
+            if !report.report(done, total) {
+                interrupt.store(true, Ordering::Relaxed);
+            }
+        };
+        let mut csv = Vec::new();
+        let summary = stiction_cli::api::study_json_of(&study, &pool, &on_sample, interrupt, Some(&mut csv))
+            .map_err(|e| e.to_string())?;
+        let json = summary.map(|v| serde_json::to_string(&v).map_err(|e| e.to_string())).transpose()?;
+        Ok::<_, String>((json, String::from_utf8_lossy(&csv).into_owned()))
+    })?;
+    if let Some(e) = progress.take_error() {
+        return Err(e);
+    }
+    match out.map_err(err)? {
+        (Some(json), csv) => Ok((json, csv)),
+        (None, _) => {
+            // Stopped by Ctrl-C between the worker's end and the last check: raise it now.
+            py.check_signals()?;
+            Err(pyo3::exceptions::PyKeyboardInterrupt::new_err("the study was interrupted"))
+        }
+    }
 }
 
 /// gw(theta, load_star) -> dict of arrays: the stable-branch Greenwood-Williamson + DMT state
@@ -349,7 +577,7 @@ fn study_json(
 fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
     let theta = theta.filter(|t| !t.is_infinite());
     let model = stiction_contact::gw::GwModel::new(theta).map_err(err)?;
-    let states = py.detach(|| {
+    let solve = || {
         load_star
             .iter()
             .enumerate()
@@ -360,7 +588,9 @@ fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: Vec<f64>) -> P
                 model.solve(l).map_err(|e| format!("load_star[{i}] = {l}: {e}"))
             })
             .collect::<Result<Vec<_>, String>>()
-    });
+    };
+    // A few loads take microseconds: releasing the GIL would cost more than it frees.
+    let states = if load_star.len() < 64 { solve() } else { py.detach(solve) };
     let states = states.map_err(err)?;
     let d = PyDict::new(py);
     let col = |f: &dyn Fn(&stiction_contact::gw::GwState) -> f64| states.iter().map(f).collect::<Vec<f64>>();
@@ -456,5 +686,88 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study_json, m)?)?;
     m.add_function(wrap_pyfunction!(gw_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(discrete_json, m)?)?;
+    m.add_function(wrap_pyfunction!(contact_json, m)?)?;
+    m.add_function(wrap_pyfunction!(bem_json, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_json, m)?)?;
+    m.add_function(wrap_pyfunction!(_heap, m)?)?;
+    m.add_function(wrap_pyfunction!(_last_engine_seconds, m)?)?;
+    m.add_function(wrap_pyfunction!(_reset_heap_peak, m)?)?;
+    m.add_function(wrap_pyfunction!(_read_heights, m)?)?;
     Ok(())
+}
+
+/// The Rust heap of the extension, counted: bytes in use and the peak since the last reset, so
+/// that a test can see how much a call allocates (a copy of a 4096^2 input is 128 MiB). The count
+/// costs two relaxed atomic operations per allocation.
+mod heap {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+
+    pub struct Counting;
+    pub static IN_USE: AtomicUsize = AtomicUsize::new(0);
+    pub static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+    fn grew(by: usize) {
+        let now = IN_USE.fetch_add(by, Relaxed) + by;
+        PEAK.fetch_max(now, Relaxed);
+    }
+
+    // SAFETY: every call is forwarded to the system allocator unchanged; only counters are kept.
+    unsafe impl GlobalAlloc for Counting {
+        unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+            let p = unsafe { System.alloc(layout) };
+            if !p.is_null() {
+                grew(layout.size());
+            }
+            p
+        }
+        unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+            let p = unsafe { System.alloc_zeroed(layout) };
+            if !p.is_null() {
+                grew(layout.size());
+            }
+            p
+        }
+        unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+            unsafe { System.dealloc(ptr, layout) };
+            IN_USE.fetch_sub(layout.size(), Relaxed);
+        }
+        unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+            let p = unsafe { System.realloc(ptr, layout, new_size) };
+            if !p.is_null() {
+                if new_size >= layout.size() {
+                    grew(new_size - layout.size());
+                } else {
+                    IN_USE.fetch_sub(layout.size() - new_size, Relaxed);
+                }
+            }
+            p
+        }
+    }
+
+    #[global_allocator]
+    static ALLOCATOR: Counting = Counting;
+}
+
+/// _heap() -> (bytes in use, peak bytes since the last reset) of the extension's Rust heap.
+#[pyfunction]
+fn _heap() -> (usize, usize) {
+    use std::sync::atomic::Ordering::Relaxed;
+    (heap::IN_USE.load(Relaxed), heap::PEAK.load(Relaxed))
+}
+
+/// _reset_heap_peak(): the peak becomes the bytes in use now.
+#[pyfunction]
+fn _reset_heap_peak() {
+    use std::sync::atomic::Ordering::Relaxed;
+    heap::PEAK.store(heap::IN_USE.load(Relaxed), Relaxed);
+}
+
+/// _read_heights(heights, pixel_size, height_unit) -> (nx, ny): the input step of `topography`
+/// and `bem` alone (the array read into a map in metres), for the memory test.
+#[pyfunction]
+fn _read_heights(heights: &Bound<'_, PyAny>, pixel_size: f64, height_unit: f64) -> PyResult<(usize, usize)> {
+    let meta = MapMetadata { pixel_size_x_m: Some(pixel_size), height_unit_m: Some(height_unit), ..Default::default() };
+    let (map, _) = read_heights(heights, &meta)?;
+    Ok((map.nx(), map.ny()))
 }

@@ -227,8 +227,18 @@ impl Study {
     pub fn prepare(path: &Path, sets: &[String], config: &StudyConfig) -> Result<Study, StudyError> {
         config.validate()?;
         let base = Scenario::load_json(path, sets)?;
-        let nominal = Scenario::from_value(base.clone(), path)?;
         let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Study::prepare_value(base, path, &base_dir, config)
+    }
+
+    /// [`Study::prepare`] of a scenario given as its JSON value (overrides applied): `name` names
+    /// it in errors and in the log header, relative paths in it are read from `base_dir`. For a
+    /// scenario built in memory (the Python module's dicts).
+    pub fn prepare_value(base: Value, name: &Path, base_dir: &Path, config: &StudyConfig) -> Result<Study, StudyError> {
+        config.validate()?;
+        let path = name;
+        let nominal = Scenario::from_value(base.clone(), path)?;
+        let base_dir = base_dir.to_path_buf();
         let reduction = Meter::from_scenario(&nominal, &base_dir)
             .and_then(|m| m.device_reduction())
             .map_err(|e| StudyError::Setting(format!("the nominal scenario cannot run: {e}")))?;

@@ -29,9 +29,10 @@ pub use generate::{GeneratorSpec, Spectrum, generate};
 pub use map::{HeightMap, MAX_PIXELS, check_grid_size};
 pub use prep::{Levelling, Preparation, PreparationReport, prepare};
 pub use read::{
-    BINARY_INPUT_LIMIT_BYTES, GSF_MAX_HEADER_BYTES, MAX_HEIGHT_M, MAX_PIXEL_SIZE_M, MAX_UNIT_M, MIN_PIXEL_SIZE_M,
-    MIN_UNIT_M, MapFormat, MapInfo, MapMetadata, MetaSource, NPY_MAX_HEADER_BYTES, NpyDtype, TEXT_INPUT_LIMIT_BYTES,
-    parse_length_unit, read_file, read_gsf, read_npy, read_text_grid, read_xyz,
+    ArrayLayout, BINARY_INPUT_LIMIT_BYTES, BorrowedHeights, GSF_MAX_HEADER_BYTES, MAX_HEIGHT_M, MAX_PIXEL_SIZE_M,
+    MAX_UNIT_M, MIN_PIXEL_SIZE_M, MIN_UNIT_M, MapFormat, MapInfo, MapMetadata, MetaSource, NPY_MAX_HEADER_BYTES,
+    NpyDtype, TEXT_INPUT_LIMIT_BYTES, parse_length_unit, read_array, read_file, read_gsf, read_npy, read_text_grid,
+    read_xyz,
 };
 pub use spec::{GeneratedMapSpec, HeightMapSpec, Patch, PatchSummits, choose_patch, patch_summits};
 pub use stats::{

@@ -391,6 +391,107 @@ pub fn read_npy(bytes: &[u8], origin: &str, meta: &MapMetadata) -> Result<(Heigh
     finish(origin, MapFormat::Npy, nx, ny, None, None, None, meta, heights)
 }
 
+/// Heights of a 2-D array in memory (NumPy's float32 or float64), borrowed: the reader takes
+/// them as they lie, without a copy of the array; [`read_array`] makes the one map in metres.
+#[derive(Debug, Clone, Copy)]
+pub enum BorrowedHeights<'a> {
+    /// float32 values.
+    F32(&'a [f32]),
+    /// float64 values.
+    F64(&'a [f64]),
+}
+
+impl BorrowedHeights<'_> {
+    fn len(&self) -> usize {
+        match self {
+            BorrowedHeights::F32(d) => d.len(),
+            BorrowedHeights::F64(d) => d.len(),
+        }
+    }
+}
+
+/// Where the elements of a 2-D array (rows = y) lie in a slice: element (row `iy`, column `ix`) is
+/// `data[offset + iy * row_stride + ix * col_stride]`, strides counted in elements (not bytes).
+/// C order is `(nx, 1)`, Fortran order `(1, ny)`; a NumPy view (`a[::2]`, `a.T`, `a[::-1]`) has
+/// any strides, negative ones included, with `offset` the index of element (0, 0).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ArrayLayout {
+    /// Rows (pixels along y).
+    pub ny: usize,
+    /// Columns (pixels along x).
+    pub nx: usize,
+    /// Elements from one row to the next.
+    pub row_stride: isize,
+    /// Elements from one column to the next.
+    pub col_stride: isize,
+    /// Index of element (0, 0) in the slice.
+    pub offset: usize,
+}
+
+impl ArrayLayout {
+    /// A C-ordered (row-major) `ny x nx` array from the start of the slice.
+    pub fn c_order(ny: usize, nx: usize) -> ArrayLayout {
+        ArrayLayout { ny, nx, row_stride: nx as isize, col_stride: 1, offset: 0 }
+    }
+
+    /// A Fortran-ordered (column-major) `ny x nx` array from the start of the slice.
+    pub fn fortran_order(ny: usize, nx: usize) -> ArrayLayout {
+        ArrayLayout { ny, nx, row_stride: 1, col_stride: ny as isize, offset: 0 }
+    }
+}
+
+/// Reads a height map from a 2-D array in memory (rows = y), float32 or float64, in any layout
+/// ([`ArrayLayout`]): the heights are read once, in place, into the map (metres, row-major), with
+/// the same checks and the same arithmetic as [`read_npy`] (float32 widened to float64, then times
+/// the height unit), so an array and the `.npy` file of it give bit-identical maps. The pixel size
+/// and the height unit come from `meta`; `origin` names the array in errors. The format reported
+/// is [`MapFormat::Npy`] (NumPy's memory layout).
+pub fn read_array(
+    heights: BorrowedHeights<'_>,
+    layout: ArrayLayout,
+    origin: &str,
+    meta: &MapMetadata,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let ArrayLayout { ny, nx, row_stride, col_stride, offset } = layout;
+    check_grid_size(origin, nx as u64, ny as u64)?;
+    // Every element in bounds: the extreme indices are at the corners.
+    let last_row = (ny as i128 - 1) * row_stride as i128;
+    let last_col = (nx as i128 - 1) * col_stride as i128;
+    let lo = offset as i128 + last_row.min(0) + last_col.min(0);
+    let hi = offset as i128 + last_row.max(0) + last_col.max(0);
+    if lo < 0 || hi >= heights.len() as i128 {
+        return Err(TopographyError::format(
+            origin,
+            0,
+            format!(
+                "a {ny} x {nx} array with strides ({row_stride}, {col_stride}) from element {offset} reaches elements \
+                 {lo}..={hi} of {}",
+                heights.len()
+            ),
+        ));
+    }
+    let index = |iy: usize, ix: usize| (offset as isize + iy as isize * row_stride + ix as isize * col_stride) as usize;
+    let contiguous_rows = col_stride == 1 && row_stride == nx as isize;
+    let mut out = Vec::with_capacity(nx * ny);
+    match heights {
+        BorrowedHeights::F64(d) if contiguous_rows => out.extend_from_slice(&d[offset..offset + nx * ny]),
+        BorrowedHeights::F32(d) if contiguous_rows => {
+            out.extend(d[offset..offset + nx * ny].iter().map(|&v| f64::from(v)))
+        }
+        BorrowedHeights::F64(d) => {
+            for iy in 0..ny {
+                out.extend((0..nx).map(|ix| d[index(iy, ix)]));
+            }
+        }
+        BorrowedHeights::F32(d) => {
+            for iy in 0..ny {
+                out.extend((0..nx).map(|ix| f64::from(d[index(iy, ix)])));
+            }
+        }
+    }
+    finish(origin, MapFormat::Npy, nx, ny, None, None, None, meta, out)
+}
+
 impl HeightMap {
     /// The map as `.npy` bytes (heights in metres, version 1.0 header), float32 or float64, C or
     /// Fortran order.

@@ -9,7 +9,7 @@ use serde::Serialize;
 use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, SolverOptions, synth};
 use stiction_plot::{Chart, ImageMap, Series};
 use stiction_scenario::Scenario;
-use stiction_topography::{MapInfo, Patch, PreparationReport, prepare, read_file};
+use stiction_topography::{HeightMap, MapInfo, Patch, PreparationReport, prepare, read_file};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use super::map_args::MapArgs;
@@ -184,22 +184,28 @@ fn parse_path(text: &str, dim: Dimension, flag: &str) -> Result<Vec<f64>, String
     Ok((0..steps).map(|k| a + (b - a) * k as f64 / (steps - 1) as f64).collect())
 }
 
+/// The surface of a height map read as `file` (`raw`, `info` from the reader), prepared with the
+/// `--level`/`--cutoff` flags: the whole map is the periodic cell.
+fn map_surface(args: &Args, file: &str, raw: HeightMap, info: MapInfo) -> Result<Surface, Box<dyn std::error::Error>> {
+    let (map, report) = prepare(&raw, &args.map_args.preparation())?;
+    drop(raw);
+    let grid = Grid::new(map.nx(), map.ny(), map.dx_m(), map.dy_m())
+        .map_err(|e| format!("{file}: {e} (the BEM grid limit)"))?;
+    let heights = map.into_heights_m();
+    stiction_bem::spec::check_complete(&heights).map_err(|e| format!("{file}: {e}"))?;
+    Ok(Surface {
+        grid,
+        heights,
+        source: SurfaceSource::HeightMap { file: file.to_string(), read: info, preparation: report },
+        e_star_pa: args.e_star.unwrap_or(85e9),
+    })
+}
+
 /// The surface of the command line: generated, a map file, or a scenario's patch.
 fn build_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
     if let Some(file) = &args.map {
         let (raw, info) = read_file(file, args.map_args.format, &args.map_args.metadata())?;
-        let (map, report) = prepare(&raw, &args.map_args.preparation())?;
-        drop(raw);
-        let grid = Grid::new(map.nx(), map.ny(), map.dx_m(), map.dy_m())
-            .map_err(|e| format!("{}: {e} (the BEM grid limit)", file.display()))?;
-        let heights = map.into_heights_m();
-        stiction_bem::spec::check_complete(&heights).map_err(|e| format!("{}: {e}", file.display()))?;
-        return Ok(Surface {
-            grid,
-            heights,
-            source: SurfaceSource::HeightMap { file: file.display().to_string(), read: info, preparation: report },
-            e_star_pa: args.e_star.unwrap_or(85e9),
-        });
+        return map_surface(args, &file.display().to_string(), raw, info);
     }
     if let Some(file) = &args.scenario {
         let scenario = Scenario::load(file, &args.sets)?;
@@ -247,25 +253,26 @@ fn build_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
     })
 }
 
-/// Runs the subcommand.
-pub fn run(args: Args) -> CliResult {
-    // clap drops `requires = "scenario"` when a flag that conflicts with --scenario (--grid, --seed,
-    // --map) is given, so the rule is checked here too: an override without a scenario is an error.
-    if let (Some(set), None) = (args.sets.first(), &args.scenario) {
-        return Err(format!("--set {set:?} needs --scenario (it overrides a field of the scenario)").into());
-    }
+/// The checks of the solver's flags (before any work): the tolerance and a load or gap path.
+fn check_path_args(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
         return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
     }
     if args.gap_sweep.is_none() && args.sweep.is_none() && args.pressure.is_none() {
         return Err("give --pressure, --sweep or --gap-sweep".into());
     }
-    // Check the output folder before the work, so a refusal comes at once.
-    let outputs = match &args.out {
-        Some(dir) => Some(OutputSet::begin(dir, "bem", args.force)?),
-        None => None,
-    };
-    let Surface { grid, heights, source, e_star_pa } = build_surface(&args)?;
+    Ok(())
+}
+
+/// Solves on `surface` along the path of `args` (`pressures`, when given, instead of --sweep or
+/// --pressure): the output, the states and the heights.
+#[allow(clippy::type_complexity)]
+fn solve(
+    args: &Args,
+    surface: Surface,
+    pressures: Option<&[f64]>,
+) -> Result<(Output, Vec<ContactSolution>, Vec<f64>), Box<dyn std::error::Error>> {
+    let Surface { grid, heights, source, e_star_pa } = surface;
     let seed = match source {
         SurfaceSource::Generated { seed, .. } => Some(seed),
         _ => None,
@@ -298,10 +305,11 @@ pub fn run(args: Args) -> CliResult {
                         load control cannot pass the load minimum to pull-off"
                 .into());
         }
-        let loads = match (&args.sweep, args.pressure) {
-            (Some(text), _) => parse_path(text, Dimension::Pressure, "--sweep")?,
-            (None, Some(p)) => vec![p],
-            (None, None) => return Err("give --pressure, --sweep or --gap-sweep".into()),
+        let loads = match (pressures, &args.sweep, args.pressure) {
+            (Some(p), _, _) => p.to_vec(),
+            (None, Some(text), _) => parse_path(text, Dimension::Pressure, "--sweep")?,
+            (None, None, Some(p)) => vec![p],
+            (None, None, None) => return Err("give --pressure, --sweep or --gap-sweep".into()),
         };
         for p in loads {
             let s = solver.solve_load(p, &opts, states.last())?;
@@ -348,6 +356,47 @@ pub fn run(args: Args) -> CliResult {
         points,
         pull_off_n,
     };
+    Ok((out, states, heights))
+}
+
+/// What `stiction bem --map FILE --json` prints, for a height map already read (`raw`, `info`)
+/// and named `file`: prepared with `args`' map flags, solved at `pressures` (mean pressures, Pa,
+/// in order, each from the previous state) when given, else along `args`' path; every number
+/// checked finite. For front ends other than the command line (the Python module).
+pub fn bem_json_of_map(
+    args: &Args,
+    file: &str,
+    raw: HeightMap,
+    info: MapInfo,
+    pressures: Option<&[f64]>,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    if pressures.is_none() {
+        check_path_args(args)?;
+    } else if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
+        return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
+    }
+    if let Some(p) = pressures.and_then(|p| p.iter().find(|p| !(p.is_finite() && **p > 0.0))) {
+        return Err(format!("pressure {p}: expected a mean pressure > 0 (compressive), Pa").into());
+    }
+    let (out, _, _) = solve(args, map_surface(args, file, raw, info)?, pressures)?;
+    Ok(crate::api::finite_value(&out)?)
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> CliResult {
+    // clap drops `requires = "scenario"` when a flag that conflicts with --scenario (--grid, --seed,
+    // --map) is given, so the rule is checked here too: an override without a scenario is an error.
+    if let (Some(set), None) = (args.sets.first(), &args.scenario) {
+        return Err(format!("--set {set:?} needs --scenario (it overrides a field of the scenario)").into());
+    }
+    check_path_args(&args)?;
+    // Check the output folder before the work, so a refusal comes at once.
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "bem", args.force)?),
+        None => None,
+    };
+    let (out, states, heights) = solve(&args, build_surface(&args)?, None)?;
+    let (grid, rms_slope, e_star_pa, law) = (out.grid, out.rms_slope, out.e_star_pa, out.dugdale);
     if let (Some(set), Some(last)) = (outputs, states.last()) {
         write_outputs(set, &out, last, &heights, &args.fig)?;
     }

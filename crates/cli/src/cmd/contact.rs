@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use stiction_contact::explicit::{Detail, Equilibrium, SweepEvent};
 use stiction_contact::single::Branch;
 use stiction_meter::{ContactModel, build_contact_model};
-use stiction_scenario::{ContactModel as ModelKind, Scenario};
+use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, Scenario};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use crate::output::{CliResult, TextTable, print_json, print_table, q, quantity};
@@ -105,30 +105,9 @@ pub fn run(args: Args) -> CliResult {
     if args.model == Model::Bem {
         return run_bem(&args);
     }
-    let mut sets = args.sets.clone();
-    sets.push("contact.model=\"explicit\"".into());
-    match args.mode {
-        Some(Mode::Tilt) => sets.push("contact.mode=\"tilt\"".into()),
-        Some(Mode::Flat) => sets.push("contact.mode=\"flat\"".into()),
-        Some(Mode::Fixed) => sets.push("contact.mode=\"fixed\"".into()),
-        None => {}
-    }
-    if let Some(n) = args.contacts {
-        sets.push(format!("contact.contacts={n}"));
-    }
-    let scenario = Scenario::load(&args.scenario, &sets)?;
-    let material = scenario.require_material().map_err(|e| format!("{}: {e}", args.scenario.display()))?.clone();
-    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
-    let c = scenario.contact_or_default();
-    debug_assert_eq!(c.model, ModelKind::Explicit);
-    let model =
-        build_contact_model(&scenario, &material, &base).map_err(|e| format!("{}: {e}", args.scenario.display()))?;
-    let ContactModel::Explicit(mut solver) = model else {
-        return Err("the explicit solver could not be built".into());
-    };
+    let (mut solver, c, material) = explicit_solver(&args)?;
     // Per-contact detail only where an output shows it: the summit table (--summits) or the JSON
-    // (contact indices); the plain table needs the totals only, which the solver's last pass holds
-    // (no second pass, no index lists: issue 16).
+    // (contact indices); the plain table needs the totals only, which the solver's last pass holds.
     solver.set_detail(if args.summits {
         Detail::Full
     } else if args.json {
@@ -201,6 +180,65 @@ pub fn run(args: Args) -> CliResult {
         t.print("  ");
     }
     Ok(())
+}
+
+/// The explicit solver of the scenario of `args`, with `--mode` and `--contacts` applied: the
+/// solver, the scenario's contact settings and its material.
+fn explicit_solver(
+    args: &Args,
+) -> Result<
+    (Box<stiction_contact::explicit::ExplicitSolver>, stiction_scenario::ContactSpec, MaterialSpec),
+    Box<dyn std::error::Error>,
+> {
+    let mut sets = args.sets.clone();
+    sets.push("contact.model=\"explicit\"".into());
+    match args.mode {
+        Some(Mode::Tilt) => sets.push("contact.mode=\"tilt\"".into()),
+        Some(Mode::Flat) => sets.push("contact.mode=\"flat\"".into()),
+        Some(Mode::Fixed) => sets.push("contact.mode=\"fixed\"".into()),
+        None => {}
+    }
+    if let Some(n) = args.contacts {
+        sets.push(format!("contact.contacts={n}"));
+    }
+    let scenario = Scenario::load(&args.scenario, &sets)?;
+    let material = scenario.require_material().map_err(|e| format!("{}: {e}", args.scenario.display()))?.clone();
+    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    let c = scenario.contact_or_default();
+    debug_assert_eq!(c.model, ModelKind::Explicit);
+    let model =
+        build_contact_model(&scenario, &material, &base).map_err(|e| format!("{}: {e}", args.scenario.display()))?;
+    let ContactModel::Explicit(solver) = model else {
+        return Err("the explicit solver could not be built".into());
+    };
+    Ok((solver, c, material))
+}
+
+/// What `stiction contact SCENARIO --json` prints with the explicit solver: the equilibrium at
+/// `--load`, or for a sweep (the loads given, else `--sweep`) {"points", "events"}; every number
+/// checked finite. For front ends other than the command line (the Python module).
+pub fn contact_json(args: &Args, sweep_loads: Option<&[f64]>) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    if args.model == Model::Bem {
+        return Err("contact_json: the explicit solver only".into());
+    }
+    let (mut solver, _, _) = explicit_solver(args)?;
+    solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });
+    let parsed;
+    let loads = match (sweep_loads, &args.sweep) {
+        (Some(l), _) => Some(l),
+        (None, Some(text)) => {
+            parsed = parse_sweep(text, args.max_sweep_steps)?;
+            Some(&parsed[..])
+        }
+        (None, None) => None,
+    };
+    if let Some(loads) = loads {
+        let increasing = loads.last() >= loads.first();
+        let result = solver.sweep(loads, if increasing { Branch::Loading } else { Branch::Unloading })?;
+        return Ok(crate::api::finite_value(&result)?);
+    }
+    let load = args.load.ok_or("give --load or --sweep")?;
+    Ok(crate::api::finite_value(&solver.solve(load)?)?)
 }
 
 /// A sweep event as a sentence, named as in the JSON (`jump_in`, `release`, `pull_off`), with the

@@ -93,7 +93,7 @@ struct Output {
 
 /// The JSON object `stiction discrete ... --json` prints for `args`.
 pub fn discrete_json(args: &Args) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    Ok(serde_json::to_value(compose(args)?)?)
+    Ok(crate::api::finite_value(&compose(args)?)?)
 }
 
 fn compose(args: &Args) -> Result<Output, Box<dyn std::error::Error>> {

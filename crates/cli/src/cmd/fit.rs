@@ -84,26 +84,13 @@ pub fn run(args: Args) -> CliResult {
         crate::output::check_output_flag("--synthesize", out)?;
         return synthesize(&args, &scenario, &base, out);
     }
-    let data_path = match (&args.data, &scenario.measured) {
-        (Some(p), _) => p.clone(),
-        (None, Some(m)) => base.join(&m.voltages_csv),
-        (None, None) => return Err("missing DATA.csv (the scenario has no `measured` section either)".into()),
-    };
-    let data = read_measured_voltages(&data_path)?;
+    let data = read_measured_voltages(&data_path(&args, &scenario, &base)?)?;
     // Check the output folder before the work, so a refusal comes at once.
     let outputs = match &args.out {
         Some(dir) => Some(OutputSet::begin(dir, "fit", args.force)?),
         None => None,
     };
-    let options = FitOptions {
-        models: ModelKind::parse_list(&args.models)?,
-        free: Free::parse(&args.free)?,
-        surfaces: args.surfaces,
-        calibration_draws: args.draws,
-        seed: args.seed,
-        ..FitOptions::default()
-    };
-    let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options)?;
+    let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options(&args)?)?;
     if let Some(mut set) = outputs {
         set.add_bytes("report.json", crate::output::json_text(&report)?.as_bytes())?;
         write_figures(&mut set, &data, &report, &args.fig)?;
@@ -120,6 +107,45 @@ pub fn run(args: Args) -> CliResult {
         );
     }
     Ok(())
+}
+
+/// The measured-voltage file: DATA, else the scenario's `measured.voltages_csv`.
+fn data_path(args: &Args, scenario: &Scenario, base: &Path) -> Result<PathBuf, Box<dyn std::error::Error>> {
+    match (&args.data, &scenario.measured) {
+        (Some(p), _) => Ok(p.clone()),
+        (None, Some(m)) => Ok(base.join(&m.voltages_csv)),
+        (None, None) => Err("missing DATA.csv (the scenario has no `measured` section either)".into()),
+    }
+}
+
+/// The fit's options from the flags.
+fn options(args: &Args) -> Result<FitOptions, Box<dyn std::error::Error>> {
+    Ok(FitOptions {
+        models: ModelKind::parse_list(&args.models)?,
+        free: Free::parse(&args.free)?,
+        surfaces: args.surfaces,
+        calibration_draws: args.draws,
+        seed: args.seed,
+        ..FitOptions::default()
+    })
+}
+
+/// What `stiction fit [DATA] --scenario S --json` prints; `data`, when given, is the CSV text of
+/// the measured voltages (named `source` in messages) instead of the file. Every number checked
+/// finite. For front ends other than the command line (the Python module).
+pub fn fit_json(args: &Args, data: Option<(&[u8], &str)>) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let scenario = Scenario::load(&args.scenario, &args.sets)?;
+    if let Some(conflict) = scenario.spring_force_conflict() {
+        return Err(format!("{}: {conflict}", args.scenario.display()).into());
+    }
+    let json = Scenario::load_json(&args.scenario, &args.sets)?;
+    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    let data = match data {
+        Some((bytes, source)) => stiction_fit::parse_measured_voltages(bytes, source)?,
+        None => read_measured_voltages(&data_path(args, &scenario, &base)?)?,
+    };
+    let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options(args)?)?;
+    Ok(crate::api::finite_value(&report)?)
 }
 
 fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliResult {

@@ -164,7 +164,7 @@ pub fn run_json(
         result: &e.result,
         measured: e.measured,
     };
-    Ok(serde_json::to_value(&output)?)
+    Ok(crate::api::finite_value(&output)?)
 }
 
 fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>, calibration_rel_sd: Option<f64>) {

@@ -352,17 +352,44 @@ pub fn study_json(
     config.validate()?;
     let pool = thread_pool(threads)?;
     let study = Study::prepare(scenario, sets, config)?;
+    let never = std::sync::atomic::AtomicBool::new(false);
+    Ok(study_json_of(&study, &pool, progress, &never, None)?.ok_or("the study was interrupted")?)
+}
+
+/// The summary of a prepared study run on `pool` (what [`study_json`] prints), and with
+/// `samples_csv` the samples as the CSV of `stiction study --out` (samples.csv: one line per
+/// sample, columns named in the first line). None when `interrupt` was set before the end (the
+/// samples in flight finish; nothing is kept).
+pub fn study_json_of(
+    study: &Study,
+    pool: &rayon::ThreadPool,
+    progress: &(dyn Fn(usize) + Sync),
+    interrupt: &std::sync::atomic::AtomicBool,
+    samples_csv: Option<&mut Vec<u8>>,
+) -> Result<Option<serde_json::Value>, Box<dyn std::error::Error>> {
     let dir = temporary_log_dir();
     let _ = std::fs::remove_dir_all(&dir);
     ensure_dir(&dir)?;
-    let ran = (|| -> Result<StudySummary, Box<dyn std::error::Error>> {
+    let ran = (|| -> Result<Option<StudySummary>, Box<dyn std::error::Error>> {
         let mut log = LogWriter::create(&dir, &study.header())?;
-        pool.install(|| study.run_into(&mut log, 0, progress))?;
+        let done = pool.install(|| study.run_into_until(&mut log, 0, progress, interrupt))?;
         drop(log);
-        Ok(stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| s)?)
+        if done < study.config.shard_len() {
+            return Ok(None);
+        }
+        let log_path = dir.join(stiction_study::log::LOG_NAME);
+        Ok(Some(stiction_study::summary::summarize(&log_path, samples_csv).map(|(s, _)| s)?))
     })();
     let _ = std::fs::remove_dir_all(&dir);
-    Ok(serde_json::to_value(ran?)?)
+    match ran? {
+        Some(summary) => Ok(Some(crate::api::finite_value(&summary)?)),
+        None => Ok(None),
+    }
+}
+
+/// A rayon pool of `threads` workers (default: one per core), as `stiction study --threads`.
+pub fn study_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Box<dyn std::error::Error>> {
+    thread_pool(threads)
 }
 
 /// Writes study.json, samples.csv, sensitivity.csv and the figures of the study whose complete

@@ -179,7 +179,7 @@ pub fn topography_json(
     scenario: Option<&Path>,
 ) -> Result<(serde_json::Value, HeightMap, Summits), Box<dyn std::error::Error>> {
     let (out, map, summits) = compose(file.to_string(), raw, info, prep, scenario)?;
-    Ok((serde_json::to_value(&out)?, map, summits))
+    Ok((crate::api::finite_value(&out)?, map, summits))
 }
 
 fn gw_of(st: &Statistics, scenario: Option<&Path>) -> Result<Gw, Box<dyn std::error::Error>> {

@@ -11,6 +11,8 @@ are SI floats inside; arguments that are quantities also take unit strings ("0.5
 
 from __future__ import annotations
 
+import csv as _csv
+import io as _io
 import json as _json
 import os as _os
 from typing import Any, Callable, Dict, Optional, Union
@@ -20,7 +22,10 @@ import numpy as _np
 from ._stiction import Scenario, StictionError
 from . import _stiction
 
-__all__ = ["Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete"]
+__all__ = [
+    "Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete", "asperity",
+    "contact", "bem", "fit",
+]
 
 PathOrScenario = Union[str, "_os.PathLike[str]", Scenario]
 
@@ -132,7 +137,7 @@ def topography(
     curvature_per_m (1/m), radius_m (m), ix, iy (pixel indices). Releases the GIL.
     """
     text, summits = _stiction.topography_json(
-        heights, pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff,
+        _heights(heights), pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff,
         None if scenario is None else _os.fspath(scenario),
     )
     return Result(text, {"summits": summits})
@@ -144,13 +149,57 @@ def study(
     seed: int = 1,
     threads: Optional[int] = None,
     fixed_surface: bool = False,
+    progress: Optional[Callable[[int, int], Any]] = None,
+    as_pandas: Optional[bool] = None,
 ) -> Result:
-    """Monte Carlo study of a scenario file: every parameter written with an uncertainty is drawn
-    anew and each sample gets its own rough surface (unless fixed_surface); the spread of mu_e,a
-    and F_a0 (eq. 10). Equals ``stiction study SCENARIO --samples N --seed S --threads T --json``;
-    same seed, same numbers whatever ``threads``. Releases the GIL.
+    """Monte Carlo study of a scenario (a file, or a ``Scenario`` built with ``Scenario.from_dict``):
+    every parameter written with an uncertainty is drawn anew and each sample gets its own rough
+    surface (unless fixed_surface); the spread of mu_e,a (dimensionless) and F_a0 (N) of eq. 10.
+
+    Equals ``stiction study SCENARIO --samples N --seed S --threads T --json``: same seed, same
+    numbers whatever ``threads`` (default: one worker per core).
+
+    progress: optional ``progress(done, total)`` called as samples finish (from a worker thread).
+    as_pandas: ``samples`` as a pandas DataFrame (default: when pandas is installed) or a dict of
+    NumPy arrays (False).
+
+    Returns a ``Result`` whose ``to_dict()`` equals the CLI's JSON, and ``samples``: one row per
+    sample, the columns of ``stiction study --out``'s samples.csv (sample, mu_apparent,
+    apparent_adhesion_force_n in N, mean_contacts, each drawn parameter in SI, reason, detail;
+    a value a sample could not compute is NaN with its reason). Releases the GIL; Ctrl-C stops
+    the study (KeyboardInterrupt within a second).
     """
-    return Result(_stiction.study_json(scenario, samples, seed, threads, fixed_surface))
+    text, csv_text = _stiction.study_json(scenario, samples, seed, threads, fixed_surface, progress)
+    return Result(text, {"samples": _samples(csv_text, as_pandas)})
+
+
+def _samples(csv_text: str, as_pandas: Optional[bool]):
+    """The samples CSV as a dict of arrays (numbers as float64, empty as NaN; index as int64;
+    text columns as str arrays), or a pandas DataFrame of the same columns."""
+    rows = list(_csv.reader(_io.StringIO(csv_text)))
+    names = rows[0] if rows else []
+    body = rows[1:]
+    cols: Dict[str, _np.ndarray] = {}
+    for k, name in enumerate(names):
+        values = [r[k] if k < len(r) else "" for r in body]
+        if name in ("index", "sample"):
+            cols[name] = _np.array([int(v) for v in values], dtype=_np.int64)
+            continue
+        try:
+            cols[name] = _np.array([float(v) if v != "" else _np.nan for v in values], dtype=float)
+        except ValueError:
+            cols[name] = _np.array(values, dtype=str)
+        if name in ("reason", "detail"):
+            cols[name] = _np.array(values, dtype=str)
+    if as_pandas is False:
+        return cols
+    try:
+        import pandas as _pd
+    except ImportError:
+        if as_pandas:
+            raise
+        return cols
+    return _pd.DataFrame(cols, columns=names)
 
 
 def gw(theta: Optional[float], load_star) -> Dict[str, Any]:
@@ -164,8 +213,11 @@ def gw(theta: Optional[float], load_star) -> Dict[str, Any]:
     theta, pull_off_l_star, pull_off_h (None without adhesion). Same numbers as ``stiction gw
     --json``.
     """
-    loads = _np.atleast_1d(_np.asarray(load_star, dtype=float)).ravel()
-    return _stiction.gw_arrays(None if theta is None else float(theta), loads.tolist())
+    if isinstance(load_star, (int, float)) and not isinstance(load_star, bool):
+        loads = [float(load_star)]  # one load: no array round trip
+    else:
+        loads = _np.atleast_1d(_np.asarray(load_star, dtype=float)).ravel().tolist()
+    return _stiction.gw_arrays(None if theta is None else float(theta), loads)
 
 
 def discrete(
@@ -204,3 +256,193 @@ def discrete(
     out: Dict[str, Any] = dict(_columns(points))
     out["points"] = points
     return out
+
+
+def asperity(
+    radius: Union[str, float],
+    work_of_adhesion: Union[str, float],
+    compliance: Union[str, float],
+    shear_strength: Union[str, float],
+    load,
+    adhesion: str = "dmt",
+    equilibrium_spacing: Union[str, float, None] = None,
+) -> Dict[str, Any]:
+    """One spherical asperity: the single-asperity laws (DMT, the paper's; JKR; Maugis-Dugdale;
+    Hertz) at each load, as ``stiction discrete --contacts 1`` (see ``discrete`` for the
+    arguments and the returned dict: contact radius in m, area in m^2, friction s pi a^2 in N)."""
+    return discrete(1, radius, work_of_adhesion, compliance, shear_strength, load, adhesion, equilibrium_spacing)
+
+
+def _is_vector(x) -> bool:
+    return not isinstance(x, (str, bytes, int, float)) and x is not None and _np.ndim(x) >= 1
+
+
+def _flag(name: str, value) -> list:
+    """A keyword argument as the command line's flag: a quantity as given (unit string) or as
+    ``repr`` of the SI float; True as the bare flag; None or False as nothing."""
+    if value is None or value is False:
+        return []
+    flag = "--" + name.replace("_", "-")
+    if value is True:
+        return [flag]
+    # FLAG=VALUE, so that a value starting with "-" ("-3 GPa", -1e-7) is read as the flag's value.
+    if isinstance(value, str):
+        return [f"{flag}={value}"]
+    if isinstance(value, (int, float, _np.floating, _np.integer)) and not isinstance(value, bool):
+        text = repr(float(value)) if isinstance(value, (float, _np.floating)) else str(int(value))
+        return [f"{flag}={text}"]
+    raise TypeError(f"{name}: expected a number or a unit string, got {type(value).__name__}")
+
+
+def _heights(heights):
+    """A NumPy array as it is (never copied: the engine reads it in place, any order or
+    strides); anything else (nested lists) as a float64 array."""
+    if isinstance(heights, _np.ndarray):
+        return heights
+    try:
+        return _np.asarray(heights, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise StictionError(
+            f"heights: expected a 2-D NumPy array of float32 or float64 (rows = y), got {type(heights).__name__} ({e})"
+        ) from None
+
+
+def contact(
+    scenario: PathOrScenario,
+    load=None,
+    mode: Optional[str] = None,
+    contacts: Optional[int] = None,
+    summits: bool = False,
+) -> Result:
+    """The explicit asperity-by-asperity solver on the scenario's surface (rigid shoe, summits
+    from the scenario, its contact law), as ``stiction contact SCENARIO --json``.
+
+    load: the normal load, compressive positive, a force ("3 uN") or N, for one equilibrium; or a
+    vector of loads (N, in order, each from the previous equilibrium) for a sweep, whose result
+    has ``points`` (one equilibrium per load, also as NumPy ``columns``) and ``events`` (jump_in,
+    release, pull_off).
+    mode: "tilt", "flat" or "fixed" (default: the scenario's). contacts: N for mode "fixed".
+    summits: list every summit in contact.
+
+    The scenario must be a file (or a ``Scenario`` loaded from one). Equilibrium fields are SI
+    (load_n N, separation_m m, tilt_x_rad rad, real_area_m2 m^2, max_pressure_pa Pa, ...).
+    Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+    """
+    if load is None:
+        raise StictionError("contact: give a load (a force) or a vector of loads")
+    flags = _flag("mode", mode) + _flag("contacts", contacts) + _flag("summits", summits)
+    if _is_vector(load):
+        loads = _np.asarray(load, dtype=float).ravel().tolist()
+        return Result(_stiction.contact_json(scenario, flags, loads))
+    return Result(_stiction.contact_json(scenario, flags + _flag("load", load), None))
+
+
+def bem(
+    heights,
+    pressure=None,
+    pixel_size: Union[str, float, None] = None,
+    pixel_size_y: Union[str, float, None] = None,
+    height_unit: Union[str, float, None] = None,
+    level: str = "plane",
+    cutoff: Union[str, float, None] = None,
+    long_cutoff: Union[str, float, None] = None,
+    e_star: Union[str, float, None] = None,
+    sweep: Optional[str] = None,
+    gap_sweep: Optional[str] = None,
+    gap_back: bool = False,
+    work_of_adhesion: Union[str, float, None] = None,
+    range: Union[str, float, None] = None,
+    shear_strength: Union[str, float, None] = None,
+    tolerance: Optional[float] = None,
+    compare_asperity: bool = False,
+) -> Result:
+    """FFT boundary-element contact of a rigid flat on the height map ``heights`` (a 2-D NumPy
+    array, rows = y, float32 or float64, any order; read in place, as ``topography`` reads it),
+    the whole map being one period of the interface: ``stiction bem --map FILE.npy --json`` with
+    the same flags (its ``surface.file`` is "<array>").
+
+    pressure: mean (nominal) pressure, compressive, a pressure ("20 MPa") or Pa; or a vector of
+    them (Pa, in order, each from the previous state). Or sweep "FROM:TO:STEPS" of pressures, or
+    gap_sweep "FROM:TO:STEPS" of mean gaps (with gap_back, back again), needed with adhesion.
+    pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff: as for ``topography``.
+    e_star: composite modulus E* (Pa; default 85 GPa). work_of_adhesion (J/m^2), range (m): the
+    Dugdale law. shear_strength: s (Pa) for the friction s A_r. tolerance: relative, of the
+    conjugate gradient (default 1e-6). compare_asperity: also the summit model on the same grid.
+
+    Returns a ``Result``: grid, e_star_pa, rms_height_m, rms_slope, points (mean_pressure_pa Pa,
+    load_n N, mean_gap_m m, contact_fraction, contact_area_m2 m^2, friction_n N, ...; also as
+    NumPy ``columns``), pull_off_n. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+    """
+    flags = (
+        _flag("pixel_size", pixel_size) + _flag("pixel_size_y", pixel_size_y) + _flag("height_unit", height_unit)
+        + _flag("level", level) + _flag("cutoff", cutoff) + _flag("long_cutoff", long_cutoff)
+        + _flag("e_star", e_star) + _flag("sweep", sweep) + _flag("gap_sweep", gap_sweep)
+        + _flag("gap_back", gap_back) + _flag("work_of_adhesion", work_of_adhesion) + _flag("range", range)
+        + _flag("shear_strength", shear_strength) + _flag("tolerance", tolerance)
+        + _flag("compare_asperity", compare_asperity)
+    )
+    if _is_vector(pressure):
+        pressures = _np.asarray(pressure, dtype=float).ravel().tolist()
+        return Result(_stiction.bem_json(_heights(heights), flags, pressures))
+    return Result(_stiction.bem_json(_heights(heights), flags + _flag("pressure", pressure), None))
+
+
+def fit(
+    data,
+    scenario: PathOrScenario,
+    models: Optional[str] = None,
+    free: Optional[str] = None,
+    surfaces: Optional[int] = None,
+    draws: Optional[int] = None,
+    seed: Optional[int] = None,
+) -> Result:
+    """Fit measured friction-meter voltages: eq. 10 with regression and calibration intervals, and
+    the shear strength s (Pa) of each contact model by maximum likelihood, ranked by AIC; as
+    ``stiction fit DATA --scenario SCENARIO --json``.
+
+    data: a CSV path (columns v_clamp_v, v_pull_v [, v_pull_sd_v, device]); or the columns as
+    arrays: a dict (or pandas DataFrame) with keys v_clamp_v and v_pull_v (V) and optionally
+    v_pull_sd_v (V) and device; or None for the scenario's ``measured.voltages_csv``.
+    scenario: the device's scenario file. models: "discrete-n1,gw-dmt,explicit,..."; free: "s",
+    "s,R", "s,R,F_spring"; surfaces: realisations of the explicit ensemble; draws: calibration
+    Monte Carlo draws; seed: its seed (the CLI's defaults when None).
+    Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+    """
+    flags = (
+        _flag("models", models) + _flag("free", free) + _flag("surfaces", surfaces) + _flag("draws", draws)
+        + _flag("seed", seed)
+    )
+    if data is None:
+        return Result(_stiction.fit_json(scenario, flags))
+    if isinstance(data, (str, _os.PathLike)):
+        return Result(_stiction.fit_json(scenario, [_os.fspath(data)] + flags))
+    return Result(_stiction.fit_json(scenario, flags, _voltage_csv(data), "<data>"))
+
+
+def _voltage_csv(data) -> str:
+    """Columns of measured voltages as the CSV text the command line reads (floats as ``repr``,
+    which reads back to the same float)."""
+    try:
+        names = [k for k in ("v_clamp_v", "v_pull_v", "v_pull_sd_v", "device") if k in data]
+    except TypeError:
+        raise StictionError("data: expected a CSV path or a dict of arrays with v_clamp_v and v_pull_v") from None
+    for k in ("v_clamp_v", "v_pull_v"):
+        if k not in names:
+            raise StictionError(f"data: no column {k!r} (expected v_clamp_v, v_pull_v [, v_pull_sd_v, device])")
+    columns = []
+    for k in names:
+        values = _np.asarray(data[k])
+        if values.ndim != 1:
+            raise StictionError(f"data[{k!r}]: expected a 1-D array, got {values.ndim} dimensions")
+        columns.append(values)
+    n = len(columns[0])
+    if any(len(c) != n for c in columns):
+        raise StictionError("data: the columns differ in length")
+    out = _io.StringIO()
+    w = _csv.writer(out, lineterminator="\n")
+    w.writerow(names)
+    for i in range(n):
+        w.writerow([
+            str(c[i]) if k == "device" else repr(float(c[i])) for k, c in zip(names, columns)
+        ])
+    return out.getvalue()

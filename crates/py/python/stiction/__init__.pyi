@@ -32,6 +32,10 @@ Quantity = Union[str, float, None]
 class Result:
     """The CLI's --json object: keys as attributes, to_dict(), to_json(), per-point columns."""
     columns: Dict[str, npt.NDArray[Any]]
+    summits: Dict[str, npt.NDArray[Any]]
+    """topography: x_m, y_m, height_m, curvature_per_m, radius_m, ix, iy."""
+    samples: Any
+    """study: a dict of NumPy arrays, or a pandas DataFrame."""
     def __getattr__(self, name: str) -> Any: ...
     def __getitem__(self, key: str) -> Any: ...
     def keys(self) -> KeysView[str]: ...
@@ -55,7 +59,10 @@ def study(
     seed: int = 1,
     threads: Optional[int] = None,
     fixed_surface: bool = False,
-) -> Result: ...
+    progress: Optional[Callable[[int, int], Any]] = None,
+    as_pandas: Optional[bool] = None,
+) -> Result:
+    """Monte Carlo study (mu_e,a dimensionless, F_a0 in N); ``samples``: dict of arrays or a DataFrame."""
 def gw(theta: Optional[float], load_star: Union[float, Sequence[float], npt.NDArray[np.float64]]) -> Dict[str, Any]: ...
 def discrete(
     contacts: int,
@@ -68,3 +75,58 @@ def discrete(
     equilibrium_spacing: Quantity = None,
     target_slope: Optional[float] = None,
 ) -> Dict[str, Any]: ...
+
+Heights = npt.NDArray[Union[np.float32, np.float64]]
+Loads = Union[str, float, Sequence[float], npt.NDArray[np.float64]]
+
+def asperity(
+    radius: Union[str, float],
+    work_of_adhesion: Union[str, float],
+    compliance: Union[str, float],
+    shear_strength: Union[str, float],
+    load: Loads,
+    adhesion: str = "dmt",
+    equilibrium_spacing: Quantity = None,
+) -> Dict[str, Any]:
+    """One asperity (DMT, JKR, Maugis-Dugdale, Hertz): radius m, dgamma J/m^2, D 1/Pa, s Pa, load N."""
+
+def contact(
+    scenario: PathOrScenario,
+    load: Loads = None,
+    mode: Optional[str] = None,
+    contacts: Optional[int] = None,
+    summits: bool = False,
+) -> Result:
+    """The explicit solver at a load (N) or over a vector of loads (a sweep)."""
+
+def bem(
+    heights: Heights,
+    pressure: Union[str, float, Sequence[float], npt.NDArray[np.float64], None] = None,
+    pixel_size: Quantity = None,
+    pixel_size_y: Quantity = None,
+    height_unit: Quantity = None,
+    level: str = "plane",
+    cutoff: Quantity = None,
+    long_cutoff: Quantity = None,
+    e_star: Quantity = None,
+    sweep: Optional[str] = None,
+    gap_sweep: Optional[str] = None,
+    gap_back: bool = False,
+    work_of_adhesion: Quantity = None,
+    range: Quantity = None,
+    shear_strength: Quantity = None,
+    tolerance: Optional[float] = None,
+    compare_asperity: bool = False,
+) -> Result:
+    """Boundary-element contact on a height-map array; pressures in Pa, E* in Pa, lengths in m."""
+
+def fit(
+    data: Union[str, os.PathLike[str], Dict[str, Any], Any, None],
+    scenario: PathOrScenario,
+    models: Optional[str] = None,
+    free: Optional[str] = None,
+    surfaces: Optional[int] = None,
+    draws: Optional[int] = None,
+    seed: Optional[int] = None,
+) -> Result:
+    """Fit measured voltages (V): eq. 10 and the shear strength s (Pa) per contact model."""

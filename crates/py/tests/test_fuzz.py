@@ -1,0 +1,179 @@
+"""The Python front end in the fuzz harness: seeded hostile scenarios (dicts) and height-map
+arrays. Each case either succeeds with finite numbers or raises StictionError (a ValueError)
+whose message is the command line's for the same input (a dict written as a scenario file, an
+array saved as .npy); never a crash, another exception or a hang.
+
+STICTION_FUZZ_CASES (default 150 per kind) and STICTION_FUZZ_SEED (default 1) set the run."""
+
+import copy
+import json
+import math
+import os
+import time
+
+import numpy as np
+import pytest
+
+import stiction
+
+CASES = int(os.environ.get("STICTION_FUZZ_CASES", "150"))
+SEED = int(os.environ.get("STICTION_FUZZ_SEED", "1"))
+TAS = "scenarios/tas2000.json"
+
+HOSTILE = [
+    None, True, 0, -1, 1e308, -1e308, float("nan"), float("inf"), "", "forty", "1e400 m", "0.5 kg",
+    "-3 um", [], {}, [1, 2], {"value": "1 um", "sd": "-1 um"}, "nan um", "1e-400 m", 2**70, "μm", "x" * 5000,
+]
+
+
+def _leaves(tree, path=()):
+    if isinstance(tree, dict):
+        for k, v in tree.items():
+            yield from _leaves(v, path + (k,))
+    elif isinstance(tree, list):
+        for i, v in enumerate(tree):
+            yield from _leaves(v, path + (i,))
+    else:
+        yield path
+
+
+def _set(tree, path, value):
+    for p in path[:-1]:
+        tree = tree[p]
+    tree[path[-1]] = value
+
+
+def _delete(tree, path):
+    for p in path[:-1]:
+        tree = tree[p]
+    del tree[path[-1]]
+
+
+def _cli_message(stderr):
+    assert stderr.startswith("error: "), stderr
+    return stderr[len("error: "):].strip()
+
+
+def _finite(value):
+    if isinstance(value, float):
+        return math.isfinite(value)
+    if isinstance(value, dict):
+        return all(_finite(v) for v in value.values())
+    if isinstance(value, list):
+        return all(_finite(v) for v in value)
+    return True
+
+
+def test_hostile_scenario_dicts_raise_the_cli_message(in_root, cli, tmp_path):
+    rng = np.random.default_rng(SEED)
+    with open(TAS) as f:
+        base = json.load(f)
+    leaves = list(_leaves(base))
+    compared = refused = accepted = 0
+    for case in range(CASES):
+        d = copy.deepcopy(base)
+        for _ in range(int(rng.integers(1, 3))):
+            path = leaves[int(rng.integers(len(leaves)))]
+            try:
+                if rng.random() < 0.2:
+                    _delete(d, path)
+                else:
+                    _set(d, path, HOSTILE[int(rng.integers(len(HOSTILE)))])
+            except (KeyError, IndexError, TypeError):
+                pass
+        start = time.perf_counter()
+        try:
+            s = stiction.Scenario.from_dict(d, base_dir="scenarios")
+            s.validate()
+            accepted += 1
+        except stiction.StictionError as e:
+            refused += 1
+            message = str(e)
+            assert 0 < len(message) < 2000, (case, message[:300])
+            if case % 10 == 0:
+                # The same tree as a file: the CLI's message, with the file's name for "<scenario>".
+                text = json.dumps(d, allow_nan=True)
+                if "NaN" in text or "Infinity" in text:
+                    continue  # not JSON: the file reader refuses the token before the field
+                path = tmp_path / f"case{case}.json"
+                path.write_text(text)
+                code, _, err = cli("scenario", path)
+                assert code == 2, (case, err)
+                assert _cli_message(err).replace(str(path), "<scenario>") == message, case
+                compared += 1
+        assert time.perf_counter() - start < 30, case
+    assert refused > CASES // 4 and compared > 0, (accepted, refused, compared)
+
+
+def _arrays(rng):
+    """Hostile arrays: wrong dimensions, empty, too small, NaN, inf, huge, other dtypes, odd
+    byte orders and strides."""
+    good = rng.standard_normal((8, 9))
+    yield np.float64(1.0)
+    yield np.zeros(10)
+    yield np.zeros((3, 3, 3))
+    yield np.zeros((0, 0))
+    yield np.zeros((1, 40))
+    yield np.zeros((40, 1))
+    yield np.full((6, 6), np.nan)
+    yield np.where(np.eye(6) > 0, np.inf, 1.0)
+    yield np.full((6, 6), 1e300)
+    yield good.astype(np.int64)
+    yield good.astype(np.complex128)
+    yield good.astype(np.float16)
+    yield good.astype(">f8")
+    yield good.astype(object)
+    yield good > 0
+    yield good[::-1, ::3]
+    yield np.lib.stride_tricks.as_strided(good, shape=(8, 9), strides=(0, 8))
+    for _ in range(CASES):
+        a = rng.standard_normal((int(rng.integers(0, 12)), int(rng.integers(0, 12))))
+        kind = int(rng.integers(6))
+        if kind == 0 and a.size:
+            a.flat[rng.integers(a.size, size=int(rng.integers(1, a.size + 1)))] = np.nan
+        elif kind == 1 and a.size:
+            a.flat[int(rng.integers(a.size))] = [np.inf, -np.inf, 1e200][int(rng.integers(3))]
+        elif kind == 2:
+            a = a.astype(np.float32)
+        elif kind == 3:
+            a = np.asfortranarray(a)
+        yield a
+
+
+def test_hostile_arrays_raise_the_cli_message(cli, tmp_path):
+    rng = np.random.default_rng(SEED)
+    path = tmp_path / "map.npy"
+    counts = {"ok": 0, "refused": 0, "compared": 0}
+    for i, a in enumerate(_arrays(rng)):
+        for call in (
+            lambda: stiction.topography(a, pixel_size="1 um", height_unit="nm"),
+            lambda: stiction.bem(a, "10 MPa", pixel_size="1 um", height_unit="nm"),
+        ):
+            try:
+                r = call()
+                assert _finite(r.to_dict()), i
+                counts["ok"] += 1
+            except stiction.StictionError as e:
+                counts["refused"] += 1
+                message = str(e)
+                assert 0 < len(message) < 2000, (i, message[:300])
+        if isinstance(a, np.ndarray) and a.ndim == 2 and a.dtype in (np.float64, np.float32) and i % 3 == 0:
+            # The CLI on the array's .npy file: the same message (the file named "heights").
+            np.save(path, a)
+            code, out, err = cli("topography", path, "--pixel-size", "1 um", "--height-unit", "nm", "--json")
+            try:
+                got = stiction.topography(a, pixel_size="1 um", height_unit="nm").to_dict()
+                assert code == 0, (i, err)
+                got["file"] = str(path)
+                assert got == json.loads(out)
+            except stiction.StictionError as e:
+                assert code == 2, (i, out[:200])
+                assert _cli_message(err).replace(str(path), "heights") == str(e), i
+            counts["compared"] += 1
+    assert counts["refused"] > 10 and counts["ok"] > 10 and counts["compared"] > 10, counts
+
+
+def test_non_arrays_are_refused_as_stiction_errors():
+    for bad in (None, "heights", [[1, 2], [3]], {"a": 1}, [[float("nan")] * 3] * 3):
+        with pytest.raises(stiction.StictionError):
+            stiction.topography(bad, pixel_size="1 um", height_unit="nm")

@@ -1,0 +1,302 @@
+"""The models, the solvers, studies and fits from Python against the command line (json.loads of
+`stiction ... --json` compared with ==, floats included), zero-copy height maps, GIL release
+and Ctrl-C."""
+
+import json
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import stiction
+from stiction import _stiction
+
+TAS = "scenarios/tas2000.json"
+FIT = "scenarios/tas2000-fit-synthetic.json"
+VOLTAGES = "data/measured-voltages-synthetic/voltages.csv"
+
+
+def _smooth_map(ny, nx, dtype=np.float64, order="C"):
+    """A few long waves (heights in nm, a few summits): cheap to analyse at any size."""
+    y = np.arange(ny)[:, None] / ny
+    x = np.arange(nx)[None, :] / nx
+    z = 40.0 * np.sin(2 * np.pi * 3 * x + 0.3) * np.cos(2 * np.pi * 2 * y) + 15.0 * np.sin(2 * np.pi * 5 * (x + y))
+    return np.asarray(z, dtype=dtype, order=order)
+
+
+# ---------------------------------------------------------------------------------------------
+# zero-copy height maps
+
+
+@pytest.mark.parametrize("dtype,order", [(np.float64, "C"), (np.float32, "F")])
+def test_a_4096_squared_array_is_read_in_place(dtype, order):
+    """The input step allocates the one map in metres (8 bytes a pixel) and nothing the size of
+    the array besides: a copy of the array (an .npy image, a contiguous or float64 copy) would add
+    at least 4 bytes a pixel (64 MiB for float32) to the peak of the extension's heap."""
+    n = 4096
+    heights = _smooth_map(n, n, dtype, order)
+    map_bytes = n * n * 8
+    before, _ = _stiction._heap()
+    _stiction._reset_heap_peak()
+    assert _stiction._read_heights(heights, 1e-6, 1e-9) == (n, n)
+    peak = _stiction._heap()[1] - before
+    assert map_bytes <= peak < map_bytes + n * n * 4 // 4, f"peak {peak / 2**20:.1f} MiB for a {map_bytes / 2**20:.0f} MiB map"
+    # A view that is neither C nor Fortran ordered (every other column) is read in place too.
+    view = heights[:, ::2]
+    _stiction._reset_heap_peak()
+    before, _ = _stiction._heap()
+    assert _stiction._read_heights(view, 1e-6, 1e-9) == (n // 2, n)
+    assert _stiction._heap()[1] - before < map_bytes // 2 + n * n, "the view was copied"
+
+
+def test_topography_of_a_4096_squared_array_makes_no_numpy_copy():
+    """NumPy reports its buffers to tracemalloc: through the whole call, no allocation of the
+    array's size (128 MiB) is made on the Python side."""
+    import tracemalloc
+
+    n = 4096
+    heights = _smooth_map(n, n)
+    tracemalloc.start()
+    try:
+        r = stiction.topography(heights, pixel_size="1 um", height_unit="nm", level="none")
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert r.summit_count > 0
+    assert peak < 8 * 2**20, f"{peak / 2**20:.1f} MiB traced on the Python side"
+
+
+def test_strided_and_reversed_views_equal_their_copies(cli_json, tmp_path):
+    base = _smooth_map(96, 80)
+    for view in (base[::-1, :], base[:, ::2], base.T, base[10:70, 5:75]):
+        got = stiction.topography(view, pixel_size="1 um", height_unit="nm").to_dict()
+        copy = stiction.topography(np.ascontiguousarray(view), pixel_size="1 um", height_unit="nm").to_dict()
+        assert got == copy
+
+
+# ---------------------------------------------------------------------------------------------
+# the explicit solver
+
+
+def test_contact_at_a_load_and_a_sweep_equal_cli(in_root, cli_json):
+    e = cli_json("contact", TAS, "--load", "3 uN")
+    r = stiction.contact(TAS, "3 uN")
+    assert r.to_dict() == e
+    assert stiction.contact(TAS, 3e-6).to_dict() == e
+    # A load vector is the sweep of those loads: FROM:TO:STEPS gives from + (to - from) i / (n - 1).
+    loads = [0.0 + (5e-6 - 0.0) * i / 4 for i in range(5)]
+    e = cli_json("contact", TAS, "--sweep", "0:5e-6:5")
+    s = stiction.contact(TAS, np.array(loads))
+    assert s.to_dict() == e
+    assert np.array_equal(s.columns["load_n"], [p["load_n"] for p in e["points"]])
+    flat = stiction.contact(stiction.Scenario.load(TAS, ["surface.summit_sd=50 nm"]), "2 uN", mode="flat")
+    assert flat.to_dict() == cli_json("contact", TAS, "--set", "surface.summit_sd=50 nm", "--load", "2 uN", "--mode", "flat")
+
+
+def test_contact_errors_are_the_cli_messages(in_root, cli):
+    code, _, err = cli("contact", TAS, "--load", "3 uN", "--mode", "sideways", "--json")
+    assert code == 2
+    with pytest.raises(stiction.StictionError) as e:
+        stiction.contact(TAS, "3 uN", mode="sideways")
+    assert "sideways" in str(e.value) and "sideways" in err
+    with pytest.raises(stiction.StictionError, match="loads\\[1\\]"):
+        stiction.contact(TAS, [1e-6, np.nan])
+    with pytest.raises(stiction.StictionError, match="file"):
+        stiction.contact(stiction.Scenario.from_dict({"format_version": 1}), 1e-6)
+
+
+# ---------------------------------------------------------------------------------------------
+# boundary elements on an array
+
+
+def test_bem_on_an_array_equals_cli_on_its_npy_file(tmp_path, cli_json):
+    heights = _smooth_map(64, 64)
+    path = tmp_path / "map.npy"
+    np.save(path, heights)
+    flags = ["--pixel-size", "0.5 um", "--height-unit", "nm", "--shear-strength", "1 GPa"]
+    e = cli_json("bem", "--map", path, *flags, "--sweep", "1MPa:40MPa:3")
+    got = stiction.bem(heights, pixel_size="0.5 um", height_unit="nm", shear_strength="1 GPa", sweep="1MPa:40MPa:3").to_dict()
+    assert got["surface"]["file"] == "<array>"
+    got["surface"]["file"] = e["surface"]["file"]
+    assert got == e
+    # The same loads as a vector of pressures (Pa), and the array in Fortran order as float32 ->
+    # the float32 file.
+    pressures = [1e6 + (40e6 - 1e6) * k / 2 for k in range(3)]
+    vec = stiction.bem(heights, pressures, pixel_size=0.5e-6, height_unit=1e-9, shear_strength=1e9).to_dict()
+    vec["surface"]["file"] = e["surface"]["file"]
+    assert vec == e
+    f32 = np.asfortranarray(heights.astype(np.float32))
+    np.save(path, f32)
+    e32 = cli_json("bem", "--map", path, "--pixel-size", "0.5 um", "--height-unit", "nm", "--pressure", "20 MPa")
+    got32 = stiction.bem(f32, "20 MPa", pixel_size="0.5 um", height_unit="nm").to_dict()
+    got32["surface"]["file"] = e32["surface"]["file"]
+    assert got32 == e32
+    assert e32["points"][0]["contact_fraction"] > 0
+
+
+def test_bem_errors(cli):
+    heights = _smooth_map(32, 32)
+    with pytest.raises(stiction.StictionError, match="pressure"):
+        stiction.bem(heights, pixel_size="1 um", height_unit="nm")
+    with pytest.raises(stiction.StictionError, match="pressure"):
+        stiction.bem(heights, [1e6, -1.0], pixel_size="1 um", height_unit="nm")
+    with pytest.raises(stiction.StictionError, match="e-star"):
+        stiction.bem(heights, "1 MPa", pixel_size="1 um", height_unit="nm", e_star="-3 GPa")
+    with pytest.raises(stiction.StictionError, match="pixel size"):
+        stiction.bem(heights, "1 MPa", height_unit="nm")
+
+
+# ---------------------------------------------------------------------------------------------
+# single asperity, fit, study
+
+
+def test_asperity_laws_equal_cli_discrete_with_one_contact(cli_json):
+    material = ["--radius", "0.5 um", "--work-of-adhesion", "0.1 J/m^2", "--compliance", "9.1e-12 1/Pa",
+                "--shear-strength", "1.4 GPa"]
+    for law in ("dmt", "jkr", "maugis-dugdale", "hertz"):
+        a = stiction.asperity("0.5 um", "0.1 J/m^2", "9.1e-12 1/Pa", "1.4 GPa", [1e-7, 2e-6], adhesion=law)
+        for i, load in enumerate(["1e-07", "2e-06"]):
+            assert a["points"][i] == cli_json("discrete", "--contacts", 1, *material, "--load", load, "--adhesion", law)
+
+
+def test_fit_with_a_csv_path_and_with_arrays_equals_cli(in_root, cli_json):
+    flags = dict(models="discrete-n1,gw-dmt", draws=200)
+    e = cli_json("fit", VOLTAGES, "--scenario", FIT, "--models", "discrete-n1,gw-dmt", "--draws", 200)
+    assert stiction.fit(VOLTAGES, FIT, **flags).to_dict() == e
+    assert stiction.fit(None, FIT, **flags).to_dict()["eq10"] == e["eq10"]
+    import csv
+
+    with open(VOLTAGES) as f:
+        rows = list(csv.reader(line for line in f if not line.startswith("#")))
+    arrays = {name: np.array([float(r[k]) for r in rows[1:]]) for k, name in enumerate(rows[0])}
+    assert set(arrays) == {"v_clamp_v", "v_pull_v"} and len(arrays["v_pull_v"]) > 5
+    got = stiction.fit(arrays, FIT, **flags).to_dict()
+    # Same rows, same numbers: only the name of the data source may differ.
+    text_e, text_g = json.dumps(e), json.dumps(got).replace("<data>", VOLTAGES)
+    assert json.loads(text_g) == json.loads(text_e)
+    with pytest.raises(stiction.StictionError, match="v_pull_v"):
+        stiction.fit({"v_clamp_v": [1.0, 2.0]}, FIT)
+
+
+def test_study_of_a_dict_scenario_equals_cli_and_gives_the_samples(in_root, cli_json, tmp_path):
+    expected = cli_json("study", TAS, "--samples", 8, "--seed", 3, "--threads", 1)
+    with open(TAS) as f:
+        d = json.load(f)
+    s = stiction.Scenario.from_dict(d, base_dir="scenarios")
+    r = stiction.study(s, samples=8, seed=3, threads=2, as_pandas=False)
+    got = r.to_dict()
+    assert json.loads(json.dumps(got).replace('"<scenario>"', json.dumps(TAS))) == expected
+    cols = r.samples
+    assert isinstance(cols, dict) and cols["sample"].tolist() == list(range(8))
+    assert cols["mu_apparent"].dtype == np.float64
+    # The samples' mu_e,a are those summarized: their median is the CLI's.
+    assert np.isfinite(cols["mu_apparent"]).sum() > 0
+    # The CSV of `stiction study --out` is the same table.
+    out = tmp_path / "study"
+    code = os.system(f"{_cli_path()} study {TAS} --samples 8 --seed 3 --threads 1 --out {out} > /dev/null 2>&1")
+    assert code == 0
+    import csv
+
+    with open(out / "samples.csv") as f:
+        rows = list(csv.reader(f))
+    assert rows[0] == list(cols)
+    assert [float(v) if v else np.nan for v in (row[1] for row in rows[1:])] == pytest.approx(
+        cols["mu_apparent"].tolist(), nan_ok=True, rel=0, abs=0
+    )
+
+
+def _cli_path():
+    from conftest import _binary
+
+    return _binary()
+
+
+def test_study_samples_as_a_pandas_dataframe(in_root):
+    pd = pytest.importorskip("pandas")
+    r = stiction.study(TAS, samples=4, seed=1, threads=1)
+    assert isinstance(r.samples, pd.DataFrame)
+    plain = stiction.study(TAS, samples=4, seed=1, threads=1, as_pandas=False).samples
+    assert list(r.samples.columns) == list(plain)
+    for k, v in plain.items():
+        assert np.array_equal(r.samples[k].to_numpy(), v, equal_nan=v.dtype.kind == "f")
+
+
+def test_study_progress_reports_every_sample(in_root):
+    seen = []
+    stiction.study(TAS, samples=6, seed=1, threads=2, progress=lambda d, t: seen.append((d, t)))
+    assert seen[-1] == (6, 6) and all(t == 6 for _, t in seen)
+
+    def boom(d, t):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        stiction.study(TAS, samples=50, seed=1, threads=1, progress=boom)
+
+
+# ---------------------------------------------------------------------------------------------
+# Ctrl-C and the GIL
+
+
+def test_ctrl_c_interrupts_a_long_study_within_a_second(in_root, cli_json):
+    import tempfile
+
+    sent = {}
+
+    def interrupt():
+        sent["t"] = time.perf_counter()
+        signal.pthread_kill(threading.main_thread().ident, signal.SIGINT)
+
+    timer = threading.Timer(0.5, interrupt)
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        stiction.study(TAS, samples=200000, seed=1, threads=2)  # about a minute uninterrupted
+    raised = time.perf_counter()
+    timer.join()
+    assert raised - sent["t"] < 1.0, f"KeyboardInterrupt {raised - sent['t']:.2f} s after SIGINT"
+    assert raised - start < 5
+    # Nothing corrupted: the next study gives the CLI's numbers, and the interrupted one leaves
+    # no log folder behind once its samples in flight are done.
+    assert stiction.study(TAS, samples=4, seed=2, threads=1, as_pandas=False).to_dict() == cli_json(
+        "study", TAS, "--samples", 4, "--seed", 2, "--threads", 1
+    )
+    deadline = time.time() + 10
+    prefix = f"stiction-study-{os.getpid()}-"
+    while time.time() < deadline and any(n.startswith(prefix) for n in os.listdir(tempfile.gettempdir())):
+        time.sleep(0.1)
+    assert not any(n.startswith(prefix) for n in os.listdir(tempfile.gettempdir()))
+
+
+def test_two_threads_solve_in_less_than_one_and_a_half_times_one():
+    """GIL release: two boundary-element solves (CPU-bound, single-threaded) in two threads against
+    one, on two cores or more. The machine may be shared, so each is timed up to 5 times and the
+    fastest pair is compared with the fastest single solve (holding the GIL makes every pair take
+    twice a single solve at best)."""
+    if (os.cpu_count() or 1) < 2:
+        pytest.skip("needs two cores")
+    y, x = np.mgrid[0:256, 0:256] / 256.0
+    heights = 30 * np.sin(2 * np.pi * 3 * x) * np.cos(2 * np.pi * 2 * y) + 10 * np.sin(2 * np.pi * 7 * (x + y))
+
+    def one():
+        stiction.bem(heights, [5e6, 2e7, 8e7, 1.5e8], pixel_size="0.1 um", height_unit="nm")
+
+    one()  # warm up
+    singles, pairs = [], []
+    for _ in range(5):
+        t0 = time.perf_counter()
+        one()
+        singles.append(time.perf_counter() - t0)
+        threads = [threading.Thread(target=one) for _ in range(2)]
+        t0 = time.perf_counter()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        pairs.append(time.perf_counter() - t0)
+        if min(pairs) / min(singles) < 1.5:
+            break
+    ratio = min(pairs) / min(singles)
+    assert ratio < 1.5, f"two in parallel took {ratio:.2f} x one (fastest of {len(pairs)})"
