@@ -5,11 +5,10 @@ use std::path::{Path, PathBuf};
 
 use stiction_plot::{Chart, Series};
 use stiction_study::design::{self, DesignRow, RankBy, Vary};
-use stiction_study::log::LogWriter;
 use stiction_study::summary::digits;
 use stiction_study::{MAX_THREADS, Study, StudyConfig};
 
-use crate::cmd::study::{Args, Progress};
+use crate::cmd::study::{Args, Folder, Outcome, Progress, run_study};
 use crate::output::{CliResult, ensure_dir, print_json};
 
 /// The --rank-by choices.
@@ -91,36 +90,28 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
         for (d, (p, (sets, study))) in points.iter().zip(&studies).enumerate() {
             let dir = design_folder(&root, d);
             ensure_dir(&dir)?;
-            let header = study.header();
-            let (mut log, done) =
-                if args.resume { LogWriter::resume(&dir, &header)? } else { (LogWriter::create(&dir, &header)?, 0) };
-            // A manifest says a design's folder is complete; while it runs again it is not.
-            let manifest = dir.join(crate::output::MANIFEST);
-            if !temporary && manifest.exists() {
-                std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
-            }
             let offset = d * per;
-            progress.update(offset + done);
-            let logged = pool.install(|| {
-                study.run_into_until(&mut log, done, &|n| progress.update(offset + n), &crate::output::INTERRUPT)
-            })?;
-            drop(log);
-            if logged < per {
-                return Err(Box::new(crate::cmd::study::interrupted(
-                    offset + logged,
-                    per * points.len(),
-                    &dir,
-                    temporary,
-                )));
-            }
-            let summary = if temporary {
-                stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None)?.0
-            } else {
-                let (summary, written) = crate::cmd::study::finish_folder(&dir, &args.fig)?;
-                let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
-                files.extend(written);
-                crate::output::write_manifest(&dir, "study", &files)?;
-                summary
+            let folder = if temporary { Folder::Temporary } else { Folder::Kept(&args.fig) };
+            let ran = run_study(
+                study,
+                &dir,
+                args.resume,
+                folder,
+                &pool,
+                &|done, _| progress.update(offset + done),
+                &|n| progress.update(offset + n),
+                &crate::output::INTERRUPT,
+            )?;
+            let summary = match ran {
+                Outcome::Finished { summary, .. } => summary,
+                Outcome::Interrupted { logged } => {
+                    return Err(Box::new(crate::cmd::study::interrupted(
+                        offset + logged,
+                        per * points.len(),
+                        &dir,
+                        temporary,
+                    )));
+                }
             };
             let interface = design::interface_coefficient(&args.scenario, sets);
             rows.push(DesignRow::new(d, &varies, p, &summary, interface));

@@ -120,7 +120,7 @@ pub(crate) struct Progress {
     bar: Option<ProgressBar>,
     plain: Option<Mutex<(Instant, Instant)>>,
     total: usize,
-    start_done: usize,
+    start_done: std::sync::atomic::AtomicUsize,
 }
 
 impl Progress {
@@ -138,12 +138,13 @@ impl Progress {
         });
         let now = Instant::now();
         let plain = (!quiet && !terminal).then(|| Mutex::new((now, now)));
-        Progress { bar, plain, total, start_done }
+        Progress { bar, plain, total, start_done: start_done.into() }
     }
 
     pub(crate) fn line(&self, done: usize, elapsed: Duration) -> String {
         let secs = elapsed.as_secs_f64().max(1e-9);
-        let rate = (done - self.start_done.min(done)) as f64 / secs;
+        let start = self.start_done.load(std::sync::atomic::Ordering::Relaxed);
+        let rate = (done - start.min(done)) as f64 / secs;
         let left =
             if rate > 0.0 { format!("{:.0} s", (self.total - done.min(self.total)) as f64 / rate) } else { "?".into() };
         format!(
@@ -151,6 +152,19 @@ impl Progress {
             self.total,
             100.0 * done as f64 / self.total.max(1) as f64
         )
+    }
+
+    /// Counts the rate from `done` samples on (those found in a resumed log).
+    pub(crate) fn restart_at(&self, done: usize) {
+        self.start_done.store(done, std::sync::atomic::Ordering::Relaxed);
+        if let Some(b) = &self.bar {
+            b.set_position(done as u64);
+            b.reset_eta();
+        }
+        if let Some(p) = &self.plain {
+            let now = Instant::now();
+            *p.lock().unwrap_or_else(|e| e.into_inner()) = (now, now);
+        }
     }
 
     pub(crate) fn update(&self, done: usize) {
@@ -206,7 +220,6 @@ pub fn run(args: Args) -> CliResult {
     }
     let pool = thread_pool(args.threads)?;
     let study = Study::prepare(&args.scenario, &args.sets, &config)?;
-    let header = study.header();
     // Without --out the log lives in a temporary folder removed at the end.
     let (dir, temporary) = match &args.out {
         Some(d) => (d.clone(), false),
@@ -219,42 +232,41 @@ pub fn run(args: Args) -> CliResult {
     if !temporary {
         prepare_folder(&dir, &args)?;
     }
-    let (mut log, done) =
-        if args.resume { LogWriter::resume(&dir, &header)? } else { (LogWriter::create(&dir, &header)?, 0) };
-    // A manifest says the folder is complete; while the study runs again it is not.
-    let manifest = dir.join(crate::output::MANIFEST);
-    if !temporary && manifest.exists() {
-        std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
-    }
     let total = config.shard_len();
-    if args.resume && !args.quiet {
-        crate::errln!("resuming: {done} of {total} samples found in {}", log.path().display());
-    }
-    let progress = Progress::new(total, done, args.quiet || args.json);
+    let progress = Progress::new(total, 0, args.quiet || args.json);
+    let found = std::cell::Cell::new(0);
     crate::output::stop_cleanly();
-    let ran = pool.install(|| study.run_into_until(&mut log, done, &|n| progress.update(n), &crate::output::INTERRUPT));
-    progress.finish(*ran.as_ref().unwrap_or(&done));
-    let logged = ran?;
-    drop(log);
-    if logged < total {
-        if temporary {
-            let _ = std::fs::remove_dir_all(&dir);
+    let folder = if temporary { Folder::Temporary } else { Folder::Kept(&args.fig) };
+    let opened = |done: usize, log: &Path| {
+        found.set(done);
+        progress.restart_at(done);
+        if args.resume && !args.quiet {
+            crate::errln!("resuming: {done} of {total} samples found in {}", log.display());
         }
-        return Err(Box::new(interrupted(logged, total, &dir, temporary)));
-    }
-    let result = if temporary {
-        stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| (s, Vec::new()))
-    } else {
-        finish_folder(&dir, &args.fig).map_err(|e| stiction_study::StudyError::Log(e.to_string()))
     };
+    let ran = run_study(
+        &study,
+        &dir,
+        args.resume,
+        folder,
+        &pool,
+        &opened,
+        &|n| progress.update(n),
+        &crate::output::INTERRUPT,
+    );
+    progress.finish(match &ran {
+        Ok(Outcome::Interrupted { logged }) => *logged,
+        Ok(Outcome::Finished { .. }) => total,
+        Err(_) => found.get(),
+    });
     if temporary {
         let _ = std::fs::remove_dir_all(&dir);
     }
-    let (summary, written) = result?;
+    let (summary, files) = match ran? {
+        Outcome::Interrupted { logged } => return Err(Box::new(interrupted(logged, total, &dir, temporary))),
+        Outcome::Finished { summary, files } => (summary, files),
+    };
     if !temporary {
-        let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
-        files.extend(written);
-        crate::output::write_manifest(&dir, "study", &files)?;
         report(&summary, args.json, &args.scenario)?;
         if !args.json {
             crate::outln!("\nwrote {}/{}, {}", dir.display(), files.join(", "), crate::output::MANIFEST);
@@ -262,6 +274,78 @@ pub fn run(args: Args) -> CliResult {
         return Ok(());
     }
     report(&summary, args.json, &args.scenario)
+}
+
+/// Where a study's outputs go.
+pub(crate) enum Folder<'a> {
+    /// A temporary folder: only the log, summarised at the end (the caller removes the folder).
+    Temporary,
+    /// A kept study folder: study.json, samples.csv, sensitivity.csv, figures (these figure
+    /// settings) and the manifest, written when the study is complete.
+    Kept(&'a FigureArgs),
+}
+
+/// How [`run_study`] ended.
+pub(crate) enum Outcome {
+    /// Every sample of the shard is in the log: its summary and, in a kept folder, the files
+    /// listed in its manifest (the log first).
+    Finished {
+        /// The summary, computed from the log alone.
+        summary: StudySummary,
+        /// The files of the folder (empty for a temporary one).
+        files: Vec<String>,
+    },
+    /// Stopped by `interrupt`: this many samples of the shard are in the log.
+    Interrupted {
+        /// Samples of the shard in the log.
+        logged: usize,
+    },
+}
+
+/// The one study loop, shared by `stiction study`, design studies and the Python binding: opens
+/// (or with `resume` reopens) the sample log in `dir`, removes a kept folder's manifest while it
+/// runs, tells `opened` how many samples the log already holds, runs the shard's remaining samples
+/// on `pool` into the log (`progress(n)`: samples of the shard in the log), and summarises the
+/// complete log (a kept folder gets its files and manifest). An `interrupt` stops it early with
+/// what it logged.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn run_study(
+    study: &Study,
+    dir: &Path,
+    resume: bool,
+    folder: Folder,
+    pool: &rayon::ThreadPool,
+    opened: &dyn Fn(usize, &Path),
+    progress: &(dyn Fn(usize) + Sync),
+    interrupt: &std::sync::atomic::AtomicBool,
+) -> Result<Outcome, Box<dyn std::error::Error>> {
+    let header = study.header();
+    let (mut log, done) = if resume { LogWriter::resume(dir, &header)? } else { (LogWriter::create(dir, &header)?, 0) };
+    // A manifest says the folder is complete; while the study runs again it is not.
+    let manifest = dir.join(crate::output::MANIFEST);
+    if matches!(folder, Folder::Kept(_)) && manifest.exists() {
+        std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
+    }
+    opened(done, log.path());
+    let logged = pool.install(|| study.run_into_until(&mut log, done, progress, interrupt))?;
+    drop(log);
+    if logged < study.config.shard_len() {
+        return Ok(Outcome::Interrupted { logged });
+    }
+    match folder {
+        Folder::Temporary => {
+            let (summary, _) = stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None)?;
+            Ok(Outcome::Finished { summary, files: Vec::new() })
+        }
+        Folder::Kept(fig) => {
+            let (summary, written) =
+                finish_folder(dir, fig).map_err(|e| stiction_study::StudyError::Log(e.to_string()))?;
+            let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
+            files.extend(written);
+            crate::output::write_manifest(dir, "study", &files)?;
+            Ok(Outcome::Finished { summary, files })
+        }
+    }
 }
 
 /// The --out rules of a study folder, which is written in place (the log grows sample by sample):
@@ -355,14 +439,13 @@ pub fn study_json(
     let dir = temporary_log_dir();
     let _ = std::fs::remove_dir_all(&dir);
     ensure_dir(&dir)?;
-    let ran = (|| -> Result<StudySummary, Box<dyn std::error::Error>> {
-        let mut log = LogWriter::create(&dir, &study.header())?;
-        pool.install(|| study.run_into(&mut log, 0, progress))?;
-        drop(log);
-        Ok(stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| s)?)
-    })();
+    let never = std::sync::atomic::AtomicBool::new(false);
+    let ran = run_study(&study, &dir, false, Folder::Temporary, &pool, &|_, _| {}, progress, &never);
     let _ = std::fs::remove_dir_all(&dir);
-    Ok(serde_json::to_value(ran?)?)
+    match ran? {
+        Outcome::Finished { summary, .. } => Ok(serde_json::to_value(summary)?),
+        Outcome::Interrupted { logged } => Err(format!("the study stopped after {logged} samples").into()),
+    }
 }
 
 /// Writes study.json, samples.csv, sensitivity.csv and the figures of the study whose complete
