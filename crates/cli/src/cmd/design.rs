@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use stiction_plot::{Chart, Series};
 use stiction_study::design::{self, DesignRow, RankBy, Vary};
 use stiction_study::summary::digits;
-use stiction_study::{MAX_THREADS, Study, StudyConfig};
+use stiction_study::{MAX_THREADS, StudyConfig};
 
 use crate::cmd::study::{Args, Folder, Outcome, Progress, run_study};
 use crate::output::{CliResult, ensure_dir, print_json};
@@ -69,9 +69,9 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
     let mut studies = Vec::with_capacity(points.len());
     for (d, p) in points.iter().enumerate() {
         let sets = design::sets_for(&args.sets, &varies, p);
-        let study =
-            Study::prepare(&args.scenario, &sets, &config).map_err(|e| format!("design {d} ({}): {e}", name(p)))?;
-        studies.push((sets, study));
+        let study = crate::cmd::study::prepare_study(&args.scenario, &sets, &config)
+            .map_err(|e| format!("design {d} ({}): {e}", name(p)))?;
+        studies.push(study);
     }
     let temporary = args.out.is_none();
     let root = match &args.out {
@@ -87,7 +87,7 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
     let mut rows = Vec::with_capacity(points.len());
     crate::output::stop_cleanly();
     let result = (|| -> CliResult {
-        for (d, (p, (sets, study))) in points.iter().zip(&studies).enumerate() {
+        for (d, (p, study)) in points.iter().zip(&studies).enumerate() {
             let dir = design_folder(&root, d);
             ensure_dir(&dir)?;
             let offset = d * per;
@@ -103,7 +103,7 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
                 &crate::output::INTERRUPT,
             )?;
             let summary = match ran {
-                Outcome::Finished { summary, .. } => summary,
+                Outcome::Finished { summary, .. } => *summary,
                 Outcome::Interrupted { logged } => {
                     return Err(Box::new(crate::cmd::study::interrupted(
                         offset + logged,
@@ -113,8 +113,7 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
                     )));
                 }
             };
-            let interface = design::interface_coefficient(&args.scenario, sets);
-            rows.push(DesignRow::new(d, &varies, p, &summary, interface));
+            rows.push(DesignRow::new(d, &varies, p, &summary));
         }
         Ok(())
     })();
@@ -160,7 +159,7 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
 fn criterion_name(r: RankBy) -> &'static str {
     match r {
         RankBy::Narrowest => "width of the 5-95 % interval of mu_e,a",
-        RankBy::LeastBias => "bias of the median mu_e,a against s / p_mean",
+        RankBy::LeastBias => "median bias of mu_e,a against each device's own s / p_mean",
         RankBy::MostUsable => "fraction of experiments with a usable eq. 10 line",
     }
 }
@@ -191,7 +190,17 @@ fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], b
     let mut head: Vec<String> = vec!["rank".into(), "design".into()];
     head.extend(varies.iter().map(|v| v.path.clone()));
     head.extend(
-        ["usable", "mu_e,a median [95 % CI]", "5-95 % width", "F_a0 median (uN)", "s/p_mean", "bias"].map(String::from),
+        [
+            "usable",
+            "mu_e,a median [95 % CI]",
+            "5-95 % width",
+            "mu_e,a lab 95 % CI",
+            "F_a0 median (uN)",
+            "F_a0 lab 95 % CI (uN)",
+            "s/p_mean",
+            "bias",
+        ]
+        .map(String::from),
     );
     let mut t = crate::output::TextTable::new(&head);
     let dash = || "-".to_string();
@@ -213,11 +222,28 @@ fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], b
             Some(se) => digits(w, Some(se)),
             None => format!("~{}", digits(w, Some(10f64.powf(w.abs().log10().floor() - 1.0)))),
         }));
+        // The median width of a lab interval, to the digit its order-statistic interval allows.
+        let median = |s: Option<&stiction_study::Spread>, scale: f64| {
+            s.map(|s| digits(s.median * scale, s.median_ci.map(|[a, b]| (b - a) / 3.92 * scale)))
+        };
+        let pair = |a: Option<String>, b: Option<String>| match (a, b) {
+            (None, None) => dash(),
+            (a, b) => format!("{} / {}", a.unwrap_or_else(dash), b.unwrap_or_else(dash)),
+        };
+        let li = &r.lab_intervals;
+        cells.push(pair(
+            median(li.mu_ci95_width.as_ref(), 1.0),
+            median(li.mu_ci95_width_with_calibration.as_ref(), 1.0),
+        ));
         cells.push(r.apparent_adhesion_force_n.as_ref().map_or_else(dash, |s| {
             let se = s.median_ci.map(|[a, b]| (b - a) / 3.92 * 1e6);
             digits(s.median * 1e6, se)
         }));
-        cells.push(r.interface_mu.as_ref().map_or_else(dash, |i| digits(i.mean, None)));
+        cells.push(pair(
+            median(li.fa0_ci95_width_n.as_ref(), 1e6),
+            median(li.fa0_ci95_width_with_calibration_n.as_ref(), 1e6),
+        ));
+        cells.push(median(r.interface_mu.as_ref(), 1.0).unwrap_or_else(dash));
         cells.push(r.mu_bias.map_or_else(dash, |b| digits(b, r.mu_bias_se)));
         t.row(cells);
     }
@@ -236,9 +262,12 @@ fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], b
             crate::outln!("    {w}");
         }
     }
-    for r in rows.iter().filter(|r| r.interface_mu_reason.is_some()) {
-        crate::outln!("  design {}: no s / p_mean: {}", r.design, r.interface_mu_reason.as_deref().unwrap_or(""));
-    }
+    crate::outln!(
+        "  lab 95 % CI: median width of the interval each experiment's own eq. 10 fit gives, from the regression \
+         alone / with the calibration uncertainty ({} draws); s/p_mean and bias: median over the experiments of \
+         each device's own interface coefficient and of mu_e,a minus it",
+        rows.first().map_or(0, |r| r.lab_intervals.calibration_draws)
+    );
 }
 
 /// The criterion against varied parameter `k`, one series per combination of the other varied

@@ -219,7 +219,7 @@ pub fn run(args: Args) -> CliResult {
         return crate::cmd::design::run(args, config);
     }
     let pool = thread_pool(args.threads)?;
-    let study = Study::prepare(&args.scenario, &args.sets, &config)?;
+    let study = prepare_study(&args.scenario, &args.sets, &config)?;
     // Without --out the log lives in a temporary folder removed at the end.
     let (dir, temporary) = match &args.out {
         Some(d) => (d.clone(), false),
@@ -264,7 +264,7 @@ pub fn run(args: Args) -> CliResult {
     }
     let (summary, files) = match ran? {
         Outcome::Interrupted { logged } => return Err(Box::new(interrupted(logged, total, &dir, temporary))),
-        Outcome::Finished { summary, files } => (summary, files),
+        Outcome::Finished { summary, files } => (*summary, files),
     };
     if !temporary {
         report(&summary, args.json, &args.scenario)?;
@@ -274,6 +274,41 @@ pub fn run(args: Args) -> CliResult {
         return Ok(());
     }
     report(&summary, args.json, &args.scenario)
+}
+
+/// Calibration draws per virtual experiment behind the widths of the lab's intervals with the
+/// calibration uncertainty (the 2.5 and 97.5 percentiles of 200 draws; each design's summary is
+/// the median over its experiments, so the draws' own noise averages out).
+pub const LAB_CALIBRATION_DRAWS: usize = 200;
+
+/// [`Study::prepare`] with the lab's eq. 10 intervals of every experiment: the fit crate's
+/// eq. 10 ([`stiction_fit::eq10::fit_eq10`]) on the experiment's slips, with the reduction the lab
+/// used and the calibration uncertainties the scenario states for a_clamp, a_pull and F_spring.
+pub(crate) fn prepare_study(
+    scenario: &Path,
+    sets: &[String],
+    config: &StudyConfig,
+) -> Result<Study, stiction_study::StudyError> {
+    let study = Study::prepare(scenario, sets, config)?;
+    let sources = stiction_fit::calibration_sources(study.scenario_json(), &study.reduction())
+        .map_err(|e| stiction_study::StudyError::Setting(e.to_string()))?;
+    let intervals = move |slips: &[(f64, f64)], reduction: &stiction_meter::Reduction, seed: u64| {
+        let points: Vec<stiction_fit::Eq10Point> = slips
+            .iter()
+            .map(|&(v_clamp_v, v_pull_v)| stiction_fit::Eq10Point { v_clamp_v, v_pull_v, v_pull_sd_v: None })
+            .collect();
+        let width = |c: Option<[f64; 2]>| c.map(|[a, b]| b - a);
+        match stiction_fit::eq10::fit_eq10(&points, reduction, &sources, LAB_CALIBRATION_DRAWS, seed) {
+            Ok(f) => stiction_study::FitIntervals {
+                mu_ci95_width: width(f.mu_apparent.ci95),
+                mu_ci95_width_with_calibration: width(f.mu_apparent.ci95_with_calibration),
+                fa0_ci95_width_n: width(f.apparent_adhesion_force_n.ci95),
+                fa0_ci95_width_with_calibration_n: width(f.apparent_adhesion_force_n.ci95_with_calibration),
+            },
+            Err(_) => stiction_study::FitIntervals::default(),
+        }
+    };
+    Ok(study.with_intervals(std::sync::Arc::new(intervals), LAB_CALIBRATION_DRAWS))
 }
 
 /// Where a study's outputs go.
@@ -291,7 +326,7 @@ pub(crate) enum Outcome {
     /// listed in its manifest (the log first).
     Finished {
         /// The summary, computed from the log alone.
-        summary: StudySummary,
+        summary: Box<StudySummary>,
         /// The files of the folder (empty for a temporary one).
         files: Vec<String>,
     },
@@ -335,7 +370,7 @@ pub(crate) fn run_study(
     match folder {
         Folder::Temporary => {
             let (summary, _) = stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None)?;
-            Ok(Outcome::Finished { summary, files: Vec::new() })
+            Ok(Outcome::Finished { summary: Box::new(summary), files: Vec::new() })
         }
         Folder::Kept(fig) => {
             let (summary, written) =
@@ -343,7 +378,7 @@ pub(crate) fn run_study(
             let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
             files.extend(written);
             crate::output::write_manifest(dir, "study", &files)?;
-            Ok(Outcome::Finished { summary, files })
+            Ok(Outcome::Finished { summary: Box::new(summary), files })
         }
     }
 }
@@ -435,7 +470,7 @@ pub fn study_json(
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     config.validate()?;
     let pool = thread_pool(threads)?;
-    let study = Study::prepare(scenario, sets, config)?;
+    let study = prepare_study(scenario, sets, config)?;
     let dir = temporary_log_dir();
     let _ = std::fs::remove_dir_all(&dir);
     ensure_dir(&dir)?;
@@ -499,6 +534,35 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
     };
     show("mu_e,a", &summary.mu_apparent, 1.0, "");
     show("F_a0", &summary.apparent_adhesion_force_n, 1e6, " uN");
+    {
+        use stiction_study::summary::digits;
+        // A median to the digit its order-statistic interval allows.
+        let median = |x: &Option<stiction_study::Spread>, scale: f64| {
+            x.as_ref()
+                .map_or("-".to_string(), |s| digits(s.median * scale, s.median_ci.map(|[a, b]| (b - a) / 3.92 * scale)))
+        };
+        let li = &summary.lab_intervals;
+        if li.mu_ci95_width.is_some() {
+            crate::outln!(
+                "  {:<28} mu_e,a {} (regression) / {} (with calibration, {} draws); F_a0 {} / {} uN",
+                "lab 95 % CI, median width",
+                median(&li.mu_ci95_width, 1.0),
+                median(&li.mu_ci95_width_with_calibration, 1.0),
+                li.calibration_draws,
+                median(&li.fa0_ci95_width_n, 1e6),
+                median(&li.fa0_ci95_width_with_calibration_n, 1e6)
+            );
+        }
+        if let Some(b) = &summary.mu_bias {
+            crate::outln!(
+                "  {:<28} each device's own s / p_mean: median {}; bias of mu_e,a against it: median {}, mean {}",
+                "interface coefficient",
+                median(&summary.interface_mu, 1.0),
+                median(&summary.mu_bias, 1.0),
+                digits(b.mean, Some(b.mean_se).filter(|e| *e > 0.0))
+            );
+        }
+    }
     if let Some(r) = &summary.reference {
         crate::outln!("  {}", reference::text(r));
     }
