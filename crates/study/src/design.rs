@@ -158,6 +158,26 @@ impl Vary {
     }
 }
 
+impl Vary {
+    /// A varied field from the scenario's `design` section: `path` with its listed `values`
+    /// (as `--set` takes them), or a `range` "LO..HI"; errors name `design.vary.PATH` or
+    /// `design.ranges.PATH`.
+    pub fn from_section(path: &str, values: Vec<String>, range: Option<&str>) -> Result<Vary, StudyError> {
+        if let Some(r) = range {
+            let range = VaryRange::parse(r)
+                .unwrap_or_else(|| Err("expected LO..HI".into()))
+                .map_err(|m| StudyError::Setting(format!("`design.ranges.{path}` = {r:?}: {m}")))?;
+            return Ok(Vary { path: path.to_string(), values: Vec::new(), range: Some(range) });
+        }
+        for (k, v) in values.iter().enumerate() {
+            if values[..k].contains(v) {
+                return Err(StudyError::Setting(format!("`design.vary.{path}`: the value {v:?} is given twice")));
+            }
+        }
+        Ok(Vary { path: path.to_string(), values, range: None })
+    }
+}
+
 /// The design points: every combination of the varied values, the first `--vary` slowest.
 /// Refuses a path varied twice, a path also given with `--set` (one source of truth), and more
 /// than [`MAX_DESIGNS`] points.

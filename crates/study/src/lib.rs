@@ -286,8 +286,18 @@ impl Study {
     /// device (its conversion is what the lab reduces every sample with).
     pub fn prepare(path: &Path, sets: &[String], config: &StudyConfig) -> Result<Study, StudyError> {
         config.validate()?;
-        let base = Scenario::load_json(path, sets)?;
+        let mut base = Scenario::load_json(path, sets)?;
+        // The `design` section describes a design study, not a device: each design's study is
+        // the scenario without it (the same bytes as the file without the section).
+        let design = base.as_object_mut().and_then(|m| m.remove("design"));
         let nominal = Scenario::from_value(base.clone(), path)?;
+        if let Some(d) = design {
+            let mut with = base.clone();
+            if let Some(m) = with.as_object_mut() {
+                m.insert("design".into(), d);
+            }
+            Scenario::from_value(with, path)?;
+        }
         let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let reduction = Meter::from_scenario(&nominal, &base_dir)
             .and_then(|m| m.device_reduction())

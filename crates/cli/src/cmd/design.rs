@@ -49,10 +49,65 @@ pub fn design_folder(out: &Path, d: usize) -> PathBuf {
     out.join(format!("design-{d:03}"))
 }
 
-/// Runs a design study (the study arguments with at least one --vary).
-pub fn run(args: Args, config: StudyConfig) -> CliResult {
-    let mut varies: Vec<Vary> = args.vary.iter().map(|v| Vary::parse(v)).collect::<Result<_, _>>()?;
-    let points = design::grid(&mut varies, &args.sets, args.design_points, args.seed)?;
+/// The scenario's `design` section (with the `--set`s applied), checked field by field; None
+/// when it has none.
+pub fn section(
+    scenario: &Path,
+    sets: &[String],
+) -> Result<Option<stiction_scenario::design::DesignSpec>, Box<dyn std::error::Error>> {
+    let value = stiction_scenario::Scenario::load_json(scenario, sets)?;
+    if value.get("design").is_none_or(serde_json::Value::is_null) {
+        return Ok(None);
+    }
+    let parsed = stiction_scenario::Scenario::from_value_with_sets(value, scenario, sets)?;
+    Ok(parsed.design)
+}
+
+/// Runs a design study: the study arguments with at least one --vary, or the scenario's `design`
+/// section (`section`); flags override the section, and the program says so.
+pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::design::DesignSpec>) -> CliResult {
+    let say = |what: &str| {
+        if !args.quiet && !args.json {
+            crate::errln!("{what}");
+        }
+    };
+    let (mut varies, design_points) = match &section {
+        Some(sec) if args.vary.is_empty() => {
+            let varies: Vec<Vary> = sec
+                .varied()
+                .map_err(|m| format!("{}: {m}", args.scenario.display()))?
+                .into_iter()
+                .map(|(path, values, range)| Vary::from_section(&path, values, range.as_deref()))
+                .collect::<Result<_, _>>()
+                .map_err(|e| format!("{}: {e}", args.scenario.display()))?;
+            if args.design_points.is_some() && sec.points.is_some() {
+                say("--design-points overrides the scenario's `design.points`");
+            }
+            (varies, args.design_points.or(sec.points))
+        }
+        _ => {
+            if section.as_ref().is_some_and(|s| !s.vary.is_empty() || !s.ranges.is_empty()) {
+                say(
+                    "--vary overrides the scenario's design (`design.vary`, `design.ranges` and `design.points` are not used)",
+                );
+            }
+            (args.vary.iter().map(|v| Vary::parse(v)).collect::<Result<_, _>>()?, args.design_points)
+        }
+    };
+    let criterion = section.as_ref().and_then(|s| s.criterion);
+    if args.rank_by.is_some() && criterion.is_some() {
+        say("--rank-by overrides the scenario's `design.criterion`");
+    }
+    let rank_by: RankBy = match (args.rank_by, criterion) {
+        (Some(r), _) => r.into(),
+        (None, Some(c)) => match c {
+            stiction_scenario::design::DesignCriterion::Narrowest => RankBy::Narrowest,
+            stiction_scenario::design::DesignCriterion::LeastBias => RankBy::LeastBias,
+            stiction_scenario::design::DesignCriterion::MostUsable => RankBy::MostUsable,
+        },
+        (None, None) => RankBy::Narrowest,
+    };
+    let points = design::grid(&mut varies, &args.sets, design_points, args.seed)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
         if t == 0 || t > MAX_THREADS {
@@ -122,7 +177,6 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
         let _ = std::fs::remove_dir_all(&root);
     }
     result?;
-    let rank_by: RankBy = args.rank_by.into();
     let ranking = rank_by.rank(&rows);
     if let Some(out) = &args.out {
         let write = |name: &str, bytes: &[u8]| stiction_units::io::write_atomic(&out.join(name), bytes);

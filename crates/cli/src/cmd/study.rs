@@ -73,15 +73,17 @@ pub struct Args {
     /// A design study: run the whole study once per value of this field (values as --set takes
     /// them), over the grid of every --vary; same seeds in every design. Writes OUT/design-NNN
     /// (each a study folder), designs.csv, designs.json and a design chart per varied field.
+    /// Overrides the scenario's `design` section (which offers the same).
     #[arg(long = "vary", value_name = "PATH=V1,V2,...")]
     pub vary: Vec<String>,
     /// With a range --vary "PATH=LO..HI": the number of design points of the space-filling (Latin
     /// hypercube, seeded by --seed) design over all ranges.
-    #[arg(long, value_name = "N", requires = "vary")]
+    #[arg(long, value_name = "N")]
     pub design_points: Option<usize>,
-    /// How a design study ranks its designs.
-    #[arg(long, value_enum, default_value = "narrowest", requires = "vary")]
-    pub rank_by: crate::cmd::design::RankByArg,
+    /// How a design study ranks its designs (default: the scenario's `design.criterion`, else
+    /// narrowest).
+    #[arg(long, value_enum)]
+    pub rank_by: Option<crate::cmd::design::RankByArg>,
     /// Figure size and font.
     #[command(flatten)]
     pub fig: FigureArgs,
@@ -215,8 +217,14 @@ pub fn run(args: Args) -> CliResult {
     };
     // Counts first: nothing is read or started before they are known to be sane.
     config.validate()?;
-    if !args.vary.is_empty() {
-        return crate::cmd::design::run(args, config);
+    let section = crate::cmd::design::section(&args.scenario, &args.sets)?;
+    if !args.vary.is_empty() || section.is_some() {
+        return crate::cmd::design::run(args, config, section);
+    }
+    if args.design_points.is_some() || args.rank_by.is_some() {
+        return Err("--design-points and --rank-by belong to a design study: add --vary PATH=V1,V2,... (or a \
+                    `design` section in the scenario)"
+            .into());
     }
     let pool = thread_pool(args.threads)?;
     let study = prepare_study(&args.scenario, &args.sets, &config)?;
