@@ -72,9 +72,7 @@ fn each_design_is_the_single_study_of_its_scenario_byte_for_byte() {
     for f in ["design_actuators_clamp_plate_count.svg", "design_actuators_pull_spring_stiffness.csv", "designs.json"] {
         assert!(out.join(f).is_file(), "{f}");
     }
-    // The same in --json, with the interface's own coefficient s A_r / (L + F_adh) of the nominal
-    // device: recomputed here from `stiction run --json` of design 0's scenario (the explicit
-    // solver's real area, true load and adhesive load at each clamp voltage in contact).
+    // The same in --json.
     let mut j = base.to_vec();
     j.extend(["--vary", PLATES, "--vary", SPRING, "--json", "--rank-by", "most-usable"]);
     let v = stiction_json(&j);
@@ -82,15 +80,33 @@ fn each_design_is_the_single_study_of_its_scenario_byte_for_byte() {
     assert_eq!(designs.len(), 4);
     assert_eq!(designs[2]["values"]["actuators.clamp.plate_count"], "60");
     assert_eq!(v["rank_by"], "most-usable");
-    let r = stiction_json(&[
-        "run",
-        "scenarios/tas2000.json",
-        "--json",
-        "--set",
-        "actuators.clamp.plate_count=30",
-        "--set",
-        "actuators.pull.spring.stiffness=1 N/m",
-    ]);
+    // The interface's own coefficient is each sample's: s A_r / (L + F_adh) of that sample's
+    // device (its drawn parameters and its own sidewall, surface.seed = seed + i), averaged over
+    // its clamp voltages in contact with L > 0. Replayed here with `stiction run --json` of
+    // design 0's scenario with sample 1's draws from samples.csv (the explicit solver's real
+    // area, true load and adhesive load at each clamp voltage). Deliberate bug caught: the
+    // coefficient of the nominal device (the file's sidewall and values) for every sample.
+    let csv = std::fs::read_to_string(out.join("design-000/samples.csv")).unwrap();
+    let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name}"));
+    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    let row = &rows[1];
+    let cell = |name: &str| row[col(name)].to_string();
+    let spring = format!("meter.spring_force={{\"value\": {}, \"sd\": \"10 uN\"}}", cell("meter.spring_force_n"));
+    let sets = [
+        "actuators.clamp.plate_count=30".to_string(),
+        "actuators.pull.spring.stiffness=1 N/m".into(),
+        format!("actuators.clamp.conversion_factor={}", cell("actuators.clamp.conversion_factor_n_per_v2")),
+        format!("actuators.pull.conversion_factor={}", cell("actuators.pull.conversion_factor_n_per_v2")),
+        spring,
+        format!("surface.summit_radius={}", cell("surface.summit_radius_m")),
+        "surface.seed=8".into(),
+    ];
+    let mut r_args = vec!["run", "scenarios/tas2000.json", "--json"];
+    for s in &sets {
+        r_args.extend(["--set", s]);
+    }
+    let r = stiction_json(&r_args);
     let mus: Vec<f64> = r["points"]
         .as_array()
         .unwrap()
@@ -99,10 +115,26 @@ fn each_design_is_the_single_study_of_its_scenario_byte_for_byte() {
         .map(|p| 1.4e9 * num(p, "real_area_m2") / (num(p, "true_load_n") + num(p, "adhesive_load_n")))
         .collect();
     let want = mus.iter().sum::<f64>() / mus.len() as f64;
-    let got = num(&designs[0]["interface_mu"], "mean");
-    assert!((got - want).abs() < 1e-12 * want, "interface mu {got} vs {want} from the run's points");
-    let bias = num(&designs[0], "mu_bias");
-    assert!((bias - (num(&designs[0]["mu_apparent"], "median") - got)).abs() < 1e-15, "{bias}");
+    let got: f64 = cell("interface_mu").parse().unwrap();
+    assert!((got - want).abs() < 1e-12 * want, "sample 1's interface mu {got} vs {want} from its replayed run");
+    // The design's bias is the median of each experiment's mu_e,a minus its own coefficient.
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+    };
+    let bias: Vec<f64> = rows
+        .iter()
+        .filter(|r| !r[col("mu_apparent")].is_empty() && !r[col("interface_mu")].is_empty())
+        .map(|r| r[col("mu_apparent")].parse::<f64>().unwrap() - r[col("interface_mu")].parse::<f64>().unwrap())
+        .collect();
+    let want_bias = median(bias);
+    let got_bias = num(&designs[0], "mu_bias");
+    assert!((got_bias - want_bias).abs() < 1e-12, "design bias {got_bias} vs {want_bias} from samples.csv");
+    // Both lab intervals per design, the calibrated one wider than the regression's alone.
+    let li = &designs[0]["lab_intervals"];
+    let (w, wc) = (num(&li["mu_ci95_width"], "median"), num(&li["mu_ci95_width_with_calibration"], "median"));
+    assert!(w > 0.0 && wc > w, "lab interval widths {w} (regression) and {wc} (with calibration)");
 }
 
 #[test]

@@ -541,6 +541,7 @@ fn study_json(
             Study::prepare_value(value, Path::new("<scenario>"), &s.base, &config)
         }
     }
+    .and_then(stiction_cli::api::with_lab_intervals)
     .map_err(err)?;
     let progress = Progress::new(progress);
     let report = progress.clone();

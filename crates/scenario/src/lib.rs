@@ -21,6 +21,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+pub mod design;
 mod device;
 mod overrides;
 mod spec;
@@ -78,6 +79,9 @@ pub struct Scenario {
     /// Measured values of this device to compare with (printed and drawn only when given).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceSpec>,
+    /// The design study this file offers (`stiction study`; command-line `--vary` overrides it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub design: Option<design::DesignSpec>,
     /// The scenario as read, after `--set` (units and uncertain-parameter objects as written):
     /// the source of the uncertainties (`sd`) and of [`Scenario::to_input_json`].
     #[serde(skip)]

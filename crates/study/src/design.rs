@@ -10,16 +10,14 @@
 //!
 //! Per design ([`DesignRow`]): the fraction of experiments with a usable eq. 10 line (and the
 //! reasons of the others), the spread of mu_e,a and F_a0 with their Monte Carlo errors, the
-//! width of the 5-95 % interval of mu_e,a (what the lab would quote for one device), and the
-//! interface's own friction coefficient ([`interface_coefficient`]) with the bias of the median
-//! mu_e,a against it.
+//! width of the 5-95 % interval of mu_e,a over the virtual meters, the widths of the 95 % intervals
+//! each lab would quote for its own eq. 10 fit without and with the calibration uncertainty, and
+//! the bias of each experiment's mu_e,a against its own device's interface coefficient
+//! ([`crate::interface_mu`]).
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use serde::Serialize;
-use stiction_meter::Meter;
-use stiction_scenario::Scenario;
 
 use crate::StudyError;
 use crate::summary::{Spread, StudySummary};
@@ -160,6 +158,26 @@ impl Vary {
     }
 }
 
+impl Vary {
+    /// A varied field from the scenario's `design` section: `path` with its listed `values`
+    /// (as `--set` takes them), or a `range` "LO..HI"; errors name `design.vary.PATH` or
+    /// `design.ranges.PATH`.
+    pub fn from_section(path: &str, values: Vec<String>, range: Option<&str>) -> Result<Vary, StudyError> {
+        if let Some(r) = range {
+            let range = VaryRange::parse(r)
+                .unwrap_or_else(|| Err("expected LO..HI".into()))
+                .map_err(|m| StudyError::Setting(format!("`design.ranges.{path}` = {r:?}: {m}")))?;
+            return Ok(Vary { path: path.to_string(), values: Vec::new(), range: Some(range) });
+        }
+        for (k, v) in values.iter().enumerate() {
+            if values[..k].contains(v) {
+                return Err(StudyError::Setting(format!("`design.vary.{path}`: the value {v:?} is given twice")));
+            }
+        }
+        Ok(Vary { path: path.to_string(), values, range: None })
+    }
+}
+
 /// The design points: every combination of the varied values, the first `--vary` slowest.
 /// Refuses a path varied twice, a path also given with `--set` (one source of truth), and more
 /// than [`MAX_DESIGNS`] points.
@@ -260,49 +278,6 @@ pub fn sets_for(sets: &[String], varies: &[Vary], point: &[String]) -> Vec<Strin
     all
 }
 
-/// The friction coefficient of the interface itself, `s / p_mean = s A_r / N`, with s the
-/// material's shear strength, A_r the real contact area and N = L + F_adh the total normal force
-/// on the contacts (the true clamp load plus the adhesive load), from the explicit (or chosen)
-/// contact model's state at each clamp voltage of the nominal device (uncertain parameters at
-/// their nominal values, the file's surface) that brings the shoe into contact with L > 0.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct InterfaceCoefficient {
-    /// Mean of `s A_r / N` over those clamp voltages.
-    pub mean: f64,
-    /// Smallest of them.
-    pub min: f64,
-    /// Largest.
-    pub max: f64,
-    /// Number of clamp voltages.
-    pub points: usize,
-}
-
-/// [`InterfaceCoefficient`] of the scenario at `path` with `sets`; Err: why it cannot be given.
-pub fn interface_coefficient(path: &Path, sets: &[String]) -> Result<InterfaceCoefficient, String> {
-    let value = Scenario::load_json(path, sets).map_err(|e| e.to_string())?;
-    let scenario = Scenario::from_value(value, path).map_err(|e| e.to_string())?;
-    let s = scenario.material.as_ref().map(|m| m.shear_strength).ok_or("the scenario has no material section")?;
-    let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let mut meter = Meter::from_scenario(&scenario, &base_dir).map_err(|e| e.to_string())?;
-    let r = meter.run(&mut |_, _| {}).map_err(|e| e.to_string())?;
-    let mu: Vec<f64> = r
-        .points
-        .iter()
-        .filter(|p| p.in_contact && p.error.is_none() && p.true_load_n > 0.0 && p.real_area_m2 > 0.0)
-        .map(|p| s * p.real_area_m2 / (p.true_load_n + p.adhesive_load_n))
-        .filter(|m| m.is_finite())
-        .collect();
-    if mu.is_empty() {
-        return Err("the nominal device is in contact with L > 0 at none of its clamp voltages".into());
-    }
-    Ok(InterfaceCoefficient {
-        mean: mu.iter().sum::<f64>() / mu.len() as f64,
-        min: mu.iter().copied().fold(f64::INFINITY, f64::min),
-        max: mu.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        points: mu.len(),
-    })
-}
-
 /// One design point's results.
 #[derive(Debug, Clone, Serialize)]
 pub struct DesignRow {
@@ -329,14 +304,17 @@ pub struct DesignRow {
     /// Its standard error, from the order-statistic intervals of p05 and p95 (each half-width /
     /// 1.96, added in quadrature).
     pub mu_interval_width_se: Option<f64>,
-    /// The interface's own coefficient s / p_mean on the nominal device.
-    pub interface_mu: Option<InterfaceCoefficient>,
-    /// Why there is no `interface_mu`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub interface_mu_reason: Option<String>,
-    /// Median mu_e,a minus the interface's mean coefficient.
+    /// Widths of the 95 % intervals the lab quotes for each experiment's eq. 10 fit, without and
+    /// with the calibration uncertainty (spreads over the experiments with a fit).
+    pub lab_intervals: crate::summary::LabIntervals,
+    /// The interface's own coefficient `s / p_mean` of each experiment's device
+    /// ([`crate::interface_mu`]), over the experiments with a fit.
+    pub interface_mu: Option<Spread>,
+    /// Per-experiment bias `mu_e,a - s / p_mean` (each against its own device's coefficient).
+    pub mu_bias_spread: Option<Spread>,
+    /// Median of the per-experiment bias.
     pub mu_bias: Option<f64>,
-    /// Its standard error (the median's, from its order-statistic interval).
+    /// Its standard error (from the median's order-statistic interval).
     pub mu_bias_se: Option<f64>,
 }
 
@@ -347,26 +325,13 @@ fn se_of(ci: Option<[f64; 2]>) -> Option<f64> {
 
 impl DesignRow {
     /// The row of design `design` at the point `values` from its study summary.
-    pub fn new(
-        design: usize,
-        varies: &[Vary],
-        point: &[String],
-        summary: &StudySummary,
-        interface: Result<InterfaceCoefficient, String>,
-    ) -> DesignRow {
+    pub fn new(design: usize, varies: &[Vary], point: &[String], summary: &StudySummary) -> DesignRow {
         let n = summary.samples_done;
         let f = if n > 0 { summary.with_fit as f64 / n as f64 } else { 0.0 };
         let mu = summary.mu_apparent.clone();
         let width = mu.as_ref().map(|s| s.p95 - s.p05);
         let width_se = mu.as_ref().and_then(|s| Some(se_of(s.p05_ci)?.hypot(se_of(s.p95_ci)?)));
-        let (interface_mu, interface_mu_reason) = match interface {
-            Ok(i) => (Some(i), None),
-            Err(e) => (None, Some(e)),
-        };
-        let bias = match (&mu, &interface_mu) {
-            (Some(s), Some(i)) => Some(s.median - i.mean),
-            _ => None,
-        };
+        let bias = summary.mu_bias.clone();
         DesignRow {
             design,
             values: varies.iter().zip(point).map(|(v, x)| (v.path.clone(), x.clone())).collect(),
@@ -375,14 +340,15 @@ impl DesignRow {
             usable_fraction: f,
             usable_fraction_se: if n > 0 { (f * (1.0 - f) / n as f64).sqrt() } else { 0.0 },
             reasons: summary.reasons.clone(),
-            mu_bias_se: bias.and(mu.as_ref().and_then(|s| se_of(s.median_ci))),
+            mu_bias: bias.as_ref().map(|b| b.median),
+            mu_bias_se: bias.as_ref().and_then(|b| se_of(b.median_ci)),
+            mu_bias_spread: bias,
+            lab_intervals: summary.lab_intervals.clone(),
+            interface_mu: summary.interface_mu.clone(),
             mu_apparent: mu,
             apparent_adhesion_force_n: summary.apparent_adhesion_force_n.clone(),
             mu_interval_width: width,
             mu_interval_width_se: width_se,
-            interface_mu,
-            interface_mu_reason,
-            mu_bias: bias,
         }
     }
 }
@@ -451,9 +417,17 @@ pub fn designs_csv(varies: &[Vary], rows: &[DesignRow]) -> Result<Vec<u8>, Study
             "fa0_p05_n",
             "fa0_p95_n",
             "fa0_sd_n",
+            "mu_ci95_width",
+            "mu_ci95_width_with_calibration",
+            "fa0_ci95_width_n",
+            "fa0_ci95_width_with_calibration_n",
             "interface_mu",
             "mu_bias",
             "mu_bias_se",
+            "mu_bias_mean",
+            "mu_bias_mean_se",
+            "mu_bias_p05",
+            "mu_bias_p95",
         ]
         .map(String::from),
     );
@@ -464,6 +438,8 @@ pub fn designs_csv(varies: &[Vary], rows: &[DesignRow]) -> Result<Vec<u8>, Study
         f.extend(varies.iter().map(|v| r.values.get(&v.path).cloned().unwrap_or_default()));
         let m = r.mu_apparent.as_ref();
         let fa = r.apparent_adhesion_force_n.as_ref();
+        let li = &r.lab_intervals;
+        let b = r.mu_bias_spread.as_ref();
         let reasons: Vec<String> = r.reasons.iter().map(|(k, n)| format!("{k}:{n}")).collect();
         f.extend([
             r.samples.to_string(),
@@ -485,9 +461,17 @@ pub fn designs_csv(varies: &[Vary], rows: &[DesignRow]) -> Result<Vec<u8>, Study
             o(fa.map(|s| s.p05)),
             o(fa.map(|s| s.p95)),
             o(fa.map(|s| s.sd)),
-            o(r.interface_mu.as_ref().map(|i| i.mean)),
+            o(li.mu_ci95_width.as_ref().map(|s| s.median)),
+            o(li.mu_ci95_width_with_calibration.as_ref().map(|s| s.median)),
+            o(li.fa0_ci95_width_n.as_ref().map(|s| s.median)),
+            o(li.fa0_ci95_width_with_calibration_n.as_ref().map(|s| s.median)),
+            o(r.interface_mu.as_ref().map(|i| i.median)),
             o(r.mu_bias),
             o(r.mu_bias_se),
+            o(b.map(|s| s.mean)),
+            o(b.map(|s| s.mean_se)),
+            o(b.map(|s| s.p05)),
+            o(b.map(|s| s.p95)),
         ]);
         w.write_record(&f).map_err(|e| err(&e))?;
     }
@@ -532,7 +516,7 @@ mod tests {
 
     #[test]
     fn ranking_puts_the_best_first_and_rows_without_a_value_last() {
-        let summary = |with_fit: usize, width: Option<(f64, f64)>| {
+        let summary = |with_fit: usize, width: Option<(f64, f64)>, bias: Option<f64>| {
             let mut mu = Spread::of(&[0.5, 0.6, 0.7]).unwrap();
             if let Some((a, b)) = width {
                 (mu.p05, mu.p95) = (a, b);
@@ -560,23 +544,24 @@ mod tests {
                 },
                 mu_apparent: width.map(|_| mu),
                 apparent_adhesion_force_n: None,
+                lab_intervals: Default::default(),
+                interface_mu: None,
+                mu_bias: bias.and_then(|b| Spread::of(&[b - 0.1, b, b + 0.1])),
                 sensitivity: crate::sensitivity::table(&[], &[], &[], &[], true),
                 reference: None,
             }
         };
         let v = [Vary::parse("a=1,2,3").unwrap()];
-        let iface = |m: f64| Ok(InterfaceCoefficient { mean: m, min: m, max: m, points: 1 });
         let rows = vec![
-            DesignRow::new(0, &v, &["1".into()], &summary(5, Some((0.2, 1.0))), iface(0.9)),
-            DesignRow::new(1, &v, &["2".into()], &summary(0, None), iface(0.6)),
-            DesignRow::new(2, &v, &["3".into()], &summary(9, Some((0.5, 0.7))), Err("no contact".into())),
+            DesignRow::new(0, &v, &["1".into()], &summary(5, Some((0.2, 1.0)), Some(-0.3))),
+            DesignRow::new(1, &v, &["2".into()], &summary(0, None, None)),
+            DesignRow::new(2, &v, &["3".into()], &summary(9, Some((0.5, 0.7)), None)),
         ];
         assert_eq!(RankBy::Narrowest.rank(&rows), vec![2, 0, 1]);
         assert_eq!(RankBy::MostUsable.rank(&rows), vec![2, 0, 1]);
-        // Only design 0 has both a median (0.6) and an interface coefficient (0.9).
+        // Only design 0 has a per-experiment bias (median -0.3).
         assert_eq!(RankBy::LeastBias.rank(&rows), vec![0, 1, 2]);
         assert!((rows[0].mu_bias.unwrap() + 0.3).abs() < 1e-12);
-        assert_eq!(rows[2].interface_mu_reason.as_deref(), Some("no contact"));
         let csv = String::from_utf8(designs_csv(&v, &rows).unwrap()).unwrap();
         assert_eq!(csv.lines().count(), 4);
         assert!(csv.lines().nth(2).unwrap().starts_with("1,2,10,0,0e0,"), "{csv}");

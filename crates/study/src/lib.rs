@@ -165,10 +165,68 @@ pub struct SampleResult {
     pub apparent_adhesion_force_n: Option<f64>,
     /// Mean number of contacts over the clamp voltages in contact.
     pub mean_contacts: Option<f64>,
+    /// The interface's own friction coefficient of this sample's device ([`interface_mu`]):
+    /// the mean of `s A_r / (L + F_adh)` over its clamp voltages in contact with L > 0.
+    pub interface_mu: Option<f64>,
+    /// The widths of the 95 % intervals the lab would quote for this experiment's eq. 10 fit.
+    pub intervals: FitIntervals,
     /// Why there is no fit (a short code; see [`summary::REASONS`]), None when there is one.
     pub reason: Option<String>,
     /// The reason in words (the error message, or what the fit lacked).
     pub detail: Option<String>,
+}
+
+/// The widths (upper minus lower end) of the 95 % intervals a lab would quote for one virtual
+/// experiment's eq. 10 fit: from the regression alone, and from the regression with the
+/// calibration's stated uncertainty (a_clamp, a_pull, F_spring); None where the fit gives none.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct FitIntervals {
+    /// Width of the 95 % interval of mu_e,a, regression alone.
+    pub mu_ci95_width: Option<f64>,
+    /// Width of the 95 % interval of mu_e,a with the calibration uncertainty.
+    pub mu_ci95_width_with_calibration: Option<f64>,
+    /// Width of the 95 % interval of F_a0, regression alone, N.
+    pub fa0_ci95_width_n: Option<f64>,
+    /// Width of the 95 % interval of F_a0 with the calibration uncertainty, N.
+    pub fa0_ci95_width_with_calibration_n: Option<f64>,
+}
+
+/// The lab's eq. 10 intervals of one experiment: given the slips `(V_clamp, V_pull)` (V) of the
+/// clamp voltages in contact, the reduction the lab used, and a seed for its calibration Monte
+/// Carlo, the widths of its intervals. The study crate sits below the fit crate, so the command
+/// line gives the fit crate's eq. 10 here ([`Study::with_intervals`]).
+pub type IntervalFn = dyn Fn(&[(f64, f64)], &Reduction, u64) -> FitIntervals + Send + Sync;
+
+/// The interface's own friction coefficient of one device (the friction the meter sets out to
+/// measure): at each clamp voltage k in contact with a true clamp load `L_k > 0`,
+/// `mu_k = s A_r,k / (L_k + F_adh,k) = s / p_mean,k` (shear strength s, real contact area A_r,k,
+/// adhesive load F_adh,k: the mean contact pressure is the total normal load over the real area),
+/// and the coefficient is the mean of the `mu_k`. None when no clamp voltage qualifies.
+/// Returns `(mean, min, max, count)`.
+pub fn interface_mu(points: &[stiction_meter::MeterPoint], shear_strength_pa: f64) -> Option<(f64, f64, f64, usize)> {
+    let mu: Vec<f64> = points
+        .iter()
+        .filter(|p| p.in_contact && p.error.is_none() && p.true_load_n > 0.0 && p.real_area_m2 > 0.0)
+        .map(|p| shear_strength_pa * p.real_area_m2 / (p.true_load_n + p.adhesive_load_n))
+        .filter(|m| m.is_finite())
+        .collect();
+    (!mu.is_empty()).then(|| {
+        (
+            mu.iter().sum::<f64>() / mu.len() as f64,
+            mu.iter().copied().fold(f64::INFINITY, f64::min),
+            mu.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            mu.len(),
+        )
+    })
+}
+
+/// The calibration Monte Carlo's seed of sample `i` (SplitMix64 of the study seed and the index):
+/// the same in every design of a design study.
+fn interval_seed(seed: u64, i: usize) -> u64 {
+    let mut z = seed ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 /// A study ready to run: the scenario read, the nominal device checked, the columns known.
@@ -184,6 +242,8 @@ pub struct Study {
     pub parameters: Vec<(String, String)>,
     /// The files the scenario points to, with the fingerprints of their contents.
     input_files: Vec<log::InputFile>,
+    /// The lab's eq. 10 intervals and the number of calibration draws behind them.
+    intervals: Option<(std::sync::Arc<IntervalFn>, usize)>,
 }
 
 /// The files a scenario points to (`surface.csv_path`, `surface.height_map.file`,
@@ -237,7 +297,19 @@ impl Study {
     pub fn prepare_value(base: Value, name: &Path, base_dir: &Path, config: &StudyConfig) -> Result<Study, StudyError> {
         config.validate()?;
         let path = name;
+        let mut base = base;
+        // The `design` section describes a design study, not a device: each design's study is
+        // the scenario without it (the same bytes as the file without the section), once the
+        // section itself has been checked.
+        let design = base.as_object_mut().and_then(|m| m.remove("design"));
         let nominal = Scenario::from_value(base.clone(), path)?;
+        if let Some(d) = design {
+            let mut with = base.clone();
+            if let Some(m) = with.as_object_mut() {
+                m.insert("design".into(), d);
+            }
+            Scenario::from_value(with, path)?;
+        }
         let base_dir = base_dir.to_path_buf();
         let reduction = Meter::from_scenario(&nominal, &base_dir)
             .and_then(|m| m.device_reduction())
@@ -259,7 +331,25 @@ impl Study {
             config: config.clone(),
             parameters,
             input_files,
+            intervals: None,
         })
+    }
+
+    /// Gives every sample the widths of the lab's eq. 10 intervals from `f`, which draws
+    /// `calibration_draws` calibration values per sample (recorded in the log header).
+    pub fn with_intervals(mut self, f: std::sync::Arc<IntervalFn>, calibration_draws: usize) -> Study {
+        self.intervals = Some((f, calibration_draws));
+        self
+    }
+
+    /// The scenario tree (after `--set`), with its uncertain parameters as written.
+    pub fn scenario_json(&self) -> &Value {
+        &self.base
+    }
+
+    /// The nominal reduction the lab uses.
+    pub fn reduction(&self) -> Reduction {
+        self.reduction
     }
 
     /// The log header that identifies this study (and shard).
@@ -287,6 +377,7 @@ impl Study {
             reference: self.nominal.reference.clone(),
             program_version: env!("CARGO_PKG_VERSION").to_string(),
             input_files: self.input_files.clone(),
+            calibration_draws: self.intervals.as_ref().map_or(0, |i| i.1),
         }
     }
 
@@ -298,6 +389,8 @@ impl Study {
             mu_apparent: None,
             apparent_adhesion_force_n: None,
             mean_contacts: None,
+            interface_mu: None,
+            intervals: FitIntervals::default(),
             reason: None,
             detail: None,
         };
@@ -333,10 +426,26 @@ impl Study {
             let mut m = Meter::from_scenario(&scenario, &self.base_dir).map_err(|e| e.to_string())?;
             m.set_reduction(reduction);
             m.set_slip_path(self.config.slip_path);
-            m.run(&mut |_, _| {}).map_err(|e| e.to_string())
+            m.run(&mut |_, _| {}).map_err(|e| e.to_string()).map(|r| (r, reduction))
         })();
+        let shear_strength = scenario.material.as_ref().map(|m| m.shear_strength);
         match result {
-            Ok(r) => {
+            Ok((r, reduction)) => {
+                out.interface_mu = shear_strength.and_then(|s| interface_mu(&r.points, s)).map(|m| m.0);
+                if r.mu_apparent.is_some()
+                    && let Some((f, _)) = &self.intervals
+                {
+                    let slips: Vec<(f64, f64)> =
+                        r.points.iter().filter(|p| p.in_contact).filter_map(|p| Some((p.v_clamp, p.v_pull?))).collect();
+                    let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
+                    let w = f(&slips, &reduction, interval_seed(self.config.seed, i));
+                    out.intervals = FitIntervals {
+                        mu_ci95_width: finite(w.mu_ci95_width),
+                        mu_ci95_width_with_calibration: finite(w.mu_ci95_width_with_calibration),
+                        fa0_ci95_width_n: finite(w.fa0_ci95_width_n),
+                        fa0_ci95_width_with_calibration_n: finite(w.fa0_ci95_width_with_calibration_n),
+                    };
+                }
                 // Finite or null: a non-finite result is no result, with a reason.
                 let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
                 out.mu_apparent = finite(r.mu_apparent);
@@ -384,6 +493,9 @@ impl Study {
                 out.reason = Some("meter-failed".into());
                 out.detail = Some(e);
             }
+        }
+        if out.mu_apparent.is_none() {
+            out.intervals = FitIntervals::default();
         }
         out
     }

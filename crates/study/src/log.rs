@@ -20,8 +20,22 @@ use stiction_meter::SlipPath;
 use crate::{Calibration, SampleResult, StudyError};
 
 /// Version of the log format (2: checksums on every line, input-file fingerprints and the program
-/// version in the header).
-pub const FORMAT: u32 = 2;
+/// version in the header; 3: each sample's interface coefficient and the widths of its eq. 10
+/// intervals, and the calibration draws behind them in the header).
+pub const FORMAT: u32 = 3;
+
+/// The per-sample result columns after `mean_contacts` (before the drawn parameters).
+pub const RESULT_COLUMNS: [&str; 5] = [
+    "interface_mu",
+    "mu_ci95_width",
+    "mu_ci95_width_with_calibration",
+    "fa0_ci95_width_n",
+    "fa0_ci95_width_with_calibration_n",
+];
+
+/// Fields before the drawn parameters: sample, mu_apparent, apparent_adhesion_force_n,
+/// mean_contacts and [`RESULT_COLUMNS`].
+const LEAD: usize = 4 + RESULT_COLUMNS.len();
 
 /// File name of the log in a study folder.
 pub const LOG_NAME: &str = "samples.log";
@@ -77,6 +91,9 @@ pub struct Header {
     /// The files the scenario points to (maps, CSVs), with their content fingerprints.
     #[serde(default)]
     pub input_files: Vec<InputFile>,
+    /// Calibration draws per sample behind the `*_with_calibration` interval widths (0: none).
+    #[serde(default)]
+    pub calibration_draws: usize,
 }
 
 impl Header {
@@ -102,7 +119,8 @@ impl Header {
         if field_list(self) != field_list(other) {
             return Some(format!("input files: {} vs {}", files(self), files(other)));
         }
-        let checks: [(&str, String, String); 9] = [
+        let checks: [(&str, String, String); 10] = [
+            ("calibration draws per sample", self.calibration_draws.to_string(), other.calibration_draws.to_string()),
             ("log format", self.format.to_string(), other.format.to_string()),
             ("program version", self.program_version.clone(), other.program_version.clone()),
             ("scenario (fingerprint of the file after --set)", self.scenario_hash.clone(), other.scenario_hash.clone()),
@@ -137,6 +155,7 @@ impl Header {
 pub fn columns(header: &Header) -> Vec<String> {
     let mut c =
         vec!["sample".to_string(), "mu_apparent".into(), "apparent_adhesion_force_n".into(), "mean_contacts".into()];
+    c.extend(RESULT_COLUMNS.map(String::from));
     c.extend(header.parameters.iter().map(|(p, u)| stiction_units::key_with_unit(p, u)));
     c.push("reason".into());
     c.push("detail".into());
@@ -206,7 +225,18 @@ pub fn column_line(header: &Header) -> Result<Vec<u8>, StudyError> {
 /// One sample as its samples.csv row (numbers in Rust's shortest round-trip form).
 pub fn row(s: &SampleResult) -> Result<Vec<u8>, StudyError> {
     let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
-    let mut f = vec![s.index.to_string(), opt(s.mu_apparent), opt(s.apparent_adhesion_force_n), opt(s.mean_contacts)];
+    let w = &s.intervals;
+    let mut f = vec![
+        s.index.to_string(),
+        opt(s.mu_apparent),
+        opt(s.apparent_adhesion_force_n),
+        opt(s.mean_contacts),
+        opt(s.interface_mu),
+        opt(w.mu_ci95_width),
+        opt(w.mu_ci95_width_with_calibration),
+        opt(w.fa0_ci95_width_n),
+        opt(w.fa0_ci95_width_with_calibration_n),
+    ];
     f.extend(s.draws.iter().map(|&d| opt(d.is_finite().then_some(d))));
     f.push(s.reason.clone().unwrap_or_default());
     // One sample, one line.
@@ -223,6 +253,10 @@ pub struct Row {
     pub mu_apparent: Option<f64>,
     /// F_a0, N.
     pub apparent_adhesion_force_n: Option<f64>,
+    /// The sample's interface coefficient s / p_mean.
+    pub interface_mu: Option<f64>,
+    /// The widths of its eq. 10 intervals.
+    pub intervals: crate::FitIntervals,
     /// Draws, SI (NaN: not drawn).
     pub draws: Vec<f64>,
     /// Reason code, empty with a fit.
@@ -246,8 +280,15 @@ fn parse_row(rec: &[&str], n_params: usize, what: &dyn Fn() -> String) -> Result
         index: rec[0].parse().map_err(|_| bad(format!("sample index {:?} is not a whole number", rec[0])))?,
         mu_apparent: num(1)?,
         apparent_adhesion_force_n: num(2)?,
-        draws: (0..n_params).map(|k| num(4 + k).map(|x| x.unwrap_or(f64::NAN))).collect::<Result<_, _>>()?,
-        reason: rec[4 + n_params].to_string(),
+        interface_mu: num(4)?,
+        intervals: crate::FitIntervals {
+            mu_ci95_width: num(5)?,
+            mu_ci95_width_with_calibration: num(6)?,
+            fa0_ci95_width_n: num(7)?,
+            fa0_ci95_width_with_calibration_n: num(8)?,
+        },
+        draws: (0..n_params).map(|k| num(LEAD + k).map(|x| x.unwrap_or(f64::NAN))).collect::<Result<_, _>>()?,
+        reason: rec[LEAD + n_params].to_string(),
     })
 }
 
@@ -300,9 +341,9 @@ where
         let content = checked_content(path, line_no, &line)?;
         let what = || format!("{} line {line_no}", path.display());
         // The number and code fields are never quoted (written by `row`); only the last field,
-        // the detail text, may be: split off the first 5 + p fields.
+        // the detail text, may be: split off the first LEAD + 1 + p fields.
         let text = std::str::from_utf8(content).map_err(|_| StudyError::Log(format!("{}: not UTF-8 text", what())))?;
-        let n_fields = 5 + header.parameters.len();
+        let n_fields = LEAD + 1 + header.parameters.len();
         let fields: Vec<&str> = text.splitn(n_fields + 1, ',').collect();
         if fields.len() != n_fields + 1 {
             return Err(StudyError::Log(format!("{}: {} fields, expected {}", what(), fields.len(), n_fields + 1)));

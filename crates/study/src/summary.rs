@@ -177,11 +177,35 @@ pub struct StudySummary {
     pub mu_apparent: Option<Spread>,
     /// Spread of F_a0, N.
     pub apparent_adhesion_force_n: Option<Spread>,
+    /// The widths of the 95 % intervals the lab quotes for each experiment's eq. 10 fit, without
+    /// and with the calibration uncertainty, over the samples with a fit.
+    pub lab_intervals: LabIntervals,
+    /// The interface's own coefficient `s / p_mean` of each sample's device, over the samples with
+    /// a fit ([`crate::interface_mu`]).
+    pub interface_mu: Option<Spread>,
+    /// The bias of each experiment, `mu_e,a - s / p_mean` of the same sample, over the samples with
+    /// a fit and an interface coefficient.
+    pub mu_bias: Option<Spread>,
     /// Which input explains how much of the spread.
     pub sensitivity: Sensitivity,
     /// The scenario's measured reference values (its `reference` section), if it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<stiction_scenario::ReferenceSpec>,
+}
+
+/// Spreads of the widths of the lab's 95 % intervals over the experiments with a fit.
+#[derive(Debug, Clone, Serialize, PartialEq, Default)]
+pub struct LabIntervals {
+    /// Calibration draws per experiment behind the `with_calibration` widths (0: none computed).
+    pub calibration_draws: usize,
+    /// Width of mu_e,a's interval from the regression alone.
+    pub mu_ci95_width: Option<Spread>,
+    /// Width of mu_e,a's interval with the calibration uncertainty.
+    pub mu_ci95_width_with_calibration: Option<Spread>,
+    /// Width of F_a0's interval from the regression alone, N.
+    pub fa0_ci95_width_n: Option<Spread>,
+    /// Width of F_a0's interval with the calibration uncertainty, N.
+    pub fa0_ci95_width_with_calibration_n: Option<Spread>,
 }
 
 /// What the figures need besides the summary.
@@ -207,12 +231,27 @@ pub fn summarize(path: &Path, mut csv: Option<&mut Vec<u8>>) -> Result<(StudySum
     let (mut mus, mut fas, mut xs, mut scatter) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut reasons: BTreeMap<String, usize> = BTreeMap::new();
     let (mut failed, mut without) = (0, 0);
+    let mut widths: [Vec<f64>; 4] = Default::default();
+    let (mut iface, mut bias) = (Vec::new(), Vec::new());
     let done = log::for_each_row(path, |row, line| {
         if let Some(c) = csv.as_deref_mut() {
             c.extend_from_slice(line);
         }
         match (row.mu_apparent, row.apparent_adhesion_force_n) {
             (Some(mu), Some(fa)) if row.reason.is_empty() => {
+                let w = &row.intervals;
+                for (v, x) in widths.iter_mut().zip([
+                    w.mu_ci95_width,
+                    w.mu_ci95_width_with_calibration,
+                    w.fa0_ci95_width_n,
+                    w.fa0_ci95_width_with_calibration_n,
+                ]) {
+                    v.extend(x);
+                }
+                if let Some(m) = row.interface_mu {
+                    iface.push(m);
+                    bias.push(mu - m);
+                }
                 mus.push(mu);
                 fas.push(fa);
                 xs.push(row.draws);
@@ -261,6 +300,15 @@ pub fn summarize(path: &Path, mut csv: Option<&mut Vec<u8>>) -> Result<(StudySum
         },
         mu_apparent: (!mus.is_empty()).then(|| Spread::of_sorted(&mus)),
         apparent_adhesion_force_n: fa_spread,
+        lab_intervals: LabIntervals {
+            calibration_draws: header.calibration_draws,
+            mu_ci95_width: Spread::of(&widths[0]),
+            mu_ci95_width_with_calibration: Spread::of(&widths[1]),
+            fa0_ci95_width_n: Spread::of(&widths[2]),
+            fa0_ci95_width_with_calibration_n: Spread::of(&widths[3]),
+        },
+        interface_mu: Spread::of(&iface),
+        mu_bias: Spread::of(&bias),
         sensitivity: sens,
         reference: header.reference.clone(),
     };

@@ -52,6 +52,7 @@ fn header(samples: usize) -> Header {
             path: "wall.gsf".into(),
             content_hash: "fedcba9876543210".into(),
         }],
+        calibration_draws: 200,
     }
 }
 
@@ -63,6 +64,13 @@ fn sample(i: usize, rng: &mut Rng) -> SampleResult {
         mu_apparent: fit.then(|| 0.2 + rng.unit()),
         apparent_adhesion_force_n: fit.then(|| 1e-6 * rng.unit()),
         mean_contacts: Some(10.0 * rng.unit()),
+        interface_mu: fit.then(|| 0.5 + rng.unit()),
+        intervals: stiction_study::FitIntervals {
+            mu_ci95_width: fit.then(|| 0.1 * rng.unit()),
+            mu_ci95_width_with_calibration: fit.then(|| rng.unit()),
+            fa0_ci95_width_n: None,
+            fa0_ci95_width_with_calibration_n: fit.then(|| 1e-6 * rng.unit()),
+        },
         reason: (!fit).then(|| "too-few-slips".into()),
         detail: (!fit).then(|| "1 slip point(s), \"quoted\", with commas".into()),
     }

@@ -5,11 +5,10 @@ use std::path::{Path, PathBuf};
 
 use stiction_plot::{Chart, Series};
 use stiction_study::design::{self, DesignRow, RankBy, Vary};
-use stiction_study::log::LogWriter;
 use stiction_study::summary::digits;
-use stiction_study::{MAX_THREADS, Study, StudyConfig};
+use stiction_study::{MAX_THREADS, StudyConfig};
 
-use crate::cmd::study::{Args, Progress};
+use crate::cmd::study::{Args, Folder, Outcome, Progress, run_study};
 use crate::output::{CliResult, ensure_dir, print_json};
 
 /// The --rank-by choices.
@@ -50,10 +49,65 @@ pub fn design_folder(out: &Path, d: usize) -> PathBuf {
     out.join(format!("design-{d:03}"))
 }
 
-/// Runs a design study (the study arguments with at least one --vary).
-pub fn run(args: Args, config: StudyConfig) -> CliResult {
-    let mut varies: Vec<Vary> = args.vary.iter().map(|v| Vary::parse(v)).collect::<Result<_, _>>()?;
-    let points = design::grid(&mut varies, &args.sets, args.design_points, args.seed)?;
+/// The scenario's `design` section (with the `--set`s applied), checked field by field; None
+/// when it has none.
+pub fn section(
+    scenario: &Path,
+    sets: &[String],
+) -> Result<Option<stiction_scenario::design::DesignSpec>, Box<dyn std::error::Error>> {
+    let value = stiction_scenario::Scenario::load_json(scenario, sets)?;
+    if value.get("design").is_none_or(serde_json::Value::is_null) {
+        return Ok(None);
+    }
+    let parsed = stiction_scenario::Scenario::from_value_with_sets(value, scenario, sets)?;
+    Ok(parsed.design)
+}
+
+/// Runs a design study: the study arguments with at least one --vary, or the scenario's `design`
+/// section (`section`); flags override the section, and the program says so.
+pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::design::DesignSpec>) -> CliResult {
+    let say = |what: &str| {
+        if !args.quiet && !args.json {
+            crate::errln!("{what}");
+        }
+    };
+    let (mut varies, design_points) = match &section {
+        Some(sec) if args.vary.is_empty() => {
+            let varies: Vec<Vary> = sec
+                .varied()
+                .map_err(|m| format!("{}: {m}", args.scenario.display()))?
+                .into_iter()
+                .map(|(path, values, range)| Vary::from_section(&path, values, range.as_deref()))
+                .collect::<Result<_, _>>()
+                .map_err(|e| format!("{}: {e}", args.scenario.display()))?;
+            if args.design_points.is_some() && sec.points.is_some() {
+                say("--design-points overrides the scenario's `design.points`");
+            }
+            (varies, args.design_points.or(sec.points))
+        }
+        _ => {
+            if section.as_ref().is_some_and(|s| !s.vary.is_empty() || !s.ranges.is_empty()) {
+                say(
+                    "--vary overrides the scenario's design (`design.vary`, `design.ranges` and `design.points` are not used)",
+                );
+            }
+            (args.vary.iter().map(|v| Vary::parse(v)).collect::<Result<_, _>>()?, args.design_points)
+        }
+    };
+    let criterion = section.as_ref().and_then(|s| s.criterion);
+    if args.rank_by.is_some() && criterion.is_some() {
+        say("--rank-by overrides the scenario's `design.criterion`");
+    }
+    let rank_by: RankBy = match (args.rank_by, criterion) {
+        (Some(r), _) => r.into(),
+        (None, Some(c)) => match c {
+            stiction_scenario::design::DesignCriterion::Narrowest => RankBy::Narrowest,
+            stiction_scenario::design::DesignCriterion::LeastBias => RankBy::LeastBias,
+            stiction_scenario::design::DesignCriterion::MostUsable => RankBy::MostUsable,
+        },
+        (None, None) => RankBy::Narrowest,
+    };
+    let points = design::grid(&mut varies, &args.sets, design_points, args.seed)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
         if t == 0 || t > MAX_THREADS {
@@ -70,9 +124,9 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
     let mut studies = Vec::with_capacity(points.len());
     for (d, p) in points.iter().enumerate() {
         let sets = design::sets_for(&args.sets, &varies, p);
-        let study =
-            Study::prepare(&args.scenario, &sets, &config).map_err(|e| format!("design {d} ({}): {e}", name(p)))?;
-        studies.push((sets, study));
+        let study = crate::cmd::study::prepare_study(&args.scenario, &sets, &config)
+            .map_err(|e| format!("design {d} ({}): {e}", name(p)))?;
+        studies.push(study);
     }
     let temporary = args.out.is_none();
     let root = match &args.out {
@@ -88,42 +142,33 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
     let mut rows = Vec::with_capacity(points.len());
     crate::output::stop_cleanly();
     let result = (|| -> CliResult {
-        for (d, (p, (sets, study))) in points.iter().zip(&studies).enumerate() {
+        for (d, (p, study)) in points.iter().zip(&studies).enumerate() {
             let dir = design_folder(&root, d);
             ensure_dir(&dir)?;
-            let header = study.header();
-            let (mut log, done) =
-                if args.resume { LogWriter::resume(&dir, &header)? } else { (LogWriter::create(&dir, &header)?, 0) };
-            // A manifest says a design's folder is complete; while it runs again it is not.
-            let manifest = dir.join(crate::output::MANIFEST);
-            if !temporary && manifest.exists() {
-                std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
-            }
             let offset = d * per;
-            progress.update(offset + done);
-            let logged = pool.install(|| {
-                study.run_into_until(&mut log, done, &|n| progress.update(offset + n), &crate::output::INTERRUPT)
-            })?;
-            drop(log);
-            if logged < per {
-                return Err(Box::new(crate::cmd::study::interrupted(
-                    offset + logged,
-                    per * points.len(),
-                    &dir,
-                    temporary,
-                )));
-            }
-            let summary = if temporary {
-                stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None)?.0
-            } else {
-                let (summary, written) = crate::cmd::study::finish_folder(&dir, &args.fig)?;
-                let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
-                files.extend(written);
-                crate::output::write_manifest(&dir, "study", &files)?;
-                summary
+            let folder = if temporary { Folder::Temporary(None) } else { Folder::Kept(&args.fig) };
+            let ran = run_study(
+                study,
+                &dir,
+                args.resume,
+                folder,
+                &pool,
+                &|done, _| progress.update(offset + done),
+                &|n| progress.update(offset + n),
+                &crate::output::INTERRUPT,
+            )?;
+            let summary = match ran {
+                Outcome::Finished { summary, .. } => *summary,
+                Outcome::Interrupted { logged } => {
+                    return Err(Box::new(crate::cmd::study::interrupted(
+                        offset + logged,
+                        per * points.len(),
+                        &dir,
+                        temporary,
+                    )));
+                }
             };
-            let interface = design::interface_coefficient(&args.scenario, sets);
-            rows.push(DesignRow::new(d, &varies, p, &summary, interface));
+            rows.push(DesignRow::new(d, &varies, p, &summary));
         }
         Ok(())
     })();
@@ -132,7 +177,6 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
         let _ = std::fs::remove_dir_all(&root);
     }
     result?;
-    let rank_by: RankBy = args.rank_by.into();
     let ranking = rank_by.rank(&rows);
     if let Some(out) = &args.out {
         let write = |name: &str, bytes: &[u8]| stiction_units::io::write_atomic(&out.join(name), bytes);
@@ -169,7 +213,7 @@ pub fn run(args: Args, config: StudyConfig) -> CliResult {
 fn criterion_name(r: RankBy) -> &'static str {
     match r {
         RankBy::Narrowest => "width of the 5-95 % interval of mu_e,a",
-        RankBy::LeastBias => "bias of the median mu_e,a against s / p_mean",
+        RankBy::LeastBias => "median bias of mu_e,a against each device's own s / p_mean",
         RankBy::MostUsable => "fraction of experiments with a usable eq. 10 line",
     }
 }
@@ -200,7 +244,17 @@ fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], b
     let mut head: Vec<String> = vec!["rank".into(), "design".into()];
     head.extend(varies.iter().map(|v| v.path.clone()));
     head.extend(
-        ["usable", "mu_e,a median [95 % CI]", "5-95 % width", "F_a0 median (uN)", "s/p_mean", "bias"].map(String::from),
+        [
+            "usable",
+            "mu_e,a median [95 % CI]",
+            "5-95 % width",
+            "mu_e,a lab 95 % CI",
+            "F_a0 median (uN)",
+            "F_a0 lab 95 % CI (uN)",
+            "s/p_mean",
+            "bias",
+        ]
+        .map(String::from),
     );
     let mut t = crate::output::TextTable::new(&head);
     let dash = || "-".to_string();
@@ -222,11 +276,28 @@ fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], b
             Some(se) => digits(w, Some(se)),
             None => format!("~{}", digits(w, Some(10f64.powf(w.abs().log10().floor() - 1.0)))),
         }));
+        // The median width of a lab interval, to the digit its order-statistic interval allows.
+        let median = |s: Option<&stiction_study::Spread>, scale: f64| {
+            s.map(|s| digits(s.median * scale, s.median_ci.map(|[a, b]| (b - a) / 3.92 * scale)))
+        };
+        let pair = |a: Option<String>, b: Option<String>| match (a, b) {
+            (None, None) => dash(),
+            (a, b) => format!("{} / {}", a.unwrap_or_else(dash), b.unwrap_or_else(dash)),
+        };
+        let li = &r.lab_intervals;
+        cells.push(pair(
+            median(li.mu_ci95_width.as_ref(), 1.0),
+            median(li.mu_ci95_width_with_calibration.as_ref(), 1.0),
+        ));
         cells.push(r.apparent_adhesion_force_n.as_ref().map_or_else(dash, |s| {
             let se = s.median_ci.map(|[a, b]| (b - a) / 3.92 * 1e6);
             digits(s.median * 1e6, se)
         }));
-        cells.push(r.interface_mu.as_ref().map_or_else(dash, |i| digits(i.mean, None)));
+        cells.push(pair(
+            median(li.fa0_ci95_width_n.as_ref(), 1e6),
+            median(li.fa0_ci95_width_with_calibration_n.as_ref(), 1e6),
+        ));
+        cells.push(median(r.interface_mu.as_ref(), 1.0).unwrap_or_else(dash));
         cells.push(r.mu_bias.map_or_else(dash, |b| digits(b, r.mu_bias_se)));
         t.row(cells);
     }
@@ -245,9 +316,12 @@ fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], b
             crate::outln!("    {w}");
         }
     }
-    for r in rows.iter().filter(|r| r.interface_mu_reason.is_some()) {
-        crate::outln!("  design {}: no s / p_mean: {}", r.design, r.interface_mu_reason.as_deref().unwrap_or(""));
-    }
+    crate::outln!(
+        "  lab 95 % CI: median width of the interval each experiment's own eq. 10 fit gives, from the regression \
+         alone / with the calibration uncertainty ({} draws); s/p_mean and bias: median over the experiments of \
+         each device's own interface coefficient and of mu_e,a minus it",
+        rows.first().map_or(0, |r| r.lab_intervals.calibration_draws)
+    );
 }
 
 /// The criterion against varied parameter `k`, one series per combination of the other varied

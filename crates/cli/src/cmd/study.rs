@@ -73,15 +73,17 @@ pub struct Args {
     /// A design study: run the whole study once per value of this field (values as --set takes
     /// them), over the grid of every --vary; same seeds in every design. Writes OUT/design-NNN
     /// (each a study folder), designs.csv, designs.json and a design chart per varied field.
+    /// Overrides the scenario's `design` section (which offers the same).
     #[arg(long = "vary", value_name = "PATH=V1,V2,...")]
     pub vary: Vec<String>,
     /// With a range --vary "PATH=LO..HI": the number of design points of the space-filling (Latin
     /// hypercube, seeded by --seed) design over all ranges.
-    #[arg(long, value_name = "N", requires = "vary")]
+    #[arg(long, value_name = "N")]
     pub design_points: Option<usize>,
-    /// How a design study ranks its designs.
-    #[arg(long, value_enum, default_value = "narrowest", requires = "vary")]
-    pub rank_by: crate::cmd::design::RankByArg,
+    /// How a design study ranks its designs (default: the scenario's `design.criterion`, else
+    /// narrowest).
+    #[arg(long, value_enum)]
+    pub rank_by: Option<crate::cmd::design::RankByArg>,
     /// Figure size and font.
     #[command(flatten)]
     pub fig: FigureArgs,
@@ -120,7 +122,7 @@ pub(crate) struct Progress {
     bar: Option<ProgressBar>,
     plain: Option<Mutex<(Instant, Instant)>>,
     total: usize,
-    start_done: usize,
+    start_done: std::sync::atomic::AtomicUsize,
 }
 
 impl Progress {
@@ -138,12 +140,13 @@ impl Progress {
         });
         let now = Instant::now();
         let plain = (!quiet && !terminal).then(|| Mutex::new((now, now)));
-        Progress { bar, plain, total, start_done }
+        Progress { bar, plain, total, start_done: start_done.into() }
     }
 
     pub(crate) fn line(&self, done: usize, elapsed: Duration) -> String {
         let secs = elapsed.as_secs_f64().max(1e-9);
-        let rate = (done - self.start_done.min(done)) as f64 / secs;
+        let start = self.start_done.load(std::sync::atomic::Ordering::Relaxed);
+        let rate = (done - start.min(done)) as f64 / secs;
         let left =
             if rate > 0.0 { format!("{:.0} s", (self.total - done.min(self.total)) as f64 / rate) } else { "?".into() };
         format!(
@@ -151,6 +154,19 @@ impl Progress {
             self.total,
             100.0 * done as f64 / self.total.max(1) as f64
         )
+    }
+
+    /// Counts the rate from `done` samples on (those found in a resumed log).
+    pub(crate) fn restart_at(&self, done: usize) {
+        self.start_done.store(done, std::sync::atomic::Ordering::Relaxed);
+        if let Some(b) = &self.bar {
+            b.set_position(done as u64);
+            b.reset_eta();
+        }
+        if let Some(p) = &self.plain {
+            let now = Instant::now();
+            *p.lock().unwrap_or_else(|e| e.into_inner()) = (now, now);
+        }
     }
 
     pub(crate) fn update(&self, done: usize) {
@@ -201,12 +217,17 @@ pub fn run(args: Args) -> CliResult {
     };
     // Counts first: nothing is read or started before they are known to be sane.
     config.validate()?;
-    if !args.vary.is_empty() {
-        return crate::cmd::design::run(args, config);
+    let section = crate::cmd::design::section(&args.scenario, &args.sets)?;
+    if !args.vary.is_empty() || section.is_some() {
+        return crate::cmd::design::run(args, config, section);
+    }
+    if args.design_points.is_some() || args.rank_by.is_some() {
+        return Err("--design-points and --rank-by belong to a design study: add --vary PATH=V1,V2,... (or a \
+                    `design` section in the scenario)"
+            .into());
     }
     let pool = thread_pool(args.threads)?;
-    let study = Study::prepare(&args.scenario, &args.sets, &config)?;
-    let header = study.header();
+    let study = prepare_study(&args.scenario, &args.sets, &config)?;
     // Without --out the log lives in a temporary folder removed at the end.
     let (dir, temporary) = match &args.out {
         Some(d) => (d.clone(), false),
@@ -219,42 +240,41 @@ pub fn run(args: Args) -> CliResult {
     if !temporary {
         prepare_folder(&dir, &args)?;
     }
-    let (mut log, done) =
-        if args.resume { LogWriter::resume(&dir, &header)? } else { (LogWriter::create(&dir, &header)?, 0) };
-    // A manifest says the folder is complete; while the study runs again it is not.
-    let manifest = dir.join(crate::output::MANIFEST);
-    if !temporary && manifest.exists() {
-        std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
-    }
     let total = config.shard_len();
-    if args.resume && !args.quiet {
-        crate::errln!("resuming: {done} of {total} samples found in {}", log.path().display());
-    }
-    let progress = Progress::new(total, done, args.quiet || args.json);
+    let progress = Progress::new(total, 0, args.quiet || args.json);
+    let found = std::cell::Cell::new(0);
     crate::output::stop_cleanly();
-    let ran = pool.install(|| study.run_into_until(&mut log, done, &|n| progress.update(n), &crate::output::INTERRUPT));
-    progress.finish(*ran.as_ref().unwrap_or(&done));
-    let logged = ran?;
-    drop(log);
-    if logged < total {
-        if temporary {
-            let _ = std::fs::remove_dir_all(&dir);
+    let folder = if temporary { Folder::Temporary(None) } else { Folder::Kept(&args.fig) };
+    let opened = |done: usize, log: &Path| {
+        found.set(done);
+        progress.restart_at(done);
+        if args.resume && !args.quiet {
+            crate::errln!("resuming: {done} of {total} samples found in {}", log.display());
         }
-        return Err(Box::new(interrupted(logged, total, &dir, temporary)));
-    }
-    let result = if temporary {
-        stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), None).map(|(s, _)| (s, Vec::new()))
-    } else {
-        finish_folder(&dir, &args.fig).map_err(|e| stiction_study::StudyError::Log(e.to_string()))
     };
+    let ran = run_study(
+        &study,
+        &dir,
+        args.resume,
+        folder,
+        &pool,
+        &opened,
+        &|n| progress.update(n),
+        &crate::output::INTERRUPT,
+    );
+    progress.finish(match &ran {
+        Ok(Outcome::Interrupted { logged }) => *logged,
+        Ok(Outcome::Finished { .. }) => total,
+        Err(_) => found.get(),
+    });
     if temporary {
         let _ = std::fs::remove_dir_all(&dir);
     }
-    let (summary, written) = result?;
+    let (summary, files) = match ran? {
+        Outcome::Interrupted { logged } => return Err(Box::new(interrupted(logged, total, &dir, temporary))),
+        Outcome::Finished { summary, files } => (*summary, files),
+    };
     if !temporary {
-        let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
-        files.extend(written);
-        crate::output::write_manifest(&dir, "study", &files)?;
         report(&summary, args.json, &args.scenario)?;
         if !args.json {
             crate::outln!("\nwrote {}/{}, {}", dir.display(), files.join(", "), crate::output::MANIFEST);
@@ -262,6 +282,122 @@ pub fn run(args: Args) -> CliResult {
         return Ok(());
     }
     report(&summary, args.json, &args.scenario)
+}
+
+/// Calibration draws per virtual experiment behind the widths of the lab's intervals with the
+/// calibration uncertainty (the 2.5 and 97.5 percentiles of 50 draws; each design's summary is
+/// the median over its experiments, so the draws' own noise averages out, but the percentile range
+/// of 50 draws of the long-tailed 1 / a_clamp is about 10 % narrower than that of 200 on the
+/// paper's scenario). 50 keeps a study above 4,000 experiments per second on two cores; 200
+/// would cost 0.35 ms more per experiment than the experiment itself (0.33 ms).
+pub const LAB_CALIBRATION_DRAWS: usize = 50;
+
+/// [`Study::prepare`] with the lab's eq. 10 intervals of every experiment: the fit crate's
+/// eq. 10 ([`stiction_fit::eq10::fit_eq10`]) on the experiment's slips, with the reduction the lab
+/// used and the calibration uncertainties the scenario states for a_clamp, a_pull and F_spring.
+pub(crate) fn prepare_study(
+    scenario: &Path,
+    sets: &[String],
+    config: &StudyConfig,
+) -> Result<Study, stiction_study::StudyError> {
+    with_lab_intervals(Study::prepare(scenario, sets, config)?)
+}
+
+/// `study` with the lab's eq. 10 intervals of every experiment (see [`prepare_study`]): every
+/// front end prepares its study through this, so the same scenario gives the same samples.
+pub fn with_lab_intervals(study: Study) -> Result<Study, stiction_study::StudyError> {
+    let sources = stiction_fit::calibration_sources(study.scenario_json(), &study.reduction())
+        .map_err(|e| stiction_study::StudyError::Setting(e.to_string()))?;
+    let intervals = move |slips: &[(f64, f64)], reduction: &stiction_meter::Reduction, seed: u64| {
+        let points: Vec<stiction_fit::Eq10Point> = slips
+            .iter()
+            .map(|&(v_clamp_v, v_pull_v)| stiction_fit::Eq10Point { v_clamp_v, v_pull_v, v_pull_sd_v: None })
+            .collect();
+        let width = |c: Option<[f64; 2]>| c.map(|[a, b]| b - a);
+        match stiction_fit::eq10::fit_eq10(&points, reduction, &sources, LAB_CALIBRATION_DRAWS, seed) {
+            Ok(f) => stiction_study::FitIntervals {
+                mu_ci95_width: width(f.mu_apparent.ci95),
+                mu_ci95_width_with_calibration: width(f.mu_apparent.ci95_with_calibration),
+                fa0_ci95_width_n: width(f.apparent_adhesion_force_n.ci95),
+                fa0_ci95_width_with_calibration_n: width(f.apparent_adhesion_force_n.ci95_with_calibration),
+            },
+            Err(_) => stiction_study::FitIntervals::default(),
+        }
+    };
+    Ok(study.with_intervals(std::sync::Arc::new(intervals), LAB_CALIBRATION_DRAWS))
+}
+
+/// Where a study's outputs go.
+pub(crate) enum Folder<'a> {
+    /// A temporary folder: only the log, summarised at the end (the caller removes the folder);
+    /// with a buffer, the samples' CSV (samples.csv) is written into it.
+    Temporary(Option<&'a mut Vec<u8>>),
+    /// A kept study folder: study.json, samples.csv, sensitivity.csv, figures (these figure
+    /// settings) and the manifest, written when the study is complete.
+    Kept(&'a FigureArgs),
+}
+
+/// How [`run_study`] ended.
+pub(crate) enum Outcome {
+    /// Every sample of the shard is in the log: its summary and, in a kept folder, the files
+    /// listed in its manifest (the log first).
+    Finished {
+        /// The summary, computed from the log alone.
+        summary: Box<StudySummary>,
+        /// The files of the folder (empty for a temporary one).
+        files: Vec<String>,
+    },
+    /// Stopped by `interrupt`: this many samples of the shard are in the log.
+    Interrupted {
+        /// Samples of the shard in the log.
+        logged: usize,
+    },
+}
+
+/// The one study loop, shared by `stiction study`, design studies and the Python binding: opens
+/// (or with `resume` reopens) the sample log in `dir`, removes a kept folder's manifest while it
+/// runs, tells `opened` how many samples the log already holds, runs the shard's remaining samples
+/// on `pool` into the log (`progress(n)`: samples of the shard in the log), and summarises the
+/// complete log (a kept folder gets its files and manifest). An `interrupt` stops it early with
+/// what it logged.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn run_study(
+    study: &Study,
+    dir: &Path,
+    resume: bool,
+    folder: Folder,
+    pool: &rayon::ThreadPool,
+    opened: &dyn Fn(usize, &Path),
+    progress: &(dyn Fn(usize) + Sync),
+    interrupt: &std::sync::atomic::AtomicBool,
+) -> Result<Outcome, Box<dyn std::error::Error>> {
+    let header = study.header();
+    let (mut log, done) = if resume { LogWriter::resume(dir, &header)? } else { (LogWriter::create(dir, &header)?, 0) };
+    // A manifest says the folder is complete; while the study runs again it is not.
+    let manifest = dir.join(crate::output::MANIFEST);
+    if matches!(folder, Folder::Kept(_)) && manifest.exists() {
+        std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
+    }
+    opened(done, log.path());
+    let logged = pool.install(|| study.run_into_until(&mut log, done, progress, interrupt))?;
+    drop(log);
+    if logged < study.config.shard_len() {
+        return Ok(Outcome::Interrupted { logged });
+    }
+    match folder {
+        Folder::Temporary(csv) => {
+            let (summary, _) = stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), csv)?;
+            Ok(Outcome::Finished { summary: Box::new(summary), files: Vec::new() })
+        }
+        Folder::Kept(fig) => {
+            let (summary, written) =
+                finish_folder(dir, fig).map_err(|e| stiction_study::StudyError::Log(e.to_string()))?;
+            let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
+            files.extend(written);
+            crate::output::write_manifest(dir, "study", &files)?;
+            Ok(Outcome::Finished { summary: Box::new(summary), files })
+        }
+    }
 }
 
 /// The --out rules of a study folder, which is written in place (the log grows sample by sample):
@@ -351,7 +487,7 @@ pub fn study_json(
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     config.validate()?;
     let pool = thread_pool(threads)?;
-    let study = Study::prepare(scenario, sets, config)?;
+    let study = prepare_study(scenario, sets, config)?;
     let never = std::sync::atomic::AtomicBool::new(false);
     Ok(study_json_of(&study, &pool, progress, &never, None)?.ok_or("the study was interrupted")?)
 }
@@ -359,7 +495,7 @@ pub fn study_json(
 /// The summary of a prepared study run on `pool` (what [`study_json`] prints), and with
 /// `samples_csv` the samples as the CSV of `stiction study --out` (samples.csv: one line per
 /// sample, columns named in the first line). None when `interrupt` was set before the end (the
-/// samples in flight finish; nothing is kept).
+/// samples in flight finish; nothing is kept). Runs [`run_study`] in a temporary folder.
 pub fn study_json_of(
     study: &Study,
     pool: &rayon::ThreadPool,
@@ -370,20 +506,11 @@ pub fn study_json_of(
     let dir = temporary_log_dir();
     let _ = std::fs::remove_dir_all(&dir);
     ensure_dir(&dir)?;
-    let ran = (|| -> Result<Option<StudySummary>, Box<dyn std::error::Error>> {
-        let mut log = LogWriter::create(&dir, &study.header())?;
-        let done = pool.install(|| study.run_into_until(&mut log, 0, progress, interrupt))?;
-        drop(log);
-        if done < study.config.shard_len() {
-            return Ok(None);
-        }
-        let log_path = dir.join(stiction_study::log::LOG_NAME);
-        Ok(Some(stiction_study::summary::summarize(&log_path, samples_csv).map(|(s, _)| s)?))
-    })();
+    let ran = run_study(study, &dir, false, Folder::Temporary(samples_csv), pool, &|_, _| {}, progress, interrupt);
     let _ = std::fs::remove_dir_all(&dir);
     match ran? {
-        Some(summary) => Ok(Some(crate::api::finite_value(&summary)?)),
-        None => Ok(None),
+        Outcome::Finished { summary, .. } => Ok(Some(crate::api::finite_value(&summary)?)),
+        Outcome::Interrupted { .. } => Ok(None),
     }
 }
 
@@ -443,6 +570,35 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
     };
     show("mu_e,a", &summary.mu_apparent, 1.0, "");
     show("F_a0", &summary.apparent_adhesion_force_n, 1e6, " uN");
+    {
+        use stiction_study::summary::digits;
+        // A median to the digit its order-statistic interval allows.
+        let median = |x: &Option<stiction_study::Spread>, scale: f64| {
+            x.as_ref()
+                .map_or("-".to_string(), |s| digits(s.median * scale, s.median_ci.map(|[a, b]| (b - a) / 3.92 * scale)))
+        };
+        let li = &summary.lab_intervals;
+        if li.mu_ci95_width.is_some() {
+            crate::outln!(
+                "  {:<28} mu_e,a {} (regression) / {} (with calibration, {} draws); F_a0 {} / {} uN",
+                "lab 95 % CI, median width",
+                median(&li.mu_ci95_width, 1.0),
+                median(&li.mu_ci95_width_with_calibration, 1.0),
+                li.calibration_draws,
+                median(&li.fa0_ci95_width_n, 1e6),
+                median(&li.fa0_ci95_width_with_calibration_n, 1e6)
+            );
+        }
+        if let Some(b) = &summary.mu_bias {
+            crate::outln!(
+                "  {:<28} each device's own s / p_mean: median {}; bias of mu_e,a against it: median {}, mean {}",
+                "interface coefficient",
+                median(&summary.interface_mu, 1.0),
+                median(&summary.mu_bias, 1.0),
+                digits(b.mean, Some(b.mean_se).filter(|e| *e > 0.0))
+            );
+        }
+    }
     if let Some(r) = &summary.reference {
         crate::outln!("  {}", reference::text(r));
     }
