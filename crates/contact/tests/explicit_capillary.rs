@@ -226,3 +226,38 @@ fn bad_meniscus_values_are_refused_naming_the_field() {
         assert!(e.contains(field), "{e}");
     }
 }
+
+#[test]
+fn the_meniscus_of_a_capillary_law_gives_its_sphere_flat_force() {
+    // Water at 25 C, RH 35 %, contact angles 0 and 30 deg: the per-summit pull of the explicit
+    // solver at separation D equals Capillarity::sphere_flat_force_n (relative 1e-12, rounding).
+    use stiction_contact::capillary::{Capillarity, Liquid};
+    let t = 298.15;
+    let cap = Capillarity::new(Liquid::water(t), t, 0.35, 0.0, 30f64.to_radians()).unwrap().unwrap();
+    let m = Meniscus::from_capillarity(&cap);
+    let (h, lp) = (3e-8, (f64::from(7e-6f32), f64::from(2e-6f32)));
+    let surface = Surface::new(20e-6, 5e-6, vec![7e-6], vec![2e-6], vec![h], Radii::Uniform(R)).unwrap();
+    let cfg = SolverConfig { mode: ShoeMode::Flat, load_point_m: Some(lp), ..Default::default() };
+    let mut s = ExplicitSolver::new(surface, AdhesionLaw::Hertz, AsperityParams::table1(), cfg).unwrap();
+    s.set_meniscus(Some(m)).unwrap();
+    let e = s.solve(1e-6).unwrap();
+    let f0 = cap.sphere_flat_force_n(R, 0.0);
+    assert!((e.capillary_load_n / f0 - 1.0).abs() < 1e-12);
+    for frac in [0.0, 0.3, 0.9] {
+        let d = frac * cap.meniscus_height_m();
+        let e = s.evaluate_pose(h + d, 0.0, 0.0);
+        // evaluate_pose: approach rule, no wetted summit at D > 0 (the meniscus forms on touch).
+        assert_eq!(e.capillary_load_n, if d > 0.0 { 0.0 } else { f0 });
+    }
+    // Under load control a Hertz summit held by its meniscus stays in contact down to -F(0) (the
+    // tail beyond contact has negative stiffness: unstable), and comes off below it.
+    for (target, holds) in [(-0.5 * f0, true), (-0.99 * f0, true), (-1.01 * f0, false)] {
+        s.reset();
+        s.solve(1e-6).unwrap();
+        match (s.solve(target), holds) {
+            (Ok(e), true) => assert!((hertz(h - e.separation_m) / (target + f0) - 1.0).abs() < 1e-8),
+            (Err(SolveError::NoEquilibrium { .. }), false) => {}
+            (other, _) => panic!("load {target}: {other:?}"),
+        }
+    }
+}

@@ -290,3 +290,14 @@ fn is_zero_f64(v: &f64) -> bool {
 fn is_zero_usize(v: &usize) -> bool {
     *v == 0
 }
+
+impl Meniscus {
+    /// The meniscus of a capillary law: `force_per_radius = 2 pi gamma (cos th1 + cos th2)`,
+    /// `height = h_m` ([`crate::capillary::Capillarity::meniscus_height_m`]).
+    pub fn from_capillarity(c: &crate::capillary::Capillarity) -> Self {
+        Self {
+            force_per_radius_n_per_m: 2.0 * std::f64::consts::PI * c.surface_tension_n_per_m * c.cos_angle_sum,
+            height_m: c.meniscus_height_m(),
+        }
+    }
+}
