@@ -123,8 +123,7 @@ fn normal_integral(g: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
 fn flat_shoe_capillary_load_matches_the_gw_sum_on_approach_and_retraction() {
     // Table 1 statistics over 320 um x 80 um: about 1e5 summits, flat shoe (the GW situation).
     let (eta, sigma) = (4e12, 0.04e-6);
-    let layout =
-        Layout { apparent_length_m: 320e-6, apparent_width_m: 80e-6, placement: Placement::Poisson, seed: 7 };
+    let layout = Layout { apparent_length_m: 320e-6, apparent_width_m: 80e-6, placement: Placement::Poisson, seed: 7 };
     let surface = generate(&layout, &FaceParams::gaussian_fixed(eta, sigma, R)).unwrap();
     let heights: Vec<f64> = surface.heights_m().to_vec();
     let m_sum = heights.len() as f64;
@@ -147,8 +146,9 @@ fn flat_shoe_capillary_load_matches_the_gw_sum_on_approach_and_retraction() {
                 "load",
                 e.load_n,
                 m_sum * (kappa * f15 - cc * f0),
-                (m_sum * (kappa * kappa * f3 - 2.0 * kappa * cc * f15 + cc * cc * f0 - (kappa * f15 - cc * f0).powi(2)))
-                    .sqrt(),
+                (m_sum
+                    * (kappa * kappa * f3 - 2.0 * kappa * cc * f15 + cc * cc * f0 - (kappa * f15 - cc * f0).powi(2)))
+                .sqrt(),
             ),
         ];
         for (what, obs, mean, se) in checks {
@@ -173,7 +173,13 @@ fn flat_shoe_capillary_load_matches_the_gw_sum_on_approach_and_retraction() {
         .filter(|&&h| h - d0 >= 0.0)
         .map(|&h| {
             let z = h - d1;
-            if z >= 0.0 { f_r } else if z >= -men.height_m { f_r * (1.0 + z / men.height_m) } else { 0.0 }
+            if z >= 0.0 {
+                f_r
+            } else if z >= -men.height_m {
+                f_r * (1.0 + z / men.height_m)
+            } else {
+                0.0
+            }
         })
         .sum();
     assert!((e1.capillary_load_n / direct - 1.0).abs() < 1e-12, "{} vs {direct}", e1.capillary_load_n);
@@ -260,4 +266,40 @@ fn the_meniscus_of_a_capillary_law_gives_its_sphere_flat_force() {
             (other, _) => panic!("load {target}: {other:?}"),
         }
     }
+}
+
+#[test]
+fn the_fast_pass_and_the_generic_pass_agree_with_menisci() {
+    // One radius (fast pass over blocks of 64) against the same radius given per summit (generic
+    // pass): loading, unloading past the separation of wetted summits and reloading give the same
+    // equilibria to the solver tolerance (1e-9 of the load scale; separations to 1e-6 of sigma).
+    let layout = Layout { apparent_length_m: 40e-6, apparent_width_m: 10e-6, placement: Placement::Poisson, seed: 5 };
+    let fast = generate(&layout, &FaceParams::gaussian_fixed(4e12, 0.04e-6, R)).unwrap();
+    let n = fast.len();
+    let generic = Surface::new(
+        40e-6,
+        10e-6,
+        (0..n).map(|i| fast.x_m(i) as f32).collect(),
+        (0..n).map(|i| fast.y_m(i) as f32).collect(),
+        fast.heights_m().to_vec(),
+        Radii::PerSummit(vec![R; n]),
+    )
+    .unwrap();
+    let mut loads: Vec<f64> = (0..=20).map(|k| k as f64 * 2e-6).collect();
+    loads.extend((0..=20).rev().map(|k| k as f64 * 1e-6));
+    let run = |s: Surface| {
+        let mut sol =
+            ExplicitSolver::new(s, AdhesionLaw::Dmt, AsperityParams::table1(), SolverConfig::default()).unwrap();
+        sol.set_meniscus(Some(meniscus())).unwrap();
+        loads.iter().map(|&l| sol.solve(l).unwrap()).collect::<Vec<_>>()
+    };
+    let (a, b) = (run(fast), run(generic));
+    let mut tails = 0;
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!((x.contacts, x.wetted_summits), (y.contacts, y.wetted_summits), "L = {}", x.load_n);
+        assert!((x.separation_m - y.separation_m).abs() < 1e-6 * 0.04e-6);
+        assert!((x.capillary_load_n - y.capillary_load_n).abs() < 1e-9 * x.capillary_load_n);
+        tails = tails.max(x.wetted_summits - x.contacts);
+    }
+    assert!(tails > 0, "the unloading branch has wetted summits out of contact");
 }

@@ -48,6 +48,11 @@ pub(crate) trait LawEval {
     fn capillary_n(&self, _i: usize, _z: f64) -> f64 {
         0.0
     }
+    /// With [`LawEval::uniform_hertz_dmt`] (whose pull then includes the meniscus f R): the
+    /// meniscus of the fast pass (f R, 1 / h_m, wetted bit set); None when dry.
+    fn fast_meniscus(&self) -> Option<(f64, f64, &[u64])> {
+        None
+    }
 }
 
 /// Hertz (eq. 3) and DMT (eq. 4) in closed form: P = R^1/2 z^3/2 / D - 2 pi dgamma R.
@@ -469,6 +474,15 @@ impl<L: LawEval + ?Sized> LawEval for Wet<'_, L> {
     }
     fn z_min(&self) -> f64 {
         self.dry.z_min().min(-self.height_m)
+    }
+    fn uniform_hertz_dmt(&self) -> Option<(f64, f64, f64)> {
+        // Hertz/DMT of one radius: in solid contact the meniscus adds the constant pull f R.
+        self.dry.uniform_hertz_dmt().map(|(r, inv_d, c0)| (r, inv_d, c0 + self.force_per_radius_n_per_m * r))
+    }
+    fn fast_meniscus(&self) -> Option<(f64, f64, &[u64])> {
+        self.dry
+            .uniform_hertz_dmt()
+            .map(|(r, _, _)| (self.force_per_radius_n_per_m * r, 1.0 / self.height_m, self.wetted))
     }
     fn capillary_n(&self, i: usize, z: f64) -> f64 {
         if self.solid(i, z) || self.is_wetted(i) {

@@ -452,7 +452,11 @@ impl ExplicitSolver {
     pub fn set_meniscus(&mut self, meniscus: Option<Meniscus>) -> Result<(), SolveError> {
         if let Some(m) = meniscus {
             if !(m.force_per_radius_n_per_m.is_finite() && m.force_per_radius_n_per_m > 0.0) {
-                return Err(invalid("meniscus.force_per_radius_n_per_m", m.force_per_radius_n_per_m, "a finite value > 0 N/m"));
+                return Err(invalid(
+                    "meniscus.force_per_radius_n_per_m",
+                    m.force_per_radius_n_per_m,
+                    "a finite value > 0 N/m",
+                ));
             }
             if !(m.height_m.is_finite() && m.height_m > 0.0) {
                 return Err(invalid("meniscus.height_m", m.height_m, "a finite value > 0 m"));
@@ -971,8 +975,10 @@ fn evaluate<L: LawEval + ?Sized>(
         let a_hard = g.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
         let z_hard = a_hard * a_hard / radius;
         let lin = lin && g.shortcuts;
-        let k = fast::Kernel { q: *q, x0, y0, inv_ell, radius, inv_d, c0, allow_touch, a_hard, z_hard, lin };
-        let mut ev = fast::evaluate(g, st, &k, end, load, touch);
+        let (cap_f, inv_hm, wetted) = law.fast_meniscus().unwrap_or((0.0, 0.0, &[]));
+        let k =
+            fast::Kernel { q: *q, x0, y0, inv_ell, radius, inv_d, c0, allow_touch, a_hard, z_hard, lin, cap_f, inv_hm };
+        let mut ev = fast::evaluate(g, st, wetted, &k, end, load, touch);
         // The pass scans whole blocks of 64; a summit beyond them lies below the threshold
         // (h < w_min: DMT/Hertz reach nothing below the plane), so its |z| >= w_min - h.
         let scanned = (end.div_ceil(64) * 64).min(g.hs.len());
@@ -1653,11 +1659,13 @@ mod tests {
                     a_hard,
                     z_hard: a_hard * a_hard / radius,
                     lin,
+                    cap_f: 0.0,
+                    inv_hm: 0.0,
                 };
                 let end = s.geom.hs.len();
                 let (mut t1, mut t2) = (Vec::new(), Vec::new());
-                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &k, end, 0.1, &mut t1);
-                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &k, end, 0.1, &mut t2);
+                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &[], &k, end, 0.1, &mut t1);
+                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &[], &k, end, 0.1, &mut t2);
                 assert!(e1.contacts > 100 && e1.releases > 0 && !t1.is_empty(), "{e1:?}");
                 assert_eq!(e1.lin.is_some(), lin);
                 assert_eq!(format!("{e1:?}"), format!("{e2:?}"), "{mode:?}");
