@@ -49,6 +49,10 @@ pub(crate) struct Kernel {
     pub z_hard: f64,
     /// Also collect what a Newton step without a pass needs ([`super::Linear`]).
     pub lin: bool,
+    /// Meniscus pull of a wetted summit in contact f R (already part of `c0`), 0 when dry \[N\].
+    pub cap_f: f64,
+    /// 1 / h_m, the inverse meniscus height (0 when dry) \[1/m\].
+    pub inv_hm: f64,
 }
 
 #[derive(Clone, Copy)]
@@ -127,13 +131,15 @@ const MIXED: u8 = 2;
 /// (Indexed lanes on purpose: the fixed lane layout is what the compiler vectorises.)
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
+#[allow(clippy::too_many_arguments)]
+fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     acc: &mut Acc,
     buf: &mut Buf,
     xs: &[f32; B],
     ys: &[f32; B],
     hs: &[f64; B],
     word: u64,
+    wet_word: u64,
     k: &Kernel,
 ) -> Counts {
     let touch_zero = k.c0 != 0.0;
@@ -158,7 +164,11 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
             let pos = z > 0.0 || (touch_zero && z == 0.0);
             let act = mem || (k.allow_touch && pos);
             touches[l] += if !mem && k.allow_touch && pos { 1.0 } else { 0.0 };
-            rels[l] += if mem && z < 0.0 { 1.0 } else { 0.0 };
+            // CAP: a wetted member out of solid contact pulls with its meniscus while separated
+            // by less than h_m (no release), with nothing beyond (released, p_rel = 0).
+            let wet_out = CAP && mem && z < 0.0 && (wet_word >> j) & 1 == 1;
+            let tail = wet_out && z * k.inv_hm >= -1.0;
+            rels[l] += if mem && z < 0.0 && !tail { 1.0 } else { 0.0 };
             if LIN {
                 // (Selects, then a plain minimum: this form vectorises.)
                 let za = z.abs();
@@ -173,7 +183,13 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
             let el = a * zc * k.inv_d;
             us[j] = u;
             vs[j] = v;
-            ps[j] = if act { el - k.c0 } else { 0.0 };
+            ps[j] = if CAP && wet_out {
+                if tail { -k.cap_f * (1.0 + z * k.inv_hm) } else { 0.0 }
+            } else if act {
+                el - k.c0
+            } else {
+                0.0
+            };
             zcs[j] = if act { zc } else { 0.0 };
             as_[j] = if act { a } else { 0.0 };
         }
@@ -231,19 +247,21 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
 }
 
 #[inline(always)]
-fn block_dispatch<const TILT: bool, const HARD: bool, const LIN: bool>(
+#[allow(clippy::too_many_arguments)]
+fn block_dispatch<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     acc: &mut Acc,
     buf: &mut Buf,
     xs: &[f32; B],
     ys: &[f32; B],
     hs: &[f64; B],
     word: u64,
+    wet_word: u64,
     k: &Kernel,
 ) -> Counts {
     match word {
-        u64::MAX => block::<ALL, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
-        0 => block::<NONE, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
-        _ => block::<MIXED, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
+        u64::MAX => block::<ALL, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
+        0 => block::<NONE, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
+        _ => block::<MIXED, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
     }
 }
 
@@ -259,9 +277,10 @@ struct Totals {
 /// The loop over the blocks `0..end`, compiled once per instruction set by `pulp` (inlined into
 /// its dispatch).
 #[inline(always)]
-fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
+fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     g: &Geom,
     st: &State,
+    wetted: &[u64],
     k: &Kernel,
     end: usize,
     touch: &mut Vec<u32>,
@@ -287,7 +306,8 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
         let ys: &[f32; B] = g.ys[r.clone()].try_into().expect("block");
         let hs: &[f64; B] = g.hs[r].try_into().expect("block");
         let word = st.member[blk];
-        let c = block_dispatch::<TILT, HARD, LIN>(&mut acc, &mut buf, xs, ys, hs, word, k);
+        let wet_word = if CAP { wetted[blk] } else { 0 };
+        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, xs, ys, hs, word, wet_word, k);
         if c.touches > 0 {
             push_touches(xs, ys, hs, word, blk * B, k, touch);
         }
@@ -302,7 +322,8 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
         ys[..len].copy_from_slice(&g.ys[base..]);
         hs[..len].copy_from_slice(&g.hs[base..]);
         let word = st.member[full];
-        let c = block_dispatch::<TILT, HARD, LIN>(&mut acc, &mut buf, &xs, &ys, &hs, word, k);
+        let wet_word = if CAP { wetted[full] } else { 0 };
+        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, &xs, &ys, &hs, word, wet_word, k);
         if c.touches > 0 {
             push_touches(&xs, &ys, &hs, word, base, k, touch);
         }
@@ -316,6 +337,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
 struct PassOp<'a> {
     g: &'a Geom,
     st: &'a State,
+    wetted: &'a [u64],
     k: &'a Kernel,
     end: usize,
     touch: &'a mut Vec<u32>,
@@ -327,16 +349,25 @@ impl pulp::WithSimd for PassOp<'_> {
     type Output = Totals;
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> Totals {
-        let PassOp { g, st, k, end, touch, tilt, hard } = self;
+        let PassOp { g, st, wetted, k, end, touch, tilt, hard } = self;
+        if k.cap_f != 0.0 {
+            // Capillarity: no linear steps (the meniscus tails are not in their error bound).
+            return match (tilt, hard) {
+                (true, false) => pass::<true, false, false, true>(g, st, wetted, k, end, touch),
+                (true, true) => pass::<true, true, false, true>(g, st, wetted, k, end, touch),
+                (false, false) => pass::<false, false, false, true>(g, st, wetted, k, end, touch),
+                (false, true) => pass::<false, true, false, true>(g, st, wetted, k, end, touch),
+            };
+        }
         match (tilt, hard, k.lin) {
-            (true, false, false) => pass::<true, false, false>(g, st, k, end, touch),
-            (true, true, false) => pass::<true, true, false>(g, st, k, end, touch),
-            (false, false, false) => pass::<false, false, false>(g, st, k, end, touch),
-            (false, true, false) => pass::<false, true, false>(g, st, k, end, touch),
-            (true, false, true) => pass::<true, false, true>(g, st, k, end, touch),
-            (true, true, true) => pass::<true, true, true>(g, st, k, end, touch),
-            (false, false, true) => pass::<false, false, true>(g, st, k, end, touch),
-            (false, true, true) => pass::<false, true, true>(g, st, k, end, touch),
+            (true, false, false) => pass::<true, false, false, false>(g, st, wetted, k, end, touch),
+            (true, true, false) => pass::<true, true, false, false>(g, st, wetted, k, end, touch),
+            (false, false, false) => pass::<false, false, false, false>(g, st, wetted, k, end, touch),
+            (false, true, false) => pass::<false, true, false, false>(g, st, wetted, k, end, touch),
+            (true, false, true) => pass::<true, false, true, false>(g, st, wetted, k, end, touch),
+            (true, true, true) => pass::<true, true, true, false>(g, st, wetted, k, end, touch),
+            (false, false, true) => pass::<false, false, true, false>(g, st, wetted, k, end, touch),
+            (false, true, true) => pass::<false, true, true, false>(g, st, wetted, k, end, touch),
         }
     }
 }
@@ -344,10 +375,12 @@ impl pulp::WithSimd for PassOp<'_> {
 /// The pass over the summits `0..end` (every member has an index below `end`; summits at or
 /// beyond it cannot touch). Touching summits are pushed to `touch` in ascending order.
 /// `arch` selects the instruction set (`pulp::Arch::new()`: the best one this machine has).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate_with(
     arch: pulp::Arch,
     g: &Geom,
     st: &State,
+    wetted: &[u64],
     k: &Kernel,
     end: usize,
     load: f64,
@@ -356,7 +389,7 @@ pub(crate) fn evaluate_with(
     touch.clear();
     let tilt = g.ndof > 1;
     let hard = k.a_hard.is_finite();
-    let t = arch.dispatch(PassOp { g, st, k, end, touch, tilt, hard });
+    let t = arch.dispatch(PassOp { g, st, wetted, k, end, touch, tilt, hard });
     let acc = &t.acc;
     let s = |v: &[f64; W]| (v[0] + v[1]) + (v[2] + v[3]);
     let (p, pu, pv) = (s(&acc.p), s(&acc.pu), s(&acc.pv));
@@ -380,7 +413,7 @@ pub(crate) fn evaluate_with(
         moment_x: pu * ell,
         moment_y: pv * ell,
         release_words: Some(t.release_words.unwrap_or((1, 0))),
-        lin: k.lin.then(|| Linear {
+        lin: (k.lin && k.cap_f == 0.0).then(|| Linear {
             gap_in: min(&acc.gap_in),
             gap_out: min(&acc.gap_out),
             hard_gap: min(&acc.hgap),
@@ -396,8 +429,16 @@ pub(crate) fn evaluate_with(
 }
 
 /// [`evaluate_with`] on the best instruction set of this machine.
-pub(crate) fn evaluate(g: &Geom, st: &State, k: &Kernel, end: usize, load: f64, touch: &mut Vec<u32>) -> Eval {
-    evaluate_with(pulp::Arch::new(), g, st, k, end, load, touch)
+pub(crate) fn evaluate(
+    g: &Geom,
+    st: &State,
+    wetted: &[u64],
+    k: &Kernel,
+    end: usize,
+    load: f64,
+    touch: &mut Vec<u32>,
+) -> Eval {
+    evaluate_with(pulp::Arch::new(), g, st, wetted, k, end, load, touch)
 }
 
 #[cold]
