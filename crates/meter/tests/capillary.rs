@@ -43,7 +43,8 @@ fn humid_points_carry_the_closed_form_capillary_load() {
     }
     assert!(n >= 10);
     let g = run(&["environment.relative_humidity=0.35", "contact.model=\"gw\""]);
-    let share = 2.0 * g.environment.map(|_| stiction_contact::capillary::water_surface_tension_n_per_m(298.15)).unwrap();
+    let share =
+        2.0 * g.environment.map(|_| stiction_contact::capillary::water_surface_tension_n_per_m(298.15)).unwrap();
     for p in g.points.iter().filter(|p| p.in_contact && p.error.is_none()) {
         let ratio = p.capillary_load_n.unwrap() / p.adhesive_load_n;
         assert!((ratio - share / (0.1 + share)).abs() < 1e-12, "{ratio}");
