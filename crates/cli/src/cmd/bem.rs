@@ -87,18 +87,18 @@ pub struct Args {
     /// --range for van der Waals if given, and the work of separation of a retraction from the
     /// compressed state at --pressure (default 1 MPa) to separation. A list ("0.1,0.35,0.9" or
     /// "35 %,60 %") or FROM:TO:STEPS ("0.1:0.9:9"); fractions in [0, 1).
-    #[arg(long, value_name = "LIST|FROM:TO:STEPS", conflicts_with_all = ["sweep", "gap_sweep", "compare_asperity"])]
+    #[arg(long, value_name = "LIST|FROM:TO:STEPS", allow_hyphen_values = true, conflicts_with_all = ["sweep", "gap_sweep", "compare_asperity"])]
     pub rh: Option<String>,
     /// With --rh: temperature ("25 C", "298.15 K"; a bare number is kelvin).
-    #[arg(long, default_value = "25 C", requires = "rh")]
+    #[arg(long, default_value = "25 C", allow_hyphen_values = true, requires = "rh")]
     pub temperature: String,
     /// With --rh: contact angle of water on both faces ("0 deg": hydrophilic oxide; >= 90 deg: no
     /// capillary condensation).
-    #[arg(long, default_value = "0 deg", value_parser = quantity(Dimension::Angle, Constraint::NonNegative), requires = "rh")]
+    #[arg(long, default_value = "0 deg", allow_hyphen_values = true, value_parser = quantity(Dimension::Angle, Constraint::NonNegative), requires = "rh")]
     pub contact_angle: f64,
     /// With --rh: mean-gap step of the retraction ("0.02 nm"; default a twentieth of the shortest
     /// range of the cohesive laws).
-    #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "rh")]
+    #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "rh")]
     pub rh_step: Option<f64>,
     /// Interfacial shear strength s for the friction s A_r ("100 MPa").
     #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::NonNegative))]
@@ -622,10 +622,10 @@ mod humidity {
         let v: f64 =
             num.parse().map_err(|_| format!("--temperature {text:?}: expected \"25 C\", \"298.15 K\" or kelvin"))?;
         let k = v + offset;
-        if k.is_finite() && k > 0.0 && k < 647.096 {
+        if k.is_finite() && (273.15..647.096).contains(&k) {
             Ok(k)
         } else {
-            Err(format!("--temperature {text:?}: expected a temperature of liquid water, above 0 K and below 647 K"))
+            Err(format!("--temperature {text:?}: expected a temperature of liquid water, 0 C (273.15 K) to 647 K"))
         }
     }
 
@@ -704,7 +704,9 @@ mod humidity {
             } else {
                 let shortest = laws.iter().fold(f64::INFINITY, |m, l| m.min(l.range_m));
                 let step = args.rh_step.unwrap_or(shortest / 20.0);
-                let sep = solver.work_of_separation(&laws, start.mean_gap_m, step, &opts)?;
+                let sep = solver.work_of_separation(&laws, start.mean_gap_m, step, &opts).map_err(|e| {
+                    format!("--rh {rh}: the retraction from --pressure to separation failed ({e}); check --rh-step")
+                })?;
                 (sep.adhesion_energy_j_per_m2, sep.pull_off_pressure_pa, sep.steps)
             };
             points.push(Point {
