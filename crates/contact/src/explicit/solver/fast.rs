@@ -343,7 +343,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
         let ys: &[f32; B] = g.ys[r.clone()].try_into().expect("block");
         let hs: &[f64; B] = g.hs[r].try_into().expect("block");
         let word = st.member[blk];
-        let wet_word = if CAP { wetted[blk] } else { 0 };
+        let wet_word = if CAP { wetted.get(blk).copied().unwrap_or(0) } else { 0 };
         let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, xs, ys, hs, word, wet_word, k);
         if c.touches > 0 {
             push_touches(xs, ys, hs, word, blk * B, k, touch);
@@ -359,7 +359,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
         ys[..len].copy_from_slice(&g.ys[base..]);
         hs[..len].copy_from_slice(&g.hs[base..]);
         let word = st.member[full];
-        let wet_word = if CAP { wetted[full] } else { 0 };
+        let wet_word = if CAP { wetted.get(full).copied().unwrap_or(0) } else { 0 };
         let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, &xs, &ys, &hs, word, wet_word, k);
         if c.touches > 0 {
             push_touches(&xs, &ys, &hs, word, base, k, touch);
