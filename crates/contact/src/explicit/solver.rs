@@ -161,6 +161,13 @@ struct Eval {
     release_words: Option<(usize, usize)>,
     /// What a Newton step without a pass needs (the fast pass only; see [`linear_step`]).
     lin: Option<Linear>,
+    /// Menisci only: their total pull and the number of summits in solid contact (contact
+    /// radius > 0), at an equilibrium (no member past release).
+    capillary: f64,
+    solid: usize,
+    /// Members were released from this evaluation without a new pass: `capillary` and `solid`
+    /// are stale.
+    released: bool,
 }
 
 /// Quantities of a fast pass beyond the gradient and Hessian, for a final Newton step applied by
@@ -476,27 +483,11 @@ impl ExplicitSolver {
         Ok(())
     }
 
-    /// After an equilibrium: members in solid contact become wetted, summits that left the
-    /// contact set (ruptured menisci) are dry again.
+    /// After an equilibrium the wetted summits are the members: every member is in solid contact
+    /// (it joined by touching, or is on the dry law's contact branch) or was wetted before and is
+    /// separated by less than h_m; ruptured menisci left the set with their summits.
     fn update_wetted(&mut self) {
-        let q = self.state.q;
-        let mut wetted = std::mem::take(&mut self.wetted);
-        self.with_dry_law(|g, dry| {
-            let (a, b, c) = g.plane(&q);
-            for (w, word) in wetted.iter_mut().enumerate() {
-                let mut bits = self.state.member.get(w).copied().unwrap_or(0);
-                *word &= bits;
-                while bits != 0 {
-                    let i = w * 64 + bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    let z = g.hs[i] - (a + b * f64::from(g.xs[i]) + c * f64::from(g.ys[i]));
-                    if z >= dry.z_rel(i) {
-                        *word |= 1 << (i & 63);
-                    }
-                }
-            }
-        });
-        self.wetted = wetted;
+        self.wetted.copy_from_slice(&self.state.member);
     }
 
     /// The meniscus in use (None: dry).
@@ -853,8 +844,8 @@ impl ExplicitSolver {
             summits: Vec::new(),
         };
         if detail == Detail::Summary
-            && self.wet.is_none()
             && let Some((generation, cq, ev)) = &self.state.cache
+            && (self.wet.is_none() || !ev.released)
             && *generation == self.state.generation
             && *cq == q
         {
@@ -868,6 +859,11 @@ impl ExplicitSolver {
             e.force_residual_n = load_n - ev.force;
             e.adhesive_load_n = e.elastic_load_n - ev.force;
             e.friction_capacity_n = self.config.shear_strength_pa * e.real_area_m2;
+            if self.wet.is_some() {
+                e.capillary_load_n = ev.capillary;
+                e.wetted_summits = e.contacts;
+                e.contacts = ev.solid;
+            }
             return e;
         }
         let mut total = 0.0;
@@ -1014,6 +1010,8 @@ fn evaluate<L: LawEval + ?Sized>(
         };
         let (p, k) = if on_branch {
             let r = law.contact(i, z);
+            ev.capillary += law.capillary_n(i, z);
+            ev.solid += usize::from(r.radius > 0.0);
             area += r.radius * r.radius;
             elastic += r.elastic_n;
             q0_max = q0_max.max(r.q0);
@@ -1102,6 +1100,7 @@ fn release<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &mut State, ev: &mut Eval
                 ev.moment_y -= p * (y - y0);
                 ev.contacts -= 1;
                 ev.releases = ev.releases.saturating_sub(1);
+                ev.released = true;
             }
         }
     }

@@ -77,6 +77,11 @@ struct Acc {
     kuu: [f64; W],
     kuv: [f64; W],
     kvv: [f64; W],
+    /// CAP only: meniscus pull of the wetted members out of solid contact, their number, and the
+    /// number of active summits with z > 0 (in solid contact).
+    cap_tail: [f64; W],
+    wet_out: [f64; W],
+    solid: [f64; W],
 }
 
 impl Acc {
@@ -101,6 +106,9 @@ impl Acc {
             kuu: z,
             kuv: z,
             kvv: z,
+            cap_tail: z,
+            wet_out: z,
+            solid: z,
         }
     }
 }
@@ -112,6 +120,8 @@ struct Buf {
     ps: [f64; B],
     zcs: [f64; B],
     as_: [f64; B],
+    /// CAP only: the interference z.
+    zs: [f64; B],
 }
 
 /// Per-block counts: summits touching at this pose, members past release.
@@ -143,7 +153,7 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
     k: &Kernel,
 ) -> Counts {
     let touch_zero = k.c0 != 0.0;
-    let Buf { us, vs, ps, zcs, as_ } = buf;
+    let Buf { us, vs, ps, zcs, as_, zs } = buf;
     // Counts as f64 lanes (exact below 2^53): mixing integer lanes into the float code costs packing.
     let mut touches = [0.0f64; W];
     let mut rels = [0.0f64; W];
@@ -164,11 +174,7 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             let pos = z > 0.0 || (touch_zero && z == 0.0);
             let act = mem || (k.allow_touch && pos);
             touches[l] += if !mem && k.allow_touch && pos { 1.0 } else { 0.0 };
-            // CAP: a wetted member out of solid contact pulls with its meniscus while separated
-            // by less than h_m (no release), with nothing beyond (released, p_rel = 0).
-            let wet_out = CAP && mem && z < 0.0 && (wet_word >> j) & 1 == 1;
-            let tail = wet_out && z * k.inv_hm >= -1.0;
-            rels[l] += if mem && z < 0.0 && !tail { 1.0 } else { 0.0 };
+            rels[l] += if mem && z < 0.0 { 1.0 } else { 0.0 };
             if LIN {
                 // (Selects, then a plain minimum: this form vectorises.)
                 let za = z.abs();
@@ -183,19 +189,35 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             let el = a * zc * k.inv_d;
             us[j] = u;
             vs[j] = v;
-            ps[j] = if CAP && wet_out {
-                if tail { -k.cap_f * (1.0 + z * k.inv_hm) } else { 0.0 }
-            } else if act {
-                el - k.c0
-            } else {
-                0.0
-            };
+            ps[j] = if act { el - k.c0 } else { 0.0 };
+            if CAP {
+                zs[j] = z;
+            }
             zcs[j] = if act { zc } else { 0.0 };
             as_[j] = if act { a } else { 0.0 };
         }
     }
     acc.gap_in = gap_in;
     acc.gap_out = gap_out;
+    if CAP && M != NONE {
+        // Stage 1b (menisci): a wetted member out of solid contact pulls with its meniscus while
+        // separated by less than h_m (not a release), with nothing beyond (released, p_rel = 0).
+        for grp in 0..B / W {
+            for l in 0..W {
+                let j = grp * W + l;
+                let z = zs[j];
+                let mem = match M {
+                    ALL => true,
+                    _ => (word >> j) & 1 == 1,
+                };
+                let wet_out = mem && z < 0.0 && (wet_word >> j) & 1 == 1;
+                let tail = wet_out && z * k.inv_hm >= -1.0;
+                rels[l] -= if tail { 1.0 } else { 0.0 };
+                let pt = -k.cap_f * (1.0 + z * k.inv_hm);
+                ps[j] = if wet_out { if tail { pt } else { 0.0 } } else { ps[j] };
+            }
+        }
+    }
     let touches: f64 = touches.iter().sum();
     let counts = Counts { touches: touches as u32, releases: rels.iter().sum::<f64>() as u32 };
     if M == NONE && touches == 0.0 {
@@ -240,6 +262,21 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
                 acc.kuu[l] += ku * us[j];
                 acc.kuv[l] += ku * vs[j];
                 acc.kvv[l] += kv * vs[j];
+            }
+        }
+    }
+    if CAP {
+        // Stage 4 (menisci): the tails' pull, how many, summits in solid contact. A tail is the
+        // only active summit with z+ = 0 and a load in (-f R, 0): in solid contact the pull is
+        // at least c0 >= f R (at an equilibrium no member is past release).
+        for grp in 0..B / W {
+            for l in 0..W {
+                let j = grp * W + l;
+                let p = ps[j];
+                let tail = zcs[j] == 0.0 && p < 0.0 && p > -k.cap_f;
+                acc.cap_tail[l] -= if tail { p } else { 0.0 };
+                acc.wet_out[l] += if tail { 1.0 } else { 0.0 };
+                acc.solid[l] += if as_[j] > 0.0 { 1.0 } else { 0.0 };
             }
         }
     }
@@ -288,7 +325,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     let n = g.hs.len();
     let mut acc = Acc::zero();
     let z = [0.0; B];
-    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z };
+    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z, zs: z };
     let mut contacts = 0usize;
     let mut releases = 0usize;
     let mut release_words: Option<(usize, usize)> = None;
@@ -306,7 +343,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
         let ys: &[f32; B] = g.ys[r.clone()].try_into().expect("block");
         let hs: &[f64; B] = g.hs[r].try_into().expect("block");
         let word = st.member[blk];
-        let wet_word = if CAP { wetted[blk] } else { 0 };
+        let wet_word = if CAP { wetted.get(blk).copied().unwrap_or(0) } else { 0 };
         let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, xs, ys, hs, word, wet_word, k);
         if c.touches > 0 {
             push_touches(xs, ys, hs, word, blk * B, k, touch);
@@ -322,7 +359,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
         ys[..len].copy_from_slice(&g.ys[base..]);
         hs[..len].copy_from_slice(&g.hs[base..]);
         let word = st.member[full];
-        let wet_word = if CAP { wetted[full] } else { 0 };
+        let wet_word = if CAP { wetted.get(full).copied().unwrap_or(0) } else { 0 };
         let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, &xs, &ys, &hs, word, wet_word, k);
         if c.touches > 0 {
             push_touches(&xs, &ys, &hs, word, base, k, touch);
@@ -413,6 +450,15 @@ pub(crate) fn evaluate_with(
         moment_x: pu * ell,
         moment_y: pv * ell,
         release_words: Some(t.release_words.unwrap_or((1, 0))),
+        // Menisci: f R at every active summit but the wetted ones out of solid contact, which
+        // pull with their tails (meaningful at an equilibrium: no member past release).
+        capillary: if k.cap_f != 0.0 {
+            k.cap_f * (t.contacts as f64 - s(&acc.wet_out)) + s(&acc.cap_tail)
+        } else {
+            0.0
+        },
+        solid: s(&acc.solid) as usize,
+        released: false,
         lin: (k.lin && k.cap_f == 0.0).then(|| Linear {
             gap_in: min(&acc.gap_in),
             gap_out: min(&acc.gap_out),
