@@ -114,6 +114,95 @@ fn bem_bad_flags_exit_2() {
         (vec!["bem", "--sweep", "1MPa:2MPa:0"], "STEPS"),
         (vec!["bem", "--tolerance", "2", "--pressure", "1MPa"], "--tolerance"),
         (vec!["bem", "--hurst", "1.5", "--pressure", "1MPa"], "hurst"),
+        (vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "1.2"], "--rh"),
+        (vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "-0.1"], "--rh"),
+        (vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.1:0.9:0"], "STEPS"),
+        (vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.1:0.9"], "--rh"),
+        (
+            vec![
+                "bem",
+                "--size",
+                "0.5um",
+                "--grid",
+                "16",
+                "--rms-height",
+                "1nm",
+                "--rh",
+                "0.5",
+                "--temperature",
+                "-5 K",
+            ],
+            "--temperature",
+        ),
+        (
+            vec![
+                "bem",
+                "--size",
+                "0.5um",
+                "--grid",
+                "16",
+                "--rms-height",
+                "1nm",
+                "--rh",
+                "0.5",
+                "--temperature",
+                "hot",
+            ],
+            "--temperature",
+        ),
+        (
+            vec![
+                "bem",
+                "--size",
+                "0.5um",
+                "--grid",
+                "16",
+                "--rms-height",
+                "1nm",
+                "--rh",
+                "0.5",
+                "--contact-angle",
+                "200 deg",
+            ],
+            "--contact-angle",
+        ),
+        (
+            vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.5", "--rh-step", "0 nm"],
+            "--rh-step",
+        ),
+        (
+            vec![
+                "bem",
+                "--size",
+                "0.5um",
+                "--grid",
+                "16",
+                "--rms-height",
+                "1nm",
+                "--rh",
+                "0.5",
+                "--rh-step",
+                "1e-30 m",
+            ],
+            "--rh-step",
+        ),
+        (vec!["bem", "--grid", "8", "--temperature", "25 C", "--pressure", "1MPa"], "--rh"),
+        (
+            vec![
+                "bem",
+                "--size",
+                "0.5um",
+                "--grid",
+                "16",
+                "--rms-height",
+                "1nm",
+                "--rh",
+                "0.5",
+                "--temperature",
+                "35 K",
+            ],
+            "--temperature",
+        ),
     ] {
         let out = stiction(&args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
@@ -281,5 +370,68 @@ fn bem_model_bad_scenarios_exit_2() {
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
+
+/// `bem --rh`: the adhesion energy of a rough surface against relative humidity. Van der Waals
+/// alone at RH 0; it grows with humidity and stays below the flat wetted limit w + 2 gamma
+/// (w = 0.1 J/m^2 the van der Waals Dugdale law, 2 gamma = 143.9 mJ/m^2 for water at 25 C and a
+/// contact angle of 0); the results and humidity.csv go to --out.
+#[test]
+fn bem_rh_gives_adhesion_energy_against_humidity() {
+    let dir = temp_dir("bem-rh");
+    let v = stiction_json(&[
+        "bem",
+        "--size",
+        "0.5 um",
+        "--grid",
+        "32",
+        "--rms-height",
+        "2 nm",
+        "--rh",
+        "0,50 %,0.9",
+        "--work-of-adhesion",
+        "0.1 J/m^2",
+        "--range",
+        "0.4 nm",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let pts = v["points"].as_array().unwrap();
+    let g: Vec<f64> = pts.iter().map(|p| p["adhesion_energy_mj_per_m2"].as_f64().unwrap()).collect();
+    println!("Gamma (mJ/m^2) at RH 0, 0.5, 0.9: {g:?}");
+    assert!(g[0] > 0.0 && g[0] <= g[1] && g[1] < g[2], "{g:?}");
+    assert!(g[2] < 100.0 + 143.9, "{g:?}");
+    assert!(pts[0]["kelvin_radius_m"].is_null());
+    let lim = v["capillary_limit_j_per_m2"].as_f64().unwrap();
+    assert!((lim - 0.1439).abs() < 5e-4, "{lim}");
+    let csv = std::fs::read_to_string(dir.join("humidity.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 4, "{csv}");
+    assert!(csv.starts_with("relative_humidity,"), "{csv}");
+}
+
+/// Garbage for each `--rh` flag: exit status 2 with the flag named, never a panic.
+#[test]
+fn bem_rh_flags_refuse_garbage() {
+    let junk = ["", "nan", "inf", "1e400", "-1", "0.5:", "::", "0.1,,0.2", "35 K", "1e-300:1:2", "%", "abc"];
+    for v in junk {
+        for (flag, base) in [
+            ("--rh", vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm"]),
+            ("--temperature", vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.5"]),
+            ("--contact-angle", vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.5"]),
+            ("--rh-step", vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.5"]),
+        ] {
+            let mut args = base.clone();
+            args.extend([flag, v]);
+            let out = stiction(&args);
+            let err = String::from_utf8_lossy(&out.stderr);
+            if out.status.code() == Some(0) {
+                continue; // a value that happens to be valid (e.g. "1e-300:1:2" is not; "-1" never)
+            }
+            assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+            assert!(err.contains(flag) || err.contains(&flag.replace("--", "")), "{args:?}: {err}");
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+        }
     }
 }

@@ -197,7 +197,7 @@ fn set_errors_name_the_set() {
     assert!(err.contains("--set surface.summit_radius=-1 um") && !err.contains("tas2000.json: at"), "{err}");
     let (code, _, err) = text(&["run", "scenarios/tas2000.json", "--set", "material.relative_humidity=0.4"]);
     assert_eq!(code, 2);
-    assert!(err.contains("--set material.relative_humidity") && err.contains("not modelled yet"), "{err}");
+    assert!(err.contains("--set material.relative_humidity") && err.contains("environment.relative_humidity"), "{err}");
 }
 
 /// The tutorial (docs/own-device.md), step by step: the numbers the doc shows.

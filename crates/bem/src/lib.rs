@@ -303,6 +303,19 @@ impl Dugdale {
         Ok(Dugdale { stress_pa: work_of_adhesion_j_per_m2 / range_m, range_m })
     }
 
+    /// The capillary cohesive zone of condensed liquid in equilibrium with its vapour: the
+    /// Laplace pressure `gamma / r_K` (Pa) wherever the gap is below the meniscus height
+    /// `h_m = r_K (cos th1 + cos th2)` (Kelvin radius `r_K`, m; surface tension `gamma`, N/m; the
+    /// contact angles' cosines summed, > 0). Its work of adhesion is
+    /// `sigma0 h_m = gamma (cos th1 + cos th2)` (2 gamma cos theta for equal faces): the flat-flat
+    /// limit of a wetted interface.
+    pub fn capillary(surface_tension_n_per_m: f64, kelvin_radius_m: f64, cos_angle_sum: f64) -> Result<Self, BemError> {
+        check_positive("surface_tension_n_per_m", surface_tension_n_per_m, "a finite surface tension > 0 (N/m)")?;
+        check_positive("kelvin_radius_m", kelvin_radius_m, "a finite Kelvin radius > 0 (m)")?;
+        check_positive("cos_angle_sum", cos_angle_sum, "cos th1 + cos th2 > 0 (a wetting liquid)")?;
+        Ok(Dugdale { stress_pa: surface_tension_n_per_m / kelvin_radius_m, range_m: kelvin_radius_m * cos_angle_sum })
+    }
+
     /// Work of adhesion `w = sigma0 h0`, J/m^2.
     pub fn work_of_adhesion_j_per_m2(&self) -> f64 {
         self.stress_pa * self.range_m
@@ -655,11 +668,15 @@ impl BemSolver {
         })
     }
 
-    /// `b = -K^-1[h']` for the dual iteration, with `h' = h + sigma0 K[1_Z]` when a zone is given.
-    fn data_for_gap(&mut self, zone: Option<(&[bool], f64)>) -> Vec<f64> {
+    /// `b = -K^-1[h']` for the dual iteration, with `h' = h + K[sum_k sigma_k 1_Z_k]` when zones
+    /// are given (one per cohesive law, each of `n` points, concatenated).
+    fn data_for_gap(&mut self, zone: Option<(&[bool], &[Dugdale])>) -> Vec<f64> {
         let mut hp = self.heights.clone();
-        if let Some((z, s0)) = zone {
-            let f: Vec<f64> = z.iter().map(|&z| if z { s0 } else { 0.0 }).collect();
+        let n = hp.len();
+        if let Some((z, laws)) = zone {
+            let f: Vec<f64> = (0..n)
+                .map(|i| laws.iter().enumerate().fold(0.0, |t, (k, l)| if z[k * n + i] { t + l.stress_pa } else { t }))
+                .collect();
             let u = self.half.displacement(&f);
             hp.iter_mut().zip(&u).for_each(|(h, u)| *h += u);
         }
@@ -710,29 +727,57 @@ impl BemSolver {
         opts: &SolverOptions,
         warm: Option<&ContactSolution>,
     ) -> Result<ContactSolution, BemError> {
+        self.solve_cohesive_mean_gap(mean_gap_m, std::slice::from_ref(law), opts, warm)
+    }
+
+    /// Adhesive contact with several Dugdale laws acting together (a tension `sum_k sigma_k` over
+    /// the points whose gap is below each law's range; e.g. van der Waals and a capillary zone,
+    /// [`Dugdale::capillary`]) under mean-gap control (m, > 0). The zones are updated together
+    /// until none changes. One law is [`Self::solve_adhesive_mean_gap`], to the bit.
+    pub fn solve_cohesive_mean_gap(
+        &mut self,
+        mean_gap_m: f64,
+        laws: &[Dugdale],
+        opts: &SolverOptions,
+        warm: Option<&ContactSolution>,
+    ) -> Result<ContactSolution, BemError> {
         opts.validate()?;
         check_positive("mean_gap_m", mean_gap_m, "a finite mean gap > 0 (m)")?;
-        check_positive("stress_pa", law.stress_pa, "a finite Dugdale stress > 0 (Pa)")?;
-        check_nonnegative("range_m", law.range_m, "a finite range >= 0 (m)")?;
+        if laws.is_empty() {
+            return Err(BemError::Value { name: "laws", value: 0.0, expected: "at least one cohesive law" });
+        }
+        for law in laws {
+            check_positive("stress_pa", law.stress_pa, "a finite Dugdale stress > 0 (Pa)")?;
+            check_nonnegative("range_m", law.range_m, "a finite range >= 0 (m)")?;
+        }
         let n = self.heights.len();
-        let h0 = law.range_m;
         let top = mean_gap_m + self.height_mean;
         let mut gap: Vec<f64> = match warm {
             Some(w) if w.gap_m.len() == n => w.gap_m.clone(),
             _ => self.heights.iter().map(|h| (top - h).max(0.0)).collect(),
         };
-        let mut zone: Vec<bool> = gap.iter().map(|&g| g < h0).collect();
+        let zones_of =
+            |gap: &[f64]| -> Vec<bool> { laws.iter().flat_map(|l| gap.iter().map(move |&g| g < l.range_m)).collect() };
+        let mut zone = zones_of(&gap);
         let mut iterations = 0;
         for update in 1..=opts.max_zone_updates {
-            let b = self.data_for_gap(Some((&zone, law.stress_pa)));
+            let b = self.data_for_gap(Some((&zone, laws)));
             let (g, pc, it, res) = self.gap_solve(&b, mean_gap_m, opts, Some(&gap))?;
             iterations += it;
             gap = g;
-            let new_zone: Vec<bool> = gap.iter().map(|&g| g < h0).collect();
+            let new_zone = zones_of(&gap);
             if new_zone == zone {
-                let p: Vec<f64> = pc.iter().zip(&zone).map(|(p, &z)| if z { p - law.stress_pa } else { *p }).collect();
+                let p: Vec<f64> = (0..n)
+                    .map(|i| {
+                        let t = laws
+                            .iter()
+                            .enumerate()
+                            .fold(0.0, |t, (k, l)| if zone[k * n + i] { t + l.stress_pa } else { t });
+                        if (0..laws.len()).any(|k| zone[k * n + i]) { pc[i] - t } else { pc[i] }
+                    })
+                    .collect();
                 let contact: Vec<bool> = gap.iter().map(|&v| v == 0.0).collect();
-                let nz = zone.iter().filter(|&&z| z).count();
+                let nz = (0..n).filter(|&i| (0..laws.len()).any(|k| zone[k * n + i])).count();
                 return Ok(self.finish(p, gap, contact, nz, iterations, update, res));
             }
             zone = new_zone;
@@ -742,6 +787,92 @@ impl BemSolver {
             iterations: opts.max_zone_updates,
             residual: f64::NAN,
             tolerance: 0.0,
+        })
+    }
+}
+
+/// A retraction under mean-gap control with cohesive laws, and its work ([`BemSolver::work_of_separation`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Separation {
+    /// Work of separation per nominal area `Gamma = int max(-p_bar, 0) d g_bar` over the
+    /// retraction (trapezoid rule), J/m^2: the adhesion energy of a microcantilever experiment.
+    pub adhesion_energy_j_per_m2: f64,
+    /// Most tensile mean traction on the way (the pull-off pressure, <= 0), Pa.
+    pub pull_off_pressure_pa: f64,
+    /// Mean gap of the first and last state, m.
+    pub start_mean_gap_m: f64,
+    /// Mean gap of the last state (no contact, no cohesive zone), m.
+    pub end_mean_gap_m: f64,
+    /// Mean-gap steps.
+    pub steps: usize,
+    /// Conjugate-gradient iterations, summed.
+    pub iterations: usize,
+}
+
+/// Most mean-gap steps [`BemSolver::work_of_separation`] takes.
+pub const MAX_SEPARATION_STEPS: usize = 20_000;
+
+impl BemSolver {
+    /// Retracts the flat from the mean gap `start_mean_gap_m` (m, > 0; a compressed state) in
+    /// steps of `step_m` (m, > 0), each state warm-started from the one before (the cohesive
+    /// zones follow the path), until no point is in contact or in a zone and the mean gap exceeds
+    /// `max(h) - mean(h) + max range`; returns the work of separation
+    /// `Gamma = int max(-p_bar, 0) d g_bar` (the tensile part of the retraction: from where the
+    /// mean traction crosses zero, the adhered state at zero load, to separation). For a flat
+    /// interface with one law this is `sigma0 h0` (to `sigma0 step / 2`, the trapezoid's error at
+    /// the jump); with [`Dugdale::capillary`] it is `gamma (cos th1 + cos th2)`.
+    ///
+    /// Errors: bad values, a path longer than [`MAX_SEPARATION_STEPS`] steps, a solve that fails.
+    pub fn work_of_separation(
+        &mut self,
+        laws: &[Dugdale],
+        start_mean_gap_m: f64,
+        step_m: f64,
+        opts: &SolverOptions,
+    ) -> Result<Separation, BemError> {
+        check_positive("start_mean_gap_m", start_mean_gap_m, "a finite mean gap > 0 (m)")?;
+        check_positive("step_m", step_m, "a finite mean-gap step > 0 (m)")?;
+        let reach = laws.iter().fold(0.0f64, |m, l| m.max(l.range_m));
+        let end = (self.height_max - self.height_mean) + reach;
+        let planned = ((end - start_mean_gap_m).max(0.0) / step_m).ceil() + 1.0;
+        if planned > MAX_SEPARATION_STEPS as f64 {
+            return Err(BemError::Value {
+                name: "step_m",
+                value: step_m,
+                expected: "a step giving at most 20000 steps from the start to separation (a larger step)",
+            });
+        }
+        let mut g = start_mean_gap_m;
+        let mut state = self.solve_cohesive_mean_gap(g, laws, opts, None)?;
+        let mut iterations = state.iterations;
+        let tension = |s: &ContactSolution| (-s.mean_pressure_pa).max(0.0);
+        let mut work = 0.0;
+        let mut pull_off = state.mean_pressure_pa.min(0.0);
+        let mut steps = 0;
+        while !(g > end && state.cohesive_fraction == 0.0 && state.contact_fraction == 0.0) {
+            if steps >= MAX_SEPARATION_STEPS {
+                return Err(BemError::NoConvergence {
+                    what: "retraction to separation",
+                    iterations: steps,
+                    residual: g,
+                    tolerance: end,
+                });
+            }
+            let next = self.solve_cohesive_mean_gap(g + step_m, laws, opts, Some(&state))?;
+            iterations += next.iterations;
+            work += 0.5 * (tension(&state) + tension(&next)) * step_m;
+            pull_off = pull_off.min(next.mean_pressure_pa);
+            g += step_m;
+            state = next;
+            steps += 1;
+        }
+        Ok(Separation {
+            adhesion_energy_j_per_m2: work,
+            pull_off_pressure_pa: pull_off,
+            start_mean_gap_m,
+            end_mean_gap_m: g,
+            steps,
+            iterations,
         })
     }
 }

@@ -5,7 +5,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use stiction_contact::gw::{GwModel, ln_f_n};
+use stiction_contact::gw::{GwModel, GwSurface, ln_f_n};
 use stiction_contact::single::{AdhesionLaw, AsperityParams, Branch, SummitModel, summit_response};
 
 fn bench_f_n(c: &mut Criterion) {
@@ -58,5 +58,18 @@ fn bench_summit(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, bench_f_n, bench_gw, bench_summit);
+fn bench_gw_capillary(c: &mut Criterion) {
+    use stiction_contact::capillary::{Capillarity, Liquid};
+    let s = GwSurface::table1();
+    let cap = Capillarity::new(Liquid::water(298.15), 298.15, 0.35, 0.0, 0.0).unwrap().unwrap();
+    c.bench_function("gw surface solve_load 3 uN (dry)", |b| b.iter(|| s.solve_load(black_box(3e-6), true).unwrap()));
+    c.bench_function("gw surface solve_load_wet 3 uN (35 % RH)", |b| {
+        b.iter(|| s.solve_load_wet(black_box(3e-6), true, Some(&cap)).unwrap())
+    });
+    c.bench_function("gw capillary_load_retraction_n h=2.5", |b| {
+        b.iter(|| s.capillary_load_retraction_n(&cap, black_box(2.5), 2.4).unwrap())
+    });
+}
+
+criterion_group!(benches, bench_f_n, bench_gw, bench_summit, bench_gw_capillary);
 criterion_main!(benches);

@@ -12,12 +12,16 @@
 //! * `explicit/curve_1e6_flat`: the same curve for a flat shoe (the GW situation; `contact --sweep
 //!   --mode flat`).
 //!
+//! * `explicit/wet/...`: the same with a meniscus at every wetted summit (water, RH 35 %, 25 C,
+//!   contact angles 0: `Meniscus::from_capillarity`), for the cost of capillarity against dry.
+//!
 //! `cargo bench -p stiction-contact --bench explicit`
 
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_main};
-use stiction_contact::explicit::{Detail, ExplicitSolver, ShoeMode, SolverConfig};
+use stiction_contact::capillary::{Capillarity, Liquid};
+use stiction_contact::explicit::{Detail, ExplicitSolver, Meniscus, ShoeMode, SolverConfig};
 use stiction_contact::single::{AdhesionLaw, AsperityParams, Branch};
 use stiction_surface::{FaceParams, Layout, Placement, RadiusDistribution, Surface, generate};
 
@@ -41,6 +45,13 @@ fn solver(s: Surface, detail: Detail) -> ExplicitSolver {
 fn solver_mode(s: Surface, detail: Detail, mode: ShoeMode) -> ExplicitSolver {
     let cfg = SolverConfig { detail, mode, ..Default::default() };
     ExplicitSolver::new(s, AdhesionLaw::Dmt, AsperityParams::table1(), cfg).expect("solver")
+}
+
+/// Water at 25 C, RH 35 %, both contact angles 0.
+fn meniscus() -> Meniscus {
+    let t = 298.15;
+    let cap = Capillarity::new(Liquid::water(t), t, 0.35, 0.0, 0.0).expect("capillarity").expect("wet");
+    Meniscus::from_capillarity(&cap)
 }
 
 fn loads(from: f64, to: f64, n: usize) -> Vec<f64> {
@@ -90,13 +101,31 @@ pub(crate) fn bench(c: &mut Criterion) {
             e
         })
     });
-    for &n in &[1e4, 1e5, 1e6] {
+    let t1w = generate(&layout, &FaceParams::gaussian_fixed(4e12, 0.04e-6, 0.5e-6)).expect("surface");
+    let mut s1w = solver(t1w, Detail::Full);
+    s1w.set_meniscus(Some(meniscus())).expect("meniscus");
+    let mut k = 0usize;
+    g.bench_function("wet/table1_loading_point", |b| {
+        b.iter(|| {
+            if k == 0 {
+                s1w.reset();
+            }
+            let e = s1w.solve(black_box(steps[k])).expect("solve");
+            k = (k + 1) % steps.len();
+            e
+        })
+    });
+    for &(n, wet) in &[(1e4, false), (1e5, false), (1e6, false), (1e4, true), (1e5, true), (1e6, true)] {
         let mut s = solver(surface(n, 1), Detail::Summary);
+        if wet {
+            s.set_meniscus(Some(meniscus())).expect("meniscus");
+        }
         let m = s.len();
         let po = s.pull_off(0.0, 1e-6).expect("pull-off").load_n;
         let curve = loads(po, load_star_01(m), 100);
         let mut k = 0usize;
-        g.bench_function(format!("load_point/{n:.0e}"), |b| {
+        let name = if wet { format!("wet/load_point/{n:.0e}") } else { format!("load_point/{n:.0e}") };
+        g.bench_function(name, |b| {
             b.iter(|| {
                 if k == 0 {
                     s.reset();
@@ -117,6 +146,15 @@ pub(crate) fn bench(c: &mut Criterion) {
             big.reset();
             let po = big.pull_off(0.0, 1e-6).expect("pull-off").load_n;
             big.sweep(&loads(po, load_star_01(m6), 100), Branch::Loading).expect("sweep")
+        })
+    });
+    let mut big_wet = solver(surface(1e6, 1), Detail::Summary);
+    big_wet.set_meniscus(Some(meniscus())).expect("meniscus");
+    g.bench_function("wet/curve_1e6_tilt_free", |b| {
+        b.iter(|| {
+            big_wet.reset();
+            let po = big_wet.pull_off(0.0, 1e-6).expect("pull-off").load_n;
+            big_wet.sweep(&loads(po, load_star_01(m6), 100), Branch::Loading).expect("sweep")
         })
     });
     let mut flat = solver_mode(surface(1e6, 1), Detail::Summary, ShoeMode::Flat);

@@ -12,8 +12,9 @@
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
+use crate::capillary::Capillarity;
 use crate::error::{ContactError, check_finite, check_nonnegative, check_positive};
-use crate::single::{AdhesionLaw, AsperityParams, load_state};
+use crate::single::{AdhesionLaw, AsperityParams, load_state_wet};
 
 /// A discrete-contact configuration: `contacts` equally loaded summits of one law.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
@@ -71,6 +72,11 @@ impl DiscreteModel {
         DiscreteModel { contacts: 3, law: AdhesionLaw::Dmt, params: AsperityParams::table1(), shear_strength_pa: 1.4e9 }
     }
 
+    /// Capillary load of the `N` wetted contacts, `N 2 pi R gamma (cos th1 + cos th2)`, N (0 when dry).
+    pub fn capillary_load_n(&self, capillarity: Option<&Capillarity>) -> f64 {
+        capillarity.map_or(0.0, |c| f64::from(self.contacts) * c.sphere_flat_force_n(self.params.radius_m, 0.0))
+    }
+
     /// Why [`DiscretePoint::friction_slope`] is `None`.
     pub const SLOPE_NULL_REASON: &'static str = "the contact radius is 0 at this load (zero load without adhesion, or the pull-off): dF_f/dL ~ L^(-1/3) is unbounded";
 
@@ -92,11 +98,21 @@ impl DiscreteModel {
     /// The model at applied load `load_n` (N); below the pull-off load `-N P_c` an
     /// `Err(NoEquilibrium)`.
     pub fn at_load(&self, load_n: f64) -> Result<DiscretePoint, ContactError> {
+        self.at_load_wet(load_n, None)
+    }
+
+    /// The model at applied load `load_n` (N) with a water meniscus at each of the `N` contacts
+    /// (`None`: exactly [`DiscreteModel::at_load`]). Each summit carries `L/N` and is pulled by its
+    /// meniscus with the constant `F_m = 2 pi R gamma (cos th1 + cos th2)`, so its solid law carries
+    /// `L/N + F_m` ([`crate::single::load_state_wet`]); with DMT, eq. 12 with
+    /// `dgamma -> dgamma + gamma (cos th1 + cos th2)`. The capillary load is `N F_m`
+    /// ([`DiscreteModel::capillary_load_n`]).
+    pub fn at_load_wet(&self, load_n: f64, capillarity: Option<&Capillarity>) -> Result<DiscretePoint, ContactError> {
         self.validate()?;
         check_finite("load_n", load_n, "a finite load (N)")?;
         let n = f64::from(self.contacts);
         let per = load_n / n;
-        let st = load_state(self.law, &self.params, per).map_err(|e| match e {
+        let st = load_state_wet(self.law, &self.params, per, capillarity).map_err(|e| match e {
             ContactError::NoEquilibrium { pull_off, .. } => ContactError::NoEquilibrium {
                 quantity: "load_n",
                 value: load_n,

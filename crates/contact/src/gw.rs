@@ -49,6 +49,7 @@ use std::f64::consts::PI;
 #[path = "gw_taylor.rs"]
 mod taylor;
 
+use crate::capillary::Capillarity;
 use crate::error::{ContactError, check_finite, check_nonnegative, check_positive};
 
 /// `ln sqrt(2 pi)`.
@@ -889,10 +890,19 @@ pub struct GwContact {
     pub real_area_m2: f64,
     /// `log10 (A_r / 1 m^2)`.
     pub log10_real_area_m2: f64,
-    /// Total adhesive load `(2 pi dgamma R) N`, N.
+    /// Total adhesive load `(2 pi dgamma R) N`, N (with capillarity: `2 pi R (dgamma + gamma (cos th1 +
+    /// cos th2)) N`, the capillary part included).
     pub adhesive_load_n: f64,
+    /// Capillary part of the adhesive load, N: on the loading branch `2 pi R gamma (cos th1 + cos th2) N`
+    /// ([`GwSurface::solve_load_wet`]); 0 (and not written) when dry.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub capillary_load_n: f64,
     /// Mean real elastic contact pressure `p_e` (eq. 7), Pa.
     pub mean_elastic_pressure_pa: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl GwSurface {
@@ -980,7 +990,93 @@ impl GwSurface {
             } else {
                 0.0
             },
+            capillary_load_n: 0.0,
             mean_elastic_pressure_pa: self.pressure_scale_pa() * st.elastic_pressure_star,
         }
+    }
+
+    /// The loading-branch equilibrium under applied load `load_n` (N) with a water meniscus at every
+    /// summit in contact (`capillarity`; `None`: exactly [`GwSurface::solve_load`]).
+    ///
+    /// By the formation convention (docs/models.md, "Capillary adhesion") a summit's meniscus forms
+    /// when it touches, so on approach the wetted summits are the `N = eta A_a F_0(h)` in contact,
+    /// each pulled by `2 pi R gamma (cos th1 + cos th2)` (the sphere-flat force at contact), a
+    /// constant per contact like DMT's `2 pi dgamma R`. Eq. 8 then holds with the work of adhesion
+    /// `dgamma + gamma (cos th1 + cos th2)` (exactly, with the same integrals `F_0`, `F_3/2`): the
+    /// capillary load is `2 pi R gamma (cos th1 + cos th2) N`. `with_adhesion = false` keeps the
+    /// meniscus and drops the solid adhesion `dgamma`.
+    pub fn solve_load_wet(
+        &self,
+        load_n: f64,
+        with_adhesion: bool,
+        capillarity: Option<&Capillarity>,
+    ) -> Result<GwContact, ContactError> {
+        let Some(cap) = capillarity else { return self.solve_load(load_n, with_adhesion) };
+        self.validate()?;
+        let meniscus_work = cap.flat_work_of_adhesion_j_per_m2();
+        let solid = if with_adhesion { self.work_of_adhesion_j_per_m2 } else { 0.0 };
+        let wet = GwSurface { work_of_adhesion_j_per_m2: solid + meniscus_work, ..*self };
+        let mut c = wet.solve_load(load_n, true)?;
+        c.capillary_load_n = 2.0 * PI * meniscus_work * self.summit_radius_m * c.contacts;
+        Ok(c)
+    }
+
+    /// Capillary load on the loading branch at normalised separation `h = d/sigma`, N:
+    /// `eta A_a 2 pi R gamma (cos th1 + cos th2) F_0(h)` (the summits in contact, eq. 5a).
+    pub fn capillary_load_approach_n(&self, capillarity: &Capillarity, h: f64) -> Result<f64, ContactError> {
+        self.validate()?;
+        let n = self.summit_density_per_m2 * self.apparent_area_m2 * f_n(0.0, h)?;
+        Ok(2.0 * PI * self.summit_radius_m * capillarity.flat_work_of_adhesion_j_per_m2() * n)
+    }
+
+    /// Capillary load on retraction, N: the separation has come down to `h_min = d_min/sigma` (every
+    /// summit higher than `h_min` touched and carries a meniscus) and is now `h >= h_min`. A summit
+    /// of height `u` (in units of sigma) at separation `D = sigma (h - u)` keeps its meniscus while
+    /// `D <= h_m` and pulls with `2 pi R gamma (cos th1 + cos th2 - max(D, 0)/r_K)`. With
+    /// `k = h_m/sigma` and the lowest wetted height `l = max(h - k, h_min)`, the statistical sum is
+    /// ```text
+    /// F_cap = eta A_a 2 pi R gamma (sigma/r_K) [F_1(l) + (l - h + k) F_0(l) - F_1(h)]
+    /// ```
+    /// (the in-contact part `(cos th1 + cos th2) F_0(h) = k (sigma/r_K) F_0(h)` and the linear decay
+    /// of the bridged part integrated with eq. 6). With `l = h - k` it is
+    /// `... (sigma/r_K) [F_1(h - k) - F_1(h)]`, evaluated as `F_1(h) expm1(ln F_1(h-k) - ln F_1(h))` so
+    /// that neither the difference of two close values (`k` is about 0.02 on the paper's surface) nor
+    /// the far tail (`F_1` underflowing) loses precision. The retraction pull-off of the menisci is
+    /// thus at most `F_1(h - k)/F_1(h)` times the loading-branch value.
+    pub fn capillary_load_retraction_n(
+        &self,
+        capillarity: &Capillarity,
+        h: f64,
+        h_min: f64,
+    ) -> Result<f64, ContactError> {
+        self.validate()?;
+        check_finite("h", h, "a finite normalised separation")?;
+        check_finite("h_min", h_min, "a finite normalised separation")?;
+        if h < h_min {
+            return Err(ContactError::InvalidParameter {
+                field: "h",
+                value: h,
+                expected: "a separation >= h_min on retraction (below it the summits are on the loading branch)",
+            });
+        }
+        let sigma = self.summit_sd_m;
+        let k = capillarity.meniscus_height_m() / sigma;
+        let scale = self.summit_density_per_m2
+            * self.apparent_area_m2
+            * 2.0
+            * PI
+            * self.summit_radius_m
+            * capillarity.surface_tension_n_per_m
+            * sigma
+            / capillarity.kelvin_radius_m;
+        let bracket = if h - k >= h_min {
+            let ln_hi = ln_f_n(1.0, h - k)?;
+            let ln_lo = ln_f_n(1.0, h)?;
+            ln_lo.exp() * (ln_hi - ln_lo).exp_m1()
+        } else {
+            let l = h_min;
+            f_n(1.0, l)? + (l - h + k) * f_n(0.0, l)? - f_n(1.0, h)?
+        };
+        Ok(scale * bracket)
     }
 }

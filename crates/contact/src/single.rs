@@ -47,6 +47,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
+use crate::capillary::Capillarity;
 use crate::error::{ContactError, check_finite, check_nonnegative, check_positive};
 
 /// Default equilibrium spacing `z0` of the Lennard-Jones law used for the Tabor and Maugis
@@ -767,6 +768,46 @@ pub fn branch_limits(law: AdhesionLaw, p: &AsperityParams) -> Result<BranchLimit
 /// `1.5 pi dgamma R` (JKR), between the two for Maugis-Dugdale.
 pub fn pull_off_force(law: AdhesionLaw, p: &AsperityParams) -> Result<f64, ContactError> {
     Ok(-branch_limits(law, p)?.pull_off_load_n)
+}
+
+/// Capillary pull of one wetted summit (radius `p.radius_m`) at separation `separation_m` (m; <= 0
+/// in contact), N: the sphere-flat meniscus force `2 pi R gamma (cos th1 + cos th2 - max(D,0)/r_K)` up
+/// to the rupture gap `h_m`, 0 beyond ([`Capillarity::sphere_flat_force_n`]). Whether the summit
+/// carries a meniscus at all follows the formation convention: it forms on touching and ruptures
+/// beyond `h_m` (docs/models.md, "Capillary adhesion").
+pub fn meniscus_force_n(capillarity: &Capillarity, p: &AsperityParams, separation_m: f64) -> f64 {
+    capillarity.sphere_flat_force_n(p.radius_m, separation_m)
+}
+
+/// Pull-off force under load control with a meniscus (magnitude, N). The meniscus forms on contact
+/// and, while the summit touches, pulls with the constant `F_m = 2 pi R gamma (cos th1 + cos th2)`
+/// (the wetted disc is set by the Kelvin radius, not by the contact radius), so the solid law sees
+/// `P + F_m`: every branch shifts by `F_m` and the pull-off is `|P_c| + F_m` (DMT:
+/// `2 pi R (dgamma + gamma (cos th1 + cos th2))`, `4 pi R (dgamma/2 + gamma cos theta)` for equal
+/// faces; JKR: `1.5 pi dgamma R + F_m`). Once the solid contact breaks the meniscus pulls less
+/// (it decays with separation), so no larger tension is held. `None`: [`pull_off_force`].
+pub fn pull_off_force_wet(
+    law: AdhesionLaw,
+    p: &AsperityParams,
+    capillarity: Option<&Capillarity>,
+) -> Result<f64, ContactError> {
+    let solid = pull_off_force(law, p)?;
+    Ok(solid + capillarity.map_or(0.0, |c| c.sphere_flat_force_n(p.radius_m, 0.0)))
+}
+
+/// [`load_state`] of a summit in contact with a meniscus: the solid law carries the applied load
+/// plus the meniscus pull at contact, `P + 2 pi R gamma (cos th1 + cos th2)` (see
+/// [`pull_off_force_wet`]). `None`: exactly [`load_state`].
+pub fn load_state_wet(
+    law: AdhesionLaw,
+    p: &AsperityParams,
+    load_n: f64,
+    capillarity: Option<&Capillarity>,
+) -> Result<LoadState, ContactError> {
+    match capillarity {
+        None => load_state(law, p, load_n),
+        Some(c) => load_state(law, p, load_n + c.sphere_flat_force_n(p.radius_m, 0.0)),
+    }
 }
 
 fn check_radius(a: f64) -> Result<f64, ContactError> {

@@ -27,6 +27,23 @@ fn bench(c: &mut Criterion) {
     c.bench_function("meter/tas2000 discrete N=3, assemble + 13 clamp voltages", |b| {
         b.iter(|| Meter::from_scenario(&discrete, Path::new(".")).unwrap().run(&mut |_, _| {}).unwrap())
     });
+    // Capillarity (environment.relative_humidity = 0.35) against dry, same scenario otherwise;
+    // slip dynamics off so that the contact model's share is visible.
+    let wet = "environment.relative_humidity=0.35";
+    let nodyn = "meter.slip_dynamics=null";
+    for (name, sets) in [
+        ("explicit dry", vec![nodyn]),
+        ("explicit 35 % RH", vec![nodyn, wet]),
+        ("gw dry", vec![nodyn, "contact.model=\"gw\""]),
+        ("gw 35 % RH", vec![nodyn, "contact.model=\"gw\"", wet]),
+        ("discrete N=3 dry", vec![nodyn, "contact.model=\"discrete\"", "contact.contacts=3"]),
+        ("discrete N=3 35 % RH", vec![nodyn, "contact.model=\"discrete\"", "contact.contacts=3", wet]),
+    ] {
+        let s = scenario(&sets);
+        c.bench_function(&format!("meter/capillarity/{name}, assemble + 13 clamp voltages"), |b| {
+            b.iter(|| Meter::from_scenario(&s, Path::new(".")).unwrap().run(&mut |_, _| {}).unwrap())
+        });
+    }
 }
 
 criterion_group!(benches, bench);

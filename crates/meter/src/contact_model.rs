@@ -1,6 +1,7 @@
 //! The contact model the meter asks for the real area at a load: explicit, GW+DMT, discrete or
 //! the boundary-element solver on the height-map patch under the shoe.
 
+use stiction_contact::capillary::Capillarity;
 use stiction_contact::discrete;
 use stiction_contact::explicit::{self, Equilibrium};
 use stiction_contact::gw::GwSurface;
@@ -19,12 +20,20 @@ pub struct ContactState {
     pub contacts: f64,
     /// Adhesive load (>= 0), N: the elastic load carried by the contacts minus L.
     pub adhesive_load_n: f64,
+    /// Capillary part of the adhesive load (the pull of the water menisci), N; 0 (and not written)
+    /// when dry.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub capillary_load_n: f64,
     /// Tilt of the shoe face along x (explicit solver, tilt free), rad.
     pub tilt_x_rad: f64,
     /// Tilt of the shoe face along y, rad.
     pub tilt_y_rad: f64,
     /// Largest peak Hertz pressure q0 over the contacts (eq. 11), Pa.
     pub max_pressure_pa: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl ContactState {
@@ -38,8 +47,9 @@ impl ContactState {
 pub enum ContactModel {
     /// The explicit asperity-by-asperity solver on a generated or measured surface.
     Explicit(Box<explicit::ExplicitSolver>),
-    /// Greenwood-Williamson with DMT adhesion (eq. 5, 8).
-    Gw(GwSurface),
+    /// Greenwood-Williamson with DMT adhesion (eq. 5, 8), with a meniscus at every summit in
+    /// contact when humid.
+    Gw(GwSurface, Option<Capillarity>),
     /// The FFT boundary-element solver on the composite height patch under the shoe.
     Bem(Box<BemContact>),
     /// The discrete model of eq. 12 with `contacts` equally loaded summits.
@@ -50,6 +60,8 @@ pub enum ContactModel {
         law: AdhesionLaw,
         /// Summit parameters.
         params: AsperityParams,
+        /// The meniscus at each contact, when humid.
+        capillarity: Option<Capillarity>,
     },
 }
 
@@ -58,7 +70,7 @@ impl ContactModel {
     pub fn name(&self) -> String {
         match self {
             ContactModel::Explicit(_) => "explicit".into(),
-            ContactModel::Gw(_) => "gw-dmt".into(),
+            ContactModel::Gw(..) => "gw-dmt".into(),
             ContactModel::Bem(_) => "bem".into(),
             ContactModel::Discrete { contacts, .. } => format!("discrete-n{contacts}"),
         }
@@ -82,18 +94,22 @@ impl ContactModel {
                     real_area_m2: eq.real_area_m2,
                     contacts: eq.contacts as f64,
                     adhesive_load_n: eq.adhesive_load_n,
+                    capillary_load_n: eq.capillary_load_n,
                     tilt_x_rad: eq.tilt_x_rad,
                     tilt_y_rad: eq.tilt_y_rad,
                     max_pressure_pa: eq.max_pressure_pa,
                 })
             }
-            ContactModel::Gw(surface) => {
-                let c = surface.solve_load(load_n, true).map_err(|e| MeterError::Contact(e.to_string()))?;
+            ContactModel::Gw(surface, capillarity) => {
+                let c = surface
+                    .solve_load_wet(load_n, true, capillarity.as_ref())
+                    .map_err(|e| MeterError::Contact(e.to_string()))?;
                 Ok(ContactState {
                     load_n,
                     real_area_m2: c.real_area_m2,
                     contacts: c.contacts,
                     adhesive_load_n: c.adhesive_load_n,
+                    capillary_load_n: c.capillary_load_n,
                     tilt_x_rad: 0.0,
                     tilt_y_rad: 0.0,
                     // GW has no largest pressure (the Gaussian tail is unbounded); report the mean
@@ -102,10 +118,11 @@ impl ContactModel {
                 })
             }
             ContactModel::Bem(bem) => bem.state_at_load(load_n),
-            ContactModel::Discrete { contacts, law, params } => {
+            ContactModel::Discrete { contacts, law, params, capillarity } => {
                 let model = discrete::DiscreteModel::new(*contacts as u32, *law, *params, 1.0)
                     .map_err(|e| MeterError::Contact(e.to_string()))?;
-                let p = model.at_load(load_n).map_err(|e| MeterError::Contact(e.to_string()))?;
+                let p =
+                    model.at_load_wet(load_n, capillarity.as_ref()).map_err(|e| MeterError::Contact(e.to_string()))?;
                 // Each contact carries the Hertz load of its radius, a^3 / (R D) (eq. 3b); the
                 // adhesive load is what the contacts carry beyond L.
                 let a = p.contact_radius_m;
@@ -115,6 +132,7 @@ impl ContactModel {
                     real_area_m2: p.real_area_m2,
                     contacts: *contacts as f64,
                     adhesive_load_n: elastic - load_n,
+                    capillary_load_n: model.capillary_load_n(capillarity.as_ref()),
                     tilt_x_rad: 0.0,
                     tilt_y_rad: 0.0,
                     max_pressure_pa: p.max_pressure_pa,
@@ -205,6 +223,7 @@ impl BemContact {
             real_area_m2: s.contact_area_m2,
             contacts: s.patches as f64,
             adhesive_load_n,
+            capillary_load_n: 0.0,
             tilt_x_rad: 0.0,
             tilt_y_rad: 0.0,
             max_pressure_pa,

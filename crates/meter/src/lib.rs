@@ -109,6 +109,11 @@ pub struct MeterPoint {
     pub contacts: f64,
     /// Adhesive load, N.
     pub adhesive_load_n: f64,
+    /// Capillary part of the adhesive load (the water menisci), N: written when the scenario's
+    /// `environment` has a relative humidity above 0 (0 where no meniscus forms, e.g. hydrophobic
+    /// faces); absent when dry.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub capillary_load_n: Option<f64>,
     /// Shoe tilt along x, rad.
     pub tilt_x_rad: f64,
     /// Shoe tilt along y, rad.
@@ -150,10 +155,47 @@ pub struct MeterResult {
     pub pull_array_pull_in_v: Option<f64>,
     /// The conversion used to report forces.
     pub reduction: Reduction,
+    /// The air: relative humidity, temperature and the meniscus it gives; absent when dry (no
+    /// `environment` or relative humidity 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub environment: Option<Humidity>,
     /// What the user must know about the fit (few points, part of the clamp range), with a
     /// stable `code` each.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<stiction_scenario::Warning>,
+}
+
+/// The humid air of a run and the meniscus it condenses in the contact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Humidity {
+    /// Relative humidity (fraction).
+    pub relative_humidity: f64,
+    /// Temperature, K.
+    pub temperature_k: f64,
+    /// Contact angles of the sidewall and the shoe face, rad.
+    pub contact_angles_rad: (f64, f64),
+    /// Kelvin radius r_K, m (None: no meniscus forms, cos th1 + cos th2 <= 0).
+    pub kelvin_radius_m: Option<f64>,
+    /// Largest gap a meniscus bridges h_m = r_K (cos th1 + cos th2), m (None: no meniscus).
+    pub meniscus_height_m: Option<f64>,
+}
+
+impl Humidity {
+    /// The humid air of a scenario, or None when dry (no `environment`, relative humidity 0).
+    pub fn of(s: &Scenario) -> Result<Option<Humidity>, MeterError> {
+        let Some(env) = &s.environment else { return Ok(None) };
+        if env.relative_humidity == 0.0 {
+            return Ok(None);
+        }
+        let cap = s.capillarity().map_err(MeterError::Scenario)?;
+        Ok(Some(Humidity {
+            relative_humidity: env.relative_humidity,
+            temperature_k: env.temperature,
+            contact_angles_rad: s.material.as_ref().map_or((0.0, 0.0), |m| m.contact_angles_rad()),
+            kelvin_radius_m: cap.map(|c| c.kelvin_radius_m),
+            meniscus_height_m: cap.map(|c| c.meniscus_height_m()),
+        }))
+    }
 }
 
 /// The assembled device.
@@ -167,6 +209,7 @@ pub struct Meter {
     contact: ContactModel,
     reduction: Option<Reduction>,
     slip_path: SlipPath,
+    humidity: Option<Humidity>,
 }
 
 impl Meter {
@@ -182,7 +225,9 @@ impl Meter {
         let pull = build("pull")?;
         let contact_travel_m = protocol.contact_travel.unwrap_or(s.actuators["clamp"].operating_travel);
         let contact = build_contact_model(s, &material, base_dir)?;
+        let humidity = Humidity::of(s)?;
         Ok(Meter {
+            humidity,
             clamp,
             pull,
             contact_travel_m,
@@ -279,6 +324,7 @@ impl Meter {
                 real_area_m2: 0.0,
                 contacts: 0.0,
                 adhesive_load_n: 0.0,
+                capillary_load_n: self.humidity.map(|_| 0.0),
                 tilt_x_rad: 0.0,
                 tilt_y_rad: 0.0,
                 max_pressure_pa: 0.0,
@@ -330,6 +376,9 @@ impl Meter {
                 point.real_area_m2 = state.real_area_m2;
                 point.contacts = state.contacts;
                 point.adhesive_load_n = state.adhesive_load_n;
+                if self.humidity.is_some() {
+                    point.capillary_load_n = Some(state.capillary_load_n);
+                }
                 point.tilt_x_rad = state.tilt_x_rad;
                 point.tilt_y_rad = state.tilt_y_rad;
                 point.max_pressure_pa = state.max_pressure_pa;
@@ -434,6 +483,7 @@ impl Meter {
             spring_force_n: spring_force_used,
             pull_array_pull_in_v: pull_in_v,
             reduction,
+            environment: self.humidity,
             warnings,
         })
     }
@@ -488,8 +538,13 @@ pub fn model_summit_radius_m(spec: &SurfaceSpec, base_dir: &Path) -> Result<f64,
 }
 
 /// Builds the contact model a scenario asks for.
+///
+/// With humid air (`environment`, [`Scenario::capillarity`]) every summit that touches carries a
+/// water meniscus (explicit, GW, discrete); the boundary-element model has no meniscus and
+/// refuses humid air.
 pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Result<ContactModel, MeterError> {
     let c = s.contact_or_default();
+    let capillarity = s.capillarity().map_err(MeterError::Scenario)?;
     let surface_spec = s.require_surface().map_err(MeterError::Scenario)?;
     match c.model {
         ModelKind::Explicit => {
@@ -508,8 +563,13 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
             };
             // Each summit carries its own radius; the mean only sets the solver's adhesion scale.
             let params = asperity_params(material, surface.stats().radius_mean_m);
-            let solver = explicit::ExplicitSolver::new(surface, c.law, params, config)
+            let mut solver = explicit::ExplicitSolver::new(surface, c.law, params, config)
                 .map_err(|e| MeterError::Contact(e.to_string()))?;
+            if let Some(cap) = &capillarity {
+                solver
+                    .set_meniscus(Some(explicit::Meniscus::from_capillarity(cap)))
+                    .map_err(|e| MeterError::Contact(e.to_string()))?;
+            }
             Ok(ContactModel::Explicit(Box::new(solver)))
         }
         ModelKind::Gw => {
@@ -522,9 +582,19 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
                 work_of_adhesion_j_per_m2: material.work_of_adhesion,
                 apparent_area_m2: surface_spec.apparent_length * surface_spec.apparent_width,
             };
-            Ok(ContactModel::Gw(gw))
+            Ok(ContactModel::Gw(gw, capillarity))
         }
-        ModelKind::Bem => build_bem(s, material, base_dir).map(|b| ContactModel::Bem(Box::new(b))),
+        ModelKind::Bem => {
+            if capillarity.is_some() {
+                return Err(MeterError::Scenario(
+                    "environment.relative_humidity: the meter's boundary-element model (`contact.model` = \"bem\") \
+                     has no water meniscus; use \"explicit\", \"gw\" or \"discrete\" for a humid run, or drop the \
+                     `environment` section"
+                        .into(),
+                ));
+            }
+            build_bem(s, material, base_dir).map(|b| ContactModel::Bem(Box::new(b)))
+        }
         ModelKind::Discrete => {
             // On a height map: the mean radius counted on the whole map, as `stiction topography`
             // prints it.
@@ -537,6 +607,7 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
                 contacts: c.contacts.unwrap_or(3),
                 law: c.law,
                 params: asperity_params(material, radius),
+                capillarity,
             })
         }
     }

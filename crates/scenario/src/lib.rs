@@ -43,8 +43,9 @@ pub fn truncate(text: &str, max: usize) -> String {
 }
 
 /// Why `material.relative_humidity` is refused (in a file and with `--set` alike).
-pub const RELATIVE_HUMIDITY_MESSAGE: &str = "not modelled yet (capillary adhesion may come later): no model uses the \
-     humidity, so the field is refused rather than silently ignored; remove it (note it in `description`)";
+pub const RELATIVE_HUMIDITY_MESSAGE: &str = "the humidity belongs to the air, not the material: give it as \
+     `environment.relative_humidity` (like 0.35 or \"35 %\"; with `--set environment.relative_humidity=0.35`), and \
+     the water contact angle as `material.contact_angle` (default 0 deg)";
 
 /// The format version this build reads.
 pub const FORMAT_VERSION: u32 = 1;
@@ -64,6 +65,9 @@ pub struct Scenario {
     /// Material properties of the contact.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<MaterialSpec>,
+    /// The air around the device (relative humidity, temperature): capillary adhesion. Absent: dry.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub environment: Option<EnvironmentSpec>,
     /// Contact law and solver model.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact: Option<ContactSpec>,
@@ -205,7 +209,7 @@ impl Scenario {
             }
             None => return Err(field("format_version".into(), format!("missing; expected {FORMAT_VERSION}"))),
         }
-        // Fields that a model does not use yet are refused rather than silently ignored.
+        // The humidity in the material section is refused with a pointer to where it belongs.
         if value.get("material").and_then(|m| m.get("relative_humidity")).is_some() {
             return Err(field("material.relative_humidity".into(), RELATIVE_HUMIDITY_MESSAGE.into()));
         }
@@ -259,6 +263,9 @@ impl Scenario {
         if let Some(m) = &self.material {
             m.validate().map_err(|(p, msg)| (format!("material.{p}"), msg))?;
         }
+        if let Some(e) = &self.environment {
+            e.validate().map_err(|(p, msg)| (format!("environment.{p}"), msg))?;
+        }
         if let Some(c) = &self.contact {
             c.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
             let on_map = self.surface.as_ref().is_some_and(|s| s.source == stiction_surface::SurfaceSource::HeightMap);
@@ -305,6 +312,20 @@ impl Scenario {
     /// The material, or an error naming the missing section.
     pub fn require_material(&self) -> Result<&MaterialSpec, String> {
         self.material.as_ref().ok_or_else(|| "the scenario has no `material` section".to_string())
+    }
+
+    /// The capillarity of the contact in the scenario's `environment` (water at its temperature,
+    /// the material's contact angles); `None` when dry (no `environment`, relative humidity 0, or
+    /// hydrophobic faces with `cos theta_1 + cos theta_2 <= 0`). `Err` names the field.
+    pub fn capillarity(&self) -> Result<Option<stiction_contact::capillary::Capillarity>, String> {
+        use stiction_contact::capillary::{Capillarity, Liquid};
+        let Some(env) = &self.environment else { return Ok(None) };
+        if env.relative_humidity == 0.0 {
+            return Ok(None);
+        }
+        let (a1, a2) = self.material.as_ref().map_or((0.0, 0.0), MaterialSpec::contact_angles_rad);
+        let t = env.temperature;
+        Capillarity::new(Liquid::water(t), t, env.relative_humidity, a1, a2).map_err(|e| format!("environment: {e}"))
     }
 
     /// The contact section, or the paper's default (explicit solver, DMT, tilt free).

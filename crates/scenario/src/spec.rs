@@ -55,6 +55,24 @@ pub struct MaterialSpec {
     #[serde(default = "default_spacing", deserialize_with = "stiction_units::de::length_positive")]
     #[schemars(with = "QuantityInput")]
     pub equilibrium_spacing: f64,
+    /// Contact angle theta of water on both faces ("0 deg" for a clean hydrophilic oxide, "110 deg"
+    /// for a hydrophobic FOTS/OTS monolayer); used only with an `environment` section. Default 0 deg.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_angle_nonnegative",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub contact_angle: Option<f64>,
+    /// Contact angle of the shoe's face, when it differs from `contact_angle` (the sidewall's); default
+    /// `contact_angle`.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_angle_nonnegative",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub counter_face_contact_angle: Option<f64>,
 }
 
 fn default_hardness() -> f64 {
@@ -90,7 +108,116 @@ impl MaterialSpec {
                 Err(("poisson_ratio".into(), format!("{nu} is outside the physical range [-1, 0.5)")))
             }
             _ => Ok(()),
+        }?;
+        for (name, angle) in
+            [("contact_angle", self.contact_angle), ("counter_face_contact_angle", self.counter_face_contact_angle)]
+        {
+            if let Some(a) = angle
+                && a > std::f64::consts::PI
+            {
+                return Err((
+                    name.into(),
+                    format!("{} deg is above 180 deg; expected a contact angle in [0, 180] deg", a.to_degrees()),
+                ));
+            }
         }
+        Ok(())
+    }
+
+    /// Contact angles of the sidewall and of the shoe's face, rad (default 0: fully wetting oxide).
+    pub fn contact_angles_rad(&self) -> (f64, f64) {
+        let a = self.contact_angle.unwrap_or(0.0);
+        (a, self.counter_face_contact_angle.unwrap_or(a))
+    }
+}
+
+/// The air around the device: humidity (water condensing in the narrow gaps of the contact,
+/// capillary adhesion) and temperature.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentSpec {
+    /// Relative humidity of the air, a fraction in [0, 1) or a percentage ("35 %"); may be an
+    /// uncertain parameter (`{"value": "35 %", "sd": "5 %"}`) for a study to draw. 0: dry.
+    #[serde(deserialize_with = "stiction_units::de::dimensionless_nonnegative")]
+    #[schemars(with = "QuantityInput")]
+    pub relative_humidity: f64,
+    /// Temperature: "25 C" (degrees Celsius), "298.15 K" or a number in kelvin; default 25 C. Sets
+    /// the surface tension and molar volume of water (IAPWS) and the Kelvin radius.
+    #[serde(default = "default_temperature", deserialize_with = "temperature_k")]
+    #[schemars(with = "TemperatureInput")]
+    pub temperature: f64,
+}
+
+/// A temperature: a number (kelvin) or a string "25 C", "25 degC", "298.15 K".
+#[derive(JsonSchema)]
+#[serde(untagged)]
+#[allow(dead_code)]
+enum TemperatureInput {
+    /// Kelvin.
+    Kelvin(f64),
+    /// With a unit: "25 C", "298.15 K".
+    Text(String),
+}
+
+/// Default temperature, 25 C, K.
+pub const DEFAULT_TEMPERATURE_K: f64 = 298.15;
+
+fn default_temperature() -> f64 {
+    DEFAULT_TEMPERATURE_K
+}
+
+/// Parses a temperature (see [`EnvironmentSpec::temperature`]) to kelvin; `Err` names what was expected.
+pub fn parse_temperature_k(v: &Value) -> Result<f64, String> {
+    const EXPECTED: &str = "expected a temperature above 0 K and below 647 K (water's critical point), like \"25 C\", \"298.15 K\" or 298.15";
+    let k = match v {
+        Value::Number(n) => n.as_f64().unwrap_or(f64::NAN),
+        Value::String(s) => {
+            let t = s.trim();
+            let (num, unit) = match t.find(|c: char| c.is_alphabetic() || c == '\u{b0}') {
+                Some(i) => (t[..i].trim(), t[i..].trim()),
+                None => (t, ""),
+            };
+            let x: f64 =
+                num.parse().map_err(|_| format!("{:?}: not a temperature; {EXPECTED}", crate::truncate(s, 40)))?;
+            match unit {
+                "C" | "degC" | "\u{b0}C" => x + 273.15,
+                "K" | "" => x,
+                _ => {
+                    return Err(format!(
+                        "{:?}: unknown temperature unit `{}`; {EXPECTED}",
+                        crate::truncate(s, 40),
+                        crate::truncate(unit, 20)
+                    ));
+                }
+            }
+        }
+        other => return Err(format!("{}: {EXPECTED}", crate::truncate(&other.to_string(), 40))),
+    };
+    if k.is_finite() && k > 0.0 && k < stiction_contact::capillary::WATER_CRITICAL_TEMPERATURE_K {
+        Ok(k)
+    } else {
+        Err(format!("{k} K: {EXPECTED}"))
+    }
+}
+
+fn temperature_k<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    use serde::de::Error;
+    parse_temperature_k(&Value::deserialize(d)?).map_err(D::Error::custom)
+}
+
+impl EnvironmentSpec {
+    pub(crate) fn validate(&self) -> Result<(), (String, String)> {
+        if self.relative_humidity >= 1.0 {
+            return Err((
+                "relative_humidity".into(),
+                format!(
+                    "{} is not below 1 (100 %): at saturation the Kelvin radius is infinite and the gap floods; \
+                     expected a fraction in [0, 1) like 0.35 or \"35 %\"",
+                    self.relative_humidity
+                ),
+            ));
+        }
+        Ok(())
     }
 }
 

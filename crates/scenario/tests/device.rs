@@ -116,10 +116,10 @@ fn set_errors_name_the_set() {
     let e = load("tas2000.json", &["surface.summit_radius=-1 um"]).unwrap_err().to_string();
     assert!(e.starts_with("--set surface.summit_radius=-1 um: at `surface.summit_radius`"), "{e}");
     let e = load("tas2000.json", &["material.relative_humidity=0.4"]).unwrap_err().to_string();
-    assert!(e.contains("--set material.relative_humidity") && e.contains("not modelled yet"), "{e}");
+    assert!(e.contains("--set material.relative_humidity") && e.contains("environment.relative_humidity"), "{e}");
     let text = std::fs::read_to_string(root().join("scenarios/tas2000.json"))
         .unwrap()
         .replace("\"hardness\": \"9 GPa\",", "\"hardness\": \"9 GPa\", \"relative_humidity\": 0.4,");
     let e = Scenario::from_str_with_sets(&text, Path::new("x.json"), &[]).unwrap_err().to_string();
-    assert!(e.contains("x.json") && e.contains("not modelled yet"), "{e}");
+    assert!(e.contains("x.json") && e.contains("environment.relative_humidity"), "{e}");
 }

@@ -81,6 +81,25 @@ pub struct Args {
     /// Range h0 of the Dugdale law ("1 nm"); the Dugdale stress is w/h0.
     #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "work_of_adhesion")]
     pub range: Option<f64>,
+    /// Adhesion energy against relative humidity (the microcantilever experiment's quantity): for
+    /// each RH, a capillary cohesive zone of water (Laplace pressure gamma/r_K wherever the gap is
+    /// below the meniscus height h_m = 2 r_K cos theta), with the Dugdale law of --work-of-adhesion and
+    /// --range for van der Waals if given, and the work of separation of a retraction from the
+    /// compressed state at --pressure (default 1 MPa) to separation. A list ("0.1,0.35,0.9" or
+    /// "35 %,60 %") or FROM:TO:STEPS ("0.1:0.9:9"); fractions in [0, 1).
+    #[arg(long, value_name = "LIST|FROM:TO:STEPS", allow_hyphen_values = true, conflicts_with_all = ["sweep", "gap_sweep", "compare_asperity"])]
+    pub rh: Option<String>,
+    /// With --rh: temperature ("25 C", "298.15 K"; a bare number is kelvin).
+    #[arg(long, default_value = "25 C", allow_hyphen_values = true, requires = "rh")]
+    pub temperature: String,
+    /// With --rh: contact angle of water on both faces ("0 deg": hydrophilic oxide; >= 90 deg: no
+    /// capillary condensation).
+    #[arg(long, default_value = "0 deg", allow_hyphen_values = true, value_parser = quantity(Dimension::Angle, Constraint::NonNegative), requires = "rh")]
+    pub contact_angle: f64,
+    /// With --rh: mean-gap step of the retraction ("0.02 nm"; default a twentieth of the shortest
+    /// range of the cohesive laws).
+    #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "rh")]
+    pub rh_step: Option<f64>,
     /// Interfacial shear strength s for the friction s A_r ("100 MPa").
     #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::NonNegative))]
     pub shear_strength: Option<f64>,
@@ -258,8 +277,11 @@ fn check_path_args(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
         return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
     }
+    if args.rh.is_some() {
+        return humidity::run(&args);
+    }
     if args.gap_sweep.is_none() && args.sweep.is_none() && args.pressure.is_none() {
-        return Err("give --pressure, --sweep or --gap-sweep".into());
+        return Err("give --pressure, --sweep, --gap-sweep or --rh".into());
     }
     Ok(())
 }
@@ -589,5 +611,211 @@ fn heat_map(field: &[f64], g: Grid, title: &str, value_label: &str, scale: f64) 
         y_max: g.ny as f64 * g.dy_m * 1e6,
         markers: Vec::new(),
         ..ImageMap::default()
+    }
+}
+
+/// `stiction bem --rh`: adhesion energy against relative humidity.
+mod humidity {
+    use serde::Serialize;
+    use stiction_bem::{BemSolver, Dugdale, Grid, SolverOptions};
+    use stiction_contact::capillary::{Capillarity, Liquid};
+    use stiction_units::{Constraint, Dimension, parse_quantity_checked};
+
+    use super::{Args, SurfaceSource, build_surface, csv_bytes};
+    use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q};
+
+    /// Most humidities of one run.
+    const MAX_RH: usize = 1000;
+
+    /// The relative humidities of `--rh`: a comma-separated list or FROM:TO:STEPS, each a fraction
+    /// in [0, 1) ("0.35" or "35 %").
+    pub(super) fn parse_rh(text: &str) -> Result<Vec<f64>, String> {
+        let one = |s: &str| -> Result<f64, String> {
+            let v = parse_quantity_checked(s.trim(), Dimension::Dimensionless, Constraint::NonNegative)
+                .map_err(|e| format!("--rh {s:?}: {e}"))?;
+            if v < 1.0 {
+                Ok(v)
+            } else {
+                Err(format!("--rh {s:?}: expected a relative humidity in [0, 1) (0 to 99.9 %)"))
+            }
+        };
+        let parts: Vec<&str> = text.split(':').collect();
+        let values = match parts.len() {
+            1 => text.split(',').map(one).collect::<Result<Vec<f64>, String>>()?,
+            3 => {
+                let (a, b) = (one(parts[0])?, one(parts[1])?);
+                let steps: usize =
+                    parts[2].trim().parse().ok().filter(|&s| (1..=MAX_RH).contains(&s)).ok_or_else(|| {
+                        format!("--rh {text:?}: STEPS {:?} must be an integer in 1..={MAX_RH}", parts[2])
+                    })?;
+                if steps == 1 {
+                    vec![a]
+                } else {
+                    (0..steps).map(|k| a + (b - a) * k as f64 / (steps - 1) as f64).collect()
+                }
+            }
+            _ => return Err(format!("--rh {text:?}: expected a list (0.1,0.35) or FROM:TO:STEPS")),
+        };
+        if values.is_empty() || values.len() > MAX_RH {
+            return Err(format!("--rh {text:?}: expected 1 to {MAX_RH} humidities"));
+        }
+        Ok(values)
+    }
+
+    /// `--temperature`: "25 C", "298.15 K" or a bare number in kelvin; > 0 K.
+    pub(super) fn parse_temperature(text: &str) -> Result<f64, String> {
+        let t = text.trim();
+        let (num, offset) = if let Some(n) = t.strip_suffix('C') {
+            (n.trim_end().trim_end_matches('\u{b0}').trim(), 273.15)
+        } else if let Some(n) = t.strip_suffix('K') {
+            (n.trim(), 0.0)
+        } else {
+            (t, 0.0)
+        };
+        let v: f64 =
+            num.parse().map_err(|_| format!("--temperature {text:?}: expected \"25 C\", \"298.15 K\" or kelvin"))?;
+        let k = v + offset;
+        if k.is_finite() && (273.15..647.096).contains(&k) {
+            Ok(k)
+        } else {
+            Err(format!("--temperature {text:?}: expected a temperature of liquid water, 0 C (273.15 K) to 647 K"))
+        }
+    }
+
+    /// One humidity.
+    #[derive(Serialize)]
+    struct Point {
+        relative_humidity: f64,
+        /// Kelvin radius r_K, m (null when dry: RH = 0 or a non-wetting angle).
+        kelvin_radius_m: Option<f64>,
+        /// Meniscus height h_m = r_K (cos th1 + cos th2), m (null when dry).
+        meniscus_height_m: Option<f64>,
+        /// Work of separation per nominal area, J/m^2.
+        adhesion_energy_j_per_m2: f64,
+        /// The same in mJ/m^2 (the unit of the microcantilever literature).
+        adhesion_energy_mj_per_m2: f64,
+        /// Most tensile mean traction on the retraction, Pa.
+        pull_off_pressure_pa: f64,
+        /// Mean-gap steps of the retraction.
+        steps: usize,
+    }
+
+    #[derive(Serialize)]
+    struct Output {
+        surface: SurfaceSource,
+        grid: Grid,
+        e_star_pa: f64,
+        rms_height_m: f64,
+        temperature_k: f64,
+        surface_tension_n_per_m: f64,
+        contact_angle_rad: f64,
+        /// The flat wetted limit 2 gamma cos theta, J/m^2.
+        capillary_limit_j_per_m2: f64,
+        /// The van der Waals Dugdale law (null without --work-of-adhesion/--range).
+        van_der_waals: Option<Dugdale>,
+        /// Mean pressure of the compressed state the retractions start from, Pa.
+        start_pressure_pa: f64,
+        tolerance: f64,
+        points: Vec<Point>,
+    }
+
+    pub(super) fn run(args: &Args) -> CliResult {
+        let rhs = parse_rh(args.rh.as_deref().unwrap_or_default())?;
+        let temperature_k = parse_temperature(&args.temperature)?;
+        let angle = args.contact_angle;
+        if !(0.0..=std::f64::consts::PI).contains(&angle) {
+            return Err(format!("--contact-angle {angle} rad: expected 0 to 180 deg").into());
+        }
+        let outputs = match &args.out {
+            Some(dir) => Some(OutputSet::begin(dir, "bem", args.force)?),
+            None => None,
+        };
+        let vdw = match (args.work_of_adhesion, args.range) {
+            (Some(w), Some(h0)) => Some(Dugdale::from_work_and_range(w, h0)?),
+            _ => None,
+        };
+        let liquid = Liquid::water(temperature_k);
+        let caps: Vec<Option<Capillarity>> = rhs
+            .iter()
+            .map(|&rh| Capillarity::new(liquid, temperature_k, rh, angle, angle))
+            .collect::<Result<_, _>>()
+            .map_err(|e| format!("--rh: {e}"))?;
+        let super::Surface { grid, heights, source, e_star_pa } = build_surface(args)?;
+        let mut solver = BemSolver::new(grid.nx, grid.ny, grid.dx_m, grid.dy_m, &heights, e_star_pa)?;
+        let opts = SolverOptions { tolerance: args.tolerance, ..Default::default() };
+        let start_pressure_pa = args.pressure.unwrap_or(1e6);
+        let start = solver.solve_load(start_pressure_pa, &opts, None)?;
+        let mut points = Vec::with_capacity(rhs.len());
+        for (&rh, cap) in rhs.iter().zip(&caps) {
+            let mut laws: Vec<Dugdale> = vdw.into_iter().collect();
+            if let Some(c) = cap {
+                laws.push(Dugdale::capillary(c.surface_tension_n_per_m, c.kelvin_radius_m, c.cos_angle_sum)?);
+            }
+            let (energy, pull_off, steps) = if laws.is_empty() {
+                // Dry and without van der Waals: nothing holds the surfaces together.
+                (0.0, 0.0, 0)
+            } else {
+                let shortest = laws.iter().fold(f64::INFINITY, |m, l| m.min(l.range_m));
+                let step = args.rh_step.unwrap_or(shortest / 20.0);
+                let sep = solver.work_of_separation(&laws, start.mean_gap_m, step, &opts).map_err(|e| {
+                    format!("--rh {rh}: the retraction from --pressure to separation failed ({e}); check --rh-step")
+                })?;
+                (sep.adhesion_energy_j_per_m2, sep.pull_off_pressure_pa, sep.steps)
+            };
+            points.push(Point {
+                relative_humidity: rh,
+                kelvin_radius_m: cap.map(|c| c.kelvin_radius_m),
+                meniscus_height_m: cap.map(|c| c.meniscus_height_m()),
+                adhesion_energy_j_per_m2: energy,
+                adhesion_energy_mj_per_m2: energy * 1e3,
+                pull_off_pressure_pa: pull_off,
+                steps,
+            });
+        }
+        let out = Output {
+            surface: source,
+            grid,
+            e_star_pa,
+            rms_height_m: solver.height_rms_m(),
+            temperature_k,
+            surface_tension_n_per_m: liquid.surface_tension_n_per_m,
+            contact_angle_rad: angle,
+            capillary_limit_j_per_m2: 2.0 * liquid.surface_tension_n_per_m * angle.cos().max(0.0),
+            van_der_waals: vdw,
+            start_pressure_pa,
+            tolerance: args.tolerance,
+            points,
+        };
+        if let Some(mut set) = outputs {
+            set.add_bytes("results.json", crate::output::json_text(&out)?.as_bytes())?;
+            set.add_bytes("humidity.csv", &csv_bytes(&out.points)?)?;
+            set.commit()?;
+        }
+        if args.json {
+            return print_json(&out);
+        }
+        print_table(
+            "BEM adhesion energy against relative humidity (capillary cohesive zone)",
+            &[
+                ("grid", format!("{} x {}, pixel {}", grid.nx, grid.ny, q(grid.dx_m, Dimension::Length))),
+                ("rms height", q(out.rms_height_m, Dimension::Length)),
+                ("E*", q(e_star_pa, Dimension::Pressure)),
+                ("temperature", format!("{temperature_k:.2} K")),
+                ("contact angle", format!("{:.1} deg", angle.to_degrees())),
+                ("2 gamma cos theta", format!("{:.1} mJ/m^2", out.capillary_limit_j_per_m2 * 1e3)),
+            ],
+        );
+        let mut t = TextTable::new(&["RH", "r_K", "h_m", "Gamma (mJ/m^2)", "pull-off pressure"]);
+        for p in &out.points {
+            t.row(vec![
+                format!("{:.3}", p.relative_humidity),
+                p.kelvin_radius_m.map_or("-".into(), |v| q(v, Dimension::Length)),
+                p.meniscus_height_m.map_or("-".into(), |v| q(v, Dimension::Length)),
+                format!("{:.4}", p.adhesion_energy_mj_per_m2),
+                q(p.pull_off_pressure_pa, Dimension::Pressure),
+            ]);
+        }
+        t.print("");
+        Ok(())
     }
 }

@@ -181,6 +181,9 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
         r.reduction.a_clamp_n_per_v2,
         r.reduction.a_pull_n_per_v2
     );
+    if let Some(h) = &r.environment {
+        print_humidity(r, h);
+    }
     crate::outln!();
     let mut t = crate::output::TextTable::new(&[
         "V_clamp (V)",
@@ -285,6 +288,40 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
     if stuck > 0 {
         crate::outln!(
             "  {stuck} clamp voltages: no slip up to pull_voltage_max (friction above what the pull array can give)"
+        );
+    }
+}
+
+/// The humidity line of the summary and the capillary share of the adhesive load over the
+/// points in contact.
+fn print_humidity(r: &MeterResult, h: &stiction_meter::Humidity) {
+    let (a1, a2) = h.contact_angles_rad;
+    let angles = if a1 == a2 {
+        format!("{:.0} deg", a1.to_degrees())
+    } else {
+        format!("{:.0} deg (sidewall) / {:.0} deg (shoe)", a1.to_degrees(), a2.to_degrees())
+    };
+    let meniscus = match (h.kelvin_radius_m, h.meniscus_height_m) {
+        (Some(rk), Some(hm)) => {
+            format!("Kelvin radius {:.3} nm, menisci bridge gaps up to {:.3} nm", rk * 1e9, hm * 1e9)
+        }
+        _ => "cos th1 + cos th2 <= 0: hydrophobic faces, no meniscus forms".to_string(),
+    };
+    crate::outln!(
+        "  humid air: relative humidity {:.1} %, {:.2} C, water contact angle {angles}; {meniscus}",
+        h.relative_humidity * 100.0,
+        h.temperature_k - 273.15
+    );
+    let (adh, cap) = r
+        .points
+        .iter()
+        .filter(|p| p.in_contact && p.error.is_none())
+        .fold((0.0, 0.0), |(a, c), p| (a + p.adhesive_load_n, c + p.capillary_load_n.unwrap_or(0.0)));
+    if adh > 0.0 {
+        crate::outln!(
+            "  capillary share of the adhesive load: {:.1} % (summed over the points in contact; per point: \
+             `capillary_load_n` in --json)",
+            100.0 * cap / adh
         );
     }
 }

@@ -44,6 +44,15 @@ pub(crate) trait LawEval {
     fn uniform_hertz_dmt(&self) -> Option<(f64, f64, f64)> {
         None
     }
+    /// Capillary part of the pull of member i at z (N, >= 0; 0 for dry laws).
+    fn capillary_n(&self, _i: usize, _z: f64) -> f64 {
+        0.0
+    }
+    /// With [`LawEval::uniform_hertz_dmt`] (whose pull then includes the meniscus f R): the
+    /// meniscus of the fast pass (f R, 1 / h_m, wetted bit set); None when dry.
+    fn fast_meniscus(&self) -> Option<(f64, f64, &[u64])> {
+        None
+    }
 }
 
 /// Hertz (eq. 3) and DMT (eq. 4) in closed form: P = R^1/2 z^3/2 / D - 2 pi dgamma R.
@@ -372,5 +381,114 @@ impl LawEval for MdPerSummit<'_> {
     }
     fn z_min(&self) -> f64 {
         self.tables.z_min
+    }
+}
+
+/// A water meniscus at a summit (circular-meniscus approximation, constant Kelvin radius, see
+/// [`crate::explicit::Meniscus`]): the capillary pull of summit i at interference z,
+/// `F = f R_i` in contact (z >= 0), `F = f R_i (1 + z / h_m)` for `-h_m <= z < 0` (the
+/// sphere-flat force `2 pi R gamma (cos th1 + cos th2 - D / r_K)` at separation D = -z, with
+/// `f = 2 pi gamma (cos th1 + cos th2)` and `h_m = r_K (cos th1 + cos th2)`), 0 below (ruptured), N.
+#[inline(always)]
+pub(crate) fn meniscus_force_n(force_per_radius_n_per_m: f64, height_m: f64, radius_m: f64, z: f64) -> f64 {
+    if z >= 0.0 {
+        force_per_radius_n_per_m * radius_m
+    } else if z >= -height_m {
+        force_per_radius_n_per_m * radius_m * (1.0 + z / height_m)
+    } else {
+        0.0
+    }
+}
+
+/// A dry law `L` with a meniscus at the wetted summits.
+///
+/// A summit is wetted from the first equilibrium at which it is in solid contact (on the dry
+/// law's contact branch: touching) until its interference falls below `-h_m` (rupture; it then
+/// leaves the contact set): the bit set `wetted`, kept by the solver between load points (so a
+/// summit touched only at a trial pose of the Newton iteration gets no lasting meniscus). Load of
+/// a member: the dry law's on its contact branch (0 once the solid contact is released) minus
+/// [`meniscus_force_n`] when it is wetted or in solid contact. The meniscus pull falls with the
+/// separation (negative stiffness `-f R / h_m`); the stiffness given to the Newton iteration is the
+/// dry law's alone (clipped at >= 0 like every law's, so the Hessian stays positive semi-definite),
+/// the force and the energy are exact. Release interference: `min(z_rel, -h_m)` when wetted (the
+/// force there is 0 unless the dry branch reaches further), the dry law's otherwise.
+pub(crate) struct Wet<'a, L: ?Sized> {
+    pub dry: &'a L,
+    pub radii: &'a Radii,
+    pub wetted: &'a [u64],
+    pub force_per_radius_n_per_m: f64,
+    pub height_m: f64,
+}
+
+impl<L: LawEval + ?Sized> Wet<'_, L> {
+    #[inline(always)]
+    fn r(&self, i: usize) -> f64 {
+        match self.radii {
+            Radii::Uniform(r) => *r,
+            Radii::PerSummit(v) => v[i],
+        }
+    }
+    #[inline(always)]
+    fn is_wetted(&self, i: usize) -> bool {
+        self.wetted.get(i >> 6).is_some_and(|w| (w >> (i & 63)) & 1 == 1)
+    }
+    /// Whether a member at interference z is in solid contact (on the dry law's contact branch).
+    #[inline(always)]
+    pub fn solid(&self, i: usize, z: f64) -> bool {
+        z >= self.dry.z_rel(i)
+    }
+}
+
+impl<L: LawEval + ?Sized> LawEval for Wet<'_, L> {
+    #[inline]
+    fn contact(&self, i: usize, z: f64) -> Resp {
+        let solid = self.solid(i, z);
+        let cap = if solid || self.is_wetted(i) {
+            meniscus_force_n(self.force_per_radius_n_per_m, self.height_m, self.r(i), z)
+        } else {
+            0.0
+        };
+        let mut r = if solid {
+            self.dry.contact(i, z)
+        } else {
+            Resp { load_n: 0.0, stiffness: 0.0, radius: 0.0, elastic_n: 0.0, q0: 0.0 }
+        };
+        r.load_n -= cap;
+        r
+    }
+    fn z_in(&self, i: usize) -> f64 {
+        self.dry.z_in(i)
+    }
+    fn z_rel(&self, i: usize) -> f64 {
+        if self.is_wetted(i) { self.dry.z_rel(i).min(-self.height_m) } else { self.dry.z_rel(i) }
+    }
+    fn p_rel(&self, i: usize) -> f64 {
+        // Continuous with the contact branch at z_rel: the dry law's end load minus the meniscus
+        // pull there (0 at z_rel <= -h_m).
+        let zd = self.dry.z_rel(i);
+        if self.is_wetted(i) && zd > -self.height_m {
+            0.0
+        } else {
+            self.dry.p_rel(i) - meniscus_force_n(self.force_per_radius_n_per_m, self.height_m, self.r(i), zd)
+        }
+    }
+    fn z_min(&self) -> f64 {
+        self.dry.z_min().min(-self.height_m)
+    }
+    fn uniform_hertz_dmt(&self) -> Option<(f64, f64, f64)> {
+        // Hertz/DMT of one radius: in solid contact the meniscus adds the constant pull f R.
+        self.dry.uniform_hertz_dmt().map(|(r, inv_d, c0)| (r, inv_d, c0 + self.force_per_radius_n_per_m * r))
+    }
+    fn fast_meniscus(&self) -> Option<(f64, f64, &[u64])> {
+        self.dry
+            .uniform_hertz_dmt()
+            .map(|(r, _, _)| (self.force_per_radius_n_per_m * r, 1.0 / self.height_m, self.wetted))
+    }
+    fn capillary_n(&self, i: usize, z: f64) -> f64 {
+        if self.solid(i, z) || self.is_wetted(i) {
+            meniscus_force_n(self.force_per_radius_n_per_m, self.height_m, self.r(i), z)
+        } else {
+            0.0
+        }
     }
 }

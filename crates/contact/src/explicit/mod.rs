@@ -67,5 +67,5 @@ mod types;
 
 pub use solver::ExplicitSolver;
 pub use types::{
-    Detail, Equilibrium, ShoeMode, SolveError, SolverConfig, SummitContact, Sweep, SweepEvent, WorkCounters,
+    Detail, Equilibrium, Meniscus, ShoeMode, SolveError, SolverConfig, SummitContact, Sweep, SweepEvent, WorkCounters,
 };

@@ -7,7 +7,7 @@ use stiction_surface::{Radii, Surface};
 
 mod fast;
 
-use super::laws::{HertzDmt, JkrPerSummit, LawEval, MdPerSummit, MdTables, Resp, Uniform};
+use super::laws::{HertzDmt, JkrPerSummit, LawEval, MdPerSummit, MdTables, Resp, Uniform, Wet};
 use super::types::*;
 use crate::single::{AdhesionLaw, AsperityParams, Branch, SummitModel};
 
@@ -161,6 +161,13 @@ struct Eval {
     release_words: Option<(usize, usize)>,
     /// What a Newton step without a pass needs (the fast pass only; see [`linear_step`]).
     lin: Option<Linear>,
+    /// Menisci only: their total pull and the number of summits in solid contact (contact
+    /// radius > 0), at an equilibrium (no member past release).
+    capillary: f64,
+    solid: usize,
+    /// Members were released from this evaluation without a new pass: `capillary` and `solid`
+    /// are stale.
+    released: bool,
 }
 
 /// Quantities of a fast pass beyond the gradient and Hessian, for a final Newton step applied by
@@ -205,7 +212,13 @@ pub struct ExplicitSolver {
     scratch: Vec<u32>,
     /// One mean summit's adhesive pull-off (scale), N.
     adhesion_ref: f64,
+    /// The same without a meniscus, N.
+    adhesion_ref_dry: f64,
     height_range: f64,
+    /// The meniscus of every wetted summit (None: dry).
+    wet: Option<Meniscus>,
+    /// Bit set of the wetted sorted summits (empty when dry), see [`Wet`].
+    wetted: Vec<u64>,
 }
 
 fn invalid(field: &'static str, value: impl ToString, expected: impl ToString) -> SolveError {
@@ -347,7 +360,20 @@ impl ExplicitSolver {
             member_dx: 0.0,
             member_dy: 0.0,
         };
-        let mut s = Self { geom, law, params, imp, config, state, scratch: Vec::new(), adhesion_ref, height_range };
+        let mut s = Self {
+            geom,
+            law,
+            params,
+            imp,
+            config,
+            state,
+            scratch: Vec::new(),
+            adhesion_ref,
+            adhesion_ref_dry: adhesion_ref,
+            height_range,
+            wet: None,
+            wetted: Vec::new(),
+        };
         s.reset();
         Ok(s)
     }
@@ -360,6 +386,7 @@ impl ExplicitSolver {
         self.state.member_dx = 0.0;
         self.state.member_dy = 0.0;
         self.state.member.iter_mut().for_each(|w| *w = 0);
+        self.wetted.iter_mut().for_each(|w| *w = 0);
         self.state.members = 0;
         self.state.bound = 0;
         let z_in0 = self.with_law(|_, law| law.z_in(0));
@@ -423,6 +450,51 @@ impl ExplicitSolver {
         self.config.detail = detail;
     }
 
+    /// Puts a meniscus ([`Meniscus`]) at every summit that touches from now on (None: dry, the
+    /// default) and returns to the initial state ([`Self::reset`]): the wetted state of each
+    /// summit is carried along the load path from there (formation on touch, rupture beyond the
+    /// meniscus height). A dry solver (None) is exactly the solver without this call.
+    ///
+    /// Errors: a force per radius or a meniscus height that is not finite and > 0.
+    pub fn set_meniscus(&mut self, meniscus: Option<Meniscus>) -> Result<(), SolveError> {
+        if let Some(m) = meniscus {
+            if !(m.force_per_radius_n_per_m.is_finite() && m.force_per_radius_n_per_m > 0.0) {
+                return Err(invalid(
+                    "meniscus.force_per_radius_n_per_m",
+                    m.force_per_radius_n_per_m,
+                    "a finite value > 0 N/m",
+                ));
+            }
+            if !(m.height_m.is_finite() && m.height_m > 0.0) {
+                return Err(invalid("meniscus.height_m", m.height_m, "a finite value > 0 m"));
+            }
+        }
+        self.wet = meniscus;
+        self.wetted = if meniscus.is_some() { vec![0; self.geom.hs.len().div_ceil(64)] } else { Vec::new() };
+        let mean_r = match &self.geom.radii {
+            Radii::Uniform(r) => *r,
+            Radii::PerSummit(v) => v.iter().sum::<f64>() / v.len() as f64,
+        };
+        self.adhesion_ref = match meniscus {
+            Some(m) => self.adhesion_ref_dry + m.force_per_radius_n_per_m * mean_r,
+            None => self.adhesion_ref_dry,
+        };
+        self.reset();
+        Ok(())
+    }
+
+    /// After an equilibrium the wetted summits are the members: every member is in solid contact
+    /// (it joined by touching, or is on the dry law's contact branch) or was wetted before and is
+    /// separated by less than h_m; ruptured menisci left the set with their summits.
+    fn update_wetted(&mut self) {
+        self.wetted.copy_from_slice(&self.state.member);
+    }
+
+    /// The meniscus in use (None: dry).
+    pub fn meniscus(&self) -> Option<Meniscus> {
+        self.wet
+    }
+
     /// Work done since construction: evaluation passes over the summits and the summits they
     /// scanned (the height-sorted prefix that can touch, plus the members). Diagnostics for
     /// performance measurements (cost per scanned summit); not part of any result.
@@ -457,6 +529,22 @@ impl ExplicitSolver {
     }
 
     fn with_law<R>(&self, f: impl FnOnce(&Geom, &dyn LawEval) -> R) -> R {
+        if let Some(m) = self.wet {
+            return self.with_dry_law(|g, dry| {
+                let law = Wet {
+                    dry,
+                    radii: &g.radii,
+                    wetted: &self.wetted,
+                    force_per_radius_n_per_m: m.force_per_radius_n_per_m,
+                    height_m: m.height_m,
+                };
+                f(g, &law)
+            });
+        }
+        self.with_dry_law(f)
+    }
+
+    fn with_dry_law<R>(&self, f: impl FnOnce(&Geom, &dyn LawEval) -> R) -> R {
         match &self.imp {
             LawImpl::HertzDmt { inv_d, two_pi_dgamma } => {
                 f(&self.geom, &HertzDmt { inv_d: *inv_d, two_pi_dgamma: *two_pi_dgamma, radii: &self.geom.radii })
@@ -484,59 +572,61 @@ impl ExplicitSolver {
             return Err(invalid("load_n", load_n, "a finite load in N"));
         }
         let backup = self.state.clone();
+        // The dry law, or the dry law with a meniscus at every wetted summit (one monomorphised
+        // iteration per law: the dry path is exactly the solver without menisci).
+        macro_rules! run {
+            ($dry:expr) => {{
+                let dry = $dry;
+                match self.wet {
+                    None => equilibrate(
+                        &self.geom,
+                        dry,
+                        &mut self.state,
+                        &mut self.scratch,
+                        load_n,
+                        &self.config,
+                        self.adhesion_ref,
+                        self.height_range,
+                    ),
+                    Some(m) => {
+                        let wet = Wet {
+                            dry,
+                            radii: &self.geom.radii,
+                            wetted: &self.wetted,
+                            force_per_radius_n_per_m: m.force_per_radius_n_per_m,
+                            height_m: m.height_m,
+                        };
+                        equilibrate(
+                            &self.geom,
+                            &wet,
+                            &mut self.state,
+                            &mut self.scratch,
+                            load_n,
+                            &self.config,
+                            self.adhesion_ref,
+                            self.height_range,
+                        )
+                    }
+                }
+            }};
+        }
         let res = match &self.imp {
             LawImpl::HertzDmt { inv_d, two_pi_dgamma } => {
-                let law = HertzDmt { inv_d: *inv_d, two_pi_dgamma: *two_pi_dgamma, radii: &self.geom.radii };
-                equilibrate(
-                    &self.geom,
-                    &law,
-                    &mut self.state,
-                    &mut self.scratch,
-                    load_n,
-                    &self.config,
-                    self.adhesion_ref,
-                    self.height_range,
-                )
+                run!(&HertzDmt { inv_d: *inv_d, two_pi_dgamma: *two_pi_dgamma, radii: &self.geom.radii })
             }
-            LawImpl::Uniform(u) => equilibrate(
-                &self.geom,
-                u.as_ref(),
-                &mut self.state,
-                &mut self.scratch,
-                load_n,
-                &self.config,
-                self.adhesion_ref,
-                self.height_range,
-            ),
+            LawImpl::Uniform(u) => run!(u.as_ref()),
             LawImpl::JkrPerSummit => {
                 let Radii::PerSummit(r) = &self.geom.radii else { unreachable!() };
-                let law = JkrPerSummit::new(self.params, r);
-                equilibrate(
-                    &self.geom,
-                    &law,
-                    &mut self.state,
-                    &mut self.scratch,
-                    load_n,
-                    &self.config,
-                    self.adhesion_ref,
-                    self.height_range,
-                )
+                run!(&JkrPerSummit::new(self.params, r))
             }
             LawImpl::MdPerSummit(t) => {
                 let Radii::PerSummit(r) = &self.geom.radii else { unreachable!() };
-                let law = MdPerSummit { params: self.params, radii: r, tables: t };
-                equilibrate(
-                    &self.geom,
-                    &law,
-                    &mut self.state,
-                    &mut self.scratch,
-                    load_n,
-                    &self.config,
-                    self.adhesion_ref,
-                    self.height_range,
-                )
+                run!(&MdPerSummit { params: self.params, radii: r, tables: t })
             }
         };
+        if res.is_ok() && self.wet.is_some() {
+            self.update_wetted();
+        }
         match res {
             Ok(iterations) => Ok(self.report(load_n, iterations)),
             Err(e) => {
@@ -670,6 +760,8 @@ impl ExplicitSolver {
     /// needs), the force residual is 0. Used to compare with GW's integrals at fixed separation.
     pub fn evaluate_pose(&mut self, separation_m: f64, tilt_x_rad: f64, tilt_y_rad: f64) -> Equilibrium {
         let saved = self.state.clone();
+        let saved_wetted = std::mem::take(&mut self.wetted);
+        self.wetted = vec![0; saved_wetted.len()];
         self.state.member.iter_mut().for_each(|w| *w = 0);
         self.state.members = 0;
         self.state.bound = 0;
@@ -689,6 +781,7 @@ impl ExplicitSolver {
         eq.load_n -= eq.force_residual_n;
         eq.force_residual_n = 0.0;
         self.state = saved;
+        self.wetted = saved_wetted;
         eq
     }
 
@@ -739,6 +832,8 @@ impl ExplicitSolver {
             real_area_m2: 0.0,
             elastic_load_n: 0.0,
             adhesive_load_n: 0.0,
+            capillary_load_n: 0.0,
+            wetted_summits: 0,
             friction_capacity_n: 0.0,
             max_pressure_pa: 0.0,
             summits_over_elastic_limit: 0,
@@ -750,6 +845,7 @@ impl ExplicitSolver {
         };
         if detail == Detail::Summary
             && let Some((generation, cq, ev)) = &self.state.cache
+            && (self.wet.is_none() || !ev.released)
             && *generation == self.state.generation
             && *cq == q
         {
@@ -763,9 +859,15 @@ impl ExplicitSolver {
             e.force_residual_n = load_n - ev.force;
             e.adhesive_load_n = e.elastic_load_n - ev.force;
             e.friction_capacity_n = self.config.shear_strength_pa * e.real_area_m2;
+            if self.wet.is_some() {
+                e.capillary_load_n = ev.capillary;
+                e.wetted_summits = e.contacts;
+                e.contacts = ev.solid;
+            }
             return e;
         }
         let mut total = 0.0;
+        let (mut capillary, mut solid) = (0.0, 0usize);
         self.with_law(|g, law| {
             for i in 0..self.state.bound {
                 if !self.state.is_member(i) {
@@ -774,6 +876,10 @@ impl ExplicitSolver {
                 let (x, y) = (f64::from(g.xs[i]), f64::from(g.ys[i]));
                 let z = g.hs[i] - (a + b * x + c * y);
                 let r: Resp = law.contact(i, z);
+                if self.wet.is_some() {
+                    capillary += law.capillary_n(i, z);
+                    solid += usize::from(r.radius > 0.0);
+                }
                 total += r.load_n;
                 e.real_area_m2 += std::f64::consts::PI * r.radius * r.radius;
                 e.elastic_load_n += r.elastic_n;
@@ -805,6 +911,11 @@ impl ExplicitSolver {
         e.summits.sort_unstable_by_key(|s| s.index);
         e.force_residual_n = load_n - total;
         e.adhesive_load_n = e.elastic_load_n - total;
+        if self.wet.is_some() {
+            e.capillary_load_n = capillary;
+            e.wetted_summits = e.contacts;
+            e.contacts = solid;
+        }
         e.friction_capacity_n = self.config.shear_strength_pa * e.real_area_m2;
         e
     }
@@ -860,8 +971,10 @@ fn evaluate<L: LawEval + ?Sized>(
         let a_hard = g.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
         let z_hard = a_hard * a_hard / radius;
         let lin = lin && g.shortcuts;
-        let k = fast::Kernel { q: *q, x0, y0, inv_ell, radius, inv_d, c0, allow_touch, a_hard, z_hard, lin };
-        let mut ev = fast::evaluate(g, st, &k, end, load, touch);
+        let (cap_f, inv_hm, wetted) = law.fast_meniscus().unwrap_or((0.0, 0.0, &[]));
+        let k =
+            fast::Kernel { q: *q, x0, y0, inv_ell, radius, inv_d, c0, allow_touch, a_hard, z_hard, lin, cap_f, inv_hm };
+        let mut ev = fast::evaluate(g, st, wetted, &k, end, load, touch);
         // The pass scans whole blocks of 64; a summit beyond them lies below the threshold
         // (h < w_min: DMT/Hertz reach nothing below the plane), so its |z| >= w_min - h.
         let scanned = (end.div_ceil(64) * 64).min(g.hs.len());
@@ -897,6 +1010,8 @@ fn evaluate<L: LawEval + ?Sized>(
         };
         let (p, k) = if on_branch {
             let r = law.contact(i, z);
+            ev.capillary += law.capillary_n(i, z);
+            ev.solid += usize::from(r.radius > 0.0);
             area += r.radius * r.radius;
             elastic += r.elastic_n;
             q0_max = q0_max.max(r.q0);
@@ -985,6 +1100,7 @@ fn release<L: LawEval + ?Sized>(g: &Geom, law: &L, st: &mut State, ev: &mut Eval
                 ev.moment_y -= p * (y - y0);
                 ev.contacts -= 1;
                 ev.releases = ev.releases.saturating_sub(1);
+                ev.released = true;
             }
         }
     }
@@ -1542,11 +1658,13 @@ mod tests {
                     a_hard,
                     z_hard: a_hard * a_hard / radius,
                     lin,
+                    cap_f: 0.0,
+                    inv_hm: 0.0,
                 };
                 let end = s.geom.hs.len();
                 let (mut t1, mut t2) = (Vec::new(), Vec::new());
-                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &k, end, 0.1, &mut t1);
-                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &k, end, 0.1, &mut t2);
+                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &[], &k, end, 0.1, &mut t1);
+                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &[], &k, end, 0.1, &mut t2);
                 assert!(e1.contacts > 100 && e1.releases > 0 && !t1.is_empty(), "{e1:?}");
                 assert_eq!(e1.lin.is_some(), lin);
                 assert_eq!(format!("{e1:?}"), format!("{e2:?}"), "{mode:?}");

@@ -132,6 +132,15 @@ pub struct Equilibrium {
     /// Adhesive load: elastic load minus the carried load, >= 0 for adhesive laws (DMT:
     /// N 2 pi dgamma R) \[N\].
     pub adhesive_load_n: f64,
+    /// Capillary part of the adhesive load: the pull of the menisci of the wetted summits
+    /// ([`Meniscus`]) \[N\]; 0 (and not written) without a meniscus.
+    #[serde(default, skip_serializing_if = "is_zero_f64")]
+    pub capillary_load_n: f64,
+    /// Summits carrying a meniscus (in contact, or separated by less than its height since they
+    /// touched); 0 (and not written) without a meniscus. With a meniscus `contacts` counts the
+    /// summits in solid contact and `contact_indices` / `summits` list every wetted summit.
+    #[serde(default, skip_serializing_if = "is_zero_usize")]
+    pub wetted_summits: usize,
     /// Friction capacity s A_r (eq. 1) \[N\].
     pub friction_capacity_n: f64,
     /// Largest peak Hertz pressure over the contacts (eq. 11) \[Pa\].
@@ -255,4 +264,40 @@ pub enum SolveError {
         /// Contacts at the last iterate.
         contacts: usize,
     },
+}
+
+/// A water meniscus at every wetted summit (capillary condensation at a relative humidity; the
+/// circular-meniscus approximation with a constant Kelvin radius r_K, docs/explicit-solver.md,
+/// "Capillarity").
+///
+/// A summit's meniscus forms when it touches the shoe and stays in equilibrium with the vapour
+/// until the separation D = -z exceeds `height_m` = h_m = r_K (cos th1 + cos th2), where it
+/// ruptures. Its pull is the sphere-flat force `2 pi R gamma (cos th1 + cos th2 - max(D, 0) / r_K)`
+/// = `force_per_radius_n_per_m * R * (1 - max(D, 0) / h_m)`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Meniscus {
+    /// `2 pi gamma (cos th1 + cos th2)`: the pull of a wetted summit in contact per unit radius
+    /// \[N/m\] (4 pi gamma cos theta for equal faces).
+    pub force_per_radius_n_per_m: f64,
+    /// Largest separation the meniscus bridges, h_m = r_K (cos th1 + cos th2) \[m\].
+    pub height_m: f64,
+}
+
+fn is_zero_f64(v: &f64) -> bool {
+    *v == 0.0
+}
+
+fn is_zero_usize(v: &usize) -> bool {
+    *v == 0
+}
+
+impl Meniscus {
+    /// The meniscus of a capillary law: `force_per_radius = 2 pi gamma (cos th1 + cos th2)`,
+    /// `height = h_m` ([`crate::capillary::Capillarity::meniscus_height_m`]).
+    pub fn from_capillarity(c: &crate::capillary::Capillarity) -> Self {
+        Self {
+            force_per_radius_n_per_m: 2.0 * std::f64::consts::PI * c.surface_tension_n_per_m * c.cos_angle_sum,
+            height_m: c.meniscus_height_m(),
+        }
+    }
 }

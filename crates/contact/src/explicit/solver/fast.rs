@@ -49,6 +49,10 @@ pub(crate) struct Kernel {
     pub z_hard: f64,
     /// Also collect what a Newton step without a pass needs ([`super::Linear`]).
     pub lin: bool,
+    /// Meniscus pull of a wetted summit in contact f R (already part of `c0`), 0 when dry \[N\].
+    pub cap_f: f64,
+    /// 1 / h_m, the inverse meniscus height (0 when dry) \[1/m\].
+    pub inv_hm: f64,
 }
 
 #[derive(Clone, Copy)]
@@ -73,6 +77,11 @@ struct Acc {
     kuu: [f64; W],
     kuv: [f64; W],
     kvv: [f64; W],
+    /// CAP only: meniscus pull of the wetted members out of solid contact, their number, and the
+    /// number of active summits with z > 0 (in solid contact).
+    cap_tail: [f64; W],
+    wet_out: [f64; W],
+    solid: [f64; W],
 }
 
 impl Acc {
@@ -97,6 +106,9 @@ impl Acc {
             kuu: z,
             kuv: z,
             kvv: z,
+            cap_tail: z,
+            wet_out: z,
+            solid: z,
         }
     }
 }
@@ -108,6 +120,8 @@ struct Buf {
     ps: [f64; B],
     zcs: [f64; B],
     as_: [f64; B],
+    /// CAP only: the interference z.
+    zs: [f64; B],
 }
 
 /// Per-block counts: summits touching at this pose, members past release.
@@ -127,17 +141,19 @@ const MIXED: u8 = 2;
 /// (Indexed lanes on purpose: the fixed lane layout is what the compiler vectorises.)
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
+#[allow(clippy::too_many_arguments)]
+fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     acc: &mut Acc,
     buf: &mut Buf,
     xs: &[f32; B],
     ys: &[f32; B],
     hs: &[f64; B],
     word: u64,
+    wet_word: u64,
     k: &Kernel,
 ) -> Counts {
     let touch_zero = k.c0 != 0.0;
-    let Buf { us, vs, ps, zcs, as_ } = buf;
+    let Buf { us, vs, ps, zcs, as_, zs } = buf;
     // Counts as f64 lanes (exact below 2^53): mixing integer lanes into the float code costs packing.
     let mut touches = [0.0f64; W];
     let mut rels = [0.0f64; W];
@@ -174,12 +190,34 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
             us[j] = u;
             vs[j] = v;
             ps[j] = if act { el - k.c0 } else { 0.0 };
+            if CAP {
+                zs[j] = z;
+            }
             zcs[j] = if act { zc } else { 0.0 };
             as_[j] = if act { a } else { 0.0 };
         }
     }
     acc.gap_in = gap_in;
     acc.gap_out = gap_out;
+    if CAP && M != NONE {
+        // Stage 1b (menisci): a wetted member out of solid contact pulls with its meniscus while
+        // separated by less than h_m (not a release), with nothing beyond (released, p_rel = 0).
+        for grp in 0..B / W {
+            for l in 0..W {
+                let j = grp * W + l;
+                let z = zs[j];
+                let mem = match M {
+                    ALL => true,
+                    _ => (word >> j) & 1 == 1,
+                };
+                let wet_out = mem && z < 0.0 && (wet_word >> j) & 1 == 1;
+                let tail = wet_out && z * k.inv_hm >= -1.0;
+                rels[l] -= if tail { 1.0 } else { 0.0 };
+                let pt = -k.cap_f * (1.0 + z * k.inv_hm);
+                ps[j] = if wet_out { if tail { pt } else { 0.0 } } else { ps[j] };
+            }
+        }
+    }
     let touches: f64 = touches.iter().sum();
     let counts = Counts { touches: touches as u32, releases: rels.iter().sum::<f64>() as u32 };
     if M == NONE && touches == 0.0 {
@@ -227,23 +265,40 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool>(
             }
         }
     }
+    if CAP {
+        // Stage 4 (menisci): the tails' pull, how many, summits in solid contact. A tail is the
+        // only active summit with z+ = 0 and a load in (-f R, 0): in solid contact the pull is
+        // at least c0 >= f R (at an equilibrium no member is past release).
+        for grp in 0..B / W {
+            for l in 0..W {
+                let j = grp * W + l;
+                let p = ps[j];
+                let tail = zcs[j] == 0.0 && p < 0.0 && p > -k.cap_f;
+                acc.cap_tail[l] -= if tail { p } else { 0.0 };
+                acc.wet_out[l] += if tail { 1.0 } else { 0.0 };
+                acc.solid[l] += if as_[j] > 0.0 { 1.0 } else { 0.0 };
+            }
+        }
+    }
     counts
 }
 
 #[inline(always)]
-fn block_dispatch<const TILT: bool, const HARD: bool, const LIN: bool>(
+#[allow(clippy::too_many_arguments)]
+fn block_dispatch<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     acc: &mut Acc,
     buf: &mut Buf,
     xs: &[f32; B],
     ys: &[f32; B],
     hs: &[f64; B],
     word: u64,
+    wet_word: u64,
     k: &Kernel,
 ) -> Counts {
     match word {
-        u64::MAX => block::<ALL, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
-        0 => block::<NONE, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
-        _ => block::<MIXED, TILT, HARD, LIN>(acc, buf, xs, ys, hs, word, k),
+        u64::MAX => block::<ALL, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
+        0 => block::<NONE, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
+        _ => block::<MIXED, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
     }
 }
 
@@ -259,9 +314,10 @@ struct Totals {
 /// The loop over the blocks `0..end`, compiled once per instruction set by `pulp` (inlined into
 /// its dispatch).
 #[inline(always)]
-fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
+fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     g: &Geom,
     st: &State,
+    wetted: &[u64],
     k: &Kernel,
     end: usize,
     touch: &mut Vec<u32>,
@@ -269,7 +325,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
     let n = g.hs.len();
     let mut acc = Acc::zero();
     let z = [0.0; B];
-    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z };
+    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z, zs: z };
     let mut contacts = 0usize;
     let mut releases = 0usize;
     let mut release_words: Option<(usize, usize)> = None;
@@ -287,7 +343,8 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
         let ys: &[f32; B] = g.ys[r.clone()].try_into().expect("block");
         let hs: &[f64; B] = g.hs[r].try_into().expect("block");
         let word = st.member[blk];
-        let c = block_dispatch::<TILT, HARD, LIN>(&mut acc, &mut buf, xs, ys, hs, word, k);
+        let wet_word = if CAP { wetted.get(blk).copied().unwrap_or(0) } else { 0 };
+        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, xs, ys, hs, word, wet_word, k);
         if c.touches > 0 {
             push_touches(xs, ys, hs, word, blk * B, k, touch);
         }
@@ -302,7 +359,8 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
         ys[..len].copy_from_slice(&g.ys[base..]);
         hs[..len].copy_from_slice(&g.hs[base..]);
         let word = st.member[full];
-        let c = block_dispatch::<TILT, HARD, LIN>(&mut acc, &mut buf, &xs, &ys, &hs, word, k);
+        let wet_word = if CAP { wetted.get(full).copied().unwrap_or(0) } else { 0 };
+        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, &xs, &ys, &hs, word, wet_word, k);
         if c.touches > 0 {
             push_touches(&xs, &ys, &hs, word, base, k, touch);
         }
@@ -316,6 +374,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool>(
 struct PassOp<'a> {
     g: &'a Geom,
     st: &'a State,
+    wetted: &'a [u64],
     k: &'a Kernel,
     end: usize,
     touch: &'a mut Vec<u32>,
@@ -327,16 +386,25 @@ impl pulp::WithSimd for PassOp<'_> {
     type Output = Totals;
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> Totals {
-        let PassOp { g, st, k, end, touch, tilt, hard } = self;
+        let PassOp { g, st, wetted, k, end, touch, tilt, hard } = self;
+        if k.cap_f != 0.0 {
+            // Capillarity: no linear steps (the meniscus tails are not in their error bound).
+            return match (tilt, hard) {
+                (true, false) => pass::<true, false, false, true>(g, st, wetted, k, end, touch),
+                (true, true) => pass::<true, true, false, true>(g, st, wetted, k, end, touch),
+                (false, false) => pass::<false, false, false, true>(g, st, wetted, k, end, touch),
+                (false, true) => pass::<false, true, false, true>(g, st, wetted, k, end, touch),
+            };
+        }
         match (tilt, hard, k.lin) {
-            (true, false, false) => pass::<true, false, false>(g, st, k, end, touch),
-            (true, true, false) => pass::<true, true, false>(g, st, k, end, touch),
-            (false, false, false) => pass::<false, false, false>(g, st, k, end, touch),
-            (false, true, false) => pass::<false, true, false>(g, st, k, end, touch),
-            (true, false, true) => pass::<true, false, true>(g, st, k, end, touch),
-            (true, true, true) => pass::<true, true, true>(g, st, k, end, touch),
-            (false, false, true) => pass::<false, false, true>(g, st, k, end, touch),
-            (false, true, true) => pass::<false, true, true>(g, st, k, end, touch),
+            (true, false, false) => pass::<true, false, false, false>(g, st, wetted, k, end, touch),
+            (true, true, false) => pass::<true, true, false, false>(g, st, wetted, k, end, touch),
+            (false, false, false) => pass::<false, false, false, false>(g, st, wetted, k, end, touch),
+            (false, true, false) => pass::<false, true, false, false>(g, st, wetted, k, end, touch),
+            (true, false, true) => pass::<true, false, true, false>(g, st, wetted, k, end, touch),
+            (true, true, true) => pass::<true, true, true, false>(g, st, wetted, k, end, touch),
+            (false, false, true) => pass::<false, false, true, false>(g, st, wetted, k, end, touch),
+            (false, true, true) => pass::<false, true, true, false>(g, st, wetted, k, end, touch),
         }
     }
 }
@@ -344,10 +412,12 @@ impl pulp::WithSimd for PassOp<'_> {
 /// The pass over the summits `0..end` (every member has an index below `end`; summits at or
 /// beyond it cannot touch). Touching summits are pushed to `touch` in ascending order.
 /// `arch` selects the instruction set (`pulp::Arch::new()`: the best one this machine has).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate_with(
     arch: pulp::Arch,
     g: &Geom,
     st: &State,
+    wetted: &[u64],
     k: &Kernel,
     end: usize,
     load: f64,
@@ -356,7 +426,7 @@ pub(crate) fn evaluate_with(
     touch.clear();
     let tilt = g.ndof > 1;
     let hard = k.a_hard.is_finite();
-    let t = arch.dispatch(PassOp { g, st, k, end, touch, tilt, hard });
+    let t = arch.dispatch(PassOp { g, st, wetted, k, end, touch, tilt, hard });
     let acc = &t.acc;
     let s = |v: &[f64; W]| (v[0] + v[1]) + (v[2] + v[3]);
     let (p, pu, pv) = (s(&acc.p), s(&acc.pu), s(&acc.pv));
@@ -380,7 +450,16 @@ pub(crate) fn evaluate_with(
         moment_x: pu * ell,
         moment_y: pv * ell,
         release_words: Some(t.release_words.unwrap_or((1, 0))),
-        lin: k.lin.then(|| Linear {
+        // Menisci: f R at every active summit but the wetted ones out of solid contact, which
+        // pull with their tails (meaningful at an equilibrium: no member past release).
+        capillary: if k.cap_f != 0.0 {
+            k.cap_f * (t.contacts as f64 - s(&acc.wet_out)) + s(&acc.cap_tail)
+        } else {
+            0.0
+        },
+        solid: s(&acc.solid) as usize,
+        released: false,
+        lin: (k.lin && k.cap_f == 0.0).then(|| Linear {
             gap_in: min(&acc.gap_in),
             gap_out: min(&acc.gap_out),
             hard_gap: min(&acc.hgap),
@@ -396,8 +475,16 @@ pub(crate) fn evaluate_with(
 }
 
 /// [`evaluate_with`] on the best instruction set of this machine.
-pub(crate) fn evaluate(g: &Geom, st: &State, k: &Kernel, end: usize, load: f64, touch: &mut Vec<u32>) -> Eval {
-    evaluate_with(pulp::Arch::new(), g, st, k, end, load, touch)
+pub(crate) fn evaluate(
+    g: &Geom,
+    st: &State,
+    wetted: &[u64],
+    k: &Kernel,
+    end: usize,
+    load: f64,
+    touch: &mut Vec<u32>,
+) -> Eval {
+    evaluate_with(pulp::Arch::new(), g, st, wetted, k, end, load, touch)
 }
 
 #[cold]
