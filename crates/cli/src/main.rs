@@ -43,7 +43,7 @@ enum Command {
     /// Fit measured voltages: eq. 10 with regression and calibration intervals, s per contact model, ranked.
     Fit(cmd::fit::Args),
     /// FFT boundary-element contact (optionally Maugis-Dugdale adhesive) on a generated self-affine rough surface.
-    Bem(cmd::bem::Args),
+    Bem(Box<cmd::bem::Args>),
     /// Check a scenario file (and --set overrides) and print it in SI units, or print the format's JSON Schema.
     Scenario(cmd::scenario::Args),
     /// A measured height map (AFM, profiler): levelling, cut-offs, summits, statistics beside Nayak's predictions, figures.
@@ -66,7 +66,7 @@ fn main() -> ExitCode {
         Command::Merge(a) => cmd::merge::run(a),
         Command::Fit(a) => cmd::fit::run(a),
         Command::Topography(a) => cmd::topography::run(a),
-        Command::Bem(a) => cmd::bem::run(a),
+        Command::Bem(a) => cmd::bem::run(*a),
     };
     output::flush_stdout();
     match result {

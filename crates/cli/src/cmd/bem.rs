@@ -81,25 +81,9 @@ pub struct Args {
     /// Range h0 of the Dugdale law ("1 nm"); the Dugdale stress is w/h0.
     #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "work_of_adhesion")]
     pub range: Option<f64>,
-    /// Adhesion energy against relative humidity (the microcantilever experiment's quantity): for
-    /// each RH, a capillary cohesive zone of water (Laplace pressure gamma/r_K wherever the gap is
-    /// below the meniscus height h_m = 2 r_K cos theta), with the Dugdale law of --work-of-adhesion and
-    /// --range for van der Waals if given, and the work of separation of a retraction from the
-    /// compressed state at --pressure (default 1 MPa) to separation. A list ("0.1,0.35,0.9" or
-    /// "35 %,60 %") or FROM:TO:STEPS ("0.1:0.9:9"); fractions in [0, 1).
-    #[arg(long, value_name = "LIST|FROM:TO:STEPS", allow_hyphen_values = true, conflicts_with_all = ["sweep", "gap_sweep", "compare_asperity"])]
-    pub rh: Option<String>,
-    /// With --rh: temperature ("25 C", "298.15 K"; a bare number is kelvin).
-    #[arg(long, default_value = "25 C", allow_hyphen_values = true, requires = "rh")]
-    pub temperature: String,
-    /// With --rh: contact angle of water on both faces ("0 deg": hydrophilic oxide; >= 90 deg: no
-    /// capillary condensation).
-    #[arg(long, default_value = "0 deg", allow_hyphen_values = true, value_parser = quantity(Dimension::Angle, Constraint::NonNegative), requires = "rh")]
-    pub contact_angle: f64,
-    /// With --rh: mean-gap step of the retraction ("0.02 nm"; default a twentieth of the shortest
-    /// range of the cohesive laws).
-    #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "rh")]
-    pub rh_step: Option<f64>,
+    /// Adhesion energy against relative humidity (--rh and its settings).
+    #[command(flatten)]
+    pub humidity: HumidityArgs,
     /// Interfacial shear strength s for the friction s A_r ("100 MPa").
     #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::NonNegative))]
     pub shear_strength: Option<f64>,
@@ -124,6 +108,30 @@ pub struct Args {
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+}
+
+/// The `--rh` flags of `stiction bem`.
+#[derive(clap::Args, Debug)]
+pub struct HumidityArgs {
+    /// Adhesion energy against relative humidity (the microcantilever experiment's quantity): for
+    /// each RH, a capillary cohesive zone of water (Laplace pressure gamma/r_K wherever the gap is
+    /// below the meniscus height h_m = 2 r_K cos theta), with the Dugdale law of --work-of-adhesion and
+    /// --range for van der Waals if given, and the work of separation of a retraction from the
+    /// compressed state at --pressure (default 1 MPa) to separation. A list ("0.1,0.35,0.9" or
+    /// "35 %,60 %") or FROM:TO:STEPS ("0.1:0.9:9"); fractions in [0, 1).
+    #[arg(long, value_name = "LIST|FROM:TO:STEPS", allow_hyphen_values = true, conflicts_with_all = ["sweep", "gap_sweep", "compare_asperity"])]
+    pub rh: Option<String>,
+    /// With --rh: temperature ("25 C", "298.15 K"; a bare number is kelvin).
+    #[arg(long, default_value = "25 C", allow_hyphen_values = true, requires = "rh")]
+    pub temperature: String,
+    /// With --rh: contact angle of water on both faces ("0 deg": hydrophilic oxide; >= 90 deg: no
+    /// capillary condensation).
+    #[arg(long, default_value = "0 deg", allow_hyphen_values = true, value_parser = quantity(Dimension::Angle, Constraint::NonNegative), requires = "rh")]
+    pub contact_angle: f64,
+    /// With --rh: mean-gap step of the retraction ("0.02 nm"; default a twentieth of the shortest
+    /// range of the cohesive laws).
+    #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "rh")]
+    pub rh_step: Option<f64>,
 }
 
 /// One point of a load or gap path.
@@ -277,7 +285,7 @@ fn check_path_args(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
         return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
     }
-    if args.rh.is_some() {
+    if args.humidity.rh.is_some() {
         return humidity::run(&args);
     }
     if args.gap_sweep.is_none() && args.sweep.is_none() && args.pressure.is_none() {
@@ -720,9 +728,10 @@ mod humidity {
     }
 
     pub(super) fn run(args: &Args) -> CliResult {
-        let rhs = parse_rh(args.rh.as_deref().unwrap_or_default())?;
-        let temperature_k = parse_temperature(&args.temperature)?;
-        let angle = args.contact_angle;
+        let h = &args.humidity;
+        let rhs = parse_rh(h.rh.as_deref().unwrap_or_default())?;
+        let temperature_k = parse_temperature(&h.temperature)?;
+        let angle = h.contact_angle;
         if !(0.0..=std::f64::consts::PI).contains(&angle) {
             return Err(format!("--contact-angle {angle} rad: expected 0 to 180 deg").into());
         }
@@ -756,7 +765,7 @@ mod humidity {
                 (0.0, 0.0, 0)
             } else {
                 let shortest = laws.iter().fold(f64::INFINITY, |m, l| m.min(l.range_m));
-                let step = args.rh_step.unwrap_or(shortest / 20.0);
+                let step = h.rh_step.unwrap_or(shortest / 20.0);
                 let sep = solver.work_of_separation(&laws, start.mean_gap_m, step, &opts).map_err(|e| {
                     format!("--rh {rh}: the retraction from --pressure to separation failed ({e}); check --rh-step")
                 })?;
