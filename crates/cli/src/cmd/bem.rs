@@ -286,7 +286,7 @@ fn check_path_args(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
     }
     if args.humidity.rh.is_some() {
-        return humidity::run(&args);
+        return Ok(());
     }
     if args.gap_sweep.is_none() && args.sweep.is_none() && args.pressure.is_none() {
         return Err("give --pressure, --sweep, --gap-sweep or --rh".into());
@@ -400,6 +400,11 @@ pub fn bem_json_of_map(
     info: MapInfo,
     pressures: Option<&[f64]>,
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    if args.humidity.rh.is_some() {
+        return Err("rh: the adhesion energy against humidity is a command of its own (`stiction bem --rh`); \
+                    this call solves a load path"
+            .into());
+    }
     if pressures.is_none() {
         check_path_args(args)?;
     } else if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
@@ -420,6 +425,9 @@ pub fn run(args: Args) -> CliResult {
         return Err(format!("--set {set:?} needs --scenario (it overrides a field of the scenario)").into());
     }
     check_path_args(&args)?;
+    if args.humidity.rh.is_some() {
+        return humidity::run(&args);
+    }
     // Check the output folder before the work, so a refusal comes at once.
     let outputs = match &args.out {
         Some(dir) => Some(OutputSet::begin(dir, "bem", args.force)?),

@@ -274,77 +274,14 @@ fn symlog_series(
     Ok(out)
 }
 
-/// A label as drawn: every `symbol_subscript` written as the symbol with its subscript (`F_a0` ->
-/// `Fₐ₀`, `μ_e,a` -> `μₑ,ₐ`, `A_r/A_0` -> `Aᵣ/A₀`), where the symbol is one letter. Unicode has subscript forms for digits and
-/// some letters only; a subscript with any other character (`V_clamp`) stays as written. Every
-/// figure's text goes through here ([`typeset_chart`]), so the typesetting changes in one place.
-pub fn typeset(label: &str) -> String {
-    fn low(c: char) -> Option<char> {
-        Some(match c {
-            '0'..='9' => char::from_u32(0x2080 + (c as u32 - '0' as u32))?,
-            'a' => 'ₐ',
-            'e' => 'ₑ',
-            'o' => 'ₒ',
-            'x' => 'ₓ',
-            'h' => 'ₕ',
-            'k' => 'ₖ',
-            'l' => 'ₗ',
-            'm' => 'ₘ',
-            'n' => 'ₙ',
-            'p' => 'ₚ',
-            's' => 'ₛ',
-            't' => 'ₜ',
-            'i' => 'ᵢ',
-            'r' => 'ᵣ',
-            'u' => 'ᵤ',
-            'v' => 'ᵥ',
-            ',' => ',',
-            _ => return None,
-        })
-    }
-    let chars: Vec<char> = label.chars().collect();
-    let mut out = String::with_capacity(label.len());
-    let mut i = 0;
-    while i < chars.len() {
-        let c = chars[i];
-        // A symbol is one letter (not the end of a word such as a file name's `my_file`).
-        let symbol = i > 0 && chars[i - 1].is_alphabetic() && (i < 2 || !chars[i - 2].is_alphanumeric());
-        if c == '_' && symbol {
-            // The subscript: letters, digits and commas up to the next other character; a trailing
-            // comma is punctuation, not subscript.
-            let mut j = i + 1;
-            while j < chars.len() && (chars[j].is_ascii_alphanumeric() || chars[j] == ',') {
-                j += 1;
-            }
-            while j > i + 1 && chars[j - 1] == ',' {
-                j -= 1;
-            }
-            let run: Option<String> = chars[i + 1..j].iter().map(|&c| low(c)).collect();
-            if let Some(run) = run.filter(|r| !r.is_empty()) {
-                out.push_str(&run);
-                i = j;
-                continue;
-            }
-        }
-        out.push(c);
-        i += 1;
-    }
-    out
-}
-
-/// The chart with its title, note, axis labels and legend names typeset ([`typeset`]); the data
-/// columns keep the names of the labels as written (`f_a0_un`), fixed before the labels change.
+/// The chart ready to draw: its data columns keep the names of the labels as written
+/// (`f_a0_un`), fixed here. Symbols in the title, caption, axis labels and legend names are
+/// written in the plot crate's markup (`F_a0`, `μ_e,a`, `A_r/A_0`, `F_{a0}`), which the renderer
+/// sets as subscripts in every figure alike ([`stiction_plot::text`]).
 pub fn typeset_chart(mut chart: Chart) -> Chart {
     let (xk, yk) = chart.column_keys();
     chart.x_key = Some(xk);
     chart.y_key = Some(yk);
-    chart.title = typeset(&chart.title);
-    chart.note = chart.note.as_deref().map(typeset);
-    chart.x_label = typeset(&chart.x_label);
-    chart.y_label = typeset(&chart.y_label);
-    for s in &mut chart.series {
-        s.name = typeset(&s.name);
-    }
     chart
 }
 
@@ -383,19 +320,7 @@ pub fn sig3(v: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{model_color, sig3, typeset};
-
-    #[test]
-    fn subscripts_typeset_where_unicode_has_them() {
-        assert_eq!(typeset("F_a0 = 2 µN"), "Fₐ₀ = 2 µN");
-        assert_eq!(typeset("μ_e,a, F_a0"), "μₑ,ₐ, Fₐ₀");
-        assert_eq!(typeset("A_r/A_0"), "Aᵣ/A₀");
-        assert_eq!(typeset("V_pull² (V²)"), "Vₚᵤₗₗ² (V²)");
-        // No subscript c or g in Unicode: left as written.
-        assert_eq!(typeset("V_clamp"), "V_clamp");
-        // Words with underscores (file names) are not symbols.
-        assert_eq!(typeset("fit_vpull2.csv, x_a"), "fit_vpull2.csv, xₐ");
-    }
+    use super::{model_color, sig3};
 
     #[test]
     fn each_model_has_its_own_colour() {
