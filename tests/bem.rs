@@ -107,6 +107,12 @@ fn bem_adhesive_cycle_reports_pull_off() {
 
 #[test]
 fn bem_bad_flags_exit_2() {
+    // `stiction bem` on a small synthetic surface with `--rh` and then `rest`.
+    let rh = |rest: &[&'static str]| {
+        let mut a = vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh"];
+        a.extend_from_slice(rest);
+        a
+    };
     for (args, needle) in [
         (vec!["bem", "--grid", "1", "--pressure", "1MPa"], "--grid"),
         (vec!["bem", "--grid", "100000", "--pressure", "1MPa"], "--grid"),
@@ -114,95 +120,17 @@ fn bem_bad_flags_exit_2() {
         (vec!["bem", "--sweep", "1MPa:2MPa:0"], "STEPS"),
         (vec!["bem", "--tolerance", "2", "--pressure", "1MPa"], "--tolerance"),
         (vec!["bem", "--hurst", "1.5", "--pressure", "1MPa"], "hurst"),
-        (vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "1.2"], "--rh"),
-        (vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "-0.1"], "--rh"),
-        (vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.1:0.9:0"], "STEPS"),
-        (vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.1:0.9"], "--rh"),
-        (
-            vec![
-                "bem",
-                "--size",
-                "0.5um",
-                "--grid",
-                "16",
-                "--rms-height",
-                "1nm",
-                "--rh",
-                "0.5",
-                "--temperature",
-                "-5 K",
-            ],
-            "--temperature",
-        ),
-        (
-            vec![
-                "bem",
-                "--size",
-                "0.5um",
-                "--grid",
-                "16",
-                "--rms-height",
-                "1nm",
-                "--rh",
-                "0.5",
-                "--temperature",
-                "hot",
-            ],
-            "--temperature",
-        ),
-        (
-            vec![
-                "bem",
-                "--size",
-                "0.5um",
-                "--grid",
-                "16",
-                "--rms-height",
-                "1nm",
-                "--rh",
-                "0.5",
-                "--contact-angle",
-                "200 deg",
-            ],
-            "--contact-angle",
-        ),
-        (
-            vec!["bem", "--size", "0.5um", "--grid", "16", "--rms-height", "1nm", "--rh", "0.5", "--rh-step", "0 nm"],
-            "--rh-step",
-        ),
-        (
-            vec![
-                "bem",
-                "--size",
-                "0.5um",
-                "--grid",
-                "16",
-                "--rms-height",
-                "1nm",
-                "--rh",
-                "0.5",
-                "--rh-step",
-                "1e-30 m",
-            ],
-            "--rh-step",
-        ),
+        (rh(&["1.2"]), "--rh"),
+        (rh(&["-0.1"]), "--rh"),
+        (rh(&["0.1:0.9:0"]), "STEPS"),
+        (rh(&["0.1:0.9"]), "--rh"),
+        (rh(&["0.5", "--temperature", "-5 K"]), "--temperature"),
+        (rh(&["0.5", "--temperature", "hot"]), "--temperature"),
+        (rh(&["0.5", "--contact-angle", "200 deg"]), "--contact-angle"),
+        (rh(&["0.5", "--rh-step", "0 nm"]), "--rh-step"),
+        (rh(&["0.5", "--rh-step", "1e-30 m"]), "--rh-step"),
         (vec!["bem", "--grid", "8", "--temperature", "25 C", "--pressure", "1MPa"], "--rh"),
-        (
-            vec![
-                "bem",
-                "--size",
-                "0.5um",
-                "--grid",
-                "16",
-                "--rms-height",
-                "1nm",
-                "--rh",
-                "0.5",
-                "--temperature",
-                "35 K",
-            ],
-            "--temperature",
-        ),
+        (rh(&["0.5", "--temperature", "35 K"]), "--temperature"),
     ] {
         let out = stiction(&args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
