@@ -162,12 +162,12 @@ pub fn run(args: Args) -> CliResult {
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("results.json", crate::output::json_text(&summary)?.as_bytes())?;
         if let Some(sweep) = &summary.sweep {
-            let chart = args.fig.apply(crate::cmd::plot::typeset_chart(sweep_chart(&name, sweep, &model)))?;
+            let chart = args.fig.apply(sweep_chart(&name, sweep, &model))?;
             set.add_chart("hysteresis.svg", &chart)?;
             set.add_chart("hysteresis.png", &chart)?;
         }
         if let Some(report) = &summary.validation {
-            let chart = args.fig.apply(crate::cmd::plot::typeset_chart(validation_chart(&spec, report)?))?;
+            let chart = args.fig.apply(validation_chart(&spec, report)?)?;
             set.add_chart("validation.svg", &chart)?;
             set.add_chart("validation.png", &chart)?;
         }
@@ -569,7 +569,7 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport, curves: &Transient
     lengths.sort_by(f64::total_cmp);
     lengths.dedup();
     for l in lengths {
-        let chart = fig.apply(crate::cmd::plot::typeset_chart(transient_chart(r, curves, l)))?;
+        let chart = fig.apply(transient_chart(r, curves, l))?;
         let stem = format!("transients_L{:.2}um", l * 1e6);
         set.add_chart(&format!("{stem}.svg"), &chart)?;
         set.add_chart(&format!("{stem}.png"), &chart)?;

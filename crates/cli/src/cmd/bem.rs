@@ -586,13 +586,13 @@ fn write_outputs(
             .with(Series::markers("BEM, solved loads", area).with_color(0));
         chart.x_log = p_log;
         chart.y_log = decades(&mut pts.iter().map(|p| p.contact_fraction));
-        set.add_chart("load_area.png", &fig.apply(crate::cmd::plot::typeset_chart(chart))?)?;
+        set.add_chart("load_area.png", &fig.apply(chart)?)?;
         let gap: Vec<(f64, f64)> = pts.iter().map(|p| (p.mean_gap_m * 1e9, p.mean_pressure_pa * 1e-6)).collect();
         let mut chart = Chart::new("Load-mean gap (BEM)", "mean gap (nm)", "mean pressure p (MPa)")
             .keys("mean_gap_nm", "mean_pressure_mpa")
             .with(Series::markers("BEM, solved loads", gap).with_color(0));
         chart.y_log = p_log;
-        set.add_chart("load_gap.png", &fig.apply(crate::cmd::plot::typeset_chart(chart))?)?;
+        set.add_chart("load_gap.png", &fig.apply(chart)?)?;
         let ratio: Vec<(f64, f64)> =
             pts.iter().filter_map(|p| p.area_ratio_bem_over_asperity.map(|r| (p.mean_pressure_pa * 1e-6, r))).collect();
         if ratio.len() > 1 {
@@ -604,7 +604,7 @@ fn write_outputs(
             .keys("mean_pressure_mpa", "area_ratio")
             .with(Series::markers("BEM / independent Hertz summits, solved loads", ratio).with_color(0));
             chart.x_log = p_log;
-            set.add_chart("area_ratio.png", &fig.apply(crate::cmd::plot::typeset_chart(chart))?)?;
+            set.add_chart("area_ratio.png", &fig.apply(chart)?)?;
         }
     }
     set.commit()

@@ -123,7 +123,7 @@ pub fn run(args: Args) -> CliResult {
             crate::cmd::actuator::hysteresis_chart(path, args.array.as_deref(), &args.sets)?
         }
     };
-    write_chart(&args.fig.apply(typeset_chart(chart))?, &args.out)?;
+    write_chart(&args.fig.apply(chart)?, &args.out)?;
     crate::errln!("wrote {} and {}", args.out.display(), stiction_plot::data_path(&args.out).display());
     Ok(())
 }
@@ -272,17 +272,6 @@ fn symlog_series(
         out.push((l, model.solve(l)?.a_star));
     }
     Ok(out)
-}
-
-/// The chart ready to draw: its data columns keep the names of the labels as written
-/// (`f_a0_un`), fixed here. Symbols in the title, caption, axis labels and legend names are
-/// written in the plot crate's markup (`F_a0`, `μ_e,a`, `A_r/A_0`, `F_{a0}`), which the renderer
-/// sets as subscripts in every figure alike ([`stiction_plot::text`]).
-pub fn typeset_chart(mut chart: Chart) -> Chart {
-    let (xk, yk) = chart.column_keys();
-    chart.x_key = Some(xk);
-    chart.y_key = Some(yk);
-    chart
 }
 
 /// Palette colour of a fit model, the same in every figure: the measured data 0, `gw-dmt` 1,

@@ -503,7 +503,7 @@ fn fig5_chart(
             .with_color(4),
         );
     }
-    Ok(crate::cmd::plot::typeset_chart(chart))
+    Ok(chart)
 }
 
 /// Fig. 7: friction against load: the meter's points, the contact model's curve from pull-off,
@@ -608,5 +608,5 @@ fn fig7_chart(
         .fold(0.0, f64::max);
     // Headroom above the data for the legend (upper left).
     chart.y_range = Some((0.0, top * 1.2));
-    Ok((crate::cmd::plot::typeset_chart(chart), notes))
+    Ok((chart, notes))
 }

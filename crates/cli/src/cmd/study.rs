@@ -721,7 +721,7 @@ fn write_figures(
         ("sensitivity_indices", has_sens, sensitivity_chart(summary)),
     ];
     for (name, _, chart) in charts.into_iter().filter(|c| c.1) {
-        let chart = figargs.apply(crate::cmd::plot::typeset_chart(chart))?;
+        let chart = figargs.apply(chart)?;
         written.extend(crate::output::write_chart_files(dir, name, &chart)?);
     }
     Ok(written)

@@ -480,7 +480,7 @@ fn figures(
 
 /// Adds a chart as `{stem}.svg` and `{stem}.png` with its data CSV.
 fn add_chart(set: &mut OutputSet, stem: &str, chart: Chart, fig: &crate::figargs::FigureArgs) -> CliResult {
-    let chart = fig.apply(crate::cmd::plot::typeset_chart(chart))?;
+    let chart = fig.apply(chart)?;
     set.add_chart(&format!("{stem}.svg"), &chart)?;
     set.add_chart(&format!("{stem}.png"), &chart)
 }
