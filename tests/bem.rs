@@ -339,6 +339,36 @@ fn bem_rh_gives_adhesion_energy_against_humidity() {
     assert!(csv.starts_with("relative_humidity,"), "{csv}");
 }
 
+/// `bem --rh` with neutrally wetting faces (contact angle 90 deg: cos theta = 0, so the Young-Laplace
+/// meniscus is flat and carries no force; docs/models.md, "Capillary adhesion"): no capillary zone at
+/// any humidity, so with no van der Waals law the work of separation is exactly 0 and the Kelvin
+/// radius is null, rather than a failed retraction through a meniscus of height 1e-16 r_K (the
+/// rounding of cos(pi/2)). 110 deg (a FOTS/OTS coating) alike.
+#[test]
+fn bem_rh_neutral_and_non_wetting_faces_have_no_capillary_adhesion() {
+    for angle in ["90 deg", "110 deg"] {
+        let v = stiction_json(&[
+            "bem",
+            "--size",
+            "0.5 um",
+            "--grid",
+            "16",
+            "--rms-height",
+            "2 nm",
+            "--rh",
+            "0.35,0.9",
+            "--contact-angle",
+            angle,
+            "--json",
+        ]);
+        for p in v["points"].as_array().unwrap() {
+            assert_eq!(p["adhesion_energy_mj_per_m2"].as_f64(), Some(0.0), "{angle}: {p}");
+            assert!(p["kelvin_radius_m"].is_null(), "{angle}: {p}");
+        }
+        assert_eq!(v["capillary_limit_j_per_m2"].as_f64(), Some(0.0), "{angle}");
+    }
+}
+
 /// Garbage for each `--rh` flag: exit status 2 with the flag named, never a panic.
 #[test]
 fn bem_rh_flags_refuse_garbage() {

@@ -113,6 +113,11 @@ pub struct Capillarity {
     pub cos_angle_sum: f64,
 }
 
+/// The cos theta_1 + cos theta_2 at or below which the faces do not condense a meniscus (neutral or
+/// non-wetting): 1e-9, far above the rounding of cos(pi/2) (6e-17) and far below any contact angle
+/// a goniometer resolves (0.1 deg from 90 deg is a cos of 1.7e-3).
+pub const NEUTRAL_WETTING_COS_SUM: f64 = 1e-9;
+
 fn invalid(field: &'static str, value: f64, expected: &'static str) -> ContactError {
     ContactError::InvalidParameter { field, value, expected }
 }
@@ -154,7 +159,11 @@ impl Capillarity {
             return Err(invalid("molar_volume_m3_per_mol", vm, "a finite molar volume > 0 m^3/mol"));
         }
         let cos_angle_sum = contact_angle_1_rad.cos() + contact_angle_2_rad.cos();
-        if relative_humidity == 0.0 || cos_angle_sum <= 0.0 {
+        // Neutral wetting (theta_1 + theta_2 -> 90 deg + 90 deg) has no meniscus; in floating
+        // point cos(pi/2) = 6e-17, not 0, which would leave a meniscus of height 1e-16 r_K that
+        // no solver can step through. A cos sum below NEUTRAL_WETTING_COS_SUM (angles within
+        // about 1e-9 rad of 90 deg each) is taken as neutral.
+        if relative_humidity == 0.0 || cos_angle_sum <= NEUTRAL_WETTING_COS_SUM {
             return Ok(None);
         }
         let kelvin_radius_m = liquid.kelvin_length_m(temperature_k) / (1.0 / relative_humidity).ln();
@@ -317,6 +326,12 @@ mod tests {
         // FOTS/OTS coating ~110 deg on both faces: cos sum = -0.68 <= 0
         let t110 = 110f64.to_radians();
         assert_eq!(Capillarity::new(w, T25, 0.35, t110, t110).unwrap(), None);
+        // Neutral wetting, 90 deg on both faces as a user writes it ("90 deg" -> pi/2 rad): cos
+        // theta is 0 exactly in physics (no meniscus, Young-Laplace: the meniscus is flat), 6e-17
+        // in floating point; either way there is no capillarity.
+        let t90 = 90f64.to_radians();
+        assert_eq!(Capillarity::new(w, T25, 0.35, t90, t90).unwrap(), None);
+        assert_eq!(Capillarity::new(w, T25, 0.35, std::f64::consts::FRAC_PI_2, 0.5 * PI).unwrap(), None);
         // one hydrophilic face (0 deg) and one coated (110 deg): cos sum = 0.66 > 0 => capillarity
         let c = Capillarity::new(w, T25, 0.35, 0.0, t110).unwrap().unwrap();
         assert!((c.cos_angle_sum - (1.0 + t110.cos())).abs() < 1e-15);

@@ -797,7 +797,13 @@ mod humidity {
             temperature_k,
             surface_tension_n_per_m: liquid.surface_tension_n_per_m,
             contact_angle_rad: angle,
-            capillary_limit_j_per_m2: 2.0 * liquid.surface_tension_n_per_m * angle.cos().max(0.0),
+            // 2 gamma cos theta, 0 where the faces do not condense (cos theta_1 + cos theta_2 at
+            // or below the neutral-wetting threshold, as `Capillarity::new` decides).
+            capillary_limit_j_per_m2: if 2.0 * angle.cos() > stiction_contact::capillary::NEUTRAL_WETTING_COS_SUM {
+                2.0 * liquid.surface_tension_n_per_m * angle.cos()
+            } else {
+                0.0
+            },
             van_der_waals: vdw,
             start_pressure_pa,
             tolerance: args.tolerance,
