@@ -51,15 +51,15 @@ pub struct VaryRange {
     pub unit: String,
 }
 
-/// Splits `"20 V"` into 20 and "V" (a bare number has the unit "").
+/// Splits `"20 V"` (or `"20V"`, `"1nm"`: a unit may follow the number with or without a space, as
+/// `--set` takes quantities) into 20 and "V" (a bare number has the unit ""). The number is the
+/// longest prefix that parses as a finite f64.
 fn number_and_unit(s: &str) -> Option<(f64, String)> {
     let s = s.trim();
-    let (num, unit) = match s.find(char::is_whitespace) {
-        Some(k) => (&s[..k], s[k..].trim()),
-        None => (s, ""),
-    };
-    let x: f64 = num.parse().ok()?;
-    x.is_finite().then(|| (x, unit.to_string()))
+    let longest =
+        s.char_indices().map(|(k, c)| k + c.len_utf8()).filter(|&end| s[..end].parse::<f64>().is_ok()).last()?;
+    let x: f64 = s[..longest].parse().ok()?;
+    x.is_finite().then(|| (x, s[longest..].trim().to_string()))
 }
 
 impl VaryRange {
@@ -481,6 +481,22 @@ pub fn designs_csv(varies: &[Vary], rows: &[DesignRow]) -> Result<Vec<u8>, Study
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A range's ends take a unit with or without a space, as `--set` does ("1nm..2nm" as "1 nm..2 nm").
+    #[test]
+    fn range_ends_take_units_with_or_without_a_space() {
+        for text in ["1nm..2nm", "1 nm..2 nm", " 1 nm .. 2nm "] {
+            let r = VaryRange::parse(text).unwrap().unwrap();
+            assert_eq!((r.lo, r.hi, r.unit.as_str()), (1.0, 2.0, "nm"), "{text}");
+        }
+        let r = VaryRange::parse("2.5e-1..1e0").unwrap().unwrap();
+        assert_eq!((r.lo, r.hi, r.unit.as_str()), (0.25, 1.0, ""));
+        let r = VaryRange::parse("20V..4e1 V").unwrap().unwrap();
+        assert_eq!((r.lo, r.hi, r.unit.as_str()), (20.0, 40.0, "V"));
+        for bad in ["nm..2nm", "inf..2", "1..nan", "..", "1 nm..2 um"] {
+            assert!(VaryRange::parse(bad).unwrap().is_err(), "{bad}");
+        }
+    }
 
     #[test]
     fn values_split_at_top_level_commas_only() {
