@@ -285,12 +285,10 @@ pub fn run(args: Args) -> CliResult {
 }
 
 /// Calibration draws per virtual experiment behind the widths of the lab's intervals with the
-/// calibration uncertainty (the 2.5 and 97.5 percentiles of 50 draws; each design's summary is
-/// the median over its experiments, so the draws' own noise averages out, but the percentile range
-/// of 50 draws of the long-tailed 1 / a_clamp is about 10 % narrower than that of 200 on the
-/// paper's scenario). 50 keeps a study above 4,000 experiments per second on two cores; 200
-/// would cost 0.35 ms more per experiment than the experiment itself (0.33 ms).
-pub const LAB_CALIBRATION_DRAWS: usize = 50;
+/// calibration uncertainty ([`stiction_fit::eq10::LAB_WIDTH_DRAWS`]: the percentile range of that
+/// many joint draws has no bias worth stating against the limit of many draws, test
+/// `calibrated_width_is_unbiased_against_20000_draws`).
+pub const LAB_CALIBRATION_DRAWS: usize = stiction_fit::eq10::LAB_WIDTH_DRAWS;
 
 /// [`Study::prepare`] with the lab's eq. 10 intervals of every experiment: the fit crate's
 /// eq. 10 ([`stiction_fit::eq10::fit_eq10`]) on the experiment's slips, with the reduction the lab
@@ -313,13 +311,12 @@ pub fn with_lab_intervals(study: Study) -> Result<Study, stiction_study::StudyEr
             .iter()
             .map(|&(v_clamp_v, v_pull_v)| stiction_fit::Eq10Point { v_clamp_v, v_pull_v, v_pull_sd_v: None })
             .collect();
-        let width = |c: Option<[f64; 2]>| c.map(|[a, b]| b - a);
-        match stiction_fit::eq10::fit_eq10(&points, reduction, &sources, LAB_CALIBRATION_DRAWS, seed) {
-            Ok(f) => stiction_study::FitIntervals {
-                mu_ci95_width: width(f.mu_apparent.ci95),
-                mu_ci95_width_with_calibration: width(f.mu_apparent.ci95_with_calibration),
-                fa0_ci95_width_n: width(f.apparent_adhesion_force_n.ci95),
-                fa0_ci95_width_with_calibration_n: width(f.apparent_adhesion_force_n.ci95_with_calibration),
+        match stiction_fit::eq10::interval_widths(&points, reduction, &sources, LAB_CALIBRATION_DRAWS, seed) {
+            Ok(w) => stiction_study::FitIntervals {
+                mu_ci95_width: w.mu,
+                mu_ci95_width_with_calibration: w.mu_with_calibration,
+                fa0_ci95_width_n: w.fa0_n,
+                fa0_ci95_width_with_calibration_n: w.fa0_with_calibration_n,
             },
             Err(_) => stiction_study::FitIntervals::default(),
         }
