@@ -284,15 +284,8 @@ pub fn run(args: Args) -> CliResult {
     report(&summary, args.json, &args.scenario)
 }
 
-/// Calibration draws per virtual experiment behind the widths of the lab's intervals with the
-/// calibration uncertainty ([`stiction_fit::eq10::LAB_WIDTH_DRAWS`]: the percentile range of that
-/// many joint draws has no bias worth stating against the limit of many draws, test
-/// `calibrated_width_is_unbiased_against_20000_draws`).
-pub const LAB_CALIBRATION_DRAWS: usize = stiction_fit::eq10::LAB_WIDTH_DRAWS;
-
-/// [`Study::prepare`] with the lab's eq. 10 intervals of every experiment: the fit crate's
-/// eq. 10 ([`stiction_fit::eq10::fit_eq10`]) on the experiment's slips, with the reduction the lab
-/// used and the calibration uncertainties the scenario states for a_clamp, a_pull and F_spring.
+/// [`Study::prepare`] with the lab's eq. 10 intervals of every experiment
+/// ([`stiction_fit::with_lab_intervals`]).
 pub(crate) fn prepare_study(
     scenario: &Path,
     sets: &[String],
@@ -301,28 +294,7 @@ pub(crate) fn prepare_study(
     with_lab_intervals(Study::prepare(scenario, sets, config)?)
 }
 
-/// `study` with the lab's eq. 10 intervals of every experiment (see [`prepare_study`]): every
-/// front end prepares its study through this, so the same scenario gives the same samples.
-pub fn with_lab_intervals(study: Study) -> Result<Study, stiction_study::StudyError> {
-    let sources = stiction_fit::calibration_sources(study.scenario_json(), &study.reduction())
-        .map_err(|e| stiction_study::StudyError::Setting(e.to_string()))?;
-    let intervals = move |slips: &[(f64, f64)], reduction: &stiction_meter::Reduction, seed: u64| {
-        let points: Vec<stiction_fit::Eq10Point> = slips
-            .iter()
-            .map(|&(v_clamp_v, v_pull_v)| stiction_fit::Eq10Point { v_clamp_v, v_pull_v, v_pull_sd_v: None })
-            .collect();
-        match stiction_fit::eq10::interval_widths(&points, reduction, &sources, LAB_CALIBRATION_DRAWS, seed) {
-            Ok(w) => stiction_study::FitIntervals {
-                mu_ci95_width: w.mu,
-                mu_ci95_width_with_calibration: w.mu_with_calibration,
-                fa0_ci95_width_n: w.fa0_n,
-                fa0_ci95_width_with_calibration_n: w.fa0_with_calibration_n,
-            },
-            Err(_) => stiction_study::FitIntervals::default(),
-        }
-    };
-    Ok(study.with_intervals(std::sync::Arc::new(intervals), LAB_CALIBRATION_DRAWS))
-}
+pub use stiction_fit::with_lab_intervals;
 
 /// Where a study's outputs go.
 pub(crate) enum Folder<'a> {
