@@ -320,8 +320,8 @@ fn the_design_section_is_the_same_study_as_its_vary_flags() {
 /// sharded, merged and resumed: the design study over the spring stiffness in two shards merged
 /// design by design, against the single study with `--set` of design 1's value in two shards,
 /// merged, then resumed after cutting its log.
-/// Deliberate bug caught: a shard's sample indices offset by the design index (seen failing:
-/// samples.log differs).
+/// Deliberate bug caught: each design's seed offset by its index, no common random numbers
+/// (seen failing: samples.log differs).
 #[test]
 fn a_sharded_merged_resumed_design_point_is_its_sharded_merged_resumed_single_study() {
     let dir = temp_dir("design-single-shards");
