@@ -48,7 +48,7 @@ fn each_design_is_the_single_study_of_its_scenario_byte_for_byte() {
     let o = out.to_str().unwrap();
     let base = ["study", "scenarios/tas2000.json", "--samples", "24", "--seed", "7", "--quiet"];
     let mut args = base.to_vec();
-    args.extend(["--vary", PLATES, "--vary", SPRING, "--out", o]);
+    args.extend(["--vary", PLATES, "--vary", SPRING, "--rank-by", "most-usable", "--out", o]);
     run(&args);
     // Grid order: the first --vary slowest.
     let points = [("30", "1 N/m"), ("30", "3 N/m"), ("60", "1 N/m"), ("60", "3 N/m")];
@@ -72,6 +72,32 @@ fn each_design_is_the_single_study_of_its_scenario_byte_for_byte() {
     for f in ["design_actuators_clamp_plate_count.svg", "design_actuators_pull_spring_stiffness.csv", "designs.json"] {
         assert!(out.join(f).is_file(), "{f}");
     }
+    // The design chart's points and error bars are the table's: the criterion (here the usable
+    // fraction, --rank-by most-usable: the 5-95 % width has no standard error at 24 samples) at
+    // each plate count with a 95 % bar of 1.96 standard errors, one series per spring stiffness.
+    // Deliberate bug caught: the bars drawn as one standard error (seen failing).
+    let chart = std::fs::read_to_string(out.join("design_actuators_clamp_plate_count.csv")).unwrap();
+    let ch: Vec<&str> = chart.lines().next().unwrap().split(',').collect();
+    let at = |h: &[&str], name: &str| h.iter().position(|c| *c == name).unwrap_or_else(|| panic!("no column {name}"));
+    assert_eq!(ch[3], "usable_fraction", "{chart}");
+    let th: Vec<&str> = lines[0].split(',').collect();
+    let mut drawn = 0;
+    for row in chart.lines().skip(1) {
+        let c: Vec<&str> = row.split(',').collect();
+        let (plates, spring) = (c[at(&ch, "actuators_clamp_plate_count")], c[0].rsplit("= ").next().unwrap());
+        let t: Vec<&str> = lines[1..]
+            .iter()
+            .map(|l| l.split(',').collect::<Vec<&str>>())
+            .find(|t| t[1] == plates && t[2] == spring)
+            .unwrap_or_else(|| panic!("chart row {row} has no design in the table"));
+        let f = |v: &[&str], i: usize| v[i].parse::<f64>().unwrap();
+        let (y, se) = (f(&t, at(&th, "usable_fraction")), f(&t, at(&th, "usable_fraction_se")));
+        let (drawn_y, bar) = (f(&c, at(&ch, "usable_fraction")), f(&c, at(&ch, "usable_fraction_err")));
+        assert!((drawn_y - y).abs() < 1e-12, "chart {drawn_y} vs table {y}");
+        assert!(se > 0.0 && (bar - 1.96 * se).abs() < 1e-9 * se, "error bar {bar} vs 1.96 x {se}");
+        drawn += 1;
+    }
+    assert_eq!(drawn, 4, "{chart}");
     // The same in --json.
     let mut j = base.to_vec();
     j.extend(["--vary", PLATES, "--vary", SPRING, "--json", "--rank-by", "most-usable"]);
