@@ -196,7 +196,10 @@ pub(crate) fn draw(src: &CalibrationSource, rng: &mut ChaCha8Rng) -> Result<f64,
 
 /// The rows of the line, `(V_clamp^2, V_pull^2, sd)`: those with V_pull > 0 and L > 0 under the
 /// nominal reduction, and the line through them ([`eq10_line`]).
-fn nominal_line(points: &[Eq10Point], nominal: &Reduction) -> Result<(Vec<(f64, f64, f64)>, Line), FitError> {
+/// Rows of the line: `(V_clamp^2, V_pull^2, pull-voltage SD)`.
+type LineRows = Vec<(f64, f64, f64)>;
+
+fn nominal_line(points: &[Eq10Point], nominal: &Reduction) -> Result<(LineRows, Line), FitError> {
     let cut = nominal.spring_force_n / nominal.a_clamp_n_per_v2;
     let pts: Vec<(f64, f64, f64)> = points
         .iter()
