@@ -48,7 +48,7 @@ fn each_design_is_the_single_study_of_its_scenario_byte_for_byte() {
     let o = out.to_str().unwrap();
     let base = ["study", "scenarios/tas2000.json", "--samples", "24", "--seed", "7", "--quiet"];
     let mut args = base.to_vec();
-    args.extend(["--vary", PLATES, "--vary", SPRING, "--out", o]);
+    args.extend(["--vary", PLATES, "--vary", SPRING, "--rank-by", "most-usable", "--out", o]);
     run(&args);
     // Grid order: the first --vary slowest.
     let points = [("30", "1 N/m"), ("30", "3 N/m"), ("60", "1 N/m"), ("60", "3 N/m")];
@@ -72,6 +72,36 @@ fn each_design_is_the_single_study_of_its_scenario_byte_for_byte() {
     for f in ["design_actuators_clamp_plate_count.svg", "design_actuators_pull_spring_stiffness.csv", "designs.json"] {
         assert!(out.join(f).is_file(), "{f}");
     }
+    // The design chart's points and error bars are the table's: the criterion (here the usable
+    // fraction, --rank-by most-usable: the 5-95 % width has no standard error at 24 samples) at
+    // each plate count with a 95 % bar of 1.96 standard errors, one series per spring stiffness.
+    // Deliberate bug caught: the bars drawn as one standard error (seen failing).
+    let chart = std::fs::read_to_string(out.join("design_actuators_clamp_plate_count.csv")).unwrap();
+    let ch: Vec<&str> = chart.lines().next().unwrap().split(',').collect();
+    let at = |h: &[&str], name: &str| h.iter().position(|c| *c == name).unwrap_or_else(|| panic!("no column {name}"));
+    assert_eq!(ch[3], "usable_fraction", "{chart}");
+    let th: Vec<&str> = lines[0].split(',').collect();
+    let (mut drawn, mut with_bar) = (0, 0);
+    for row in chart.lines().skip(1) {
+        let c: Vec<&str> = row.split(',').collect();
+        let (plates, spring) = (c[at(&ch, "actuators_clamp_plate_count")], c[0].rsplit("= ").next().unwrap());
+        let t: Vec<&str> = lines[1..]
+            .iter()
+            .map(|l| l.split(',').collect::<Vec<&str>>())
+            .find(|t| t[1] == plates && t[2] == spring)
+            .unwrap_or_else(|| panic!("chart row {row} has no design in the table"));
+        let f = |v: &[&str], i: usize| v[i].parse::<f64>().unwrap();
+        let (y, se) = (f(&t, at(&th, "usable_fraction")), f(&t, at(&th, "usable_fraction_se")));
+        let (drawn_y, bar) = (f(&c, at(&ch, "usable_fraction")), f(&c, at(&ch, "usable_fraction_err")));
+        assert!((drawn_y - y).abs() < 1e-12, "chart {drawn_y} vs table {y}");
+        assert!((bar - 1.96 * se).abs() <= 1e-9 * se, "error bar {bar} vs 1.96 x {se}");
+        drawn += 1;
+        with_bar += usize::from(se > 0.0);
+    }
+    // The 60-plate designs are all usable at 24 samples (no binomial error, no bar); the
+    // 30-plate ones are not, so their bars are checked.
+    assert!(with_bar >= 2, "{chart}");
+    assert_eq!(drawn, 4, "{chart}");
     // The same in --json.
     let mut j = base.to_vec();
     j.extend(["--vary", PLATES, "--vary", SPRING, "--json", "--rank-by", "most-usable"]);
@@ -239,4 +269,123 @@ fn a_range_is_filled_by_a_seeded_space_filling_design() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--design-points"));
+}
+
+/// Runs `stiction ARGS` in `dir` and asserts success.
+fn run_in(dir: &Path, args: &[&str]) -> String {
+    let r = std::process::Command::new(env!("CARGO_BIN_EXE_stiction"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run stiction");
+    assert!(r.status.success(), "stiction {args:?} in {}: {}", dir.display(), String::from_utf8_lossy(&r.stderr));
+    String::from_utf8_lossy(&r.stderr).into_owned() + &String::from_utf8_lossy(&r.stdout)
+}
+
+/// The scenario file's `design` section runs the same design study as the same `--vary` flags on
+/// the file without it: the same designs.csv and, per design, the same study.json and samples.csv
+/// (the file is named alike in two folders, since study.json records the path as given). The
+/// section's fields are in another order than the flags (`vary` is keyed by path), which the grid
+/// order (paths alphabetical, the first slowest) makes irrelevant. Then `--vary` on the file with
+/// the section replaces it, says so, and gives the flags' study again.
+/// Deliberate bug caught: the section's values read in reverse order (seen failing: designs.csv
+/// rows in another order).
+#[test]
+fn the_design_section_is_the_same_study_as_its_vary_flags() {
+    let dir = temp_dir("design-section");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(crate::util::root().join("scenarios/tas2000.json")).unwrap())
+            .unwrap();
+    let (plain, sectioned) = (dir.join("plain"), dir.join("sectioned"));
+    std::fs::create_dir_all(&plain).unwrap();
+    std::fs::create_dir_all(&sectioned).unwrap();
+    std::fs::write(plain.join("meter.json"), serde_json::to_string_pretty(&json).unwrap()).unwrap();
+    let mut with = json.clone();
+    with["design"] = serde_json::json!({
+        "vary": {"actuators.pull.spring.stiffness": ["1 N/m", "3 N/m"], "actuators.clamp.plate_count": [30, 60]},
+        "criterion": "most-usable"
+    });
+    std::fs::write(sectioned.join("meter.json"), serde_json::to_string_pretty(&with).unwrap()).unwrap();
+    let base = ["study", "meter.json", "--samples", "8", "--seed", "5", "--quiet"];
+    let mut flags = base.to_vec();
+    flags.extend(["--vary", PLATES, "--vary", SPRING, "--rank-by", "most-usable", "--out", "out"]);
+    run_in(&plain, &flags);
+    let mut from_section = base.to_vec();
+    from_section.extend(["--out", "out"]);
+    run_in(&sectioned, &from_section);
+    let same = |a: &Path, b: &Path, f: &str| {
+        assert!(
+            std::fs::read(a.join(f)).unwrap() == std::fs::read(b.join(f)).unwrap(),
+            "{f}: {} vs {}",
+            a.display(),
+            b.display()
+        )
+    };
+    let (a, b) = (plain.join("out"), sectioned.join("out"));
+    same(&a, &b, "designs.csv");
+    let table = std::fs::read_to_string(a.join("designs.csv")).unwrap();
+    assert_eq!(table.lines().count(), 5, "{table}");
+    for d in 0..4 {
+        let name = format!("design-{d:03}");
+        for f in ["study.json", "samples.csv"] {
+            same(&a.join(&name), &b.join(&name), f);
+        }
+    }
+    // Flags win over the section, and say so.
+    let mut over = base.to_vec();
+    over.extend(["--vary", SPRING, "--out", "over"]);
+    let said = run_in(&sectioned, &over);
+    assert!(said.contains("design"), "no word of the overridden section: {said}");
+    let mut plain_over = base.to_vec();
+    plain_over.extend(["--vary", SPRING, "--out", "over"]);
+    run_in(&plain, &plain_over);
+    same(&plain.join("over"), &sectioned.join("over"), "designs.csv");
+    for d in 0..2 {
+        let name = format!("design-{d:03}");
+        same(&plain.join("over").join(&name), &sectioned.join("over").join(&name), "samples.csv");
+    }
+}
+
+/// A design point reproduces the single study of its scenario byte for byte when both are
+/// sharded, merged and resumed: the design study over the spring stiffness in two shards merged
+/// design by design, against the single study with `--set` of design 1's value in two shards,
+/// merged, then resumed after cutting its log.
+/// Deliberate bug caught: each design's seed offset by its index, no common random numbers
+/// (seen failing: samples.log differs).
+#[test]
+fn a_sharded_merged_resumed_design_point_is_its_sharded_merged_resumed_single_study() {
+    let dir = temp_dir("design-single-shards");
+    let base = ["study", "scenarios/tas2000.json", "--samples", "10", "--seed", "9", "--quiet"];
+    let single_set = ["--set", "actuators.pull.spring.stiffness=3 N/m"];
+    for k in 0..2 {
+        let shard = format!("{k}/2");
+        let mut d = base.to_vec();
+        let out = dir.join(format!("design-shard{k}"));
+        d.extend(["--vary", SPRING, "--shard", &shard, "--out", out.to_str().unwrap()]);
+        run(&d);
+        let mut s = base.to_vec();
+        let out = dir.join(format!("single-shard{k}"));
+        s.extend(single_set);
+        s.extend(["--shard", &shard, "--out", out.to_str().unwrap()]);
+        run(&s);
+    }
+    let p = |s: &str| dir.join(s).to_str().unwrap().to_string();
+    run(&["merge", &p("design-shard0/design-001"), &p("design-shard1/design-001"), "--out", &p("design-merged")]);
+    run(&["merge", &p("single-shard0"), &p("single-shard1"), "--out", &p("single-merged")]);
+    // Cut the merged single study's log to its header and 4 rows and resume it.
+    let log = dir.join("single-merged/samples.log");
+    let text = std::fs::read_to_string(&log).unwrap();
+    std::fs::write(&log, text.lines().take(5).collect::<Vec<_>>().join("\n") + "\n").unwrap();
+    let mut s = base.to_vec();
+    s.extend(single_set);
+    let out = p("single-merged");
+    s.extend(["--out", &out, "--resume"]);
+    run(&s);
+    for f in ["samples.log", "samples.csv", "study.json"] {
+        assert!(
+            std::fs::read(dir.join("design-merged").join(f)).unwrap()
+                == std::fs::read(dir.join("single-merged").join(f)).unwrap(),
+            "{f}: the merged design point differs from the merged, resumed single study"
+        );
+    }
 }

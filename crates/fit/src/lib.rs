@@ -593,3 +593,28 @@ pub fn shear_strength_for_eq10_slope(
         .ok_or_else(|| FitError::TooFewRows("need at least three loads to fit the model's eq. 10 line".into()))?;
     Ok((mu / line.slope, line.intercept / line.slope))
 }
+
+/// `study` with the lab's eq. 10 intervals of every experiment: the widths of the 95 % intervals
+/// of mu_e,a and F_a0 that [`eq10::fit_eq10`] would give the experiment's slips, with the
+/// reduction the lab used and the calibration uncertainties the scenario states for a_clamp,
+/// a_pull and F_spring ([`eq10::interval_widths`], [`eq10::LAB_WIDTH_DRAWS`] joint calibration
+/// draws per experiment). Every front end prepares its studies through this, so the same scenario
+/// gives the same samples.
+pub fn with_lab_intervals(study: stiction_study::Study) -> Result<stiction_study::Study, stiction_study::StudyError> {
+    let sources = calibration_sources(study.scenario_json(), &study.reduction())
+        .map_err(|e| stiction_study::StudyError::Setting(e.to_string()))?;
+    let intervals = move |slips: &[(f64, f64)], reduction: &stiction_meter::Reduction, seed: u64| {
+        let points: Vec<Eq10Point> =
+            slips.iter().map(|&(v_clamp_v, v_pull_v)| Eq10Point { v_clamp_v, v_pull_v, v_pull_sd_v: None }).collect();
+        match eq10::interval_widths(&points, reduction, &sources, eq10::LAB_WIDTH_DRAWS, seed) {
+            Ok(w) => stiction_study::FitIntervals {
+                mu_ci95_width: w.mu,
+                mu_ci95_width_with_calibration: w.mu_with_calibration,
+                fa0_ci95_width_n: w.fa0_n,
+                fa0_ci95_width_with_calibration_n: w.fa0_with_calibration_n,
+            },
+            Err(_) => stiction_study::FitIntervals::default(),
+        }
+    };
+    Ok(study.with_intervals(std::sync::Arc::new(intervals), eq10::LAB_WIDTH_DRAWS))
+}

@@ -538,6 +538,7 @@ mod tests {
                 (mu.p05, mu.p95) = (a, b);
             }
             StudySummary {
+                statistics_method: String::new(),
                 scenario: String::new(),
                 scenario_hash: String::new(),
                 config: crate::summary::ConfigSummary {

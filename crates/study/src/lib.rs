@@ -36,7 +36,7 @@ pub mod log;
 mod sample;
 pub mod sensitivity;
 pub mod summary;
-pub use sample::{Draw, draw, sample_tree, uncertain_parameters};
+pub use sample::{Draw, Sampler, draw, sample_tree, uncertain_parameters};
 pub use summary::{Spread, StudySummary};
 
 /// Largest number of samples in one study. The summary keeps about 100 bytes per sample in

@@ -42,65 +42,120 @@ fn si(s: &ScalarInput, path: &str, what: &str) -> Result<(f64, stiction_units::D
 ///   `exp(mu + sigma N(0, 1))` with `sigma^2 = ln(1 + s^2/m^2)`, `mu = ln m - sigma^2 / 2`;
 /// * uniform on `[min, max]`, or on `value -/+ sqrt(3) sd` (the same standard deviation).
 pub fn draw(u: &UncertainInput, path: &str, rng: &mut ChaCha8Rng) -> Result<f64, StudyError> {
-    let err = |message: String| StudyError::Sample { path: path.into(), message };
-    let (m, dim) = si(&u.value, path, "value")?;
-    let sd = match &u.sd {
-        Some(s) => {
-            let (sd, d) = si(s, path, "sd")?;
-            if d != dim && !matches!(s, ScalarInput::Number(_)) && !matches!(u.value, ScalarInput::Number(_)) {
-                return Err(err(format!("`sd` has another unit than `value` ({:?} vs {:?})", d.0, dim.0)));
+    Sampler::new(u, path)?.sample(path, rng)
+}
+
+/// An uncertain parameter with its text parsed once, for drawing it many times: [`Sampler::sample`]
+/// draws exactly what [`draw`] draws from the same generator state (same distribution, same
+/// numbers taken from the generator), without parsing the unit strings again.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Sampler {
+    /// Normal `m + sd N(0, 1)`, redrawn while the sign differs from m's (SI).
+    Normal {
+        /// Mean, SI.
+        m: f64,
+        /// Standard deviation, SI.
+        sd: f64,
+    },
+    /// `exp(mu + sigma N(0, 1))`.
+    Lognormal {
+        /// Mean of the logarithm.
+        mu: f64,
+        /// Standard deviation of the logarithm.
+        sigma: f64,
+    },
+    /// Uniform on `[a, b)` (the point a when b = a).
+    Uniform {
+        /// Lower end, SI.
+        a: f64,
+        /// Upper end, SI.
+        b: f64,
+    },
+}
+
+impl Sampler {
+    /// Parses `u` (errors name `path`, as [`draw`]'s do).
+    pub fn new(u: &UncertainInput, path: &str) -> Result<Sampler, StudyError> {
+        let err = |message: String| StudyError::Sample { path: path.into(), message };
+        let (m, dim) = si(&u.value, path, "value")?;
+        let sd = match &u.sd {
+            Some(s) => {
+                let (sd, d) = si(s, path, "sd")?;
+                if d != dim && !matches!(s, ScalarInput::Number(_)) && !matches!(u.value, ScalarInput::Number(_)) {
+                    return Err(err(format!("`sd` has another unit than `value` ({:?} vs {:?})", d.0, dim.0)));
+                }
+                if !(sd.is_finite() && sd >= 0.0) {
+                    return Err(err(format!("`sd` = {sd} must be finite and >= 0")));
+                }
+                sd
             }
-            if !(sd.is_finite() && sd >= 0.0) {
-                return Err(err(format!("`sd` = {sd} must be finite and >= 0")));
+            None => 0.0,
+        };
+        let bound =
+            |b: &Option<ScalarInput>, what: &str| b.as_ref().map(|b| si(b, path, what).map(|x| x.0)).transpose();
+        let (lo, hi) = (bound(&u.min, "min")?, bound(&u.max, "max")?);
+        Ok(match u.distribution {
+            Distribution::Normal => Sampler::Normal { m, sd },
+            Distribution::Lognormal => {
+                if m <= 0.0 {
+                    return Err(err(format!("a lognormal parameter needs a positive value, got {m}")));
+                }
+                let sigma2 = (1.0 + (sd / m).powi(2)).ln();
+                Sampler::Lognormal { mu: m.ln() - 0.5 * sigma2, sigma: sigma2.sqrt() }
             }
-            sd
-        }
-        None => 0.0,
-    };
-    let bound = |b: &Option<ScalarInput>, what: &str| b.as_ref().map(|b| si(b, path, what).map(|x| x.0)).transpose();
-    let (lo, hi) = (bound(&u.min, "min")?, bound(&u.max, "max")?);
-    let value = match u.distribution {
-        Distribution::Normal => {
-            let mut x = m;
-            for _ in 0..1000 {
+            Distribution::Uniform => {
+                let (a, b) = match (lo, hi) {
+                    (Some(a), Some(b)) => (a, b),
+                    _ => (m - 3f64.sqrt() * sd, m + 3f64.sqrt() * sd),
+                };
+                if !(a.is_finite() && b.is_finite() && (b - a).is_finite()) {
+                    return Err(err(format!(
+                        "uniform bounds [{a:e}, {b:e}]: the bounds and their width b - a must be finite numbers \
+                         (|b - a| < 1.8e308)"
+                    )));
+                }
+                if b < a {
+                    return Err(err(format!("uniform bounds [{a}, {b}] are reversed")));
+                }
+                Sampler::Uniform { a, b }
+            }
+        })
+    }
+
+    /// Draws one value, SI (`path` names the parameter in the error of a non-finite draw).
+    pub fn sample(&self, path: &str, rng: &mut ChaCha8Rng) -> Result<f64, StudyError> {
+        let value = match *self {
+            Sampler::Normal { m, sd } => {
+                let mut x = m;
+                for _ in 0..1000 {
+                    let z: f64 = StandardNormal.sample(rng);
+                    x = m + sd * z;
+                    if m == 0.0 || x.signum() == m.signum() {
+                        break;
+                    }
+                }
+                x
+            }
+            Sampler::Lognormal { mu, sigma } => {
                 let z: f64 = StandardNormal.sample(rng);
-                x = m + sd * z;
-                if m == 0.0 || x.signum() == m.signum() {
-                    break;
+                (mu + sigma * z).exp()
+            }
+            Sampler::Uniform { a, b } => {
+                if b == a {
+                    a
+                } else {
+                    rng.random_range(a..b)
                 }
             }
-            x
+        };
+        if !value.is_finite() {
+            return Err(StudyError::Sample {
+                path: path.into(),
+                message: format!("the drawn value {value:e} is not a finite number ({self:?})"),
+            });
         }
-        Distribution::Lognormal => {
-            if m <= 0.0 {
-                return Err(err(format!("a lognormal parameter needs a positive value, got {m}")));
-            }
-            let sigma2 = (1.0 + (sd / m).powi(2)).ln();
-            let mu = m.ln() - 0.5 * sigma2;
-            let z: f64 = StandardNormal.sample(rng);
-            (mu + sigma2.sqrt() * z).exp()
-        }
-        Distribution::Uniform => {
-            let (a, b) = match (lo, hi) {
-                (Some(a), Some(b)) => (a, b),
-                _ => (m - 3f64.sqrt() * sd, m + 3f64.sqrt() * sd),
-            };
-            if !(a.is_finite() && b.is_finite() && (b - a).is_finite()) {
-                return Err(err(format!(
-                    "uniform bounds [{a:e}, {b:e}]: the bounds and their width b - a must be finite numbers \
-                     (|b - a| < 1.8e308)"
-                )));
-            }
-            if b < a {
-                return Err(err(format!("uniform bounds [{a}, {b}] are reversed")));
-            }
-            if b == a { a } else { rng.random_range(a..b) }
-        }
-    };
-    if !value.is_finite() {
-        return Err(err(format!("the drawn value {value:e} is not a finite number (value {m:e}, sd {sd:e})")));
+        Ok(value)
     }
-    Ok(value)
 }
 
 /// The uncertain parameters of a scenario tree, in draw order (the order of [`sample_tree`]):

@@ -47,7 +47,10 @@ fn ishigami_first_and_total_order_indices() {
 
 /// Coverage: 200 independent Ishigami studies of 2000 samples; the 95 % bootstrap interval of
 /// each index should hold the true value in about 190 of them. If it does, the count is
-/// Binomial(200, 0.95): sd 3.1; accepted 180..=200 (more than 3 sd below 190 fails). S3 = 0 sits
+/// Binomial(200, 0.95): sd 3.1; accepted 180..=197 (exact binomial: a correct interval falls below
+/// with probability 0.12 %, above with 0.23 %; an interval too wide, covering 99 %, is caught
+/// above with probability 0.68). Seen: 187, 187, 193, 194. Deliberate bug caught: the bootstrap
+/// interval taken from its 0.5 and 99.5 percentiles (seen failing: ST1 and ST3 198 of 200). S3 = 0 sits
 /// on the estimator's clip at 0 and is left out; the total-order intervals are checked the same
 /// way for ST1 and ST3 (ST2 = S2).
 #[test]
@@ -68,7 +71,7 @@ fn ishigami_bootstrap_intervals_cover_about_95_percent() {
     }
     eprintln!("coverage of {reps}: S1, S2, ST1, ST3 = {hits:?}");
     for (name, h) in ["S1", "S2", "ST1", "ST3"].iter().zip(hits) {
-        assert!((180..=200).contains(&h), "{name}: {h} of {reps} intervals hold the true value");
+        assert!((180..=197).contains(&h), "{name}: {h} of {reps} intervals hold the true value");
     }
 }
 

@@ -284,17 +284,8 @@ pub fn run(args: Args) -> CliResult {
     report(&summary, args.json, &args.scenario)
 }
 
-/// Calibration draws per virtual experiment behind the widths of the lab's intervals with the
-/// calibration uncertainty (the 2.5 and 97.5 percentiles of 50 draws; each design's summary is
-/// the median over its experiments, so the draws' own noise averages out, but the percentile range
-/// of 50 draws of the long-tailed 1 / a_clamp is about 10 % narrower than that of 200 on the
-/// paper's scenario). 50 keeps a study above 4,000 experiments per second on two cores; 200
-/// would cost 0.35 ms more per experiment than the experiment itself (0.33 ms).
-pub const LAB_CALIBRATION_DRAWS: usize = 50;
-
-/// [`Study::prepare`] with the lab's eq. 10 intervals of every experiment: the fit crate's
-/// eq. 10 ([`stiction_fit::eq10::fit_eq10`]) on the experiment's slips, with the reduction the lab
-/// used and the calibration uncertainties the scenario states for a_clamp, a_pull and F_spring.
+/// [`Study::prepare`] with the lab's eq. 10 intervals of every experiment
+/// ([`stiction_fit::with_lab_intervals`]).
 pub(crate) fn prepare_study(
     scenario: &Path,
     sets: &[String],
@@ -303,29 +294,7 @@ pub(crate) fn prepare_study(
     with_lab_intervals(Study::prepare(scenario, sets, config)?)
 }
 
-/// `study` with the lab's eq. 10 intervals of every experiment (see [`prepare_study`]): every
-/// front end prepares its study through this, so the same scenario gives the same samples.
-pub fn with_lab_intervals(study: Study) -> Result<Study, stiction_study::StudyError> {
-    let sources = stiction_fit::calibration_sources(study.scenario_json(), &study.reduction())
-        .map_err(|e| stiction_study::StudyError::Setting(e.to_string()))?;
-    let intervals = move |slips: &[(f64, f64)], reduction: &stiction_meter::Reduction, seed: u64| {
-        let points: Vec<stiction_fit::Eq10Point> = slips
-            .iter()
-            .map(|&(v_clamp_v, v_pull_v)| stiction_fit::Eq10Point { v_clamp_v, v_pull_v, v_pull_sd_v: None })
-            .collect();
-        let width = |c: Option<[f64; 2]>| c.map(|[a, b]| b - a);
-        match stiction_fit::eq10::fit_eq10(&points, reduction, &sources, LAB_CALIBRATION_DRAWS, seed) {
-            Ok(f) => stiction_study::FitIntervals {
-                mu_ci95_width: width(f.mu_apparent.ci95),
-                mu_ci95_width_with_calibration: width(f.mu_apparent.ci95_with_calibration),
-                fa0_ci95_width_n: width(f.apparent_adhesion_force_n.ci95),
-                fa0_ci95_width_with_calibration_n: width(f.apparent_adhesion_force_n.ci95_with_calibration),
-            },
-            Err(_) => stiction_study::FitIntervals::default(),
-        }
-    };
-    Ok(study.with_intervals(std::sync::Arc::new(intervals), LAB_CALIBRATION_DRAWS))
-}
+pub use stiction_fit::with_lab_intervals;
 
 /// Where a study's outputs go.
 pub(crate) enum Folder<'a> {
