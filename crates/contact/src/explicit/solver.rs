@@ -1674,7 +1674,8 @@ mod tests {
     use stiction_surface::{FaceParams, Layout, Placement, generate};
 
     /// The fast pass gives the same bits on the baseline instruction set and on the best one of
-    /// this machine (AVX2+FMA on most x86-64): fixed lanes, no contraction, exact sqrt.
+    /// this machine (AVX2+FMA on most x86-64): fixed lanes, no contraction, exact sqrt; dry and
+    /// with menisci.
     #[test]
     fn fast_pass_has_the_same_bits_on_every_instruction_set() {
         let layout =
@@ -1690,7 +1691,8 @@ mod tests {
             let a_hard = s.geom.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
             // A pose slightly off the equilibrium (members past release, summits touching).
             let q = [s.state.q[0] - 1e-9, s.state.q[1] + 4e-9, s.state.q[2] - 4e-9];
-            for lin in [false, true] {
+            // Dry, and with menisci (water at 35 %: f R = 0.45 uN, h_m = 1 nm; no linear steps).
+            for (lin, cap_f, hm) in [(false, 0.0, 0.0), (true, 0.0, 0.0), (false, 0.45e-6, 1e-9)] {
                 let k = fast::Kernel {
                     q,
                     x0,
@@ -1698,18 +1700,19 @@ mod tests {
                     inv_ell,
                     radius,
                     inv_d,
-                    c0: two_pi_dgamma * radius,
+                    c0: two_pi_dgamma * radius + cap_f,
                     allow_touch: true,
                     a_hard,
                     z_hard: a_hard * a_hard / radius,
                     lin,
-                    cap_f: 0.0,
-                    inv_hm: 0.0,
+                    cap_f,
+                    hm,
+                    inv_hm: if hm > 0.0 { 1.0 / hm } else { 0.0 },
                 };
                 let end = s.geom.hs.len();
                 let (mut t1, mut t2) = (Vec::new(), Vec::new());
-                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &[], &k, end, 0.1, &mut t1);
-                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &[], &k, end, 0.1, &mut t2);
+                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &k, end, 0.1, &mut t1);
+                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &k, end, 0.1, &mut t2);
                 assert!(e1.contacts > 100 && e1.releases > 0 && !t1.is_empty(), "{e1:?}");
                 assert_eq!(e1.lin.is_some(), lin);
                 assert_eq!(format!("{e1:?}"), format!("{e2:?}"), "{mode:?}");

@@ -122,6 +122,8 @@ struct Buf {
     ps: [f64; B],
     zcs: [f64; B],
     as_: [f64; B],
+    /// CAP only: the interference z.
+    zs: [f64; B],
 }
 
 /// Per-block counts: summits touching at this pose, members past release.
@@ -152,7 +154,7 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
     k: &Kernel,
 ) -> Counts {
     let touch_zero = k.c0 != 0.0;
-    let Buf { us, vs, ps, zcs, as_ } = buf;
+    let Buf { us, vs, ps, zcs, as_, zs } = buf;
     // Counts as f64 lanes (exact below 2^53): mixing integer lanes into the float code costs packing.
     let mut touches = [0.0f64; W];
     let mut rels = [0.0f64; W];
@@ -190,24 +192,10 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             let el = a * zc * k.inv_d;
             us[j] = u;
             vs[j] = v;
-            ps[j] = if CAP {
-                // In solid contact (z >= 0, the DMT touch rule with the meniscus's c0 > 0): the
-                // Hertz load minus c0; bridged (-h_m <= z < 0): the meniscus tail; beyond: 0
-                // (a member there is past release, p_rel = 0).
-                let pt = -k.cap_f * (1.0 + z * k.inv_hm);
-                let p = if z >= 0.0 {
-                    el - k.c0
-                } else if rel {
-                    0.0
-                } else {
-                    pt
-                };
-                if act { p } else { 0.0 }
-            } else if act {
-                el - k.c0
-            } else {
-                0.0
-            };
+            ps[j] = if act { el - k.c0 } else { 0.0 };
+            if CAP {
+                zs[j] = z;
+            }
             zcs[j] = if act { zc } else { 0.0 };
             as_[j] = if act { a } else { 0.0 };
         }
@@ -219,6 +207,37 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
     if M == NONE && touches == 0.0 {
         // Nothing active: every term below is +0 (skipping them leaves the same bits).
         return counts;
+    }
+    if CAP {
+        let (mut cap_tail, mut wet_out) = (acc.cap_tail, acc.wet_out);
+        // Stage 1b (menisci): an active summit out of solid contact (z < 0) pulls with its
+        // meniscus while within h_m (bridged), with nothing beyond (a member there is past
+        // release, p_rel = 0). Stage 1 gave it -c0, the load at z = 0+.
+        for grp in 0..B / W {
+            for l in 0..W {
+                let j = grp * W + l;
+                let z = zs[j];
+                let mem = match M {
+                    ALL => true,
+                    NONE => false,
+                    _ => (word >> j) & 1 == 1,
+                };
+                let bridged = (mem || k.allow_touch) && z >= -k.hm && z < 0.0;
+                let pt = -k.cap_f * (1.0 + z * k.inv_hm);
+                ps[j] = if bridged {
+                    pt
+                } else if z < 0.0 {
+                    0.0
+                } else {
+                    ps[j]
+                };
+                // Their pull and number (the summary's capillary load).
+                cap_tail[l] -= if bridged { pt } else { 0.0 };
+                wet_out[l] += if bridged { 1.0 } else { 0.0 };
+            }
+        }
+        acc.cap_tail = cap_tail;
+        acc.wet_out = wet_out;
     }
     // Stage 2: force sums.
     for grp in 0..B / W {
@@ -248,6 +267,10 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             let j = grp * W + l;
             let kk = 1.5 * as_[j] * k.inv_d;
             acc.k[l] += kk;
+            if CAP {
+                // Summits in solid contact (contact radius > 0).
+                acc.solid[l] += if as_[j] > 0.0 { 1.0 } else { 0.0 };
+            }
             if TILT || LIN {
                 acc.ku[l] += kk * us[j];
                 acc.kv[l] += kk * vs[j];
@@ -258,21 +281,6 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
                 acc.kuu[l] += ku * us[j];
                 acc.kuv[l] += ku * vs[j];
                 acc.kvv[l] += kv * vs[j];
-            }
-        }
-    }
-    if CAP {
-        // Stage 4 (menisci): the bridged summits' pull, how many, summits in solid contact. A
-        // bridged summit is the only active one with z+ = 0 and a load in (-f R, 0): in solid
-        // contact the pull is at least c0 >= f R (at an equilibrium no member is past release).
-        for grp in 0..B / W {
-            for l in 0..W {
-                let j = grp * W + l;
-                let p = ps[j];
-                let tail = zcs[j] == 0.0 && p < 0.0 && p > -k.cap_f;
-                acc.cap_tail[l] -= if tail { p } else { 0.0 };
-                acc.wet_out[l] += if tail { 1.0 } else { 0.0 };
-                acc.solid[l] += if as_[j] > 0.0 { 1.0 } else { 0.0 };
             }
         }
     }
@@ -319,7 +327,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     let n = g.hs.len();
     let mut acc = Acc::zero();
     let z = [0.0; B];
-    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z };
+    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z, zs: z };
     let mut contacts = 0usize;
     let mut releases = 0usize;
     let mut release_words: Option<(usize, usize)> = None;
