@@ -1005,7 +1005,7 @@ impl GwSurface {
     /// capillary load is [`GwSurface::capillary_load_n`], and the balance
     /// `L = F_3/2 (h) - (2 pi/theta) F_0(h) - F_cap(h)` (normalised by the load scale) is solved for
     /// `h` with Brent's method, starting from the contact-only balance (eq. 8 with the work of
-    /// adhesion `dgamma + gamma (cos th1 + cos th2)`: every wetted summit in contact, the
+    /// adhesion `dgamma + gamma (cos th1 + cos th2)`: only the summits in contact wetted, the
     /// `k = h_m/sigma -> 0` limit), whose separation bounds the root from above (the bridged
     /// summits only add pull). `with_adhesion = false` keeps the menisci and drops `dgamma`.
     /// A load below the contact-only pull-off is refused as no equilibrium (the bridged summits

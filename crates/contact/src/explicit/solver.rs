@@ -603,7 +603,7 @@ impl ExplicitSolver {
             return Err(invalid("load_n", load_n, "a finite load in N"));
         }
         let backup = self.state.clone();
-        // The dry law, or the dry law with a meniscus at every wetted summit (one monomorphised
+        // The dry law, or the dry law with a meniscus within h_m of the shoe (one monomorphised
         // iteration per law: the dry path is exactly the solver without menisci).
         macro_rules! run {
             ($dry:expr) => {{
