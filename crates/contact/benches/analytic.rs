@@ -66,9 +66,7 @@ fn bench_gw_capillary(c: &mut Criterion) {
     c.bench_function("gw surface solve_load_wet 3 uN (35 % RH)", |b| {
         b.iter(|| s.solve_load_wet(black_box(3e-6), true, Some(&cap)).unwrap())
     });
-    c.bench_function("gw capillary_load_retraction_n h=2.5", |b| {
-        b.iter(|| s.capillary_load_retraction_n(&cap, black_box(2.5), 2.4).unwrap())
-    });
+    c.bench_function("gw capillary_load_n h=2.5", |b| b.iter(|| s.capillary_load_n(&cap, black_box(2.5)).unwrap()));
 }
 
 criterion_group!(benches, bench_f_n, bench_gw, bench_summit, bench_gw_capillary);

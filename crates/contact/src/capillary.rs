@@ -21,11 +21,15 @@
 //!   Surface Forces*, 3rd ed., ch. 17; Butt & Kappl, Adv. Colloid Interface Sci. 146 (2009) 48).
 //! * Two wetted flats: work of adhesion `gamma (cos theta_1 + cos theta_2)`.
 //!
-//! # Formation and rupture (the convention shared by every model)
-//! A summit's meniscus forms when the summit touches the counter face (separation <= 0) and stays in
-//! equilibrium with the vapour (constant `r_K`) until the separation exceeds `h_m`, where it
-//! ruptures. On approach a summit that has not touched carries no meniscus; on retraction a summit
-//! that touched carries [`Capillarity::sphere_flat_force_n`] until its separation exceeds `h_m`.
+//! # Condensation and rupture (the convention shared by every model)
+//! Menisci are in equilibrium with the vapour (capillary condensation, Kelvin condition): a summit
+//! whose gap to the counter face is below `h_m` carries a meniscus, in solid contact or not, on
+//! approach as on retraction, and pulls [`Capillarity::sphere_flat_force_n`] at its gap; beyond
+//! `h_m` it has none (rupture at `h_m` on retraction). The force is thus a function of the gap
+//! alone: no capillary hysteresis. (A bridge that kept its volume on fast retraction would
+//! stretch beyond `h_m`, to about the cube root of its volume; equilibrium holds when the
+//! vapour exchange is faster than the retraction, as for the meter's quasi-static load steps
+//! on nanometre menisci.)
 
 use std::f64::consts::PI;
 
@@ -101,7 +105,7 @@ impl Liquid {
 }
 
 /// A wetted contact in equilibrium with vapour (constant Kelvin radius, circular-meniscus
-/// approximation). See the module documentation for the equations and the formation/rupture
+/// approximation). See the module documentation for the equations and the condensation/rupture
 /// convention.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Capillarity {

@@ -890,11 +890,12 @@ pub struct GwContact {
     pub real_area_m2: f64,
     /// `log10 (A_r / 1 m^2)`.
     pub log10_real_area_m2: f64,
-    /// Total adhesive load `(2 pi dgamma R) N`, N (with capillarity: `2 pi R (dgamma + gamma (cos th1 +
-    /// cos th2)) N`, the capillary part included).
+    /// Total adhesive load `(2 pi dgamma R) N`, N (with capillarity the capillary load added:
+    /// [`GwSurface::capillary_load_n`]).
     pub adhesive_load_n: f64,
-    /// Capillary part of the adhesive load, N: on the loading branch `2 pi R gamma (cos th1 + cos th2) N`
-    /// ([`GwSurface::solve_load_wet`]); 0 (and not written) when dry.
+    /// Capillary part of the adhesive load, N: the pull of the menisci of the summits in contact and
+    /// of those bridged within the meniscus height ([`GwSurface::capillary_load_n`],
+    /// [`GwSurface::solve_load_wet`]); 0 (and not written) when dry.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub capillary_load_n: f64,
     /// Mean real elastic contact pressure `p_e` (eq. 7), Pa.
@@ -995,16 +996,20 @@ impl GwSurface {
         }
     }
 
-    /// The loading-branch equilibrium under applied load `load_n` (N) with a water meniscus at every
-    /// summit in contact (`capillarity`; `None`: exactly [`GwSurface::solve_load`]).
+    /// The loading-branch equilibrium under applied load `load_n` (N) with water menisci in
+    /// equilibrium with the vapour (`capillarity`; `None`: exactly [`GwSurface::solve_load`]).
     ///
-    /// By the formation convention (docs/models.md, "Capillary adhesion") a summit's meniscus forms
-    /// when it touches, so on approach the wetted summits are the `N = eta A_a F_0(h)` in contact,
-    /// each pulled by `2 pi R gamma (cos th1 + cos th2)` (the sphere-flat force at contact), a
-    /// constant per contact like DMT's `2 pi dgamma R`. Eq. 8 then holds with the work of adhesion
-    /// `dgamma + gamma (cos th1 + cos th2)` (exactly, with the same integrals `F_0`, `F_3/2`): the
-    /// capillary load is `2 pi R gamma (cos th1 + cos th2) N`. `with_adhesion = false` keeps the
-    /// meniscus and drops the solid adhesion `dgamma`.
+    /// By the condensation convention (docs/models.md, "Capillary adhesion") every summit whose
+    /// gap to the counter face is below the meniscus height `h_m` carries a meniscus, in contact
+    /// (`2 pi R gamma (cos th1 + cos th2)`) or not (the circular-meniscus force at its gap): the
+    /// capillary load is [`GwSurface::capillary_load_n`], and the balance
+    /// `L = F_3/2 (h) - (2 pi/theta) F_0(h) - F_cap(h)` (normalised by the load scale) is solved for
+    /// `h` with Brent's method, starting from the contact-only balance (eq. 8 with the work of
+    /// adhesion `dgamma + gamma (cos th1 + cos th2)`: only the summits in contact wetted, the
+    /// `k = h_m/sigma -> 0` limit), whose separation bounds the root from above (the bridged
+    /// summits only add pull). `with_adhesion = false` keeps the menisci and drops `dgamma`.
+    /// A load below the contact-only pull-off is refused as no equilibrium (the bridged summits
+    /// lower the true pull-off by a fraction of order `k h` of it, a few per cent on the paper's surface).
     pub fn solve_load_wet(
         &self,
         load_n: f64,
@@ -1013,52 +1018,68 @@ impl GwSurface {
     ) -> Result<GwContact, ContactError> {
         let Some(cap) = capillarity else { return self.solve_load(load_n, with_adhesion) };
         self.validate()?;
-        let meniscus_work = cap.flat_work_of_adhesion_j_per_m2();
+        check_finite("load_n", load_n, "a finite load (N)")?;
         let solid = if with_adhesion { self.work_of_adhesion_j_per_m2 } else { 0.0 };
-        let wet = GwSurface { work_of_adhesion_j_per_m2: solid + meniscus_work, ..*self };
-        let mut c = wet.solve_load(load_n, true)?;
-        c.capillary_load_n = 2.0 * PI * meniscus_work * self.summit_radius_m * c.contacts;
+        let base = GwSurface { work_of_adhesion_j_per_m2: solid, ..*self };
+        let contact_only =
+            GwSurface { work_of_adhesion_j_per_m2: solid + cap.flat_work_of_adhesion_j_per_m2(), ..*self };
+        let h_upper = contact_only.solve_load(load_n, true)?.normalized.h;
+        let model = GwModel::new(base.adhesion_parameter()?)?;
+        let scale = self.load_scale_n();
+        let target = load_n / scale;
+        let residual = |h: f64| -> f64 {
+            match (model.state_at_h(h), self.capillary_load_n(cap, h)) {
+                (Ok(st), Ok(f)) => st.l_star - f / scale - target,
+                _ => f64::NAN,
+            }
+        };
+        let h = if residual(h_upper) >= 0.0 {
+            h_upper
+        } else {
+            // Step down (doubling from the meniscus reach k) until the balance is compressive.
+            let k = cap.meniscus_height_m() / self.summit_sd_m;
+            let mut step = k.max(1e-9 * h_upper.abs().max(1.0));
+            let mut lo = h_upper - step;
+            let mut tries = 0;
+            while !(residual(lo) > 0.0) {
+                step *= 2.0;
+                lo = h_upper - step;
+                tries += 1;
+                if tries > 200 || !lo.is_finite() {
+                    return Err(ContactError::NoConvergence {
+                        what: "GW capillary separation: no bracket",
+                        iterations: 0,
+                    });
+                }
+            }
+            brent(residual, lo, h_upper, "GW capillary separation from load")?
+        };
+        let mut st = model.state_at_h(h)?;
+        st.l_star = target;
+        let mut c = base.dimensional(st, load_n);
+        c.capillary_load_n = self.capillary_load_n(cap, h)?;
+        c.adhesive_load_n += c.capillary_load_n;
         Ok(c)
     }
 
-    /// Capillary load on the loading branch at normalised separation `h = d/sigma`, N:
-    /// `eta A_a 2 pi R gamma (cos th1 + cos th2) F_0(h)` (the summits in contact, eq. 5a).
-    pub fn capillary_load_approach_n(&self, capillarity: &Capillarity, h: f64) -> Result<f64, ContactError> {
-        self.validate()?;
-        let n = self.summit_density_per_m2 * self.apparent_area_m2 * f_n(0.0, h)?;
-        Ok(2.0 * PI * self.summit_radius_m * capillarity.flat_work_of_adhesion_j_per_m2() * n)
-    }
-
-    /// Capillary load on retraction, N: the separation has come down to `h_min = d_min/sigma` (every
-    /// summit higher than `h_min` touched and carries a meniscus) and is now `h >= h_min`. A summit
-    /// of height `u` (in units of sigma) at separation `D = sigma (h - u)` keeps its meniscus while
-    /// `D <= h_m` and pulls with `2 pi R gamma (cos th1 + cos th2 - max(D, 0)/r_K)`. With
-    /// `k = h_m/sigma` and the lowest wetted height `l = max(h - k, h_min)`, the statistical sum is
+    /// Capillary load at normalised separation `h = d/sigma`, N, with every summit within the
+    /// meniscus height of the counter face wetted (equilibrium condensation: the same on approach
+    /// and on retraction). A summit of height `u` (in units of sigma) at separation
+    /// `D = sigma (h - u)` pulls with `2 pi R gamma (cos th1 + cos th2 - max(D, 0)/r_K)` for
+    /// `D <= h_m`: in contact (`u > h`) the constant `2 pi R gamma (cos th1 + cos th2) =
+    /// 2 pi R gamma (sigma/r_K) k` (`k = h_m/sigma`), bridged (`h - k < u < h`) the linear decay.
+    /// Over the Gaussian heights (eq. 5-6, `F_n(h) = int_h^inf (u - h)^n phi(u) du`):
     /// ```text
-    /// F_cap = eta A_a 2 pi R gamma (sigma/r_K) [F_1(l) + (l - h + k) F_0(l) - F_1(h)]
+    /// F_cap = eta A_a 2 pi R gamma (sigma/r_K) [k F_0(h) + int_{h-k}^{h} (u - h + k) phi(u) du]
+    ///       = eta A_a 2 pi R gamma (sigma/r_K) [F_1(h - k) - F_1(h)]
     /// ```
-    /// (the in-contact part `(cos th1 + cos th2) F_0(h) = k (sigma/r_K) F_0(h)` and the linear decay
-    /// of the bridged part integrated with eq. 6). With `l = h - k` it is
-    /// `... (sigma/r_K) [F_1(h - k) - F_1(h)]`, evaluated as `F_1(h) expm1(ln F_1(h-k) - ln F_1(h))` so
-    /// that neither the difference of two close values (`k` is about 0.02 on the paper's surface) nor
-    /// the far tail (`F_1` underflowing) loses precision. The retraction pull-off of the menisci is
-    /// thus at most `F_1(h - k)/F_1(h)` times the loading-branch value.
-    pub fn capillary_load_retraction_n(
-        &self,
-        capillarity: &Capillarity,
-        h: f64,
-        h_min: f64,
-    ) -> Result<f64, ContactError> {
+    /// evaluated as `F_1(h) expm1(ln F_1(h-k) - ln F_1(h))`, so that neither the difference of two
+    /// close values (`k` is about 0.025 on the paper's surface at 35 %) nor the far tail (`F_1`
+    /// underflowing) loses precision; in the limit `k -> 0` it is the contact-only load
+    /// `eta A_a 2 pi R gamma (cos th1 + cos th2) F_0(h)`.
+    pub fn capillary_load_n(&self, capillarity: &Capillarity, h: f64) -> Result<f64, ContactError> {
         self.validate()?;
         check_finite("h", h, "a finite normalised separation")?;
-        check_finite("h_min", h_min, "a finite normalised separation")?;
-        if h < h_min {
-            return Err(ContactError::InvalidParameter {
-                field: "h",
-                value: h,
-                expected: "a separation >= h_min on retraction (below it the summits are on the loading branch)",
-            });
-        }
         let sigma = self.summit_sd_m;
         let k = capillarity.meniscus_height_m() / sigma;
         let scale = self.summit_density_per_m2
@@ -1069,14 +1090,8 @@ impl GwSurface {
             * capillarity.surface_tension_n_per_m
             * sigma
             / capillarity.kelvin_radius_m;
-        let bracket = if h - k >= h_min {
-            let ln_hi = ln_f_n(1.0, h - k)?;
-            let ln_lo = ln_f_n(1.0, h)?;
-            ln_lo.exp() * (ln_hi - ln_lo).exp_m1()
-        } else {
-            let l = h_min;
-            f_n(1.0, l)? + (l - h + k) * f_n(0.0, l)? - f_n(1.0, h)?
-        };
-        Ok(scale * bracket)
+        let ln_hi = ln_f_n(1.0, h - k)?;
+        let ln_lo = ln_f_n(1.0, h)?;
+        Ok(scale * ln_lo.exp() * (ln_hi - ln_lo).exp_m1())
     }
 }

@@ -770,22 +770,23 @@ pub fn pull_off_force(law: AdhesionLaw, p: &AsperityParams) -> Result<f64, Conta
     Ok(-branch_limits(law, p)?.pull_off_load_n)
 }
 
-/// Capillary pull of one wetted summit (radius `p.radius_m`) at separation `separation_m` (m; <= 0
-/// in contact), N: the sphere-flat meniscus force `2 pi R gamma (cos th1 + cos th2 - max(D,0)/r_K)` up
-/// to the rupture gap `h_m`, 0 beyond ([`Capillarity::sphere_flat_force_n`]). Whether the summit
-/// carries a meniscus at all follows the formation convention: it forms on touching and ruptures
-/// beyond `h_m` (docs/models.md, "Capillary adhesion").
+/// Capillary pull of one summit (radius `p.radius_m`) at separation `separation_m` (m; <= 0 in
+/// contact), N: the sphere-flat meniscus force `2 pi R gamma (cos th1 + cos th2 - max(D,0)/r_K)` up
+/// to the meniscus height `h_m`, 0 beyond ([`Capillarity::sphere_flat_force_n`]). The meniscus is
+/// in equilibrium with the vapour: it condenses whenever the gap is below `h_m`, on approach as on
+/// retraction, and ruptures beyond `h_m` (docs/models.md, "Capillary adhesion").
 pub fn meniscus_force_n(capillarity: &Capillarity, p: &AsperityParams, separation_m: f64) -> f64 {
     capillarity.sphere_flat_force_n(p.radius_m, separation_m)
 }
 
-/// Pull-off force under load control with a meniscus (magnitude, N). The meniscus forms on contact
-/// and, while the summit touches, pulls with the constant `F_m = 2 pi R gamma (cos th1 + cos th2)`
-/// (the wetted disc is set by the Kelvin radius, not by the contact radius), so the solid law sees
-/// `P + F_m`: every branch shifts by `F_m` and the pull-off is `|P_c| + F_m` (DMT:
+/// Pull-off force under load control with a meniscus (magnitude, N). While the summit touches,
+/// its meniscus pulls with the constant `F_m = 2 pi R gamma (cos th1 + cos th2)` (the wetted disc
+/// is set by the Kelvin radius, not by the contact radius), so the solid law sees `P + F_m`: every
+/// branch shifts by `F_m` and the pull-off is `|P_c| + F_m` (DMT:
 /// `2 pi R (dgamma + gamma (cos th1 + cos th2))`, `4 pi R (dgamma/2 + gamma cos theta)` for equal
-/// faces; JKR: `1.5 pi dgamma R + F_m`). Once the solid contact breaks the meniscus pulls less
-/// (it decays with separation), so no larger tension is held. `None`: [`pull_off_force`].
+/// faces; JKR: `1.5 pi dgamma R + F_m`). Once the solid contact breaks the meniscus pulls
+/// `F_m(D) < F_m` ([`separated_load_wet_n`]), so no larger tension is held. `None`:
+/// [`pull_off_force`].
 pub fn pull_off_force_wet(
     law: AdhesionLaw,
     p: &AsperityParams,
@@ -793,6 +794,15 @@ pub fn pull_off_force_wet(
 ) -> Result<f64, ContactError> {
     let solid = pull_off_force(law, p)?;
     Ok(solid + capillarity.map_or(0.0, |c| c.sphere_flat_force_n(p.radius_m, 0.0)))
+}
+
+/// The load (N, compressive positive) that holds a summit out of solid contact at separation
+/// `separation_m` (m, > 0) from the counter face: the meniscus condensed in the gap pulls it
+/// towards the face, so the load is `-F_m(D) = -2 pi R gamma (cos th1 + cos th2 - D/r_K)` for
+/// `D <= h_m` and 0 beyond (no meniscus; the DMT and Hertz laws carry nothing out of contact).
+/// `None` (dry): 0. The out-of-contact branch of the single-asperity load-separation curve.
+pub fn separated_load_wet_n(p: &AsperityParams, separation_m: f64, capillarity: Option<&Capillarity>) -> f64 {
+    capillarity.map_or(0.0, |c| -c.sphere_flat_force_n(p.radius_m, separation_m.max(0.0)))
 }
 
 /// [`load_state`] of a summit in contact with a meniscus: the solid law carries the applied load

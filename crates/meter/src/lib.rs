@@ -539,9 +539,9 @@ pub fn model_summit_radius_m(spec: &SurfaceSpec, base_dir: &Path) -> Result<f64,
 
 /// Builds the contact model a scenario asks for.
 ///
-/// With humid air (`environment`, [`Scenario::capillarity`]) every summit that touches carries a
-/// water meniscus (explicit, GW, discrete); the boundary-element model has no meniscus and
-/// refuses humid air.
+/// With humid air (`environment`, [`Scenario::capillarity`]) every summit within the meniscus
+/// height of the counter face carries a water meniscus (explicit, GW; the discrete model at its N
+/// contacts); the boundary-element model has no meniscus and refuses humid air.
 pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Result<ContactModel, MeterError> {
     let c = s.contact_or_default();
     let capillarity = s.capillarity().map_err(MeterError::Scenario)?;

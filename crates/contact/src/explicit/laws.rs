@@ -49,8 +49,8 @@ pub(crate) trait LawEval {
         0.0
     }
     /// With [`LawEval::uniform_hertz_dmt`] (whose pull then includes the meniscus f R): the
-    /// meniscus of the fast pass (f R, 1 / h_m, wetted bit set); None when dry.
-    fn fast_meniscus(&self) -> Option<(f64, f64, &[u64])> {
+    /// meniscus of the fast pass (f R, h_m, 1 / h_m); None when dry.
+    fn fast_meniscus(&self) -> Option<(f64, f64, f64)> {
         None
     }
 }
@@ -400,22 +400,23 @@ pub(crate) fn meniscus_force_n(force_per_radius_n_per_m: f64, height_m: f64, rad
     }
 }
 
-/// A dry law `L` with a meniscus at the wetted summits.
+/// A dry law `L` with a meniscus in equilibrium with the vapour at every summit within the
+/// meniscus height of the shoe (capillary condensation, Kelvin condition).
 ///
-/// A summit is wetted from the first equilibrium at which it is in solid contact (on the dry
-/// law's contact branch: touching) until its interference falls below `-h_m` (rupture; it then
-/// leaves the contact set): the bit set `wetted`, kept by the solver between load points (so a
-/// summit touched only at a trial pose of the Newton iteration gets no lasting meniscus). Load of
-/// a member: the dry law's on its contact branch (0 once the solid contact is released) minus
-/// [`meniscus_force_n`] when it is wetted or in solid contact. The meniscus pull falls with the
-/// separation (negative stiffness `-f R / h_m`); the stiffness given to the Newton iteration is the
-/// dry law's alone (clipped at >= 0 like every law's, so the Hessian stays positive semi-definite),
-/// the force and the energy are exact. Release interference: `min(z_rel, -h_m)` when wetted (the
-/// force there is 0 unless the dry branch reaches further), the dry law's otherwise.
+/// A summit carries a meniscus whenever its interference is at least `-h_m` (gap below `h_m`),
+/// on approach as on retraction: it joins the contact set there (`z_in = min(z_in_dry, -h_m)`)
+/// and leaves it below `min(z_rel_dry, -h_m)` (rupture at `h_m`, or the dry law's release if that
+/// reaches further). Load of a member: the dry law's while in solid contact, minus
+/// [`meniscus_force_n`] (a function of z alone, no hysteresis). Solid contact: `z >= z_in_dry`, or
+/// `z >= z_rel_dry` for a summit that was in solid contact at the last equilibrium (the bit set
+/// `solid`, kept by the solver between load points; Hertz/DMT have `z_in = z_rel = 0` and need no
+/// bits). The meniscus pull falls with the separation (negative stiffness `-f R / h_m`); the
+/// stiffness given to the Newton iteration is the dry law's alone (clipped at >= 0 like every
+/// law's, so the Hessian stays positive semi-definite), the force and the energy are exact.
 pub(crate) struct Wet<'a, L: ?Sized> {
     pub dry: &'a L,
     pub radii: &'a Radii,
-    pub wetted: &'a [u64],
+    pub solid: &'a [u64],
     pub force_per_radius_n_per_m: f64,
     pub height_m: f64,
 }
@@ -429,26 +430,21 @@ impl<L: LawEval + ?Sized> Wet<'_, L> {
         }
     }
     #[inline(always)]
-    fn is_wetted(&self, i: usize) -> bool {
-        self.wetted.get(i >> 6).is_some_and(|w| (w >> (i & 63)) & 1 == 1)
+    fn was_solid(&self, i: usize) -> bool {
+        self.solid.get(i >> 6).is_some_and(|w| (w >> (i & 63)) & 1 == 1)
     }
     /// Whether a member at interference z is in solid contact (on the dry law's contact branch).
     #[inline(always)]
     pub fn solid(&self, i: usize, z: f64) -> bool {
-        z >= self.dry.z_rel(i)
+        z >= self.dry.z_in(i) || (z >= self.dry.z_rel(i) && self.was_solid(i))
     }
 }
 
 impl<L: LawEval + ?Sized> LawEval for Wet<'_, L> {
     #[inline]
     fn contact(&self, i: usize, z: f64) -> Resp {
-        let solid = self.solid(i, z);
-        let cap = if solid || self.is_wetted(i) {
-            meniscus_force_n(self.force_per_radius_n_per_m, self.height_m, self.r(i), z)
-        } else {
-            0.0
-        };
-        let mut r = if solid {
+        let cap = meniscus_force_n(self.force_per_radius_n_per_m, self.height_m, self.r(i), z);
+        let mut r = if self.solid(i, z) {
             self.dry.contact(i, z)
         } else {
             Resp { load_n: 0.0, stiffness: 0.0, radius: 0.0, elastic_n: 0.0, q0: 0.0 }
@@ -457,20 +453,15 @@ impl<L: LawEval + ?Sized> LawEval for Wet<'_, L> {
         r
     }
     fn z_in(&self, i: usize) -> f64 {
-        self.dry.z_in(i)
+        self.dry.z_in(i).min(-self.height_m)
     }
     fn z_rel(&self, i: usize) -> f64 {
-        if self.is_wetted(i) { self.dry.z_rel(i).min(-self.height_m) } else { self.dry.z_rel(i) }
+        if self.was_solid(i) { self.dry.z_rel(i).min(-self.height_m) } else { self.dry.z_in(i).min(-self.height_m) }
     }
     fn p_rel(&self, i: usize) -> f64 {
-        // Continuous with the contact branch at z_rel: the dry law's end load minus the meniscus
-        // pull there (0 at z_rel <= -h_m).
-        let zd = self.dry.z_rel(i);
-        if self.is_wetted(i) && zd > -self.height_m {
-            0.0
-        } else {
-            self.dry.p_rel(i) - meniscus_force_n(self.force_per_radius_n_per_m, self.height_m, self.r(i), zd)
-        }
+        // Continuous with the contact branch at z_rel: the meniscus is gone there (z_rel <= -h_m);
+        // the dry law's end load if its release lies beyond the meniscus height.
+        if self.was_solid(i) && self.dry.z_rel(i) < -self.height_m { self.dry.p_rel(i) } else { 0.0 }
     }
     fn z_min(&self) -> f64 {
         self.dry.z_min().min(-self.height_m)
@@ -479,16 +470,12 @@ impl<L: LawEval + ?Sized> LawEval for Wet<'_, L> {
         // Hertz/DMT of one radius: in solid contact the meniscus adds the constant pull f R.
         self.dry.uniform_hertz_dmt().map(|(r, inv_d, c0)| (r, inv_d, c0 + self.force_per_radius_n_per_m * r))
     }
-    fn fast_meniscus(&self) -> Option<(f64, f64, &[u64])> {
+    fn fast_meniscus(&self) -> Option<(f64, f64, f64)> {
         self.dry
             .uniform_hertz_dmt()
-            .map(|(r, _, _)| (self.force_per_radius_n_per_m * r, 1.0 / self.height_m, self.wetted))
+            .map(|(r, _, _)| (self.force_per_radius_n_per_m * r, self.height_m, 1.0 / self.height_m))
     }
     fn capillary_n(&self, i: usize, z: f64) -> f64 {
-        if self.solid(i, z) || self.is_wetted(i) {
-            meniscus_force_n(self.force_per_radius_n_per_m, self.height_m, self.r(i), z)
-        } else {
-            0.0
-        }
+        meniscus_force_n(self.force_per_radius_n_per_m, self.height_m, self.r(i), z)
     }
 }

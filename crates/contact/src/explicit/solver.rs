@@ -215,10 +215,11 @@ pub struct ExplicitSolver {
     /// The same without a meniscus, N.
     adhesion_ref_dry: f64,
     height_range: f64,
-    /// The meniscus of every wetted summit (None: dry).
+    /// The meniscus of every summit within the meniscus height (None: dry).
     wet: Option<Meniscus>,
-    /// Bit set of the wetted sorted summits (empty when dry), see [`Wet`].
-    wetted: Vec<u64>,
+    /// Bit set of the sorted summits in solid contact at the last equilibrium (empty when dry or
+    /// with Hertz/DMT, whose solid contact is z >= 0 without history), see [`Wet`].
+    solid: Vec<u64>,
 }
 
 fn invalid(field: &'static str, value: impl ToString, expected: impl ToString) -> SolveError {
@@ -372,7 +373,7 @@ impl ExplicitSolver {
             adhesion_ref_dry: adhesion_ref,
             height_range,
             wet: None,
-            wetted: Vec::new(),
+            solid: Vec::new(),
         };
         s.reset();
         Ok(s)
@@ -386,10 +387,13 @@ impl ExplicitSolver {
         self.state.member_dx = 0.0;
         self.state.member_dy = 0.0;
         self.state.member.iter_mut().for_each(|w| *w = 0);
-        self.wetted.iter_mut().for_each(|w| *w = 0);
+        self.solid.iter_mut().for_each(|w| *w = 0);
         self.state.members = 0;
         self.state.bound = 0;
-        let z_in0 = self.with_law(|_, law| law.z_in(0));
+        // (The dry law's jump-in also with menisci: the shoe starts touching the highest summit, not
+        // at its meniscus height, where a bridged summit's zero pull would balance a zero load on
+        // the unstable branch of its meniscus.)
+        let z_in0 = self.with_dry_law(|_, law| law.z_in(0));
         let top = match self.geom.support {
             Some(k) => {
                 for i in 0..k {
@@ -450,10 +454,11 @@ impl ExplicitSolver {
         self.config.detail = detail;
     }
 
-    /// Puts a meniscus ([`Meniscus`]) at every summit that touches from now on (None: dry, the
-    /// default) and returns to the initial state ([`Self::reset`]): the wetted state of each
-    /// summit is carried along the load path from there (formation on touch, rupture beyond the
-    /// meniscus height). A dry solver (None) is exactly the solver without this call.
+    /// Puts a meniscus ([`Meniscus`]) in equilibrium with the vapour at every summit whose gap to
+    /// the shoe is below the meniscus height, in solid contact or not (None: dry, the default), and
+    /// returns to the initial state ([`Self::reset`]). The meniscus force is a function of the gap alone (condensation and
+    /// rupture at `h_m`); the dry law keeps its own hysteresis. A dry solver (None) is exactly the
+    /// solver without this call.
     ///
     /// Errors: a force per radius or a meniscus height that is not finite and > 0.
     pub fn set_meniscus(&mut self, meniscus: Option<Meniscus>) -> Result<(), SolveError> {
@@ -470,7 +475,7 @@ impl ExplicitSolver {
             }
         }
         self.wet = meniscus;
-        self.wetted = if meniscus.is_some() { vec![0; self.geom.hs.len().div_ceil(64)] } else { Vec::new() };
+        self.solid = if meniscus.is_some() { vec![0; self.geom.hs.len().div_ceil(64)] } else { Vec::new() };
         let mean_r = match &self.geom.radii {
             Radii::Uniform(r) => *r,
             Radii::PerSummit(v) => v.iter().sum::<f64>() / v.len() as f64,
@@ -483,11 +488,37 @@ impl ExplicitSolver {
         Ok(())
     }
 
-    /// After an equilibrium the wetted summits are the members: every member is in solid contact
-    /// (it joined by touching, or is on the dry law's contact branch) or was wetted before and is
-    /// separated by less than h_m; ruptured menisci left the set with their summits.
-    fn update_wetted(&mut self) {
-        self.wetted.copy_from_slice(&self.state.member);
+    /// After an equilibrium: the members in solid contact there ([`Wet::solid`]), the history of
+    /// the dry law's hysteresis for the next solve. Hertz/DMT (solid contact is z >= 0) keep none.
+    fn update_solid(&mut self) {
+        let Some(m) = self.wet else { return };
+        if matches!(self.imp, LawImpl::HertzDmt { .. }) {
+            return;
+        }
+        let mut bits = std::mem::take(&mut self.solid);
+        let q = self.state.q;
+        self.with_dry_law(|g, dry| {
+            let law = Wet {
+                dry,
+                radii: &g.radii,
+                solid: &bits,
+                force_per_radius_n_per_m: m.force_per_radius_n_per_m,
+                height_m: m.height_m,
+            };
+            let mut next = vec![0u64; bits.len()];
+            for (w, word) in self.state.member.iter().enumerate() {
+                let mut b = *word;
+                while b != 0 {
+                    let i = w * 64 + b.trailing_zeros() as usize;
+                    b &= b - 1;
+                    if law.solid(i, interference(g, &law, &q, i)) {
+                        next[w] |= 1 << (i & 63);
+                    }
+                }
+            }
+            bits = next;
+        });
+        self.solid = bits;
     }
 
     /// The meniscus in use (None: dry).
@@ -534,7 +565,7 @@ impl ExplicitSolver {
                 let law = Wet {
                     dry,
                     radii: &g.radii,
-                    wetted: &self.wetted,
+                    solid: &self.solid,
                     force_per_radius_n_per_m: m.force_per_radius_n_per_m,
                     height_m: m.height_m,
                 };
@@ -572,7 +603,7 @@ impl ExplicitSolver {
             return Err(invalid("load_n", load_n, "a finite load in N"));
         }
         let backup = self.state.clone();
-        // The dry law, or the dry law with a meniscus at every wetted summit (one monomorphised
+        // The dry law, or the dry law with a meniscus within h_m of the shoe (one monomorphised
         // iteration per law: the dry path is exactly the solver without menisci).
         macro_rules! run {
             ($dry:expr) => {{
@@ -592,7 +623,7 @@ impl ExplicitSolver {
                         let wet = Wet {
                             dry,
                             radii: &self.geom.radii,
-                            wetted: &self.wetted,
+                            solid: &self.solid,
                             force_per_radius_n_per_m: m.force_per_radius_n_per_m,
                             height_m: m.height_m,
                         };
@@ -625,7 +656,7 @@ impl ExplicitSolver {
             }
         };
         if res.is_ok() && self.wet.is_some() {
-            self.update_wetted();
+            self.update_solid();
         }
         match res {
             Ok(iterations) => Ok(self.report(load_n, iterations)),
@@ -760,8 +791,8 @@ impl ExplicitSolver {
     /// needs), the force residual is 0. Used to compare with GW's integrals at fixed separation.
     pub fn evaluate_pose(&mut self, separation_m: f64, tilt_x_rad: f64, tilt_y_rad: f64) -> Equilibrium {
         let saved = self.state.clone();
-        let saved_wetted = std::mem::take(&mut self.wetted);
-        self.wetted = vec![0; saved_wetted.len()];
+        let saved_solid = std::mem::take(&mut self.solid);
+        self.solid = vec![0; saved_solid.len()];
         self.state.member.iter_mut().for_each(|w| *w = 0);
         self.state.members = 0;
         self.state.bound = 0;
@@ -781,7 +812,7 @@ impl ExplicitSolver {
         eq.load_n -= eq.force_residual_n;
         eq.force_residual_n = 0.0;
         self.state = saved;
-        self.wetted = saved_wetted;
+        self.solid = saved_solid;
         eq
     }
 
@@ -971,10 +1002,24 @@ fn evaluate<L: LawEval + ?Sized>(
         let a_hard = g.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
         let z_hard = a_hard * a_hard / radius;
         let lin = lin && g.shortcuts;
-        let (cap_f, inv_hm, wetted) = law.fast_meniscus().unwrap_or((0.0, 0.0, &[]));
-        let k =
-            fast::Kernel { q: *q, x0, y0, inv_ell, radius, inv_d, c0, allow_touch, a_hard, z_hard, lin, cap_f, inv_hm };
-        let mut ev = fast::evaluate(g, st, wetted, &k, end, load, touch);
+        let (cap_f, hm, inv_hm) = law.fast_meniscus().unwrap_or((0.0, 0.0, 0.0));
+        let k = fast::Kernel {
+            q: *q,
+            x0,
+            y0,
+            inv_ell,
+            radius,
+            inv_d,
+            c0,
+            allow_touch,
+            a_hard,
+            z_hard,
+            lin,
+            cap_f,
+            hm,
+            inv_hm,
+        };
+        let mut ev = fast::evaluate(g, st, &k, end, load, touch);
         // The pass scans whole blocks of 64; a summit beyond them lies below the threshold
         // (h < w_min: DMT/Hertz reach nothing below the plane), so its |z| >= w_min - h.
         let scanned = (end.div_ceil(64) * 64).min(g.hs.len());
@@ -1629,7 +1674,8 @@ mod tests {
     use stiction_surface::{FaceParams, Layout, Placement, generate};
 
     /// The fast pass gives the same bits on the baseline instruction set and on the best one of
-    /// this machine (AVX2+FMA on most x86-64): fixed lanes, no contraction, exact sqrt.
+    /// this machine (AVX2+FMA on most x86-64): fixed lanes, no contraction, exact sqrt; dry and
+    /// with menisci.
     #[test]
     fn fast_pass_has_the_same_bits_on_every_instruction_set() {
         let layout =
@@ -1645,7 +1691,8 @@ mod tests {
             let a_hard = s.geom.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
             // A pose slightly off the equilibrium (members past release, summits touching).
             let q = [s.state.q[0] - 1e-9, s.state.q[1] + 4e-9, s.state.q[2] - 4e-9];
-            for lin in [false, true] {
+            // Dry, and with menisci (water at 35 %: f R = 0.45 uN, h_m = 1 nm; no linear steps).
+            for (lin, cap_f, hm) in [(false, 0.0, 0.0), (true, 0.0, 0.0), (false, 0.45e-6, 1e-9)] {
                 let k = fast::Kernel {
                     q,
                     x0,
@@ -1653,18 +1700,19 @@ mod tests {
                     inv_ell,
                     radius,
                     inv_d,
-                    c0: two_pi_dgamma * radius,
+                    c0: two_pi_dgamma * radius + cap_f,
                     allow_touch: true,
                     a_hard,
                     z_hard: a_hard * a_hard / radius,
                     lin,
-                    cap_f: 0.0,
-                    inv_hm: 0.0,
+                    cap_f,
+                    hm,
+                    inv_hm: if hm > 0.0 { 1.0 / hm } else { 0.0 },
                 };
                 let end = s.geom.hs.len();
                 let (mut t1, mut t2) = (Vec::new(), Vec::new());
-                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &[], &k, end, 0.1, &mut t1);
-                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &[], &k, end, 0.1, &mut t2);
+                let e1 = fast::evaluate_with(pulp::Arch::Scalar, &s.geom, &s.state, &k, end, 0.1, &mut t1);
+                let e2 = fast::evaluate_with(pulp::Arch::new(), &s.geom, &s.state, &k, end, 0.1, &mut t2);
                 assert!(e1.contacts > 100 && e1.releases > 0 && !t1.is_empty(), "{e1:?}");
                 assert_eq!(e1.lin.is_some(), lin);
                 assert_eq!(format!("{e1:?}"), format!("{e2:?}"), "{mode:?}");

@@ -132,12 +132,12 @@ pub struct Equilibrium {
     /// Adhesive load: elastic load minus the carried load, >= 0 for adhesive laws (DMT:
     /// N 2 pi dgamma R) \[N\].
     pub adhesive_load_n: f64,
-    /// Capillary part of the adhesive load: the pull of the menisci of the wetted summits
-    /// ([`Meniscus`]) \[N\]; 0 (and not written) without a meniscus.
+    /// Capillary part of the adhesive load: the pull of the menisci of the summits within the
+    /// meniscus height of the shoe ([`Meniscus`]) \[N\]; 0 (and not written) without a meniscus.
     #[serde(default, skip_serializing_if = "is_zero_f64")]
     pub capillary_load_n: f64,
-    /// Summits carrying a meniscus (in contact, or separated by less than its height since they
-    /// touched); 0 (and not written) without a meniscus. With a meniscus `contacts` counts the
+    /// Summits carrying a meniscus (in contact, or separated from the shoe by less than its
+    /// height); 0 (and not written) without a meniscus. With a meniscus `contacts` counts the
     /// summits in solid contact and `contact_indices` / `summits` list every wetted summit.
     #[serde(default, skip_serializing_if = "is_zero_usize")]
     pub wetted_summits: usize,
@@ -266,13 +266,13 @@ pub enum SolveError {
     },
 }
 
-/// A water meniscus at every wetted summit (capillary condensation at a relative humidity; the
-/// circular-meniscus approximation with a constant Kelvin radius r_K, docs/explicit-solver.md,
-/// "Capillarity").
+/// A water meniscus at every summit within its height of the shoe (capillary condensation at a
+/// relative humidity; the circular-meniscus approximation with a constant Kelvin radius r_K,
+/// docs/explicit-solver.md, "Capillarity").
 ///
-/// A summit's meniscus forms when it touches the shoe and stays in equilibrium with the vapour
-/// until the separation D = -z exceeds `height_m` = h_m = r_K (cos th1 + cos th2), where it
-/// ruptures. Its pull is the sphere-flat force `2 pi R gamma (cos th1 + cos th2 - max(D, 0) / r_K)`
+/// The meniscus is in equilibrium with the vapour: it condenses in every gap D = -z below
+/// `height_m` = h_m = r_K (cos th1 + cos th2), on approach as on retraction, and ruptures beyond
+/// it. Its pull is the sphere-flat force `2 pi R gamma (cos th1 + cos th2 - max(D, 0) / r_K)`
 /// = `force_per_radius_n_per_m * R * (1 - max(D, 0) / h_m)`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Meniscus {

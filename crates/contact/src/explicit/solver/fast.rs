@@ -49,8 +49,10 @@ pub(crate) struct Kernel {
     pub z_hard: f64,
     /// Also collect what a Newton step without a pass needs ([`super::Linear`]).
     pub lin: bool,
-    /// Meniscus pull of a wetted summit in contact f R (already part of `c0`), 0 when dry \[N\].
+    /// Meniscus pull of a summit in contact f R (already part of `c0`), 0 when dry \[N\].
     pub cap_f: f64,
+    /// Meniscus height h_m (0 when dry) \[m\]: summits with z >= -h_m carry a meniscus.
+    pub hm: f64,
     /// 1 / h_m, the inverse meniscus height (0 when dry) \[1/m\].
     pub inv_hm: f64,
 }
@@ -77,8 +79,8 @@ struct Acc {
     kuu: [f64; W],
     kuv: [f64; W],
     kvv: [f64; W],
-    /// CAP only: meniscus pull of the wetted members out of solid contact, their number, and the
-    /// number of active summits with z > 0 (in solid contact).
+    /// CAP only: meniscus pull of the members out of solid contact (bridged, -h_m <= z < 0), their
+    /// number, and the number of active summits with a > 0 (in solid contact).
     cap_tail: [f64; W],
     wet_out: [f64; W],
     solid: [f64; W],
@@ -149,7 +151,6 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
     ys: &[f32; B],
     hs: &[f64; B],
     word: u64,
-    wet_word: u64,
     k: &Kernel,
 ) -> Counts {
     let touch_zero = k.c0 != 0.0;
@@ -170,11 +171,13 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
                 NONE => false,
                 _ => (word >> j) & 1 == 1,
             };
-            // Touch rule of the generic pass: z >= z_in = 0, and z = 0 only with adhesion.
-            let pos = z > 0.0 || (touch_zero && z == 0.0);
+            // Touch rule of the generic pass: z >= z_in = 0, and z = 0 only with adhesion; with
+            // menisci z >= z_in = -h_m (and release below -h_m).
+            let pos = if CAP { z >= -k.hm } else { z > 0.0 || (touch_zero && z == 0.0) };
             let act = mem || (k.allow_touch && pos);
             touches[l] += if !mem && k.allow_touch && pos { 1.0 } else { 0.0 };
-            rels[l] += if mem && z < 0.0 { 1.0 } else { 0.0 };
+            let rel = if CAP { z < -k.hm } else { z < 0.0 };
+            rels[l] += if mem && rel { 1.0 } else { 0.0 };
             if LIN {
                 // (Selects, then a plain minimum: this form vectorises.)
                 let za = z.abs();
@@ -199,30 +202,42 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
     }
     acc.gap_in = gap_in;
     acc.gap_out = gap_out;
-    if CAP && M != NONE {
-        // Stage 1b (menisci): a wetted member out of solid contact pulls with its meniscus while
-        // separated by less than h_m (not a release), with nothing beyond (released, p_rel = 0).
+    let touches: f64 = touches.iter().sum();
+    let counts = Counts { touches: touches as u32, releases: rels.iter().sum::<f64>() as u32 };
+    if M == NONE && touches == 0.0 {
+        // Nothing active: every term below is +0 (skipping them leaves the same bits).
+        return counts;
+    }
+    if CAP {
+        let (mut cap_tail, mut wet_out) = (acc.cap_tail, acc.wet_out);
+        // Stage 1b (menisci): an active summit out of solid contact (z < 0) pulls with its
+        // meniscus while within h_m (bridged), with nothing beyond (a member there is past
+        // release, p_rel = 0). Stage 1 gave it -c0, the load at z = 0+.
         for grp in 0..B / W {
             for l in 0..W {
                 let j = grp * W + l;
                 let z = zs[j];
                 let mem = match M {
                     ALL => true,
+                    NONE => false,
                     _ => (word >> j) & 1 == 1,
                 };
-                let wet_out = mem && z < 0.0 && (wet_word >> j) & 1 == 1;
-                let tail = wet_out && z * k.inv_hm >= -1.0;
-                rels[l] -= if tail { 1.0 } else { 0.0 };
+                let bridged = (mem || k.allow_touch) && z >= -k.hm && z < 0.0;
                 let pt = -k.cap_f * (1.0 + z * k.inv_hm);
-                ps[j] = if wet_out { if tail { pt } else { 0.0 } } else { ps[j] };
+                ps[j] = if bridged {
+                    pt
+                } else if z < 0.0 {
+                    0.0
+                } else {
+                    ps[j]
+                };
+                // Their pull and number (the summary's capillary load).
+                cap_tail[l] -= if bridged { pt } else { 0.0 };
+                wet_out[l] += if bridged { 1.0 } else { 0.0 };
             }
         }
-    }
-    let touches: f64 = touches.iter().sum();
-    let counts = Counts { touches: touches as u32, releases: rels.iter().sum::<f64>() as u32 };
-    if M == NONE && touches == 0.0 {
-        // Nothing active: every term below is +0 (skipping them leaves the same bits).
-        return counts;
+        acc.cap_tail = cap_tail;
+        acc.wet_out = wet_out;
     }
     // Stage 2: force sums.
     for grp in 0..B / W {
@@ -252,6 +267,10 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             let j = grp * W + l;
             let kk = 1.5 * as_[j] * k.inv_d;
             acc.k[l] += kk;
+            if CAP {
+                // Summits in solid contact (contact radius > 0).
+                acc.solid[l] += if as_[j] > 0.0 { 1.0 } else { 0.0 };
+            }
             if TILT || LIN {
                 acc.ku[l] += kk * us[j];
                 acc.kv[l] += kk * vs[j];
@@ -262,21 +281,6 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
                 acc.kuu[l] += ku * us[j];
                 acc.kuv[l] += ku * vs[j];
                 acc.kvv[l] += kv * vs[j];
-            }
-        }
-    }
-    if CAP {
-        // Stage 4 (menisci): the tails' pull, how many, summits in solid contact. A tail is the
-        // only active summit with z+ = 0 and a load in (-f R, 0): in solid contact the pull is
-        // at least c0 >= f R (at an equilibrium no member is past release).
-        for grp in 0..B / W {
-            for l in 0..W {
-                let j = grp * W + l;
-                let p = ps[j];
-                let tail = zcs[j] == 0.0 && p < 0.0 && p > -k.cap_f;
-                acc.cap_tail[l] -= if tail { p } else { 0.0 };
-                acc.wet_out[l] += if tail { 1.0 } else { 0.0 };
-                acc.solid[l] += if as_[j] > 0.0 { 1.0 } else { 0.0 };
             }
         }
     }
@@ -292,13 +296,12 @@ fn block_dispatch<const TILT: bool, const HARD: bool, const LIN: bool, const CAP
     ys: &[f32; B],
     hs: &[f64; B],
     word: u64,
-    wet_word: u64,
     k: &Kernel,
 ) -> Counts {
     match word {
-        u64::MAX => block::<ALL, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
-        0 => block::<NONE, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
-        _ => block::<MIXED, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, wet_word, k),
+        u64::MAX => block::<ALL, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, k),
+        0 => block::<NONE, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, k),
+        _ => block::<MIXED, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, k),
     }
 }
 
@@ -317,7 +320,6 @@ struct Totals {
 fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     g: &Geom,
     st: &State,
-    wetted: &[u64],
     k: &Kernel,
     end: usize,
     touch: &mut Vec<u32>,
@@ -343,8 +345,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
         let ys: &[f32; B] = g.ys[r.clone()].try_into().expect("block");
         let hs: &[f64; B] = g.hs[r].try_into().expect("block");
         let word = st.member[blk];
-        let wet_word = if CAP { wetted.get(blk).copied().unwrap_or(0) } else { 0 };
-        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, xs, ys, hs, word, wet_word, k);
+        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, xs, ys, hs, word, k);
         if c.touches > 0 {
             push_touches(xs, ys, hs, word, blk * B, k, touch);
         }
@@ -359,8 +360,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
         ys[..len].copy_from_slice(&g.ys[base..]);
         hs[..len].copy_from_slice(&g.hs[base..]);
         let word = st.member[full];
-        let wet_word = if CAP { wetted.get(full).copied().unwrap_or(0) } else { 0 };
-        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, &xs, &ys, &hs, word, wet_word, k);
+        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, &xs, &ys, &hs, word, k);
         if c.touches > 0 {
             push_touches(&xs, &ys, &hs, word, base, k, touch);
         }
@@ -374,7 +374,6 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
 struct PassOp<'a> {
     g: &'a Geom,
     st: &'a State,
-    wetted: &'a [u64],
     k: &'a Kernel,
     end: usize,
     touch: &'a mut Vec<u32>,
@@ -386,25 +385,25 @@ impl pulp::WithSimd for PassOp<'_> {
     type Output = Totals;
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> Totals {
-        let PassOp { g, st, wetted, k, end, touch, tilt, hard } = self;
+        let PassOp { g, st, k, end, touch, tilt, hard } = self;
         if k.cap_f != 0.0 {
             // Capillarity: no linear steps (the meniscus tails are not in their error bound).
             return match (tilt, hard) {
-                (true, false) => pass::<true, false, false, true>(g, st, wetted, k, end, touch),
-                (true, true) => pass::<true, true, false, true>(g, st, wetted, k, end, touch),
-                (false, false) => pass::<false, false, false, true>(g, st, wetted, k, end, touch),
-                (false, true) => pass::<false, true, false, true>(g, st, wetted, k, end, touch),
+                (true, false) => pass::<true, false, false, true>(g, st, k, end, touch),
+                (true, true) => pass::<true, true, false, true>(g, st, k, end, touch),
+                (false, false) => pass::<false, false, false, true>(g, st, k, end, touch),
+                (false, true) => pass::<false, true, false, true>(g, st, k, end, touch),
             };
         }
         match (tilt, hard, k.lin) {
-            (true, false, false) => pass::<true, false, false, false>(g, st, wetted, k, end, touch),
-            (true, true, false) => pass::<true, true, false, false>(g, st, wetted, k, end, touch),
-            (false, false, false) => pass::<false, false, false, false>(g, st, wetted, k, end, touch),
-            (false, true, false) => pass::<false, true, false, false>(g, st, wetted, k, end, touch),
-            (true, false, true) => pass::<true, false, true, false>(g, st, wetted, k, end, touch),
-            (true, true, true) => pass::<true, true, true, false>(g, st, wetted, k, end, touch),
-            (false, false, true) => pass::<false, false, true, false>(g, st, wetted, k, end, touch),
-            (false, true, true) => pass::<false, true, true, false>(g, st, wetted, k, end, touch),
+            (true, false, false) => pass::<true, false, false, false>(g, st, k, end, touch),
+            (true, true, false) => pass::<true, true, false, false>(g, st, k, end, touch),
+            (false, false, false) => pass::<false, false, false, false>(g, st, k, end, touch),
+            (false, true, false) => pass::<false, true, false, false>(g, st, k, end, touch),
+            (true, false, true) => pass::<true, false, true, false>(g, st, k, end, touch),
+            (true, true, true) => pass::<true, true, true, false>(g, st, k, end, touch),
+            (false, false, true) => pass::<false, false, true, false>(g, st, k, end, touch),
+            (false, true, true) => pass::<false, true, true, false>(g, st, k, end, touch),
         }
     }
 }
@@ -417,7 +416,6 @@ pub(crate) fn evaluate_with(
     arch: pulp::Arch,
     g: &Geom,
     st: &State,
-    wetted: &[u64],
     k: &Kernel,
     end: usize,
     load: f64,
@@ -426,7 +424,7 @@ pub(crate) fn evaluate_with(
     touch.clear();
     let tilt = g.ndof > 1;
     let hard = k.a_hard.is_finite();
-    let t = arch.dispatch(PassOp { g, st, wetted, k, end, touch, tilt, hard });
+    let t = arch.dispatch(PassOp { g, st, k, end, touch, tilt, hard });
     let acc = &t.acc;
     let s = |v: &[f64; W]| (v[0] + v[1]) + (v[2] + v[3]);
     let (p, pu, pv) = (s(&acc.p), s(&acc.pu), s(&acc.pv));
@@ -450,7 +448,7 @@ pub(crate) fn evaluate_with(
         moment_x: pu * ell,
         moment_y: pv * ell,
         release_words: Some(t.release_words.unwrap_or((1, 0))),
-        // Menisci: f R at every active summit but the wetted ones out of solid contact, which
+        // Menisci: f R at every active summit but the bridged ones (out of solid contact), which
         // pull with their tails (meaningful at an equilibrium: no member past release).
         capillary: if k.cap_f != 0.0 {
             k.cap_f * (t.contacts as f64 - s(&acc.wet_out)) + s(&acc.cap_tail)
@@ -475,16 +473,8 @@ pub(crate) fn evaluate_with(
 }
 
 /// [`evaluate_with`] on the best instruction set of this machine.
-pub(crate) fn evaluate(
-    g: &Geom,
-    st: &State,
-    wetted: &[u64],
-    k: &Kernel,
-    end: usize,
-    load: f64,
-    touch: &mut Vec<u32>,
-) -> Eval {
-    evaluate_with(pulp::Arch::new(), g, st, wetted, k, end, load, touch)
+pub(crate) fn evaluate(g: &Geom, st: &State, k: &Kernel, end: usize, load: f64, touch: &mut Vec<u32>) -> Eval {
+    evaluate_with(pulp::Arch::new(), g, st, k, end, load, touch)
 }
 
 #[cold]
@@ -497,7 +487,8 @@ fn push_touches(xs: &[f32; B], ys: &[f32; B], hs: &[f64; B], word: u64, base: us
         let u = (f64::from(xs[j]) - k.x0) * k.inv_ell;
         let v = (f64::from(ys[j]) - k.y0) * k.inv_ell;
         let z = hs[j] - (k.q[0] + k.q[1] * u + k.q[2] * v);
-        if z > 0.0 || (touch_zero && z == 0.0) {
+        let touches = if k.cap_f != 0.0 { z >= -k.hm } else { z > 0.0 || (touch_zero && z == 0.0) };
+        if touches {
             touch.push((base + j) as u32);
         }
     }
