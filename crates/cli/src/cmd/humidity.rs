@@ -25,7 +25,7 @@ pub fn rh_grid(text: Option<&str>) -> Result<Vec<f64>, String> {
     let mut values = crate::cmd::bem::parse_rh(text)?;
     if let Some(w) = values.windows(2).find(|w| w[1] <= w[0]) {
         return Err(format!(
-            "--rh {text:?}: the humidities must increase ({} is followed by {}); the dry point 0 comes first \
+            "--rh {text:?}: the humidities must increase ({:?} is followed by {:?}); the dry point 0 comes first \
              by itself",
             w[0], w[1]
         ));
@@ -396,5 +396,73 @@ mod tests {
         for bad in ["0.5,0.2", "0.2,0.2", "0.9:0.1:5", "1.2", "x", "0:0.5:0"] {
             assert!(rh_grid(Some(bad)).is_err(), "{bad}");
         }
+    }
+
+    /// Seeded fuzzing of `--rh` (`STICTION_FUZZ_CASES`, default 20 000; `STICTION_FUZZ_SEED`):
+    /// strings of RH atoms (numbers, percentages, NaN, inf, 1e400, huge step counts, separators,
+    /// signs, spaces, non-ASCII). Each gives a grid that starts at 0, increases, is finite, in
+    /// [0, 1) and has at most 1001 points, or an error that names `--rh` in under 400 characters.
+    #[test]
+    fn hostile_rh_lists_give_a_valid_grid_or_an_error_naming_the_flag() {
+        let cases: usize = std::env::var("STICTION_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(20_000);
+        let mut state: u64 = std::env::var("STICTION_FUZZ_SEED").ok().and_then(|v| v.parse().ok()).unwrap_or(22) | 1;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        const ATOMS: [&str; 32] = [
+            "0",
+            "0.35",
+            "35 %",
+            "99.9 %",
+            "100 %",
+            "1",
+            "0.999999",
+            "-0.1",
+            "1e-300",
+            "1e400",
+            "NaN",
+            "inf",
+            "-0",
+            ",",
+            ",",
+            ":",
+            ":",
+            "10",
+            "1000",
+            "1001",
+            "18446744073709551616",
+            " ",
+            "%",
+            "e",
+            ".",
+            "µ",
+            "0x1",
+            "5e-1",
+            "35 %%",
+            "",
+            "+0.2",
+            "0.9",
+        ];
+        let (mut ok, mut refused) = (0, 0);
+        for _ in 0..cases {
+            let n = 1 + (next() % 7) as usize;
+            let text: String = (0..n).map(|_| ATOMS[(next() % ATOMS.len() as u64) as usize]).collect();
+            match rh_grid(Some(&text)) {
+                Ok(g) => {
+                    ok += 1;
+                    assert!(!g.is_empty() && g.len() <= 1001 && g[0] == 0.0, "{text:?}: {g:?}");
+                    assert!(g.iter().all(|v| v.is_finite() && (0.0..1.0).contains(v)), "{text:?}: {g:?}");
+                    assert!(g.windows(2).all(|w| w[1] > w[0]), "{text:?}: {g:?}");
+                }
+                Err(e) => {
+                    refused += 1;
+                    assert!(e.starts_with("--rh") && e.len() < 400, "{text:?}: {e}");
+                }
+            }
+        }
+        assert!(ok > 0 && refused > 0, "{ok} accepted, {refused} refused");
     }
 }
