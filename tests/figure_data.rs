@@ -238,6 +238,34 @@ fn humidity_figures_draw_the_model_and_the_reference_at_the_experiments_humidity
     assert_eq!(share[0], (0.0, 0.0), "dry: no capillary share");
     assert!(share[1..].iter().all(|p| p.1 > 0.0 && p.1 < 100.0), "{share:?}");
 
+    // results.json holds each figure's series under `figures` (the same names as its CSV).
+    for stem in ["humidity-mu", "humidity-fa0", "humidity-share"] {
+        let json: BTreeSet<String> = report["figures"][stem]["series"]
+            .as_array()
+            .unwrap_or_else(|| panic!("no figures.{stem}"))
+            .iter()
+            .map(|s| s["name"].as_str().unwrap().to_string())
+            .collect();
+        assert_eq!(json, Data::read(&dir.join(format!("humid/{stem}.csv"))).names(), "{stem}");
+    }
+    // The journal size: --preset single-column is 85 mm x 60 mm, 1004 x 709 px at 300 dpi.
+    let out = stiction(&[
+        "plot",
+        "humidity",
+        "--scenario",
+        "scenarios/tas2000-humid.json",
+        "--rh",
+        "0.3",
+        "--preset",
+        "single-column",
+        "--out",
+        &d("column"),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for stem in ["humidity-mu", "humidity-fa0", "humidity-share"] {
+        assert_eq!(png_size(&dir.join(format!("column/{stem}.png"))), (1004, 709), "{stem}");
+    }
+
     draw(&["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--rh", "0.3", "--out", &d("dry")]);
     assert_eq!(check_folder(&dir.join("dry")), ["humidity-fa0", "humidity-mu", "humidity-share"]);
     let mu = Data::read(&dir.join("dry/humidity-mu.csv"));

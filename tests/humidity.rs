@@ -51,7 +51,9 @@ fn each_humidity_is_the_meter_of_run_at_that_humidity_dry_first() {
     }
     // The reference is the scenario's, at the humidity and sd its `environment` states.
     let r = &v["reference"];
-    assert!((num(r, "relative_humidity") - 0.35).abs() < 1e-12 && (num(r, "relative_humidity_sd") - 0.05).abs() < 1e-12);
+    assert!(
+        (num(r, "relative_humidity") - 0.35).abs() < 1e-12 && (num(r, "relative_humidity_sd") - 0.05).abs() < 1e-12
+    );
     assert_eq!(num(r, "mu_apparent"), 0.7);
 }
 
