@@ -117,8 +117,8 @@ const DIMENSIONLESS: [&str; 11] = [
 ];
 
 /// Unit endings of a column name (`load_un`, `v_clamp_squared_v2`, `psd_m4`, ...).
-const UNITS: [&str; 14] =
-    ["_v", "_v2", "_un", "_um", "_nm", "_mpa", "_gpa", "_m4", "_us", "_per_um", "_n", "_m", "_pa", "_s"];
+const UNITS: [&str; 15] =
+    ["_v", "_v2", "_un", "_um", "_nm", "_mpa", "_gpa", "_m4", "_us", "_per_um", "_n", "_m", "_pa", "_s", "_percent"];
 
 /// The shape every figure's data CSV has, and its series named as in the legend of the SVG drawn
 /// beside it (`figure` without extension).
@@ -204,6 +204,75 @@ fn run_and_plot_figures_have_one_data_shape_and_fig5_has_the_eq10_line() {
     assert!(fig3.contains("log₁₀(1+|L*|/10⁻⁶)"), "{fig3}");
     // The pull-in marker lies on the drawn loading curve (the array has a stop).
     pull_in_on_curve(&dir.join("pull.csv"));
+}
+
+/// `plot humidity`: three figures in the one data shape; the model's points at the grid's
+/// humidities (dry first) are results.json's; the measured reference is a point with its error
+/// bars at the humidity of the experiment (35 +/- 5 %, tas2000-humid.json) or, where the scenario
+/// states no humidity (tas2000.json), a band of its interval over the whole grid.
+#[test]
+fn humidity_figures_draw_the_model_and_the_reference_at_the_experiments_humidity() {
+    let dir = temp_dir("figdata-humidity");
+    let d = |s: &str| dir.join(s).to_string_lossy().into_owned();
+    draw(&["plot", "humidity", "--scenario", "scenarios/tas2000-humid.json", "--rh", "0.2,0.5", "--out", &d("humid")]);
+    assert_eq!(check_folder(&dir.join("humid")), ["humidity-fa0", "humidity-mu", "humidity-share"]);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("humid/results.json")).unwrap()).unwrap();
+    let mu = Data::read(&dir.join("humid/humidity-mu.csv"));
+    let model = mu.series("virtual meter");
+    assert_eq!(model.iter().map(|p| p.0).collect::<Vec<f64>>(), [0.0, 20.0, 50.0]);
+    for (p, r) in model.iter().zip(report["points"].as_array().unwrap()) {
+        assert_eq!(p.1, r["mu_apparent"].as_f64().unwrap());
+    }
+    let measured = mu.rows.iter().find(|r| r.0.starts_with("measured")).unwrap();
+    assert_eq!(measured.1, "markers");
+    let f = &measured.2;
+    assert_eq!(
+        [f["relative_humidity_percent"], f["mu_apparent"], f["relative_humidity_percent_err"], f["mu_apparent_err"]],
+        [35.0, 0.7, 5.0, 0.3]
+    );
+    let fa0 = Data::read(&dir.join("humid/humidity-fa0.csv"));
+    let measured = &fa0.rows.iter().find(|r| r.0.starts_with("measured")).unwrap().2;
+    assert_eq!([measured["apparent_adhesion_force_un"], measured["apparent_adhesion_force_un_err"]], [2.0, 1.3]);
+    let share = Data::read(&dir.join("humid/humidity-share.csv")).series("virtual meter");
+    assert_eq!(share[0], (0.0, 0.0), "dry: no capillary share");
+    assert!(share[1..].iter().all(|p| p.1 > 0.0 && p.1 < 100.0), "{share:?}");
+
+    // results.json holds each figure's series under `figures` (the same names as its CSV).
+    for stem in ["humidity-mu", "humidity-fa0", "humidity-share"] {
+        let json: BTreeSet<String> = report["figures"][stem]["series"]
+            .as_array()
+            .unwrap_or_else(|| panic!("no figures.{stem}"))
+            .iter()
+            .map(|s| s["name"].as_str().unwrap().to_string())
+            .collect();
+        assert_eq!(json, Data::read(&dir.join(format!("humid/{stem}.csv"))).names(), "{stem}");
+    }
+    // The journal size: --preset single-column is 85 mm x 60 mm, 1004 x 709 px at 300 dpi.
+    let out = stiction(&[
+        "plot",
+        "humidity",
+        "--scenario",
+        "scenarios/tas2000-humid.json",
+        "--rh",
+        "0.3",
+        "--preset",
+        "single-column",
+        "--out",
+        &d("column"),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for stem in ["humidity-mu", "humidity-fa0", "humidity-share"] {
+        assert_eq!(png_size(&dir.join(format!("column/{stem}.png"))), (1004, 709), "{stem}");
+    }
+
+    draw(&["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--rh", "0.3", "--out", &d("dry")]);
+    assert_eq!(check_folder(&dir.join("dry")), ["humidity-fa0", "humidity-mu", "humidity-share"]);
+    let mu = Data::read(&dir.join("dry/humidity-mu.csv"));
+    let band = mu.rows.iter().find(|r| r.0.starts_with("measured")).unwrap();
+    assert_eq!(band.1, "y-range");
+    assert!(band.0.contains("humidity not stated"), "{}", band.0);
+    assert_eq!([band.2["mu_apparent"], band.2["mu_apparent_upper"]], [0.7 - 0.3, 0.7 + 0.3]);
 }
 
 /// The pull-in point is a point of the drawn loading curve, where it jumps to the stop.

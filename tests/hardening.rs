@@ -71,6 +71,22 @@ fn flags_that_were_ignored_or_defeated_are_errors() {
         ),
         (&["plot", "fig2", "--array", "clamp", "--out", "x.svg"], &["--array", "plot actuator"]),
         (&["plot", "fig2", "--out", "p.txt"], &["p.txt", "unknown image extension", ".svg or .png"]),
+        (&["plot", "fig2"], &["plot fig2", "--out FILE.svg"]),
+        (&["plot", "fig2", "--rh", "0.3", "--out", "x.svg"], &["--rh", "plot humidity"]),
+        (&["plot", "fig3", "--json", "--out", "x.svg"], &["--json", "plot humidity"]),
+        (&["plot", "humidity", "--rh", "0.3"], &["plot humidity", "--scenario"]),
+        (&["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--rh", "1.2"], &["--rh", "1.2", "[0, 1)"]),
+        (&["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--rh", "0.5,0.2"], &["--rh", "must increase"]),
+        (&["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--rh", "0:0.9:0"], &["--rh", "STEPS"]),
+        (&["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--rh", "NaN"], &["--rh", "NaN"]),
+        (
+            &["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--rh", "0.3", "--array", "clamp"],
+            &["--array"],
+        ),
+        (
+            &["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--set", "environment.temperature=900 K"],
+            &["environment.temperature", "647 K"],
+        ),
         (
             &["actuator", "scenarios/tas2000.json", "--array", "clamp", "--sweep", "--sweep-steps", "0"],
             &["--sweep-steps"],

@@ -13,6 +13,7 @@ mod hardening;
 mod hardening_inputs;
 mod hardening_outputs;
 mod height_map_models;
+mod humidity;
 mod models;
 mod npy;
 mod outputs;

@@ -35,6 +35,19 @@ pub fn parse_args<A: clap::Args + clap::FromArgMatches>(command: &'static str, f
     A::from_arg_matches(&matches).map_err(message)
 }
 
+/// The JSON object `stiction plot humidity --scenario PATH [--set ...] --rh RH --json` prints:
+/// the friction meter of the scenario at each relative humidity of `rh` (a list or FROM:TO:STEPS,
+/// default 0:0.9:10; the dry point first).
+pub fn humidity_json(
+    path: &std::path::Path,
+    sets: &[String],
+    rh: Option<&str>,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let rhs = crate::cmd::humidity::rh_grid(rh)?;
+    let sweep = crate::cmd::humidity::sweep(path, sets, &rhs, &mut |_, _| {})?;
+    Ok(finite_value(&sweep)?)
+}
+
 #[cfg(test)]
 mod tests {
     /// A NaN never reaches a front end as a silent null: `serde_json::to_value` writes one as

@@ -630,6 +630,8 @@ fn heat_map(field: &[f64], g: Grid, title: &str, value_label: &str, scale: f64) 
     }
 }
 
+pub(crate) use humidity::parse_rh;
+
 /// `stiction bem --rh`: adhesion energy against relative humidity.
 mod humidity {
     use serde::Serialize;
@@ -645,7 +647,7 @@ mod humidity {
 
     /// The relative humidities of `--rh`: a comma-separated list or FROM:TO:STEPS, each a fraction
     /// in [0, 1) ("0.35" or "35 %").
-    pub(super) fn parse_rh(text: &str) -> Result<Vec<f64>, String> {
+    pub(crate) fn parse_rh(text: &str) -> Result<Vec<f64>, String> {
         let one = |s: &str| -> Result<f64, String> {
             let v = parse_quantity_checked(s.trim(), Dimension::Dimensionless, Constraint::NonNegative)
                 .map_err(|e| format!("--rh {s:?}: {e}"))?;

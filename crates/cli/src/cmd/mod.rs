@@ -7,6 +7,7 @@ pub mod design;
 pub mod discrete;
 pub mod fit;
 pub mod gw;
+pub mod humidity;
 pub mod map_args;
 pub mod merge;
 pub mod plot;

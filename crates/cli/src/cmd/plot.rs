@@ -25,6 +25,10 @@ pub enum Figure {
     Fig7,
     /// Hysteresis of a scenario's actuator array: travel against voltage, loading and unloading.
     Actuator,
+    /// The friction meter of a scenario (--scenario) over relative humidities (--rh): mu_e,a, F_a0
+    /// and the capillary share of the adhesive load against RH, the dry point (RH = 0) first, with
+    /// the scenario's measured reference at the humidity of its experiment; --out is a folder.
+    Humidity,
 }
 
 impl Figure {
@@ -34,6 +38,7 @@ impl Figure {
             Figure::Fig3 => "fig3",
             Figure::Fig7 => "fig7",
             Figure::Actuator => "actuator",
+            Figure::Humidity => "humidity",
         }
     }
 }
@@ -45,9 +50,11 @@ pub struct Args {
     /// The figure.
     #[arg(value_enum)]
     pub figure: Figure,
-    /// Output file (.svg or .png); the data go beside it as .csv.
+    /// Output file (.svg or .png); the data go beside it as .csv. For `humidity`: an output folder
+    /// (results.json, humidity.csv, humidity-mu, humidity-fa0 and humidity-share as .svg, .png and
+    /// .csv, manifest.json); optional there.
     #[arg(long)]
-    pub out: PathBuf,
+    pub out: Option<PathBuf>,
     /// Scenario file: its parameters for fig2, fig3, fig7 and actuator (required for actuator).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
@@ -57,6 +64,16 @@ pub struct Args {
     /// Override a scenario field (repeatable; needs --scenario), as in `stiction run`.
     #[arg(long = "set", value_name = "PATH=VALUE", requires = "scenario")]
     pub sets: Vec<String>,
+    /// Relative humidities for `humidity`: a list (0.1,0.35 or "35 %") or FROM:TO:STEPS, each in
+    /// [0, 1), increasing; the dry point 0 is put first when missing (default 0:0.9:10).
+    #[arg(long, value_name = "LIST|FROM:TO:STEPS", allow_hyphen_values = true)]
+    pub rh: Option<String>,
+    /// For `humidity`: print one JSON object on stdout instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// For `humidity`: write into an --out folder that holds files not from an earlier stiction run.
+    #[arg(long)]
+    pub force: bool,
     /// Figure size and font.
     #[command(flatten)]
     pub fig: FigureArgs,
@@ -96,7 +113,19 @@ pub fn write_chart(chart: &Chart, path: &Path) -> CliResult {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
-    chart_format(&args.out).map_err(|e| format!("--out {e}"))?;
+    if matches!(args.figure, Figure::Humidity) {
+        return humidity(&args);
+    }
+    for (given, flag) in [(args.rh.is_some(), "--rh"), (args.json, "--json"), (args.force, "--force")] {
+        if given {
+            return Err(
+                format!("{flag} is used only by `plot humidity`; `plot {}` has none", args.figure.name()).into()
+            );
+        }
+    }
+    let out =
+        args.out.as_ref().ok_or_else(|| format!("`plot {}` needs --out FILE.svg or FILE.png", args.figure.name()))?;
+    chart_format(out).map_err(|e| format!("--out {e}"))?;
     if args.array.is_some() && !matches!(args.figure, Figure::Actuator) {
         return Err(format!(
             "--array is used only by `plot actuator`; `plot {}` has no actuator array",
@@ -122,9 +151,99 @@ pub fn run(args: Args) -> CliResult {
             let path = args.scenario.as_ref().ok_or("`plot actuator` needs --scenario FILE.json")?;
             crate::cmd::actuator::hysteresis_chart(path, args.array.as_deref(), &args.sets)?
         }
+        Figure::Humidity => return humidity(&args),
     };
-    write_chart(&args.fig.apply(chart)?, &args.out)?;
-    crate::errln!("wrote {} and {}", args.out.display(), stiction_plot::data_path(&args.out).display());
+    write_chart(&args.fig.apply(chart)?, out)?;
+    crate::errln!("wrote {} and {}", out.display(), stiction_plot::data_path(out).display());
+    Ok(())
+}
+
+/// `plot humidity`: the sweep of [`crate::cmd::humidity::sweep`], printed as a table or JSON and
+/// written with its figures to the --out folder.
+fn humidity(args: &Args) -> CliResult {
+    use crate::cmd::humidity as h;
+    use crate::output::{OutputSet, TextTable, print_json};
+    if args.array.is_some() {
+        return Err("--array is used only by `plot actuator`; `plot humidity` has no actuator array".into());
+    }
+    let rhs = h::rh_grid(args.rh.as_deref())?;
+    let path = args.scenario.as_ref().ok_or("`plot humidity` needs --scenario FILE.json")?;
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "plot humidity", args.force)?),
+        None => None,
+    };
+    let bar = indicatif::ProgressBar::new(rhs.len() as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} humidities {pos}/{len} [{bar:30}] {elapsed_precise}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let sweep = h::sweep(path, &args.sets, &rhs, &mut |done, _| bar.set_position(done as u64))?;
+    bar.finish_and_clear();
+    if let Some(mut set) = outputs {
+        let charts: Vec<(&str, Chart)> = h::charts(&sweep)
+            .into_iter()
+            .map(|(n, c)| Ok((n, args.fig.apply(c)?)))
+            .collect::<Result<_, Box<dyn std::error::Error>>>()?;
+        let mut json = serde_json::to_value(&sweep)?;
+        if let Some(obj) = json.as_object_mut() {
+            let figures: serde_json::Map<String, serde_json::Value> =
+                charts.iter().map(|(n, c)| (n.to_string(), c.data_json())).collect();
+            obj.insert("figures".into(), serde_json::Value::Object(figures));
+        }
+        set.add_bytes("results.json", crate::output::json_text(&json)?.as_bytes())?;
+        set.add_bytes("humidity.csv", &h::table_csv(&sweep)?)?;
+        for (stem, chart) in &charts {
+            set.add_chart(&format!("{stem}.svg"), chart)?;
+            set.add_chart(&format!("{stem}.png"), chart)?;
+        }
+        set.commit()?;
+    }
+    if args.json {
+        return print_json(&sweep);
+    }
+    crate::outln!("stiction plot humidity --scenario {}", sweep.scenario);
+    crate::outln!(
+        "  contact model: {}, {:.2} C, water contact angle {:.0} deg / {:.0} deg (sidewall / shoe)",
+        sweep.contact_model,
+        sweep.temperature_k - 273.15,
+        sweep.contact_angle_rad.to_degrees(),
+        sweep.counter_face_contact_angle_rad.to_degrees()
+    );
+    let mut t = TextTable::new(&["RH (%)", "mu_e,a", "F_a0 (uN)", "capillary share (%)", "h_m (nm)", "note"]);
+    let opt = |x: Option<f64>, scale: f64, prec: usize| x.map_or("-".to_string(), |v| format!("{:.prec$}", v * scale));
+    for p in &sweep.points {
+        t.row(vec![
+            format!("{:.1}", p.relative_humidity * 100.0),
+            opt(p.mu_apparent, 1.0, 3),
+            opt(p.apparent_adhesion_force_n, 1e6, 3),
+            opt(p.capillary_share, 100.0, 1),
+            opt(p.meniscus_height_m, 1e9, 3),
+            p.reason.clone().unwrap_or_default(),
+        ]);
+    }
+    t.print("  ");
+    for w in &sweep.warnings {
+        crate::outln!("  warning [{}]: {}", w.code, w.message);
+    }
+    if let Some(r) = &sweep.reference {
+        let at = match r.relative_humidity {
+            Some(rh) => format!(" at RH = {:.1} %", rh * 100.0),
+            None => ", humidity not stated".into(),
+        };
+        crate::outln!(
+            "  reference, measured ({}){at}: mu_e,a = {}, F_a0 = {} uN",
+            r.source,
+            r.mu_apparent.map_or("-".into(), |m| format!("{m}")),
+            r.apparent_adhesion_force_n.map_or("-".into(), |f| format!("{}", (f * 1e12).round() / 1e6))
+        );
+    }
+    if let Some(dir) = &args.out {
+        crate::outln!(
+            "\nwrote {}/results.json, humidity.csv, humidity-mu, humidity-fa0 and humidity-share (.svg, .png, .csv), \
+             manifest.json",
+            dir.display()
+        );
+    }
     Ok(())
 }
 

@@ -312,16 +312,11 @@ fn print_humidity(r: &MeterResult, h: &stiction_meter::Humidity) {
         h.relative_humidity * 100.0,
         h.temperature_k - 273.15
     );
-    let (adh, cap) = r
-        .points
-        .iter()
-        .filter(|p| p.in_contact && p.error.is_none())
-        .fold((0.0, 0.0), |(a, c), p| (a + p.adhesive_load_n, c + p.capillary_load_n.unwrap_or(0.0)));
-    if adh > 0.0 {
+    if let Some(share) = crate::cmd::humidity::capillary_share(r) {
         crate::outln!(
             "  capillary share of the adhesive load: {:.1} % (summed over the points in contact; per point: \
              `capillary_load_n` in --json)",
-            100.0 * cap / adh
+            100.0 * share
         );
     }
 }
