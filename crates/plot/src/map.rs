@@ -47,7 +47,7 @@ pub struct ImageMap {
     pub size_mm: Option<(f64, f64)>,
     /// PNG resolution (default 300 at a physical size).
     pub dpi: Option<f64>,
-    /// Tick label font size in px (default 15, or 8 pt at a physical size).
+    /// Tick label font size in px (default: as a chart's, `Chart::font_size_px`).
     pub font_px: Option<f64>,
 }
 
@@ -152,7 +152,7 @@ impl ImageMap {
     }
 
     fn font(&self) -> f64 {
-        self.font_px.unwrap_or(if self.size_mm.is_some() { 8.0 * 4.0 / 3.0 } else { 15.0 })
+        self.font_px.unwrap_or(crate::render::default_font_px(self.size_mm.is_some(), self.size_px))
     }
 
     fn png_scale(&self) -> f64 {
@@ -187,7 +187,7 @@ impl ImageMap {
         let (caption, caption_top) = draw_caption(&mut prims, self.note.as_deref(), w, h, f);
         let marker_h = if self.markers.is_empty() { 0.0 } else { 1.4 * f };
         // The colour bar's axis, its labels and its upright label take the right margin.
-        let bar = Axis { scale: Scale::Linear, lo, hi: lo + span, named: None };
+        let bar = Axis { scale: Scale::Linear, lo, hi: lo + span, named: None, min_font: f };
         let (tl, g) = (0.35 * f, 0.3 * f);
         let bar_ticks_guess = crate::ticks(Scale::Linear, lo, lo + span, 6.0).0;
         let bar_label_w = bar_ticks_guess
@@ -197,8 +197,8 @@ impl ImageMap {
         let bar_lines = crate::text::wrap(&bar_label, h * 0.6, f);
         let reserve = 0.8 * f + 1.0 * f + tl + g + bar_label_w + g + bar_lines.len() as f64 * 1.2 * f;
         let area = Rect { x0: pad, y0: title_bottom + 0.3 * f, x1: w - pad - reserve, y1: caption_top - marker_h };
-        let xa = Axis { scale: Scale::Linear, lo: 0.0, hi: self.x_max, named: None };
-        let ya = Axis { scale: Scale::Linear, lo: 0.0, hi: self.y_max, named: None };
+        let xa = Axis { scale: Scale::Linear, lo: 0.0, hi: self.x_max, named: None, min_font: f };
+        let ya = Axis { scale: Scale::Linear, lo: 0.0, hi: self.y_max, named: None, min_font: f };
         let fr = frame(area, f, &xa, &ya, &self.x_label, &self.y_label, Some((self.x_max, self.y_max)));
         let p = fr.plot;
         // The image, row 0 of the grid at the bottom.
@@ -346,6 +346,7 @@ impl ImageMap {
             width: w,
             height: h,
             font_px: f,
+            requested_font_px: f,
             plot: p,
             title,
             caption,
