@@ -312,6 +312,24 @@ impl Axis {
                     return Ticks { bold, light: Vec::new(), vertical: false, size: s };
                 }
             }
+            // Upright, a label of several words on two lines (split at the space nearest its
+            // middle) when the spacing holds two lines: half the height below the axis.
+            let two_lines = spacing >= 2.5 * small;
+            let bold = bold
+                .into_iter()
+                .map(|(v, l)| {
+                    let split = two_lines
+                        .then(|| {
+                            let mid = l.chars().count() / 2;
+                            l.char_indices()
+                                .filter(|(_, c)| *c == ' ')
+                                .min_by_key(|(i, _)| l[..*i].chars().count().abs_diff(mid))
+                                .map(|(i, _)| format!("{}\n{}", &l[..i], &l[i + 1..]))
+                        })
+                        .flatten();
+                    (v, split.unwrap_or(l))
+                })
+                .collect();
             return Ticks { bold, light: Vec::new(), vertical: true, size: small };
         }
         let mut n = if horizontal { 10.0 } else { (length / (1.9 * f)).clamp(2.0, 10.0) };
@@ -388,7 +406,7 @@ pub(crate) fn frame(
         let yt = y.ticks(plot.height(), f, false);
         let yw = yt.bold.iter().map(|b| text_width(&b.1, yt.size)).fold(0.0, f64::max);
         let xt_h = if xt.vertical {
-            xt.bold.iter().map(|b| text_width(&b.1, xt.size)).fold(0.0, f64::max)
+            xt.bold.iter().flat_map(|b| b.1.split('\n')).map(|l| text_width(l, xt.size)).fold(0.0, f64::max)
         } else {
             let (u, d) = text_extent("0", xt.size);
             u + d
@@ -470,11 +488,27 @@ pub(crate) fn draw_axes(
     for (v, l) in &fr.xt.bold {
         let xp = px(*v);
         prims.push(Prim::Path { pts: vec![(xp, p.y1), (xp, p.y1 + tl)], color: INK, width: axis_w, dash: None });
-        let (at, rect, vertical, anchor) = if fr.xt.vertical {
-            let (u, d) = text_extent(l, fr.xt.size);
-            let at = (xp + (u - d) / 2.0, p.y1 + tl + g);
-            (at, vbox(l, at, fr.xt.size, Anchor::End), true, Anchor::End)
-        } else {
+        if fr.xt.vertical {
+            // Upright, one or two lines side by side, centred on the tick.
+            let lines: Vec<&str> = l.split('\n').collect();
+            let step = 1.15 * fr.xt.size;
+            for (j, line) in lines.iter().enumerate() {
+                let (u, d) = text_extent(line, fr.xt.size);
+                let shift = (j as f64 - (lines.len() - 1) as f64 / 2.0) * step;
+                let at = (xp + (u - d) / 2.0 + shift, p.y1 + tl + g);
+                prims.push(Prim::Text {
+                    at,
+                    text: line.to_string(),
+                    size: fr.xt.size,
+                    color: INK,
+                    anchor: Anchor::End,
+                    vertical: true,
+                });
+                xb.push(TextBox { text: line.to_string(), rect: vbox(line, at, fr.xt.size, Anchor::End) });
+            }
+            continue;
+        }
+        let (at, rect, vertical, anchor) = {
             let (u, _) = text_extent("0", fr.xt.size);
             let at = (xp, p.y1 + tl + g + u);
             (at, hbox(l, at, fr.xt.size, Anchor::Middle), false, Anchor::Middle)
