@@ -213,7 +213,12 @@ impl ImageMap {
         prims.push(Prim::Image { x0: p.x0, y0: p.y0, x1: p.x1, y1: p.y1, nx: self.nx, ny: self.ny, rgb });
         let (xt, yt, xl, yl) = draw_axes(&mut prims, &fr, &xa, &ya, f, false, pad);
         let red = Rgb(0xd6, 0x27, 0x28);
-        let r = 0.22 * f;
+        // Marker rings no wider than about a third of the mean spacing of the markers on the
+        // drawn image (sqrt(area / n)), so that dense summits do not hide the map; 0.22 font
+        // sizes at most, 0.8 px at least.
+        let spacing = (p.width() * p.height() / self.markers.len().max(1) as f64).sqrt();
+        let r = (0.22 * f).min(0.3 * spacing).max(0.8);
+        let ring_w = (0.07 * f).max(0.75).min(0.4 * r);
         let ring = |c: (f64, f64)| -> Vec<(f64, f64)> {
             (0..=16)
                 .map(|i| i as f64 / 16.0 * std::f64::consts::TAU)
@@ -225,7 +230,7 @@ impl ImageMap {
         for &(x, y) in &self.markers {
             let c = (p.x0 + x / self.x_max * p.width(), p.y1 - y / self.y_max * p.height());
             if c.0.is_finite() && c.1.is_finite() {
-                prims.push(Prim::Path { pts: ring(c), color: red, width: (0.07 * f).max(0.75), dash: None });
+                prims.push(Prim::Path { pts: ring(c), color: red, width: ring_w, dash: None });
                 points.push(c);
             }
         }
@@ -235,13 +240,18 @@ impl ImageMap {
             let label = self.marker_label.clone().unwrap_or_else(|| "summits".into());
             let (u, _) = text_extent("Ag", 0.9 * f);
             let y = fr.below_axis + 0.3 * f + u;
+            let r_key = 0.22 * f;
+            let key_ring: Vec<(f64, f64)> = (0..=16)
+                .map(|i| i as f64 / 16.0 * std::f64::consts::TAU)
+                .map(|t| (p.x0 + r_key + r_key * t.cos(), y - 0.3 * f + r_key * t.sin()))
+                .collect();
             prims.push(Prim::Path {
-                pts: ring((p.x0 + r, y - 0.3 * f)),
+                pts: key_ring,
                 color: red,
                 width: (0.07 * f).max(0.75),
                 dash: None,
             });
-            let at = (p.x0 + 2.0 * r + 0.4 * f, y);
+            let at = (p.x0 + 2.0 * r_key + 0.4 * f, y);
             prims.push(Prim::Text {
                 at,
                 text: label.clone(),

@@ -561,9 +561,9 @@ fn write_outputs(
     // The load of the drawn state: the last point of the path.
     let state = out.points.last().map_or(String::new(), |p| {
         format!(
-            " at mean pressure {} MPa (load {} mN)",
-            crate::cmd::plot::sig3(p.mean_pressure_pa * 1e-6),
-            crate::cmd::plot::sig3(p.load_n * 1e3)
+            " at mean pressure {} (load {})",
+            q(p.mean_pressure_pa, Dimension::Pressure),
+            q(p.load_n, Dimension::Force)
         )
     });
     // Elastic contact pressure peaks at several times E* at the summits: the colour bar picks
