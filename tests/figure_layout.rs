@@ -242,8 +242,98 @@ fn case_faults(c: &Case, size: &str, size_args: &[&str]) -> Vec<String> {
         let name = f.file_name().unwrap().to_string_lossy().replace(".layout.json", "");
         faults.extend(layout_faults(&l).into_iter().map(|p| format!("{} {name} at {size}: {p}", c.name)));
     }
+    faults.extend(data_faults(&dir).into_iter().map(|p| format!("{} at {size}: {p}", c.name)));
     let _ = std::fs::remove_dir_all(&dir);
     faults
+}
+
+/// Every figure (`*.svg`, `*.png`) under `dir` has its data CSV beside it in the documented shape
+/// (docs/figures.md, "Data CSV"): a chart's `series,style[,label],X,Y,X_err,Y_err,Y_upper,X_upper`,
+/// a map's `x_um,y_um,VALUE_UNIT`, the x and y columns each followed by their `_err` and `_upper`
+/// columns in that order; every number Rust's shortest decimal of an f64 (it prints
+/// back to the same text), no NaN or infinity.
+fn data_faults(dir: &Path) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                if !p.ends_with("layouts") {
+                    stack.push(p);
+                }
+                continue;
+            }
+            if !matches!(p.extension().and_then(|e| e.to_str()), Some("svg" | "png")) {
+                continue;
+            }
+            let csv = p.with_extension("csv");
+            let Ok(text) = std::fs::read_to_string(&csv) else {
+                out.push(format!("{} has no data CSV beside it", p.display()));
+                continue;
+            };
+            let mut lines = text.lines();
+            let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+            let chart = header.starts_with(&["series", "style"]);
+            let map = header.len() == 3 && header[0] == "x_um" && header[1] == "y_um";
+            let first = if chart { if header.get(2) == Some(&"label") { 3 } else { 2 } } else { 0 };
+            // (Column names carry their unit, `load_un`, but a dimensionless one has none,
+            // `theta`: the unit is not checked here.)
+            let cols = if chart { 6 } else { 3 };
+            if !(chart || map) || header.len() != first + cols || header[first..].iter().any(|k| k.is_empty()) {
+                out.push(format!("{}: header {header:?} is not the documented shape", csv.display()));
+                continue;
+            }
+            if chart {
+                let (x, y) = (header[first], header[first + 1]);
+                let want = [format!("{x}_err"), format!("{y}_err"), format!("{y}_upper"), format!("{x}_upper")];
+                if header[first + 2..] != want.iter().map(String::as_str).collect::<Vec<_>>()[..] {
+                    out.push(format!("{}: header {header:?} is not the documented shape", csv.display()));
+                    continue;
+                }
+            }
+            let mut rows = csv_rows(&text);
+            rows.remove(0);
+            for (i, row) in rows.iter().enumerate() {
+                for cell in &row[first.min(row.len())..] {
+                    if cell.is_empty() {
+                        continue;
+                    }
+                    match cell.parse::<f64>() {
+                        Ok(v) if v.is_finite() && format!("{v}") == *cell => {}
+                        _ => {
+                            out.push(format!("{} line {}: {cell:?} is not a shortest finite decimal", csv.display(), i + 2));
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The records of a CSV text (quoted fields may hold commas).
+fn csv_rows(text: &str) -> Vec<Vec<String>> {
+    let mut rows = Vec::new();
+    for line in text.lines() {
+        let (mut row, mut cell, mut quoted) = (Vec::new(), String::new(), false);
+        let mut chars = line.chars().peekable();
+        while let Some(c) = chars.next() {
+            match c {
+                '"' if quoted && chars.peek() == Some(&'"') => {
+                    cell.push('"');
+                    chars.next();
+                }
+                '"' => quoted = !quoted,
+                ',' if !quoted => row.push(std::mem::take(&mut cell)),
+                _ => cell.push(c),
+            }
+        }
+        row.push(cell);
+        rows.push(row);
+    }
+    rows
 }
 
 #[test]
