@@ -67,12 +67,29 @@ const CASES: &[Case] = &[
     ),
     case(
         "fit",
-        &["fit", "--scenario", "scenarios/tas2000-fit-synthetic.json", "--surfaces", "4", "--draws", "200", "--out", "{dir}/out"],
+        &[
+            "fit",
+            "--scenario",
+            "scenarios/tas2000-fit-synthetic.json",
+            "--surfaces",
+            "4",
+            "--draws",
+            "200",
+            "--out",
+            "{dir}/out",
+        ],
         6,
     ),
     case(
         "actuator-validation",
-        &["actuator", "scenarios/gca-rauf2022.json", "--validate", "data/gca-pullin-release/measured.csv", "--out", "{dir}/out"],
+        &[
+            "actuator",
+            "scenarios/gca-rauf2022.json",
+            "--validate",
+            "data/gca-pullin-release/measured.csv",
+            "--out",
+            "{dir}/out",
+        ],
         4,
     ),
     case(
@@ -183,10 +200,8 @@ fn layout_faults(l: &serde_json::Value) -> Vec<String> {
             out.push(format!("the legend {g:?} outside the axes overlaps the plot {plot:?}"));
         }
     }
-    let outer: Boxes = ["title", "caption", "x_label", "y_label", "x_ticks", "y_ticks"]
-        .iter()
-        .flat_map(|k| texts(l, k))
-        .collect();
+    let outer: Boxes =
+        ["title", "caption", "x_label", "y_label", "x_ticks", "y_ticks"].iter().flat_map(|k| texts(l, k)).collect();
     let inner_plot = [plot[0] + 0.5, plot[1] + 0.5, plot[2] - 0.5, plot[3] - 0.5];
     for (i, a) in outer.iter().enumerate() {
         if overlap(&a.1, &inner_plot) {
@@ -229,9 +244,8 @@ fn case_faults(c: &Case, size: &str, size_args: &[&str]) -> Vec<String> {
     let mut args = c.args.to_vec();
     args.extend(size_args);
     run_in(&dir, &args, Some(&layouts));
-    let mut files: Vec<_> = std::fs::read_dir(&layouts)
-        .map(|d| d.flatten().map(|e| e.path()).collect())
-        .unwrap_or_default();
+    let mut files: Vec<_> =
+        std::fs::read_dir(&layouts).map(|d| d.flatten().map(|e| e.path()).collect()).unwrap_or_default();
     files.sort();
     let mut faults = Vec::new();
     if files.len() < c.figures {
@@ -302,7 +316,11 @@ fn data_faults(dir: &Path) -> Vec<String> {
                     match cell.parse::<f64>() {
                         Ok(v) if v.is_finite() && format!("{v}") == *cell => {}
                         _ => {
-                            out.push(format!("{} line {}: {cell:?} is not a shortest finite decimal", csv.display(), i + 2));
+                            out.push(format!(
+                                "{} line {}: {cell:?} is not a shortest finite decimal",
+                                csv.display(),
+                                i + 2
+                            ));
                             break;
                         }
                     }

@@ -245,12 +245,7 @@ impl ImageMap {
                 .map(|i| i as f64 / 16.0 * std::f64::consts::TAU)
                 .map(|t| (p.x0 + r_key + r_key * t.cos(), y - 0.3 * f + r_key * t.sin()))
                 .collect();
-            prims.push(Prim::Path {
-                pts: key_ring,
-                color: red,
-                width: (0.07 * f).max(0.75),
-                dash: None,
-            });
+            prims.push(Prim::Path { pts: key_ring, color: red, width: (0.07 * f).max(0.75), dash: None });
             let at = (p.x0 + 2.0 * r_key + 0.4 * f, y);
             prims.push(Prim::Text {
                 at,

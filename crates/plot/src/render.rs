@@ -762,7 +762,9 @@ impl Chart {
             .iter()
             .position(|t| t.0 == 0 && readable(&t.1.1))
             .or_else(|| {
-                (0..tries.len()).filter(|&i| tries[i].0 == 0).max_by(|&a, &b| area(&tries[a].1.1).total_cmp(&area(&tries[b].1.1)))
+                (0..tries.len())
+                    .filter(|&i| tries[i].0 == 0)
+                    .max_by(|&a, &b| area(&tries[a].1.1).total_cmp(&area(&tries[b].1.1)))
             })
             .unwrap_or_else(|| {
                 let fewest = tries.iter().map(|t| t.0).min().unwrap_or(0);

@@ -612,8 +612,8 @@ fn write_outputs(
             .with(Series::markers("BEM / independent Hertz summits, solved loads", ratio).with_color(0));
             chart.x_log = p_log;
             let chart = fig.apply(chart)?;
-        set.add_chart("area_ratio.svg", &chart)?;
-        set.add_chart("area_ratio.png", &chart)?;
+            set.add_chart("area_ratio.svg", &chart)?;
+            set.add_chart("area_ratio.png", &chart)?;
         }
     }
     set.commit()

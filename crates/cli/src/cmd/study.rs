@@ -855,9 +855,7 @@ fn sensitivity_chart(summary: &StudySummary) -> Chart {
                 inputs.push(r.input.clone());
                 if let Some([lo, hi]) = ci {
                     segments.push(
-                        Series::line(*name, vec![(x, lo), (x, hi)])
-                            .with_color(k)
-                            .with_labels(vec![r.input.clone(); 2]),
+                        Series::line(*name, vec![(x, lo), (x, hi)]).with_color(k).with_labels(vec![r.input.clone(); 2]),
                     );
                 }
             }
