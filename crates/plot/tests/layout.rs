@@ -215,8 +215,8 @@ fn maps_fit_a_journal_column_and_a_small_preview() {
     }
 }
 
-/// The legibility floor: a chart far too crowded for a journal column (nine series with long
-/// names, a three-line title and a long caption) is drawn at 0.85 of the 8 pt asked for at the
+/// The legibility floor: a chart far too crowded for a journal column (24 series with long
+/// names, a three-line title and a long caption: no placement fits at any size) is drawn at 0.85 of the 8 pt asked for at the
 /// least (6.8 pt, FONT_FLOOR), never smaller; a layout whose font fell under the floor is
 /// reported by `Layout::problems`. Without a font size, a 400 x 280 px canvas gets 8 pt (10.67
 /// px) and an 800 x 560 one 15 px.
@@ -228,7 +228,7 @@ fn crowded_charts_never_fall_below_the_font_floor() {
         "a long y axis label with its unit (µN)",
     )
     .with_note("A caption of two or three lines at this width, which the layout must keep below the figure whatever else it has to do to fit the rest.");
-    for k in 0..9 {
+    for k in 0..24 {
         let pts: Vec<(f64, f64)> = (0..50).map(|i| (i as f64, (i as f64 * 0.2 + k as f64).sin() + k as f64)).collect();
         c = c.with(Series::line(format!("series number {k} with a long legend name"), pts));
     }
