@@ -39,7 +39,7 @@ impl Data {
                     .iter()
                     .zip(rec.iter())
                     .skip(2)
-                    .filter(|(_, v)| !v.is_empty())
+                    .filter(|(k, v)| !v.is_empty() && *k != "label")
                     .map(|(k, v)| {
                         (k.clone(), v.parse::<f64>().unwrap_or_else(|e| panic!("{}: {v}: {e}", path.display())))
                     })
@@ -49,11 +49,15 @@ impl Data {
             .collect();
         Data { header, rows }
     }
+    /// Where x is: after `series`, `style` and (when points are named) `label`.
+    fn first(&self) -> usize {
+        if self.header[2] == "label" { 3 } else { 2 }
+    }
     fn x(&self) -> &str {
-        &self.header[2]
+        &self.header[self.first()]
     }
     fn y(&self) -> &str {
-        &self.header[3]
+        &self.header[self.first() + 1]
     }
     /// The points of the series whose name starts with `name`.
     fn series(&self, name: &str) -> Vec<(f64, f64)> {
@@ -163,7 +167,15 @@ fn check_folder(dir: &Path) -> Vec<String> {
     entries.sort();
     for p in entries {
         if p.extension().is_some_and(|e| e == "svg") && p.with_extension("csv").is_file() {
-            check_shape(&p);
+            let csv = std::fs::read_to_string(p.with_extension("csv")).unwrap();
+            let header: Vec<&str> = csv.lines().next().unwrap_or_default().split(',').collect();
+            if header[..2] == ["x_um", "y_um"] {
+                // A map: cell centres in um and the value in the colour bar's unit.
+                assert_eq!(header.len(), 3, "{}: {header:?}", p.display());
+                assert!(UNITS.iter().any(|u| header[2].ends_with(u)), "{}: {header:?}", p.display());
+            } else {
+                check_shape(&p);
+            }
             let png = p.with_extension("png");
             if png.is_file() {
                 assert_eq!(png_size(&png), (400, 280), "{}", png.display());
@@ -362,15 +374,28 @@ fn study_fit_topography_and_bem_figures_have_one_data_shape() {
     for want in ["first order", "total order"] {
         assert!(names.iter().filter(|n| n.ends_with(want)).count() == 2, "{want}: {names:?}");
     }
-    let segments: Vec<(f64, f64)> =
-        s.rows.iter().filter(|r| r.0.is_empty()).map(|r| (r.2[s.x()], r.2[s.y()])).collect();
+    // The interval segments are `line` rows of the series of their estimates (named as in the
+    // legend), two rows each.
+    let segments: Vec<(String, f64, f64)> =
+        s.rows.iter().filter(|r| r.1 == "line").map(|r| (r.0.clone(), r.2[s.x()], r.2[s.y()])).collect();
     assert!(!segments.is_empty() && segments.len().is_multiple_of(2));
     for pair in segments.chunks(2) {
-        assert!(pair[0].0 == pair[1].0 && pair[0].1 <= pair[1].1, "{pair:?}");
-        let marks: Vec<f64> =
-            s.rows.iter().filter(|r| !r.0.is_empty() && r.2[s.x()] == pair[0].0).map(|r| r.2[s.y()]).collect();
-        assert_eq!(marks.len(), 1, "one estimate per interval at x = {}", pair[0].0);
+        assert!(pair[0].0 == pair[1].0 && pair[0].1 == pair[1].1 && pair[0].2 <= pair[1].2, "{pair:?}");
+        let marks: Vec<f64> = s
+            .rows
+            .iter()
+            .filter(|r| r.1 == "markers" && r.0 == pair[0].0 && r.2[s.x()] == pair[0].1)
+            .map(|r| r.2[s.y()])
+            .collect();
+        assert_eq!(marks.len(), 1, "one estimate of {} per interval at x = {}", pair[0].0, pair[0].1);
     }
+    // Every point names its input by its path in the scenario (the `label` column).
+    let text = std::fs::read_to_string(dir.join("study/sensitivity_indices.csv")).unwrap();
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    assert_eq!(r.headers().unwrap().get(2), Some("label"));
+    let labels: Vec<String> = r.records().map(|rec| rec.unwrap()[2].to_string()).collect();
+    assert!(labels.iter().any(|l| l == "actuators.clamp.conversion_factor"), "{labels:?}");
+    assert!(labels.iter().all(|l| !l.is_empty()), "{labels:?}");
 
     draw(&[
         "fit",
@@ -395,7 +420,7 @@ fn study_fit_topography_and_bem_figures_have_one_data_shape() {
     assert!(vp.rows.last().unwrap().0.starts_with("measured"));
 
     draw(&["topography", "data/topography-example/wall.gsf", "--out", &d("topo")]);
-    assert_eq!(check_folder(&dir.join("topo")), ["psd", "summit_heights", "summit_radii"]);
+    assert_eq!(check_folder(&dir.join("topo")), ["height_map", "psd", "summit_heights", "summit_radii"]);
     // In the axes' units: heights in nm (tens), radii in um (tenths), frequencies in 1/um.
     let h = Data::read(&dir.join("topo/summit_heights.csv")).series("map");
     let top = h.iter().map(|p| p.0.abs()).fold(0.0, f64::max);
@@ -417,8 +442,9 @@ fn study_fit_topography_and_bem_figures_have_one_data_shape() {
         "--out",
         &d("bem"),
     ]);
-    for f in ["load_area.png", "load_gap.png"] {
-        check_shape(&dir.join("bem").join(f));
-        assert_eq!(png_size(&dir.join("bem").join(f)), (400, 280), "{f}");
-    }
+    assert_eq!(check_folder(&dir.join("bem")), ["gap", "height", "load_area", "load_gap", "pressure"]);
+    // Maps at full resolution: one CSV row per grid cell (640 x 200), pressures in GPa.
+    let p = std::fs::read_to_string(dir.join("bem/pressure.csv")).unwrap();
+    assert!(p.starts_with("x_um,y_um,pressure_gpa\n"), "{}", &p[..40]);
+    assert_eq!(p.lines().count(), 1 + 640 * 200);
 }

@@ -7,6 +7,7 @@ mod bad_inputs;
 mod bem;
 mod design;
 mod figure_data;
+mod figure_layout;
 mod figures;
 mod fit_hardening;
 mod hardening;

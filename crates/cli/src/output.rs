@@ -303,6 +303,34 @@ fn foreign_refusal(dir: &Path, foreign: &[String]) -> Box<dyn std::error::Error>
     .into()
 }
 
+/// The environment variable naming a folder where every figure's layout goes as JSON
+/// ([`record_layout`]); unset in normal use. The end-to-end layout test sets it.
+pub const LAYOUT_DIR_ENV: &str = "STICTION_LAYOUT_DIR";
+
+/// When [`LAYOUT_DIR_ENV`] names a folder, writes the layout of the figure just written to `figure`
+/// there as `NAME.layout.json` (NAME: the figure's file name; `-2`, `-3`, ... appended when a
+/// figure of that name was recorded before): every element's box and the layout's problems
+/// (`stiction_plot::Layout::to_json`), for a test that checks the program's figures from the drawn
+/// elements. Nothing is written when the variable is unset.
+pub fn record_layout(
+    figure: &Path,
+    layout: impl FnOnce() -> Result<stiction_plot::Layout, stiction_plot::PlotError>,
+) -> CliResult {
+    let Some(dir) = std::env::var_os(LAYOUT_DIR_ENV) else { return Ok(()) };
+    let dir = PathBuf::from(dir);
+    ensure_dir(&dir)?;
+    let name = figure.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let mut path = dir.join(format!("{name}.layout.json"));
+    let mut k = 2;
+    while path.exists() {
+        path = dir.join(format!("{name}-{k}.layout.json"));
+        k += 1;
+    }
+    let json = layout()?.to_json();
+    stiction_units::io::write_atomic(&path, json_text(&json)?.as_bytes())?;
+    Ok(())
+}
+
 /// Writes a chart straight into `dir` as `{stem}.svg`, `{stem}.png` and its data `{stem}.csv` (the
 /// files [`OutputSet::add_chart`] writes, in the same CSV shape), for a folder that is not an
 /// [`OutputSet`] (a study's resumable log folder). Returns the names written.
@@ -493,12 +521,16 @@ impl OutputSet {
     }
 
     /// Adds a colour image (a field drawn as a heat map with a colour bar) as SVG or PNG by the
-    /// name's extension. Its drawn cells go beside it as CSV under the same name (`height.png`,
-    /// `height.csv`).
+    /// name's extension. Its drawn cells go beside it as CSV under the same stem, once per stem
+    /// (`height.svg`, `height.png`, `height.csv`).
     pub fn add_image_map(&mut self, name: &str, map: &stiction_plot::ImageMap) -> CliResult {
         let path = self.claim(name)?;
         map.write(&path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
+        record_layout(&path, || map.layout())?;
         let csv_name = Path::new(name).with_extension("csv").to_string_lossy().into_owned();
+        if self.files.contains(&csv_name) {
+            return Ok(());
+        }
         self.add_bytes(&csv_name, map.data_csv().as_bytes())
     }
 

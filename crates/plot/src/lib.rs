@@ -30,7 +30,7 @@ pub mod style;
 pub mod text;
 pub use canvas::Rgb;
 pub use map::{ImageMap, block_means};
-pub use render::{Layout, Rect, TextBox};
+pub use render::{FONT_FLOOR, Layout, Rect, TextBox, default_font_px};
 pub use style::Marker;
 
 /// How a series is drawn.
@@ -94,6 +94,9 @@ pub struct Series {
     pub marker: Option<Marker>,
     /// Drawn after every other series (the measured or best series).
     pub on_top: bool,
+    /// What each point is (one per point, e.g. the input a Sobol index belongs to): the data CSV's
+    /// `label` column, present when any series of the chart has labels.
+    pub labels: Option<Vec<String>>,
 }
 
 impl Series {
@@ -132,6 +135,11 @@ impl Series {
     /// Adds vertical error bars (half-lengths).
     pub fn with_y_err(mut self, y_err: Vec<f64>) -> Self {
         self.y_err = Some(y_err);
+        self
+    }
+    /// Names each point (one label per point; the data CSV's `label` column).
+    pub fn with_labels(mut self, labels: Vec<String>) -> Self {
+        self.labels = Some(labels);
         self
     }
     /// Adds horizontal error bars (half-lengths).
@@ -219,7 +227,8 @@ pub struct Chart {
     pub size_mm: Option<(f64, f64)>,
     /// PNG resolution, pixels per inch of the figure's size (1 px of `size_px` is 1/96 in).
     pub dpi: Option<f64>,
-    /// Tick label font size in px of 1/96 in (0.75 pt; default 15, or 8 pt at a physical size);
+    /// Tick label font size in px of 1/96 in (0.75 pt; default [`default_font_px`]: 15 px at
+    /// 800 x 560 px, less on a smaller canvas down to 8 pt, and 8 pt at a physical size);
     /// titles, labels, legend and caption scale with it.
     pub font_px: Option<f64>,
 }
@@ -439,19 +448,27 @@ impl Chart {
             .collect()
     }
 
-    /// The plotted numbers as CSV: one row per point, columns `series`, `style`, x and y with their
+    /// The plotted numbers as CSV: one row per point, columns `series`, `style`, (`label` when a
+    /// series names its points), x and y with their
     /// units, the error bars, band edges and span ends where a series has them
     /// ([`Chart::data_columns`]).
     pub fn data_csv(&self) -> String {
         let mut w = csv::Writer::from_writer(Vec::new());
         let mut header = vec!["series".to_string(), "style".into()];
+        let labelled = self.series.iter().any(|s| s.labels.is_some());
+        if labelled {
+            header.push("label".into());
+        }
         header.extend(self.data_columns());
         // Writing to a Vec cannot fail.
         w.write_record(&header).ok();
         let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
         for s in &self.series {
-            for row in Self::rows(s) {
+            for (i, row) in Self::rows(s).into_iter().enumerate() {
                 let mut rec = vec![s.name.clone(), s.style.name().to_string()];
+                if labelled {
+                    rec.push(s.labels.as_ref().and_then(|l| l.get(i)).cloned().unwrap_or_default());
+                }
                 rec.extend(row.iter().map(|v| num(*v)));
                 w.write_record(&rec).ok();
             }

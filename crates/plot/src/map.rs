@@ -47,7 +47,7 @@ pub struct ImageMap {
     pub size_mm: Option<(f64, f64)>,
     /// PNG resolution (default 300 at a physical size).
     pub dpi: Option<f64>,
-    /// Tick label font size in px (default 15, or 8 pt at a physical size).
+    /// Tick label font size in px (default: as a chart's, `Chart::font_size_px`).
     pub font_px: Option<f64>,
 }
 
@@ -152,7 +152,7 @@ impl ImageMap {
     }
 
     fn font(&self) -> f64 {
-        self.font_px.unwrap_or(if self.size_mm.is_some() { 8.0 * 4.0 / 3.0 } else { 15.0 })
+        self.font_px.unwrap_or(crate::render::default_font_px(self.size_mm.is_some(), self.size_px))
     }
 
     fn png_scale(&self) -> f64 {
@@ -187,7 +187,7 @@ impl ImageMap {
         let (caption, caption_top) = draw_caption(&mut prims, self.note.as_deref(), w, h, f);
         let marker_h = if self.markers.is_empty() { 0.0 } else { 1.4 * f };
         // The colour bar's axis, its labels and its upright label take the right margin.
-        let bar = Axis { scale: Scale::Linear, lo, hi: lo + span, named: None };
+        let bar = Axis { scale: Scale::Linear, lo, hi: lo + span, named: None, min_font: f };
         let (tl, g) = (0.35 * f, 0.3 * f);
         let bar_ticks_guess = crate::ticks(Scale::Linear, lo, lo + span, 6.0).0;
         let bar_label_w = bar_ticks_guess
@@ -197,8 +197,8 @@ impl ImageMap {
         let bar_lines = crate::text::wrap(&bar_label, h * 0.6, f);
         let reserve = 0.8 * f + 1.0 * f + tl + g + bar_label_w + g + bar_lines.len() as f64 * 1.2 * f;
         let area = Rect { x0: pad, y0: title_bottom + 0.3 * f, x1: w - pad - reserve, y1: caption_top - marker_h };
-        let xa = Axis { scale: Scale::Linear, lo: 0.0, hi: self.x_max, named: None };
-        let ya = Axis { scale: Scale::Linear, lo: 0.0, hi: self.y_max, named: None };
+        let xa = Axis { scale: Scale::Linear, lo: 0.0, hi: self.x_max, named: None, min_font: f };
+        let ya = Axis { scale: Scale::Linear, lo: 0.0, hi: self.y_max, named: None, min_font: f };
         let fr = frame(area, f, &xa, &ya, &self.x_label, &self.y_label, Some((self.x_max, self.y_max)));
         let p = fr.plot;
         // The image, row 0 of the grid at the bottom.
@@ -213,7 +213,12 @@ impl ImageMap {
         prims.push(Prim::Image { x0: p.x0, y0: p.y0, x1: p.x1, y1: p.y1, nx: self.nx, ny: self.ny, rgb });
         let (xt, yt, xl, yl) = draw_axes(&mut prims, &fr, &xa, &ya, f, false, pad);
         let red = Rgb(0xd6, 0x27, 0x28);
-        let r = 0.22 * f;
+        // Marker rings no wider than about a third of the mean spacing of the markers on the
+        // drawn image (sqrt(area / n)), so that dense summits do not hide the map; 0.22 font
+        // sizes at most, 0.8 px at least.
+        let spacing = (p.width() * p.height() / self.markers.len().max(1) as f64).sqrt();
+        let r = (0.22 * f).min(0.3 * spacing).max(0.8);
+        let ring_w = (0.07 * f).max(0.75).min(0.4 * r);
         let ring = |c: (f64, f64)| -> Vec<(f64, f64)> {
             (0..=16)
                 .map(|i| i as f64 / 16.0 * std::f64::consts::TAU)
@@ -225,7 +230,7 @@ impl ImageMap {
         for &(x, y) in &self.markers {
             let c = (p.x0 + x / self.x_max * p.width(), p.y1 - y / self.y_max * p.height());
             if c.0.is_finite() && c.1.is_finite() {
-                prims.push(Prim::Path { pts: ring(c), color: red, width: (0.07 * f).max(0.75), dash: None });
+                prims.push(Prim::Path { pts: ring(c), color: red, width: ring_w, dash: None });
                 points.push(c);
             }
         }
@@ -235,13 +240,13 @@ impl ImageMap {
             let label = self.marker_label.clone().unwrap_or_else(|| "summits".into());
             let (u, _) = text_extent("Ag", 0.9 * f);
             let y = fr.below_axis + 0.3 * f + u;
-            prims.push(Prim::Path {
-                pts: ring((p.x0 + r, y - 0.3 * f)),
-                color: red,
-                width: (0.07 * f).max(0.75),
-                dash: None,
-            });
-            let at = (p.x0 + 2.0 * r + 0.4 * f, y);
+            let r_key = 0.22 * f;
+            let key_ring: Vec<(f64, f64)> = (0..=16)
+                .map(|i| i as f64 / 16.0 * std::f64::consts::TAU)
+                .map(|t| (p.x0 + r_key + r_key * t.cos(), y - 0.3 * f + r_key * t.sin()))
+                .collect();
+            prims.push(Prim::Path { pts: key_ring, color: red, width: (0.07 * f).max(0.75), dash: None });
+            let at = (p.x0 + 2.0 * r_key + 0.4 * f, y);
             prims.push(Prim::Text {
                 at,
                 text: label.clone(),
@@ -346,6 +351,7 @@ impl ImageMap {
             width: w,
             height: h,
             font_px: f,
+            requested_font_px: f,
             plot: p,
             title,
             caption,

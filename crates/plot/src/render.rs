@@ -52,6 +52,37 @@ impl Rect {
     }
 }
 
+/// The smallest fraction of the requested font size a crowded layout may fall back to: at the
+/// journal preset's 8 pt, tick labels stay at 6.8 pt or more and the legend and caption (0.9 of
+/// it) at 6.1 pt, above the 6 pt that journals state as their smallest lettering (e.g. Elsevier's
+/// artwork guidelines: 7 pt, 6 pt for sub- and superscripts; Nature: 5 to 7 pt).
+pub const FONT_FLOOR: f64 = 0.85;
+
+/// The font size in px when none is asked for: 8 pt at a size on the page; at a pixel size 15 px
+/// (about 11 pt) on an 800 x 560 canvas or larger, scaled down with a smaller canvas (the smaller
+/// of width / 800 and height / 560) to no less than 8 pt, so that a 400 x 280 preview (106 mm x
+/// 74 mm at 96 px per inch, a journal column's size) has a journal's 8 pt rather than a font
+/// meant for twice its size.
+pub fn default_font_px(physical: bool, size_px: Option<(u32, u32)>) -> f64 {
+    let pt8 = 8.0 * 4.0 / 3.0;
+    match (physical, size_px) {
+        (true, _) => pt8,
+        (false, Some((w, h))) => (15.0 * (w as f64 / 800.0).min(h as f64 / 560.0)).clamp(pt8, 15.0),
+        (false, None) => 15.0,
+    }
+}
+
+/// Where a layout try puts the legend.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Place {
+    /// In a free corner of the plot, else below the axes.
+    Auto,
+    /// Below the axes.
+    Below,
+    /// Right of the axes, in one column.
+    Right,
+}
+
 /// A line of text and the box it covers.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextBox {
@@ -71,6 +102,9 @@ pub struct Layout {
     pub height: f64,
     /// Font size of tick labels, px.
     pub font_px: f64,
+    /// The font size the chart asked for, px: `font_px` is smaller only when the layout had to
+    /// fall back (never below [`FONT_FLOOR`] times it).
+    pub requested_font_px: f64,
     /// The axes' frame.
     pub plot: Rect,
     /// Title lines.
@@ -109,10 +143,44 @@ impl Layout {
             .chain(&self.legend_entries)
     }
 
+    /// The layout as JSON (every box as `[x0, y0, x1, y1]` in px, y down), with its
+    /// [`Layout::problems`]: for tests that check a program's figures from outside.
+    pub fn to_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let r = |r: &Rect| json!([r.x0, r.y0, r.x1, r.y1]);
+        let t = |v: &[TextBox]| -> Vec<serde_json::Value> {
+            v.iter().map(|b| json!({"text": b.text, "box": r(&b.rect)})).collect()
+        };
+        json!({
+            "width_px": self.width,
+            "height_px": self.height,
+            "font_px": self.font_px,
+            "requested_font_px": self.requested_font_px,
+            "plot": r(&self.plot),
+            "title": t(&self.title),
+            "caption": t(&self.caption),
+            "x_label": t(&self.x_label),
+            "y_label": t(&self.y_label),
+            "x_ticks": t(&self.x_ticks),
+            "y_ticks": t(&self.y_ticks),
+            "legend": self.legend.as_ref().map(r),
+            "legend_inside": self.legend_inside,
+            "legend_entries": t(&self.legend_entries),
+            "points": self.points.iter().map(|p| json!([p.0, p.1])).collect::<Vec<_>>(),
+            "problems": self.problems(),
+        })
+    }
+
     /// What is wrong with the layout, one sentence each (empty: nothing): text outside the canvas,
     /// tick labels touching, the legend over data, text over the plot or over other text.
     pub fn problems(&self) -> Vec<String> {
         let mut out = Vec::new();
+        if self.font_px < FONT_FLOOR * self.requested_font_px - 1e-9 {
+            out.push(format!(
+                "font fell back to {:.2} of the requested size (floor {FONT_FLOOR})",
+                self.font_px / self.requested_font_px
+            ));
+        }
         let canvas = Rect { x0: 0.0, y0: 0.0, x1: self.width, y1: self.height };
         for t in self.texts() {
             if !canvas.contains_rect(&t.rect, 0.5) {
@@ -146,6 +214,11 @@ impl Layout {
             .chain(&self.y_ticks)
             .collect();
         for (i, a) in outer.iter().enumerate() {
+            if let Some(l) = self.legend.filter(|_| !self.legend_inside)
+                && a.rect.overlaps(&l)
+            {
+                out.push(format!("text {:?} lies under the legend", a.text));
+            }
             if a.rect.overlaps(&self.plot.grow(-0.5)) {
                 out.push(format!("text {:?} lies over the plot", a.text));
             }
@@ -192,6 +265,8 @@ pub(crate) struct Axis {
     pub lo: f64,
     pub hi: f64,
     pub named: Option<Vec<(f64, String)>>,
+    /// The smallest size named tick labels may take, px ([`FONT_FLOOR`] times the requested font).
+    pub min_font: f64,
 }
 
 /// Tick positions (axis coordinates) with their labels, the light ones, and whether the labels are
@@ -229,12 +304,33 @@ impl Axis {
             if !horizontal {
                 return Ticks { bold, light: Vec::new(), vertical: false, size: f };
             }
-            for s in [f, 0.85 * f, 0.75 * f] {
+            // Named labels across at the font size, else across at the floor size, else upright
+            // at the floor size (never below FONT_FLOOR of the requested font).
+            let small = self.min_font.min(f);
+            for s in [f, small] {
                 if widest(s) + 0.4 * f <= spacing {
                     return Ticks { bold, light: Vec::new(), vertical: false, size: s };
                 }
             }
-            return Ticks { bold, light: Vec::new(), vertical: spacing < widest(0.75 * f), size: 0.85 * f };
+            // Upright, a label of several words on two lines (split at the space nearest its
+            // middle) when the spacing holds two lines: half the height below the axis.
+            let two_lines = spacing >= 2.5 * small;
+            let bold = bold
+                .into_iter()
+                .map(|(v, l)| {
+                    let split = two_lines
+                        .then(|| {
+                            let mid = l.chars().count() / 2;
+                            l.char_indices()
+                                .filter(|(_, c)| *c == ' ')
+                                .min_by_key(|(i, _)| l[..*i].chars().count().abs_diff(mid))
+                                .map(|(i, _)| format!("{}\n{}", &l[..i], &l[i + 1..]))
+                        })
+                        .flatten();
+                    (v, split.unwrap_or(l))
+                })
+                .collect();
+            return Ticks { bold, light: Vec::new(), vertical: true, size: small };
         }
         let mut n = if horizontal { 10.0 } else { (length / (1.9 * f)).clamp(2.0, 10.0) };
         loop {
@@ -310,7 +406,7 @@ pub(crate) fn frame(
         let yt = y.ticks(plot.height(), f, false);
         let yw = yt.bold.iter().map(|b| text_width(&b.1, yt.size)).fold(0.0, f64::max);
         let xt_h = if xt.vertical {
-            xt.bold.iter().map(|b| text_width(&b.1, xt.size)).fold(0.0, f64::max)
+            xt.bold.iter().flat_map(|b| b.1.split('\n')).map(|l| text_width(l, xt.size)).fold(0.0, f64::max)
         } else {
             let (u, d) = text_extent("0", xt.size);
             u + d
@@ -392,11 +488,27 @@ pub(crate) fn draw_axes(
     for (v, l) in &fr.xt.bold {
         let xp = px(*v);
         prims.push(Prim::Path { pts: vec![(xp, p.y1), (xp, p.y1 + tl)], color: INK, width: axis_w, dash: None });
-        let (at, rect, vertical, anchor) = if fr.xt.vertical {
-            let (u, d) = text_extent(l, fr.xt.size);
-            let at = (xp + (u - d) / 2.0, p.y1 + tl + g);
-            (at, vbox(l, at, fr.xt.size, Anchor::End), true, Anchor::End)
-        } else {
+        if fr.xt.vertical {
+            // Upright, one or two lines side by side, centred on the tick.
+            let lines: Vec<&str> = l.split('\n').collect();
+            let step = 1.15 * fr.xt.size;
+            for (j, line) in lines.iter().enumerate() {
+                let (u, d) = text_extent(line, fr.xt.size);
+                let shift = (j as f64 - (lines.len() - 1) as f64 / 2.0) * step;
+                let at = (xp + (u - d) / 2.0 + shift, p.y1 + tl + g);
+                prims.push(Prim::Text {
+                    at,
+                    text: line.to_string(),
+                    size: fr.xt.size,
+                    color: INK,
+                    anchor: Anchor::End,
+                    vertical: true,
+                });
+                xb.push(TextBox { text: line.to_string(), rect: vbox(line, at, fr.xt.size, Anchor::End) });
+            }
+            continue;
+        }
+        let (at, rect, vertical, anchor) = {
             let (u, _) = text_extent("0", fr.xt.size);
             let at = (xp, p.y1 + tl + g + u);
             (at, hbox(l, at, fr.xt.size, Anchor::Middle), false, Anchor::Middle)
@@ -544,9 +656,10 @@ impl Chart {
         }
     }
 
-    /// Tick-label font size in px: `font_px`, else 8 pt at a physical size, else 15 px.
+    /// Tick-label font size in px: `font_px`, else 8 pt at a physical size, else
+    /// [`default_font_px`] of the pixel size.
     pub fn font_size_px(&self) -> f64 {
-        self.font_px.unwrap_or(if self.size_mm.is_some() { 8.0 * 4.0 / 3.0 } else { 15.0 })
+        self.font_px.unwrap_or(default_font_px(self.size_mm.is_some(), self.size_px))
     }
 
     /// PNG device pixels per canvas px: `dpi` / 96; by default 300 dpi at a physical size, 1 at a
@@ -620,30 +733,54 @@ impl Chart {
         Ok(self.render()?.1)
     }
 
-    /// The display list and the layout: at the chart's font size when the plot keeps at least
-    /// 40 % of the canvas height and 45 % of its width with nothing out of place, else at the
-    /// largest of 0.9, 0.8, 0.7 and 0.6 times it that does (else the smallest).
+    /// The display list and the layout. Crowding is solved by other means before the font
+    /// shrinks: first the chart's font size with the legend in a free corner, then with the legend
+    /// below the axes; only then 0.925 and [`FONT_FLOOR`] (0.85) times the font, in the same two
+    /// ways. The first that keeps at least 40 % of the canvas height and 45 % of its width for the
+    /// plot with nothing out of place wins; else the first with nothing out of place; else the
+    /// one with the fewest problems. (Tick labels thin out and named ones turn upright within
+    /// each try; titles and captions wrap.)
     pub(crate) fn render(&self) -> Result<(Vec<Prim>, Layout), PlotError> {
         let (w, h) = self.canvas_px();
         let f0 = self.font_size_px();
-        let mut last = None;
-        for k in [1.0, 0.9, 0.8, 0.7, 0.6] {
-            let r = self.render_with(f0 * k)?;
-            if r.1.plot.height() >= 0.4 * h && r.1.plot.width() >= 0.45 * w && r.1.problems().is_empty() {
-                return Ok(r);
+        let mut tries = Vec::new();
+        for k in [1.0, 0.925, FONT_FLOOR] {
+            for place in [Place::Auto, Place::Below, Place::Right] {
+                let r = self.render_with(f0 * k, place)?;
+                let problems = r.1.problems().len();
+                if problems == 0 && r.1.plot.height() >= 0.4 * h && r.1.plot.width() >= 0.45 * w {
+                    return Ok(r);
+                }
+                tries.push((problems, r));
             }
-            last = Some(r);
         }
-        Ok(last.expect("five tries"))
+        // Nothing out of place with a readable plot (a third of the canvas each way), at the
+        // largest font; else nothing out of place with the largest plot; else the fewest problems.
+        let area = |l: &Layout| l.plot.width() * l.plot.height();
+        let readable = |l: &Layout| l.plot.height() >= h / 3.0 && l.plot.width() >= w / 3.0;
+        let best = tries
+            .iter()
+            .position(|t| t.0 == 0 && readable(&t.1.1))
+            .or_else(|| {
+                (0..tries.len())
+                    .filter(|&i| tries[i].0 == 0)
+                    .max_by(|&a, &b| area(&tries[a].1.1).total_cmp(&area(&tries[b].1.1)))
+            })
+            .unwrap_or_else(|| {
+                let fewest = tries.iter().map(|t| t.0).min().unwrap_or(0);
+                tries.iter().position(|t| t.0 == fewest).unwrap_or(0)
+            });
+        Ok(tries.swap_remove(best).1)
     }
 
-    fn render_with(&self, f: f64) -> Result<(Vec<Prim>, Layout), PlotError> {
+    fn render_with(&self, f: f64, place: Place) -> Result<(Vec<Prim>, Layout), PlotError> {
         let ((x0, x1), (y0, y1)) = self.ranges().ok_or_else(|| PlotError::Empty { title: self.title.clone() })?;
         let (w, h) = self.canvas_px();
         let pad = 0.5 * f;
         let looks = self.resolve();
-        let xa = Axis { scale: self.x_scale(), lo: x0, hi: x1, named: self.x_ticks.clone() };
-        let ya = Axis { scale: self.y_scale(), lo: y0, hi: y1, named: None };
+        let min_font = FONT_FLOOR * self.font_size_px();
+        let xa = Axis { scale: self.x_scale(), lo: x0, hi: x1, named: self.x_ticks.clone(), min_font };
+        let ya = Axis { scale: self.y_scale(), lo: y0, hi: y1, named: None, min_font };
         let mut top_prims = Vec::new();
         let (title, title_bottom) = draw_title(&mut top_prims, &self.title, w, f);
         let (caption, caption_top) = draw_caption(&mut top_prims, self.note.as_deref(), w, h, f);
@@ -652,11 +789,15 @@ impl Chart {
         // Legend entries, in series order.
         let ls = 0.9 * f;
         let sw = 2.0 * f;
+        // One entry per name: a series named like an earlier one (the interval segments of a
+        // marker series) shares its entry.
         let entries_for = |max_w: f64| -> Vec<Entry> {
             self.series
                 .iter()
                 .zip(&looks)
-                .filter(|(s, _)| !s.name.is_empty())
+                .enumerate()
+                .filter(|(k, (s, _))| !s.name.is_empty() && !self.series[..*k].iter().any(|e| e.name == s.name))
+                .map(|(_, sl)| sl)
                 .map(|(s, l)| Entry {
                     lines: wrap(&s.name, max_w, ls),
                     style: s.style,
@@ -675,6 +816,7 @@ impl Chart {
         let mut legend_box = None;
         let mut fr = fr;
         let mut below: Option<(f64, usize, f64)> = None; // (height, columns, label width)
+        let mut right: Option<(f64, f64)> = None; // (left edge, label width)
         if !inside_entries.is_empty() {
             let bw = 0.4 * f + inside_entries.iter().map(entry_w).fold(0.0, f64::max) + 0.4 * f;
             let bh = 0.3 * f + inside_entries.iter().map(entry_h).sum::<f64>() + 0.2 * f;
@@ -705,10 +847,19 @@ impl Chart {
             );
             let fits = bw <= 0.65 * p.width() && bh <= 0.65 * p.height();
             let r = 0.3 * f + 1.0;
-            legend_box = fits
+            legend_box = (fits && place == Place::Auto)
                 .then(|| order.into_iter().map(corner).find(|b| !pts.iter().any(|q| b.grow(r).contains(*q))))
                 .flatten();
-            if legend_box.is_none() {
+            if legend_box.is_none() && place == Place::Right {
+                // Right of the axes, one column a third of the canvas wide at most.
+                let label_w = 0.36 * (w - 2.0 * pad) - sw - 0.5 * f;
+                let entries = entries_for(label_w);
+                let used = entries.iter().map(entry_w).fold(0.0, f64::max);
+                let x0 = area.x1 - used;
+                right = Some((x0, label_w));
+                let area2 = Rect { x1: x0 - 0.8 * f, ..area };
+                fr = frame(area2, f, &xa, &ya, &self.x_label, &self.y_label, None);
+            } else if legend_box.is_none() {
                 // Below the axes, in the number of columns (1 to 4, labels wrapped to the column)
                 // that takes the least height.
                 for cols in 1..=4usize {
@@ -815,11 +966,22 @@ impl Chart {
             }
             let used = (cols.min(entries.len()) as f64 * col_w - 1.2 * f).max(0.0);
             legend = Some(Rect { x0: pad, y0: top, x1: pad + used, y1: top + height - 0.4 * f });
+        } else if let Some((x0, label_w)) = right {
+            let entries = entries_for(label_w);
+            let top = fr.plot.y0;
+            let mut y = top;
+            for e in &entries {
+                draw_entry(&mut prims, e, x0, y, &mut legend_entries);
+                y += entry_h(e);
+            }
+            let used = entries.iter().map(entry_w).fold(0.0, f64::max);
+            legend = Some(Rect { x0, y0: top, x1: x0 + used, y1: y });
         }
         let layout = Layout {
             width: w,
             height: h,
             font_px: f,
+            requested_font_px: self.font_size_px(),
             plot: p,
             title,
             caption,

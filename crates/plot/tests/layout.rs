@@ -214,3 +214,32 @@ fn maps_fit_a_journal_column_and_a_small_preview() {
         assert!((l.plot.width() / l.plot.height() - 25.6 / 8.0).abs() < 1e-6, "{name}: {:?}", l.plot);
     }
 }
+
+/// The legibility floor: a chart far too crowded for a journal column (24 series with long
+/// names, a three-line title and a long caption: no placement fits at any size) is drawn at 0.85 of the 8 pt asked for at the
+/// least (6.8 pt, FONT_FLOOR), never smaller; a layout whose font fell under the floor is
+/// reported by `Layout::problems`. Without a font size, a 400 x 280 px canvas gets 8 pt (10.67
+/// px) and an 800 x 560 one 15 px.
+#[test]
+fn crowded_charts_never_fall_below_the_font_floor() {
+    let mut c = Chart::new(
+        "A title long enough to wrap onto three lines at a journal column's width, so that the title alone takes a good part of the height of the figure",
+        "a long x axis label with its unit (µN)",
+        "a long y axis label with its unit (µN)",
+    )
+    .with_note("A caption of two or three lines at this width, which the layout must keep below the figure whatever else it has to do to fit the rest.");
+    for k in 0..24 {
+        let pts: Vec<(f64, f64)> = (0..50).map(|i| (i as f64, (i as f64 * 0.2 + k as f64).sin() + k as f64)).collect();
+        c = c.with(Series::line(format!("series number {k} with a long legend name"), pts));
+    }
+    let asked = 8.0 * 4.0 / 3.0;
+    let l = journal(c).layout().unwrap();
+    assert!(l.font_px >= stiction_plot::FONT_FLOOR * asked - 1e-9, "font {} px under the floor", l.font_px);
+    assert_eq!(stiction_plot::FONT_FLOOR, 0.85);
+    assert_eq!(l.requested_font_px, asked);
+    let mut under = l.clone();
+    under.font_px = 0.8 * asked;
+    assert!(under.problems().iter().any(|p| p.contains("fell back")), "{:?}", under.problems());
+    assert_eq!(small(psd_like()).font_size_px(), asked);
+    assert_eq!(psd_like().sized(Some((800, 560)), None).unwrap().font_size_px(), 15.0);
+}

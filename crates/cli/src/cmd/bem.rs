@@ -436,7 +436,7 @@ pub fn run(args: Args) -> CliResult {
     let (out, states, heights) = solve(&args, build_surface(&args)?, None)?;
     let (grid, rms_slope, e_star_pa, law) = (out.grid, out.rms_slope, out.e_star_pa, out.dugdale);
     if let (Some(set), Some(last)) = (outputs, states.last()) {
-        write_outputs(set, &out, last, &heights, &args.fig)?;
+        write_outputs(set, &out, last, &heights, &args.fig, &args.map_args)?;
     }
     if args.json {
         return print_json(&out);
@@ -537,6 +537,7 @@ fn write_outputs(
     last: &ContactSolution,
     heights: &[f64],
     fig: &crate::figargs::FigureArgs,
+    args_map: &MapArgs,
 ) -> CliResult {
     let g = out.grid;
     set.add_bytes("results.json", crate::output::json_text(out)?.as_bytes())?;
@@ -553,24 +554,26 @@ fn write_outputs(
     set.add_bytes("fields.csv", &csv_bytes(&rows)?)?;
     drop(rows);
     set.add_bytes("curve.csv", &csv_bytes(&out.points)?)?;
-    set.add_image_map(
-        "height.png",
-        &fig.apply_map(heat_map(heights, g, "Height of the composite surface", "height (nm)", 1e9)),
-    )?;
+    let draw = |field: &[f64], title: &str, label: &str, unit: &str| {
+        fig.apply_map(heat_map(args_map, field, g, title, label, unit))
+    };
+    let height = draw(heights, "Height of the composite surface", "height", "m");
     // The load of the drawn state: the last point of the path.
     let state = out.points.last().map_or(String::new(), |p| {
         format!(
-            " at mean pressure {} MPa (load {} mN)",
-            crate::cmd::plot::sig3(p.mean_pressure_pa * 1e-6),
-            crate::cmd::plot::sig3(p.load_n * 1e3)
+            " at mean pressure {} (load {})",
+            q(p.mean_pressure_pa, Dimension::Pressure),
+            q(p.load_n, Dimension::Force)
         )
     });
-    // Elastic contact pressure peaks at several times E* at the summits: GPa, not MPa.
-    set.add_image_map(
-        "pressure.png",
-        &fig.apply_map(heat_map(&last.pressure_pa, g, &format!("Pressure{state}"), "pressure (GPa)", 1e-9)),
-    )?;
-    set.add_image_map("gap.png", &fig.apply_map(heat_map(&last.gap_m, g, &format!("Gap{state}"), "gap (nm)", 1e9)))?;
+    // Elastic contact pressure peaks at several times E* at the summits: the colour bar picks
+    // the SI prefix of the largest value (GPa, not 28000 MPa).
+    let pressure = draw(&last.pressure_pa, &format!("Pressure{state}"), "pressure", "Pa");
+    let gap = draw(&last.gap_m, &format!("Gap{state}"), "gap", "m");
+    for (stem, map) in [("height", &height), ("pressure", &pressure), ("gap", &gap)] {
+        set.add_image_map(&format!("{stem}.svg"), map)?;
+        set.add_image_map(&format!("{stem}.png"), map)?;
+    }
     let pts = &out.points;
     // The solved loads as markers (not joined: a path may leave decades between them), on a log
     // axis where the values span two decades or more.
@@ -586,13 +589,17 @@ fn write_outputs(
             .with(Series::markers("BEM, solved loads", area).with_color(0));
         chart.x_log = p_log;
         chart.y_log = decades(&mut pts.iter().map(|p| p.contact_fraction));
-        set.add_chart("load_area.png", &fig.apply(chart)?)?;
+        let chart = fig.apply(chart)?;
+        set.add_chart("load_area.svg", &chart)?;
+        set.add_chart("load_area.png", &chart)?;
         let gap: Vec<(f64, f64)> = pts.iter().map(|p| (p.mean_gap_m * 1e9, p.mean_pressure_pa * 1e-6)).collect();
         let mut chart = Chart::new("Load-mean gap (BEM)", "mean gap (nm)", "mean pressure p (MPa)")
             .keys("mean_gap_nm", "mean_pressure_mpa")
             .with(Series::markers("BEM, solved loads", gap).with_color(0));
         chart.y_log = p_log;
-        set.add_chart("load_gap.png", &fig.apply(chart)?)?;
+        let chart = fig.apply(chart)?;
+        set.add_chart("load_gap.svg", &chart)?;
+        set.add_chart("load_gap.png", &chart)?;
         let ratio: Vec<(f64, f64)> =
             pts.iter().filter_map(|p| p.area_ratio_bem_over_asperity.map(|r| (p.mean_pressure_pa * 1e-6, r))).collect();
         if ratio.len() > 1 {
@@ -604,22 +611,24 @@ fn write_outputs(
             .keys("mean_pressure_mpa", "area_ratio")
             .with(Series::markers("BEM / independent Hertz summits, solved loads", ratio).with_color(0));
             chart.x_log = p_log;
-            set.add_chart("area_ratio.png", &fig.apply(chart)?)?;
+            let chart = fig.apply(chart)?;
+            set.add_chart("area_ratio.svg", &chart)?;
+            set.add_chart("area_ratio.png", &chart)?;
         }
     }
     set.commit()
 }
 
-/// A row-major field (values times `scale`) as a heat map, block-averaged to at most 400 x 400
-/// cells.
-fn heat_map(field: &[f64], g: Grid, title: &str, value_label: &str, scale: f64) -> ImageMap {
-    let (block, cx, cy, mut cells) = stiction_plot::block_means(field, g.nx, g.ny, 400);
-    cells.iter_mut().for_each(|c| *c *= scale);
+/// A row-major field in SI units as a heat map, every grid cell unless --map-cells asks for
+/// blocks; the colour bar in `unit` with the SI prefix that suits the values.
+fn heat_map(maps: &MapArgs, field: &[f64], g: Grid, title: &str, value_label: &str, unit: &str) -> ImageMap {
+    let (block, cx, cy, cells) = maps.drawn_cells(field, g.nx, g.ny);
     ImageMap {
         title: if block > 1 { format!("{title}, drawn in {block} x {block} blocks") } else { title.to_string() },
         x_label: "x (µm)".into(),
         y_label: "y (µm)".into(),
         value_label: value_label.into(),
+        value_unit: Some(unit.into()),
         nx: cx,
         ny: cy,
         values: cells,

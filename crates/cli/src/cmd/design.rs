@@ -192,9 +192,7 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
         for (k, v) in varies.iter().enumerate() {
             let stem = format!("design_{}", v.path.replace(['.', '/'], "_"));
             let chart = args.fig.apply(design_chart(&varies, &rows, k, rank_by))?;
-            crate::cmd::plot::render_chart(&chart, &out.join(format!("{stem}.svg")))?;
-            crate::cmd::plot::render_chart(&chart, &out.join(format!("{stem}.png")))?;
-            write(&format!("{stem}.csv"), chart.data_csv().as_bytes())?;
+            crate::output::write_chart_files(out, &stem, &chart)?;
         }
     }
     if args.json {

@@ -34,6 +34,11 @@ pub struct MapArgs {
     /// Long-wavelength cut-off (Gaussian high-pass, 50 % at this wavelength): "5 um".
     #[arg(long, value_name = "L", value_parser = quantity(Dimension::Length, Constraint::Positive))]
     pub long_cutoff: Option<f64>,
+    /// Draw the maps (height, pressure, gap) in square blocks, each the mean of its grid cells,
+    /// with at most N blocks along the longer side (16 to 100000); default: every grid cell,
+    /// one image pixel each. Their data CSVs hold what is drawn.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(16..=100_000))]
+    pub map_cells: Option<u32>,
 }
 
 impl MapArgs {
@@ -45,6 +50,13 @@ impl MapArgs {
             height_unit_m: self.height_unit,
             xy_unit_m: self.xy_unit,
         }
+    }
+
+    /// A row-major `nx x ny` field as drawn: `(block side, columns, rows, values)`, every cell
+    /// (block side 1) unless --map-cells asks for block means ([`stiction_plot::block_means`]).
+    pub fn drawn_cells(&self, values: &[f64], nx: usize, ny: usize) -> (usize, usize, usize, Vec<f64>) {
+        let max = self.map_cells.map_or(nx.max(ny), |n| n as usize);
+        stiction_plot::block_means(values, nx, ny, max)
     }
 
     /// The preparation asked for.

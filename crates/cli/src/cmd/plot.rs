@@ -97,7 +97,7 @@ pub fn chart_format(path: &Path) -> Result<&'static str, String> {
 pub fn render_chart(chart: &Chart, path: &Path) -> CliResult {
     chart_format(path)?;
     chart.write(path)?;
-    Ok(())
+    crate::output::record_layout(path, || chart.layout())
 }
 
 /// Writes a chart to `path` as SVG, or PNG by extension, with the plotted numbers as CSV beside it
@@ -108,7 +108,7 @@ pub fn write_chart(chart: &Chart, path: &Path) -> CliResult {
         crate::output::ensure_dir(dir)?;
     }
     chart.write_with_data(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    Ok(())
+    crate::output::record_layout(path, || chart.layout())
 }
 
 /// Runs the subcommand.

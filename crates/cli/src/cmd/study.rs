@@ -800,7 +800,8 @@ fn sensitivity_chart(summary: &StudySummary) -> Chart {
     type Pick = dyn Fn(&stiction_study::sensitivity::InputShare) -> (Option<f64>, Option<[f64; 2]>);
     // One series of markers per index (at the input's number, offset), drawn over its 95 % bootstrap
     // intervals: a vertical segment from the interval's low to its high end (the intervals are
-    // not symmetric about the estimate), unnamed, so the legend lists each index once.
+    // not symmetric about the estimate), named like its index's markers (the legend lists each
+    // name once); every point labelled with the input's path (the data CSV's `label` column).
     let mut chart = Chart::new(
         format!("Share of the variance by input ({} samples with a fit)", summary.sensitivity.samples),
         "input",
@@ -813,21 +814,24 @@ fn sensitivity_chart(summary: &StudySummary) -> Chart {
         ("F_a0, first order", 0.05, &|r| (r.fa0_first_order, r.fa0_first_order_ci)),
         ("F_a0, total order", 0.15, &|r| (r.fa0_total_order, r.fa0_total_order_ci)),
     ];
-    let mut marks = Vec::new();
+    let mut segments = Vec::new();
     for (k, (name, off, f)) in picks.iter().enumerate() {
-        let mut pts = Vec::new();
+        let (mut pts, mut inputs) = (Vec::new(), Vec::new());
         for (i, r) in rows.iter().enumerate() {
             if let (Some(v), ci) = f(r) {
                 let x = i as f64 + 1.0 + off;
                 pts.push((x, v));
+                inputs.push(r.input.clone());
                 if let Some([lo, hi]) = ci {
-                    chart.series.push(Series::line("", vec![(x, lo), (x, hi)]).with_color(k));
+                    segments.push(
+                        Series::line(*name, vec![(x, lo), (x, hi)]).with_color(k).with_labels(vec![r.input.clone(); 2]),
+                    );
                 }
             }
         }
-        marks.push(Series::markers(*name, pts).with_color(k));
+        chart.series.push(Series::markers(*name, pts).with_color(k).with_labels(inputs));
     }
-    chart.series.extend(marks);
+    chart.series.extend(segments);
     chart.x_ticks = Some(names.iter().enumerate().map(|(i, n)| (i as f64 + 1.0, n.clone())).collect());
     chart.x_range = Some((0.5, rows.len() as f64 + 0.5));
     chart.legend = stiction_plot::LegendPosition::UpperRight;

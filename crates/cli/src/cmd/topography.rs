@@ -110,7 +110,7 @@ pub fn run(args: Args) -> CliResult {
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("statistics.json", crate::output::json_text(&out)?.as_bytes())?;
         set.add_bytes("summits.csv", &summit_file_bytes(&map, &summits, false)?)?;
-        figures(&map, &summits, &report, out.nayak.as_ref(), &mut set, &args.fig)?;
+        figures(&map, &summits, &report, out.nayak.as_ref(), &mut set, &args.fig, &args.map)?;
         set.commit()?;
         crate::errln!("wrote figures, their data, summits.csv, statistics.json and manifest.json to {}", dir.display());
     }
@@ -344,10 +344,10 @@ fn figures(
     nayak: Option<&Nayak>,
     set: &mut OutputSet,
     fig: &crate::figargs::FigureArgs,
+    map_args: &MapArgs,
 ) -> CliResult {
-    // Height map, block-averaged to at most 400 x 400 cells, with the summits.
-    let (block, cx, cy, mut cells) = stiction_plot::block_means(map.heights_m(), map.nx(), map.ny(), 400);
-    cells.iter_mut().for_each(|c| *c *= 1e9);
+    // Height map, every grid cell unless --map-cells asks for blocks, with the summits.
+    let (block, cx, cy, cells) = map_args.drawn_cells(map.heights_m(), map.nx(), map.ny());
     let (xmax, ymax) = (map.length_x_m() * 1e6, map.length_y_m() * 1e6);
     let markers: Vec<(f64, f64)> = (0..s.len())
         .map(|i| ((f64::from(s.ix[i]) + 0.5) * map.dx_m() * 1e6, (f64::from(s.iy[i]) + 0.5) * map.dy_m() * 1e6))
@@ -360,7 +360,8 @@ fn figures(
         ),
         x_label: "x (µm)".into(),
         y_label: "y (µm)".into(),
-        value_label: "height (nm)".into(),
+        value_label: "height".into(),
+        value_unit: Some("m".into()),
         nx: cx,
         ny: cy,
         values: cells,
@@ -369,6 +370,7 @@ fn figures(
         markers: if s.len() <= 5000 { markers } else { Vec::new() },
         ..Default::default()
     });
+    set.add_image_map("height_map.svg", &height_map)?;
     set.add_image_map("height_map.png", &height_map)?;
 
     // PSD with the cut-offs.
