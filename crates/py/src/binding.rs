@@ -11,6 +11,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
+use stiction_cli::api::ScenarioSource;
 use stiction_scenario::Scenario;
 use stiction_study::{Calibration, Study, StudyConfig};
 use stiction_topography::{
@@ -57,13 +58,22 @@ impl PyScenario {
         self.path.as_ref().map_or_else(|| "<scenario>".to_string(), |p| p.display().to_string())
     }
 
+    /// The scenario as the commands read it: the file (read now) or the text, with the overrides.
+    fn source(&self) -> Result<ScenarioSource, stiction_scenario::ScenarioError> {
+        match &self.path {
+            Some(p) => ScenarioSource::file(p, &self.sets),
+            None => ScenarioSource::text(
+                self.text.as_deref().unwrap_or("{}"),
+                Path::new("<scenario>"),
+                &self.base,
+                &self.sets,
+            ),
+        }
+    }
+
     /// Parses and validates, as the command line does.
     fn parse(&self) -> Result<Scenario, stiction_scenario::ScenarioError> {
-        match (&self.path, &self.text) {
-            (Some(p), _) => Scenario::load(p, &self.sets),
-            (None, Some(t)) => Scenario::from_str_with_sets(t, Path::new("<scenario>"), &self.sets),
-            (None, None) => Scenario::from_str_with_sets("{}", Path::new("<scenario>"), &self.sets),
-        }
+        self.source()?.parse(&[])
     }
 
     fn from_path(path: PathBuf) -> PyScenario {
@@ -71,21 +81,34 @@ impl PyScenario {
         PyScenario { path: Some(path), text: None, base, sets: Vec::new() }
     }
 
-    /// A `Scenario`, or a path (str or os.PathLike) to a scenario file.
+    /// A `Scenario`, a dict shaped as a scenario file (its relative paths from the current
+    /// directory, as `Scenario.from_dict(d)`), or a path (str or os.PathLike) to a scenario file.
     fn extract(obj: &Bound<'_, PyAny>) -> PyResult<PyScenario> {
         if let Ok(s) = obj.cast::<PyScenario>() {
             return Ok(s.borrow().clone());
         }
+        if obj.is_instance_of::<PyDict>() {
+            return PyScenario::from_dict(obj, None);
+        }
         let os = obj.py().import("os")?;
-        let path: String = os.call_method1("fspath", (obj,))?.extract().map_err(|_| {
-            pyo3::exceptions::PyTypeError::new_err("expected a stiction.Scenario or a path to a scenario file")
+        let path: String = os.call_method1("fspath", (obj,)).and_then(|p| p.extract()).map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err(
+                "expected a stiction.Scenario, a dict shaped as a scenario file, or a path to a scenario file",
+            )
         })?;
         Ok(PyScenario::from_path(PathBuf::from(path)))
     }
+
+    /// The scenario source of a call's argument, checked (StictionError with the CLI's message).
+    fn source_of(obj: &Bound<'_, PyAny>) -> PyResult<ScenarioSource> {
+        PyScenario::extract(obj)?.source().map_err(err)
+    }
 }
 
-/// A value for `--set PATH=VALUE` or a quantity flag: a string as given, a number as Python's
-/// `repr` (which reads back to the same float), True/False/None as JSON.
+/// A value for `--set PATH=VALUE` or a quantity flag: a string as given, an integer (Python's or
+/// NumPy's) in decimal, any other number as the `repr` of the Python float it converts to (which
+/// reads back to the same float; NumPy 2's own repr, `np.float64(0.5)`, would not parse),
+/// True/False/None as JSON, lists and dicts as JSON.
 fn flag_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
     if let Ok(s) = value.cast::<PyString>() {
         return s.extract::<String>();
@@ -93,13 +116,21 @@ fn flag_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
     if value.is_none() {
         return Ok("null".into());
     }
-    if let Ok(b) = value.extract::<bool>()
-        && value.is_instance_of::<pyo3::types::PyBool>()
-    {
+    // Python's bool, and NumPy's (a scalar of dtype kind "b").
+    let numpy_bool = value.hasattr("dtype")?
+        && value.getattr("dtype")?.getattr("kind").and_then(|k| k.extract::<String>()).is_ok_and(|k| k == "b");
+    if value.is_instance_of::<pyo3::types::PyBool>() || numpy_bool {
+        let b: bool = value.call_method0("__bool__")?.extract()?;
         return Ok(if b { "true" } else { "false" }.into());
     }
-    if value.extract::<f64>().is_ok() {
-        return value.repr()?.extract::<String>();
+    // Python's int and NumPy's integers (they have __index__; floats have not).
+    if (value.is_instance_of::<pyo3::types::PyInt>() || value.hasattr("__index__")?)
+        && let Ok(i) = value.call_method0("__index__").and_then(|i| i.extract::<i128>())
+    {
+        return Ok(i.to_string());
+    }
+    if let Ok(f) = value.extract::<f64>() {
+        return pyo3::types::PyFloat::new(value.py(), f).repr()?.extract::<String>();
     }
     let json = value.py().import("json")?;
     json.call_method1("dumps", (value,))?.extract()
@@ -119,8 +150,9 @@ impl PyScenario {
         Ok(s)
     }
 
-    /// Scenario.from_json(text, base_dir="."): a scenario from its JSON text; relative paths in it
-    /// (surface CSVs, height maps, measured voltages) are read from `base_dir`.
+    /// Scenario.from_json(text, base_dir=None): a scenario from its JSON text; relative paths in it
+    /// (surface CSVs, height maps, measured voltages) are read from `base_dir`, by default the
+    /// current directory.
     #[staticmethod]
     #[pyo3(signature = (text, base_dir=None))]
     fn from_json(text: String, base_dir: Option<PathBuf>) -> PyResult<PyScenario> {
@@ -129,8 +161,10 @@ impl PyScenario {
         Ok(s)
     }
 
-    /// Scenario.from_dict(d, base_dir="."): a scenario from a dict shaped as the JSON file
-    /// (quantities as unit strings, "0.5 um", or SI numbers).
+    /// Scenario.from_dict(d, base_dir=None): a scenario from a dict shaped as the JSON file
+    /// (quantities as unit strings, "0.5 um", or SI numbers); relative paths in it (surface
+    /// CSVs, height maps, measured voltages) are read from `base_dir`, by default the current
+    /// directory.
     #[staticmethod]
     #[pyo3(signature = (d, base_dir=None))]
     fn from_dict(d: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<PyScenario> {
@@ -157,11 +191,34 @@ impl PyScenario {
         Ok(s.notes.iter().map(|n| (n.code.to_string(), n.message.clone())).collect())
     }
 
-    /// to_json(): the scenario as it is run, in SI units, as `stiction scenario FILE` prints it
-    /// (readable back with Scenario.from_json).
+    /// to_json(): the scenario as it is run, as `stiction scenario FILE` prints it: every field
+    /// the file or `set` gave, as written (units kept), and every default the parse filled in, in
+    /// SI (readable back with Scenario.from_json).
     fn to_json(&self) -> PyResult<String> {
         let s = self.parse().map_err(err)?;
         serde_json::to_string_pretty(&s.to_input_json()).map_err(err)
+    }
+
+    /// get(path): a field of the scenario as it is run, as `to_dict()` holds it: as written in the
+    /// file or by `set` (get("surface.summit_sd") -> "0.04 um"; an SI number stays a number), or
+    /// the default the parse filled in (SI); a section comes back as a dict. `path` is dotted as
+    /// `set` takes it (a list item by its index, "meter.clamp_voltages.0"). Raises StictionError
+    /// when the path names nothing in this scenario.
+    fn get<'py>(&self, py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyAny>> {
+        let mut node = self.parse().map_err(err)?.to_input_json();
+        for seg in path.split('.') {
+            let next = match node {
+                serde_json::Value::Object(mut m) => m.remove(seg),
+                serde_json::Value::Array(mut a) => {
+                    seg.parse::<usize>().ok().filter(|&i| i < a.len()).map(|i| a.swap_remove(i))
+                }
+                _ => None,
+            };
+            node = next.ok_or_else(|| {
+                err(format!("{path}: no field `{seg}` in this scenario (the fields as run, in SI: to_dict())"))
+            })?;
+        }
+        json_loads(py, &serde_json::to_string(&node).map_err(err)?)
     }
 
     /// to_dict(): `json.loads(self.to_json())`.
@@ -192,16 +249,16 @@ impl PyScenario {
 #[pyfunction]
 #[pyo3(signature = (scenario, progress=None))]
 fn run_json(py: Python<'_>, scenario: &Bound<'_, PyAny>, progress: Option<Py<PyAny>>) -> PyResult<String> {
-    let s = PyScenario::extract(scenario)?;
-    let parsed = s.parse().map_err(err)?;
-    let name = s.name();
+    let source = PyScenario::source_of(scenario)?;
+    let parsed = source.parse(&[]).map_err(err)?;
+    let name = source.name();
     let progress = Progress::new(progress);
     let report = progress.clone();
     let out = interruptible(py, move |_| {
         let mut on_point = |done: usize, total: usize| {
             report.report(done, total);
         };
-        stiction_cli::api::run_json(&parsed, &name, &s.base, &mut on_point)
+        stiction_cli::api::run_json(&parsed, &name, &source.base, &mut on_point)
             .map_err(|e| e.to_string())
             .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
     })?;
@@ -209,21 +266,6 @@ fn run_json(py: Python<'_>, scenario: &Bound<'_, PyAny>, progress: Option<Py<PyA
         return Err(e);
     }
     out.map_err(err)
-}
-
-/// The scenario file of a call that reads it by name (contact, fit) and its overrides as
-/// `--set` flags.
-fn file_flags(command: &str, scenario: &Bound<'_, PyAny>) -> PyResult<(PathBuf, Vec<String>)> {
-    let s = PyScenario::extract(scenario)?;
-    let Some(path) = s.path.clone() else {
-        return Err(err(format!("{command}: the scenario must come from a file (Scenario.load or a path)")));
-    };
-    let mut flags = Vec::new();
-    for set in &s.sets {
-        flags.push("--set".to_string());
-        flags.push(set.clone());
-    }
-    Ok((path, flags))
 }
 
 /// contact_json(scenario, flags, loads=None) -> str: what `stiction contact SCENARIO FLAGS --json`
@@ -237,8 +279,8 @@ fn contact_json(
     flags: Vec<String>,
     loads: Option<Vec<f64>>,
 ) -> PyResult<String> {
-    let (path, mut all) = file_flags("contact", scenario)?;
-    all.insert(0, path.display().to_string());
+    let source = PyScenario::source_of(scenario)?;
+    let mut all = vec![source.name()];
     all.extend(flags);
     if let Some(loads) = &loads {
         if loads.is_empty() {
@@ -252,30 +294,44 @@ fn contact_json(
     all.push("--json".into());
     let args: stiction_cli::api::ContactArgs = stiction_cli::api::parse_args("contact", &all).map_err(err)?;
     interruptible(py, move |_| {
-        stiction_cli::api::contact_json(&args, loads.as_deref())
+        stiction_cli::api::contact_json(&args, &source, loads.as_deref())
             .map_err(|e| e.to_string())
             .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
     })?
     .map_err(err)
 }
 
-/// bem_json(heights, flags, pressures=None) -> str: what `stiction bem --map FILE.npy FLAGS
-/// --json` prints for the height map `heights` (a 2-D array, read in place), its `file` being
-/// "<array>"; `pressures` (Pa, in order) instead of --pressure/--sweep. The GIL is released;
-/// Ctrl-C raises KeyboardInterrupt.
+/// bem_json(heights, flags, pressures=None, scenario=None) -> str: what `stiction bem --map
+/// FILE.npy FLAGS --json` prints for the height map `heights` (a 2-D array, read in place), its
+/// `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a path),
+/// what `stiction bem --scenario SCENARIO FLAGS --json` prints. `pressures` (Pa, in order)
+/// instead of --pressure/--sweep. The GIL is released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (heights, flags, pressures=None))]
+#[pyo3(signature = (heights, flags, pressures=None, scenario=None))]
 fn bem_json(
     py: Python<'_>,
     heights: &Bound<'_, PyAny>,
     flags: Vec<String>,
     pressures: Option<Vec<f64>>,
+    scenario: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<String> {
     let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(err)?;
     if let Some(p) = &pressures
         && p.is_empty()
     {
         return Err(err("pressures: expected at least one mean pressure"));
+    }
+    if let Some(scenario) = scenario.filter(|s| !s.is_none()) {
+        if !heights.is_none() {
+            return Err(err("bem: give a height map (heights) or a scenario, not both"));
+        }
+        let source = PyScenario::source_of(scenario)?;
+        return interruptible(py, move |_| {
+            stiction_cli::api::bem_json_of_scenario(&args, &source, pressures.as_deref())
+                .map_err(|e| e.to_string())
+                .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
+        })?
+        .map_err(err);
     }
     let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
     interruptible(py, move |_| {
@@ -298,14 +354,14 @@ fn fit_json(
     data_csv: Option<String>,
     data_name: Option<String>,
 ) -> PyResult<String> {
-    let (path, mut all) = file_flags("fit", scenario)?;
-    all.extend(["--scenario".to_string(), path.display().to_string()]);
-    all.extend(flags);
+    let source = PyScenario::source_of(scenario)?;
+    let mut all = flags;
+    all.extend(["--scenario".to_string(), source.name()]);
     all.push("--json".into());
     let args: stiction_cli::api::FitArgs = stiction_cli::api::parse_args("fit", &all).map_err(err)?;
     let name = data_name.unwrap_or_else(|| "<data>".into());
     interruptible(py, move |_| {
-        stiction_cli::api::fit_json(&args, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
+        stiction_cli::api::fit_json(&args, &source, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
             .map_err(|e| e.to_string())
             .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
     })?
@@ -377,8 +433,9 @@ fn topography_json<'py>(
     level: &str,
     cutoff: Option<&Bound<'py, PyAny>>,
     long_cutoff: Option<&Bound<'py, PyAny>>,
-    scenario: Option<PathBuf>,
+    scenario: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(String, Bound<'py, PyDict>)> {
+    let scenario = scenario.filter(|s| !s.is_none()).map(PyScenario::source_of).transpose()?;
     let meta = MapMetadata {
         pixel_size_x_m: length("pixel_size", pixel_size)?,
         pixel_size_y_m: length("pixel_size_y", pixel_size_y)?,
@@ -398,7 +455,7 @@ fn topography_json<'py>(
     };
     let (raw, info) = read_heights(heights, &meta)?;
     let out = py.detach(|| -> Result<_, String> {
-        let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_deref())
+        let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_ref())
             .map_err(|e| e.to_string())?;
         Ok((serde_json::to_string(&json).map_err(|e| e.to_string())?, map, summits))
     });
@@ -518,7 +575,7 @@ fn study_json(
     fixed_surface: bool,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(String, String)> {
-    let s = PyScenario::extract(scenario)?;
+    let source = PyScenario::source_of(scenario)?;
     let config = StudyConfig {
         calibration: Calibration::Nominal,
         slip_path: stiction_meter::SlipPath::Light,
@@ -530,19 +587,10 @@ fn study_json(
     };
     config.validate().map_err(err)?;
     let pool = stiction_cli::api::study_pool(threads).map_err(err)?;
-    let study = match (&s.path, &s.text) {
-        (Some(path), _) => Study::prepare(path, &s.sets, &config),
-        (None, text) => {
-            s.parse().map_err(err)?;
-            let mut value: serde_json::Value = serde_json::from_str(text.as_deref().unwrap_or("{}")).map_err(err)?;
-            for set in &s.sets {
-                stiction_scenario::apply_set(&mut value, set).map_err(err)?;
-            }
-            Study::prepare_value(value, Path::new("<scenario>"), &s.base, &config)
-        }
-    }
-    .and_then(stiction_cli::api::with_lab_intervals)
-    .map_err(err)?;
+    let value = source.json(&[]).map_err(err)?;
+    let study = Study::prepare_value(value, &source.origin, &source.base, &config)
+        .and_then(stiction_cli::api::with_lab_intervals)
+        .map_err(err)?;
     let progress = Progress::new(progress);
     let report = progress.clone();
     let out = interruptible(py, move |interrupt| {

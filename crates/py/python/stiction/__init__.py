@@ -27,7 +27,10 @@ __all__ = [
     "contact", "bem", "fit",
 ]
 
-PathOrScenario = Union[str, "_os.PathLike[str]", Scenario]
+PathOrScenario = Union[str, "_os.PathLike[str]", Scenario, Dict[str, Any]]
+"""A scenario argument: a path to a scenario file, a ``Scenario``, or a dict shaped as the file
+(as ``Scenario.from_dict(d)``: relative paths in a dict, such as a height map or a measured CSV,
+are read from the current directory; a file's relative paths from the file's folder)."""
 
 
 class Result:
@@ -100,7 +103,8 @@ def run(scenario: PathOrScenario, progress: Optional[Callable[[int, int], Any]] 
     """Run the friction-meter experiment of a scenario (the paper's Fig. 5): clamp at each clamp
     voltage, ramp the pull voltage until slip, fit eq. 10 (F_f = mu_e,a (L + F_a0)).
 
-    scenario: a path to a scenario JSON file, or a ``Scenario``.
+    scenario: a path to a scenario JSON file, a ``Scenario``, or a dict shaped as the file (its
+    relative paths read from the current directory).
     progress: optional ``progress(done, total)`` called after each clamp voltage.
 
     Returns a ``Result`` equal to ``stiction run SCENARIO --json``: ``mu_apparent`` (mu_e,a,
@@ -119,7 +123,7 @@ def topography(
     level: str = "plane",
     cutoff: Union[str, float, None] = None,
     long_cutoff: Union[str, float, None] = None,
-    scenario: Union[str, "_os.PathLike[str]", None] = None,
+    scenario: Optional[PathOrScenario] = None,
 ) -> Result:
     """Analyse a measured height map given as a 2-D NumPy array (rows = y), float32 or float64,
     C or Fortran order: levelling, cut-offs, summits (8-neighbour maxima, curvature
@@ -130,7 +134,8 @@ def topography(
     height_unit: the unit of the array's numbers ("nm", "um", "mm") or metres per unit (1e-9).
     level: "none", "mean", "plane", "poly2" or "poly3".
     cutoff, long_cutoff: short- and long-wavelength Gaussian cut-offs, lengths or metres.
-    scenario: a scenario file whose material gives the adhesion parameter theta.
+    scenario: a scenario (file, ``Scenario`` or dict) whose material gives the adhesion parameter
+    theta (eq. 9) with the map's summit height SD and mean radius.
 
     Returns a ``Result`` whose ``to_dict()`` equals the CLI's JSON (its ``file`` field is
     "<array>") and whose ``summits`` is a dict of arrays: x_m, y_m (pixel centres, m), height_m (m),
@@ -138,7 +143,7 @@ def topography(
     """
     text, summits = _stiction.topography_json(
         _heights(heights), pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff,
-        None if scenario is None else _os.fspath(scenario),
+        scenario,
     )
     return Result(text, {"summits": summits})
 
@@ -152,7 +157,8 @@ def study(
     progress: Optional[Callable[[int, int], Any]] = None,
     as_pandas: Optional[bool] = None,
 ) -> Result:
-    """Monte Carlo study of a scenario (a file, or a ``Scenario`` built with ``Scenario.from_dict``):
+    """Monte Carlo study of a scenario (a file, a ``Scenario``, or a dict shaped as the file whose
+    relative paths are read from the current directory):
     every parameter written with an uncertainty is drawn anew and each sample gets its own rough
     surface (unless fixed_surface); the spread of mu_e,a (dimensionless) and F_a0 (N) of eq. 10.
 
@@ -324,7 +330,8 @@ def contact(
     mode: "tilt", "flat" or "fixed" (default: the scenario's). contacts: N for mode "fixed".
     summits: list every summit in contact.
 
-    The scenario must be a file (or a ``Scenario`` loaded from one). Equilibrium fields are SI
+    scenario: a file, a ``Scenario``, or a dict shaped as the file (its relative paths read from
+    the current directory). Equilibrium fields are SI
     (load_n N, separation_m m, tilt_x_rad rad, real_area_m2 m^2, max_pressure_pa Pa, ...).
     Releases the GIL; Ctrl-C raises KeyboardInterrupt.
     """
@@ -338,7 +345,7 @@ def contact(
 
 
 def bem(
-    heights,
+    heights=None,
     pressure=None,
     pixel_size: Union[str, float, None] = None,
     pixel_size_y: Union[str, float, None] = None,
@@ -355,6 +362,7 @@ def bem(
     shear_strength: Union[str, float, None] = None,
     tolerance: Optional[float] = None,
     compare_asperity: bool = False,
+    scenario: Optional[PathOrScenario] = None,
 ) -> Result:
     """FFT boundary-element contact of a rigid flat on the height map ``heights`` (a 2-D NumPy
     array, rows = y, float32 or float64, any order; read in place, as ``topography`` reads it),
@@ -369,6 +377,12 @@ def bem(
     Dugdale law. shear_strength: s (Pa) for the friction s A_r. tolerance: relative, of the
     conjugate gradient (default 1e-6). compare_asperity: also the summit model on the same grid.
 
+    scenario: instead of ``heights``, a scenario (file, ``Scenario`` or dict whose relative paths
+    are read from the current directory) with ``surface.source`` "height_map": the patch of its
+    face(s) under the shoe, as ``stiction bem --scenario SCENARIO --json`` (E* from its material
+    unless e_star is given; the map flags do not apply: the scenario's surface section prepares
+    the maps).
+
     Returns a ``Result``: grid, e_star_pa, rms_height_m, rms_slope, points (mean_pressure_pa Pa,
     load_n N, mean_gap_m m, contact_fraction, contact_area_m2 m^2, friction_n N, ...; also as
     NumPy ``columns``), pull_off_n. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
@@ -381,10 +395,29 @@ def bem(
         + _flag("shear_strength", shear_strength) + _flag("tolerance", tolerance)
         + _flag("compare_asperity", compare_asperity)
     )
+    if scenario is not None:
+        if heights is not None:
+            raise StictionError("bem: give a height map (heights) or a scenario, not both")
+        map_flags = {
+            "pixel_size": pixel_size, "pixel_size_y": pixel_size_y, "height_unit": height_unit,
+            "cutoff": cutoff, "long_cutoff": long_cutoff,
+        }
+        given = [k for k, v in map_flags.items() if v is not None] + (["level"] if level != "plane" else [])
+        if given:
+            raise StictionError(
+                f"bem: {', '.join(given)} prepare a height-map array; with a scenario its surface section "
+                "prepares the maps"
+            )
+        flags = [f for f in flags if not f.startswith("--level=")]
+        heights_arg = None
+    elif heights is None:
+        raise StictionError("bem: give a height map (heights, a 2-D array) or a scenario")
+    else:
+        heights_arg = _heights(heights)
     if _is_vector(pressure):
         pressures = _np.asarray(pressure, dtype=float).ravel().tolist()
-        return Result(_stiction.bem_json(_heights(heights), flags, pressures))
-    return Result(_stiction.bem_json(_heights(heights), flags + _flag("pressure", pressure), None))
+        return Result(_stiction.bem_json(heights_arg, flags, pressures, scenario))
+    return Result(_stiction.bem_json(heights_arg, flags + _flag("pressure", pressure), None, scenario))
 
 
 def fit(
@@ -403,7 +436,8 @@ def fit(
     data: a CSV path (columns v_clamp_v, v_pull_v [, v_pull_sd_v, device]); or the columns as
     arrays: a dict (or pandas DataFrame) with keys v_clamp_v and v_pull_v (V) and optionally
     v_pull_sd_v (V) and device; or None for the scenario's ``measured.voltages_csv``.
-    scenario: the device's scenario file. models: "discrete-n1,gw-dmt,explicit,..."; free: "s",
+    scenario: the device's scenario: a file, a ``Scenario``, or a dict shaped as the file (its
+    relative paths, such as ``measured.voltages_csv``, read from the current directory). models: "discrete-n1,gw-dmt,explicit,..."; free: "s",
     "s,R", "s,R,F_spring"; surfaces: realisations of the explicit ensemble; draws: calibration
     Monte Carlo draws; seed: its seed (the CLI's defaults when None).
     Releases the GIL; Ctrl-C raises KeyboardInterrupt.

@@ -17,7 +17,8 @@ class Scenario:
     def from_json(text: str, base_dir: Union[str, os.PathLike[str], None] = None) -> Scenario: ...
     @staticmethod
     def from_dict(d: Dict[str, Any], base_dir: Union[str, os.PathLike[str], None] = None) -> Scenario: ...
-    def set(self, path: str, value: Union[str, float, int, bool, None]) -> None: ...
+    def set(self, path: str, value: Union[str, float, int, bool, None, List[Any], Dict[str, Any]]) -> None: ...
+    def get(self, path: str) -> Any: ...
     def validate(self) -> List[Tuple[str, str]]: ...
     def to_json(self) -> str: ...
     def to_dict(self) -> Dict[str, Any]: ...
@@ -26,7 +27,7 @@ class Scenario:
     @property
     def sets(self) -> List[str]: ...
 
-PathOrScenario = Union[str, os.PathLike[str], Scenario]
+PathOrScenario = Union[str, os.PathLike[str], Scenario, Dict[str, Any]]
 Quantity = Union[str, float, None]
 
 class Result:
@@ -51,7 +52,7 @@ def topography(
     level: str = "plane",
     cutoff: Quantity = None,
     long_cutoff: Quantity = None,
-    scenario: Union[str, os.PathLike[str], None] = None,
+    scenario: Optional[PathOrScenario] = None,
 ) -> Result: ...
 def study(
     scenario: PathOrScenario,
@@ -100,7 +101,7 @@ def contact(
     """The explicit solver at a load (N) or over a vector of loads (a sweep)."""
 
 def bem(
-    heights: Heights,
+    heights: Optional[Heights] = None,
     pressure: Union[str, float, Sequence[float], npt.NDArray[np.float64], None] = None,
     pixel_size: Quantity = None,
     pixel_size_y: Quantity = None,
@@ -117,6 +118,7 @@ def bem(
     shear_strength: Quantity = None,
     tolerance: Optional[float] = None,
     compare_asperity: bool = False,
+    scenario: Optional[PathOrScenario] = None,
 ) -> Result:
     """Boundary-element contact on a height-map array; pressures in Pa, E* in Pa, lengths in m."""
 
