@@ -54,6 +54,10 @@ def test_run_of_a_plain_dict_equals_cli(in_root, cli_json):
         got = stiction.run(s).to_dict()
         assert got["scenario"] == "<scenario>"
         assert _without(got, "scenario") == _without(e, "scenario")
+    # A height-map surface, the map read from the current directory.
+    e = cli_json("run", HEIGHT_MAP)
+    got = stiction.run(_height_map_dict()).to_dict()
+    assert _without(got, "scenario") == _without(e, "scenario")
 
 
 def test_contact_of_a_dict_scenario_equals_cli(in_root, cli_json):

@@ -15,7 +15,7 @@ import csv as _csv
 import io as _io
 import json as _json
 import os as _os
-from typing import Any, Callable, Dict, Optional, Union
+from typing import Any, Callable, Dict, Optional, Sequence, Union
 
 import numpy as _np
 
@@ -24,8 +24,15 @@ from . import _stiction
 
 __all__ = [
     "Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete", "asperity",
-    "contact", "bem", "fit",
+    "contact", "bem", "fit", "PathOrScenario", "Quantity", "Loads", "Heights",
 ]
+
+Quantity = Union[str, float, None]
+"""A quantity argument: a unit string ("0.5 um", "20 MPa") or an SI float (None: the default)."""
+Loads = Union[str, float, Sequence[float], _np.ndarray]
+"""Loads: one force ("3 uN" or N) or a vector of them (N)."""
+Heights = _np.ndarray
+"""A height map: a 2-D NumPy array of float32 or float64, rows = y, any order or strides."""
 
 PathOrScenario = Union[str, "_os.PathLike[str]", Scenario, Dict[str, Any]]
 """A scenario argument: a path to a scenario file, a ``Scenario``, or a dict shaped as the file

@@ -1,14 +1,20 @@
 """Type stubs of the stiction package (quantities SI floats or unit strings; results as the CLI's --json)."""
 
 import os
-from typing import Any, Callable, Dict, KeysView, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, KeysView, List, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
+__all__ = [
+    "Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete", "asperity",
+    "contact", "bem", "fit", "PathOrScenario", "Quantity", "Loads", "Heights",
+]
+
 class StictionError(ValueError):
     """Bad input or a value that cannot be computed; the message is the command line's."""
 
+@final
 class Scenario:
     """A scenario: a file with overrides in order, or a JSON tree built in Python."""
     @staticmethod
@@ -37,6 +43,7 @@ class Result:
     """topography: x_m, y_m, height_m, curvature_per_m, radius_m, ix, iy."""
     samples: Any
     """study: a dict of NumPy arrays, or a pandas DataFrame."""
+    def __init__(self, text: str, extra: Optional[Dict[str, Any]] = None) -> None: ...
     def __getattr__(self, name: str) -> Any: ...
     def __getitem__(self, key: str) -> Any: ...
     def keys(self) -> KeysView[str]: ...
@@ -93,7 +100,7 @@ def asperity(
 
 def contact(
     scenario: PathOrScenario,
-    load: Loads = None,
+    load: Optional[Loads] = None,
     mode: Optional[str] = None,
     contacts: Optional[int] = None,
     summits: bool = False,
