@@ -5,6 +5,7 @@
 pub use crate::cmd::contact::{Args as ContactArgs, Mode as ContactMode, Model as ContactModelKind, contact_json};
 pub use crate::cmd::discrete::{Args as DiscreteArgs, Law, discrete_json};
 pub use crate::cmd::run::{Experiment, experiment, run_json};
+pub use crate::cmd::scenario::check as check_scenario;
 pub use crate::cmd::study::{study_json, study_json_of, study_pool, with_lab_intervals};
 pub use crate::cmd::topography::topography_json;
 

@@ -184,10 +184,11 @@ impl PyScenario {
         Ok(())
     }
 
-    /// validate(): parse and check the scenario as `stiction scenario FILE` does; returns the
-    /// notes (list of (code, message)) or raises StictionError.
+    /// validate(): check the scenario as `stiction scenario FILE` does (parsed and validated; a
+    /// height-map sidewall's map read and prepared as `run` reads it); returns the notes (list of
+    /// (code, message)) or raises StictionError with the command line's message.
     fn validate(&self) -> PyResult<Vec<(String, String)>> {
-        let s = self.parse().map_err(err)?;
+        let s = stiction_cli::api::check_scenario(&self.source().map_err(err)?).map_err(err)?;
         Ok(s.notes.iter().map(|n| (n.code.to_string(), n.message.clone())).collect())
     }
 

@@ -213,3 +213,21 @@ def test_get_reads_fields_in_si_and_names_a_missing_one(in_root):
     assert s.get("material") == s.to_dict()["material"]
     with pytest.raises(stiction.StictionError, match="summit_sdd"):
         s.get("surface.summit_sdd")
+
+
+def test_validate_checks_what_the_cli_scenario_command_checks(in_root, cli, tmp_path):
+    # A height-map sidewall whose map cannot be read: the parse alone accepts it; `stiction scenario`
+    # reads and prepares the map as `run` will, and so does validate().
+    d = _height_map_dict()
+    d["surface"]["height_map"]["file"] = str(tmp_path / "no-such-map.gsf")
+    path = tmp_path / "bad-map.json"
+    path.write_text(json.dumps(d))
+    code, _, err = cli("scenario", path)
+    assert code == 2 and "no-such-map.gsf" in err
+    s = stiction.Scenario.from_dict(d)
+    with pytest.raises(stiction.StictionError) as e:
+        s.validate()
+    assert str(e.value) == err[len("error: "):].strip().replace(str(path), "<scenario>")
+    # A good one validates, as the CLI's.
+    assert cli("scenario", HEIGHT_MAP)[0] == 0
+    assert stiction.Scenario.from_dict(_height_map_dict()).validate() == []
