@@ -38,6 +38,37 @@ fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (text,))
 }
 
+/// A JSON value as the Python object `json.loads` makes of its text (null: None; true/false: bool;
+/// an integer: int; any other number: float; lists and objects: list and dict, in order), built
+/// directly, without the text and its float parsing in between: the numbers are the same f64s.
+fn to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    use serde_json::Value;
+    Ok(match value {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => pyo3::types::PyBool::new(py, *b).to_owned().into_any(),
+        Value::Number(n) => match (n.as_i64(), n.as_u64()) {
+            (Some(i), _) => i.into_pyobject(py)?.into_any(),
+            (None, Some(u)) => u.into_pyobject(py)?.into_any(),
+            (None, None) => pyo3::types::PyFloat::new(py, n.as_f64().unwrap_or(f64::NAN)).into_any(),
+        },
+        Value::String(text) => PyString::new(py, text).into_any(),
+        Value::Array(items) => {
+            let list = pyo3::types::PyList::empty(py);
+            for item in items {
+                list.append(to_py(py, item)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(map) => {
+            let dict = PyDict::new(py);
+            for (key, item) in map {
+                dict.set_item(key, to_py(py, item)?)?;
+            }
+            dict.into_any()
+        }
+    })
+}
+
 /// A scenario: a file (with `set` overrides applied in order) or a JSON tree built in Python.
 #[pyclass(name = "Scenario", module = "stiction._stiction", from_py_object)]
 #[derive(Clone)]
@@ -219,7 +250,7 @@ impl PyScenario {
                 err(format!("{path}: no field `{seg}` in this scenario (the fields as run, in SI: to_dict())"))
             })?;
         }
-        json_loads(py, &serde_json::to_string(&node).map_err(err)?)
+        to_py(py, &node)
     }
 
     /// to_dict(): `json.loads(self.to_json())`.
@@ -244,12 +275,16 @@ impl PyScenario {
     }
 }
 
-/// run(scenario, progress=None) -> str: the JSON text `stiction run SCENARIO --json` prints.
+/// run(scenario, progress=None) -> dict: the JSON object `stiction run SCENARIO --json` prints.
 /// `progress(done, total)` is called after each clamp voltage. The GIL is released while the
 /// meter runs (it is taken back only for the callback).
 #[pyfunction]
 #[pyo3(signature = (scenario, progress=None))]
-fn run_json(py: Python<'_>, scenario: &Bound<'_, PyAny>, progress: Option<Py<PyAny>>) -> PyResult<String> {
+fn run_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
     let source = PyScenario::source_of(scenario)?;
     let parsed = source.parse(&[]).map_err(err)?;
     let name = source.name();
@@ -261,25 +296,24 @@ fn run_json(py: Python<'_>, scenario: &Bound<'_, PyAny>, progress: Option<Py<PyA
         };
         stiction_cli::api::run_json(&parsed, &name, &source.base, &mut on_point)
             .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
     })?;
     if let Some(e) = progress.take_error() {
         return Err(e);
     }
-    out.map_err(err)
+    to_py(py, &out.map_err(err)?)
 }
 
-/// contact_json(scenario, flags, loads=None) -> str: what `stiction contact SCENARIO FLAGS --json`
+/// contact_json(scenario, flags, loads=None) -> dict: what `stiction contact SCENARIO FLAGS --json`
 /// prints with the explicit solver; `loads` (N, in order) is a sweep of those loads. The GIL is
 /// released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (scenario, flags, loads=None))]
-fn contact_json(
-    py: Python<'_>,
-    scenario: &Bound<'_, PyAny>,
+fn contact_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
     flags: Vec<String>,
     loads: Option<Vec<f64>>,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let source = PyScenario::source_of(scenario)?;
     let mut all = vec![source.name()];
     all.extend(flags);
@@ -294,28 +328,26 @@ fn contact_json(
     }
     all.push("--json".into());
     let args: stiction_cli::api::ContactArgs = stiction_cli::api::parse_args("contact", &all).map_err(err)?;
-    interruptible(py, move |_| {
-        stiction_cli::api::contact_json(&args, &source, loads.as_deref())
-            .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-    })?
-    .map_err(err)
+    let out = interruptible(py, move |_| {
+        stiction_cli::api::contact_json(&args, &source, loads.as_deref()).map_err(|e| e.to_string())
+    })?;
+    to_py(py, &out.map_err(err)?)
 }
 
-/// bem_json(heights, flags, pressures=None, scenario=None) -> str: what `stiction bem --map
+/// bem_json(heights, flags, pressures=None, scenario=None) -> dict: what `stiction bem --map
 /// FILE.npy FLAGS --json` prints for the height map `heights` (a 2-D array, read in place), its
 /// `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a path),
 /// what `stiction bem --scenario SCENARIO FLAGS --json` prints. `pressures` (Pa, in order)
 /// instead of --pressure/--sweep. The GIL is released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (heights, flags, pressures=None, scenario=None))]
-fn bem_json(
-    py: Python<'_>,
-    heights: &Bound<'_, PyAny>,
+fn bem_json<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
     flags: Vec<String>,
     pressures: Option<Vec<f64>>,
-    scenario: Option<&Bound<'_, PyAny>>,
-) -> PyResult<String> {
+    scenario: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
     let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(err)?;
     if let Some(p) = &pressures
         && p.is_empty()
@@ -327,46 +359,41 @@ fn bem_json(
             return Err(err("bem: give a height map (heights) or a scenario, not both"));
         }
         let source = PyScenario::source_of(scenario)?;
-        return interruptible(py, move |_| {
-            stiction_cli::api::bem_json_of_scenario(&args, &source, pressures.as_deref())
-                .map_err(|e| e.to_string())
-                .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-        })?
-        .map_err(err);
+        let out = interruptible(py, move |_| {
+            stiction_cli::api::bem_json_of_scenario(&args, &source, pressures.as_deref()).map_err(|e| e.to_string())
+        })?;
+        return to_py(py, &out.map_err(err)?);
     }
     let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
-    interruptible(py, move |_| {
-        stiction_cli::api::bem_json_of_map(&args, "<array>", raw, info, pressures.as_deref())
-            .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-    })?
-    .map_err(err)
+    let out = interruptible(py, move |_| {
+        stiction_cli::api::bem_json_of_map(&args, "<array>", raw, info, pressures.as_deref()).map_err(|e| e.to_string())
+    })?;
+    to_py(py, &out.map_err(err)?)
 }
 
-/// fit_json(scenario, flags, data_csv=None, data_name="<data>") -> str: what `stiction fit [DATA]
+/// fit_json(scenario, flags, data_csv=None, data_name="<data>") -> dict: what `stiction fit [DATA]
 /// --scenario SCENARIO FLAGS --json` prints; `data_csv`, the CSV text of the measured voltages,
 /// instead of a file. The GIL is released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (scenario, flags, data_csv=None, data_name=None))]
-fn fit_json(
-    py: Python<'_>,
-    scenario: &Bound<'_, PyAny>,
+fn fit_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
     flags: Vec<String>,
     data_csv: Option<String>,
     data_name: Option<String>,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let source = PyScenario::source_of(scenario)?;
     let mut all = flags;
     all.extend(["--scenario".to_string(), source.name()]);
     all.push("--json".into());
     let args: stiction_cli::api::FitArgs = stiction_cli::api::parse_args("fit", &all).map_err(err)?;
     let name = data_name.unwrap_or_else(|| "<data>".into());
-    interruptible(py, move |_| {
+    let out = interruptible(py, move |_| {
         stiction_cli::api::fit_json(&args, &source, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
             .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-    })?
-    .map_err(err)
+    })?;
+    to_py(py, &out.map_err(err)?)
 }
 
 /// A length flag value: a unit string ("3.9 um") or an SI number, checked as the command line
@@ -435,7 +462,7 @@ fn topography_json<'py>(
     cutoff: Option<&Bound<'py, PyAny>>,
     long_cutoff: Option<&Bound<'py, PyAny>>,
     scenario: Option<&Bound<'py, PyAny>>,
-) -> PyResult<(String, Bound<'py, PyDict>)> {
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
     let scenario = scenario.filter(|s| !s.is_none()).map(PyScenario::source_of).transpose()?;
     let meta = MapMetadata {
         pixel_size_x_m: length("pixel_size", pixel_size)?,
@@ -458,9 +485,9 @@ fn topography_json<'py>(
     let out = py.detach(|| -> Result<_, String> {
         let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_ref())
             .map_err(|e| e.to_string())?;
-        Ok((serde_json::to_string(&json).map_err(|e| e.to_string())?, map, summits))
+        Ok((json, map, summits))
     });
-    let (json, map, s): (String, HeightMap, _) = out.map_err(err)?;
+    let (json, map, s): (serde_json::Value, HeightMap, _) = out.map_err(err)?;
     let d = PyDict::new(py);
     let x: Vec<f64> = s.ix.iter().map(|&i| (f64::from(i) + 0.5) * map.dx_m()).collect();
     let y: Vec<f64> = s.iy.iter().map(|&i| (f64::from(i) + 0.5) * map.dy_m()).collect();
@@ -472,7 +499,7 @@ fn topography_json<'py>(
     d.set_item("radius_m", PyArray1::from_vec(py, r))?;
     d.set_item("ix", PyArray1::from_vec(py, s.ix.clone()))?;
     d.set_item("iy", PyArray1::from_vec(py, s.iy.clone()))?;
-    Ok((json, d))
+    Ok((to_py(py, &json)?, d))
 }
 
 /// Runs `work` on a worker thread with the GIL released, while the calling thread waits and
@@ -567,15 +594,15 @@ impl Progress {
 /// a dict (its relative paths from its base_dir). The GIL is released; Ctrl-C stops the study.
 #[pyfunction]
 #[pyo3(signature = (scenario, samples=100, seed=1, threads=None, fixed_surface=false, progress=None))]
-fn study_json(
-    py: Python<'_>,
-    scenario: &Bound<'_, PyAny>,
+fn study_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
     samples: usize,
     seed: u64,
     threads: Option<usize>,
     fixed_surface: bool,
     progress: Option<Py<PyAny>>,
-) -> PyResult<(String, String)> {
+) -> PyResult<(Bound<'py, PyAny>, String)> {
     let source = PyScenario::source_of(scenario)?;
     let config = StudyConfig {
         calibration: Calibration::Nominal,
@@ -605,14 +632,13 @@ fn study_json(
         let mut csv = Vec::new();
         let summary = stiction_cli::api::study_json_of(&study, &pool, &on_sample, interrupt, Some(&mut csv))
             .map_err(|e| e.to_string())?;
-        let json = summary.map(|v| serde_json::to_string(&v).map_err(|e| e.to_string())).transpose()?;
-        Ok::<_, String>((json, String::from_utf8_lossy(&csv).into_owned()))
+        Ok::<_, String>((summary, String::from_utf8_lossy(&csv).into_owned()))
     })?;
     if let Some(e) = progress.take_error() {
         return Err(e);
     }
     match out.map_err(err)? {
-        (Some(json), csv) => Ok((json, csv)),
+        (Some(json), csv) => Ok((to_py(py, &json)?, csv)),
         (None, _) => {
             // Stopped by Ctrl-C between the worker's end and the last check: raise it now.
             py.check_signals()?;
@@ -665,12 +691,12 @@ fn quantity(name: &str, value: &Bound<'_, PyAny>, dim: Dimension, constraint: Co
     parse_quantity_checked(&text, dim, constraint).map_err(|e| err(format!("{name}={text}: {e}")))
 }
 
-/// discrete_json(...) -> str: a JSON list, per load, of what `stiction discrete ... --json` prints.
+/// discrete_json(...) -> list: per load, the object `stiction discrete ... --json` prints.
 #[pyfunction]
 #[pyo3(signature = (contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion="dmt", equilibrium_spacing=None, target_slope=None))]
 #[allow(clippy::too_many_arguments)]
-fn discrete_json(
-    py: Python<'_>,
+fn discrete_json<'py>(
+    py: Python<'py>,
     contacts: u32,
     radius: &Bound<'_, PyAny>,
     work_of_adhesion: &Bound<'_, PyAny>,
@@ -680,7 +706,7 @@ fn discrete_json(
     adhesion: &str,
     equilibrium_spacing: Option<&Bound<'_, PyAny>>,
     target_slope: Option<f64>,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     use stiction_cli::api::{DiscreteArgs, Law};
     let law = match adhesion.to_ascii_lowercase().as_str() {
         "dmt" => Law::Dmt,
@@ -715,15 +741,15 @@ fn discrete_json(
         .enumerate()
         .map(|(i, l)| quantity(&format!("load[{i}]"), l, Dimension::Force, Constraint::Finite))
         .collect::<PyResult<_>>()?;
-    py.detach(|| {
+    let out = py.detach(|| {
         let mut out = Vec::with_capacity(loads.len());
         for (i, &load) in loads.iter().enumerate() {
             let args = DiscreteArgs { load, ..template };
             out.push(stiction_cli::api::discrete_json(&args).map_err(|e| format!("load[{i}] = {load} N: {e}"))?);
         }
-        serde_json::to_string(&out).map_err(|e| e.to_string())
-    })
-    .map_err(err)
+        Ok::<_, String>(serde_json::Value::Array(out))
+    });
+    to_py(py, &out.map_err(err)?)
 }
 
 /// The extension module `stiction._stiction`.

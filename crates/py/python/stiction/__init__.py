@@ -45,15 +45,23 @@ class Result:
     attributes (``r.mu_apparent``), ``to_dict()`` (equal to that JSON) and ``to_json()``.
 
     ``columns`` holds the per-point columns as NumPy arrays (float64; None/null becomes NaN,
-    booleans stay bool) where the result has a list of points.
+    booleans stay bool) where the result has a list of points (made on first use).
     """
 
-    def __init__(self, text: str, extra: Optional[Dict[str, Any]] = None):
-        self._text = text
-        self._data = _json.loads(text)
+    def __init__(self, data: Union[str, Dict[str, Any]], extra: Optional[Dict[str, Any]] = None):
+        # The engine hands over the JSON object itself (built in Rust from the same f64s); a JSON
+        # text is parsed.
+        self._data = _json.loads(data) if isinstance(data, str) else data
         self._extra = extra or {}
-        points = self._data.get("points") if isinstance(self._data, dict) else None
-        self.columns: Dict[str, _np.ndarray] = _columns(points) if isinstance(points, list) else {}
+        self._columns: Optional[Dict[str, _np.ndarray]] = None
+
+    @property
+    def columns(self) -> Dict[str, _np.ndarray]:
+        """The per-point columns as NumPy arrays (float64 with null as NaN, or bool)."""
+        if self._columns is None:
+            points = self._data.get("points") if isinstance(self._data, dict) else None
+            self._columns = _columns(points) if isinstance(points, list) else {}
+        return self._columns
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("_"):
@@ -74,11 +82,12 @@ class Result:
 
     def to_dict(self) -> Dict[str, Any]:
         """The JSON object as a dict (a fresh copy): equals ``json.loads`` of the CLI's ``--json``."""
-        return _json.loads(self._text)
+        return _json.loads(self.to_json())
 
     def to_json(self) -> str:
-        """The JSON object as text (compact; the CLI prints it indented: same values)."""
-        return self._text
+        """The JSON object as text (compact, floats as Python's repr, which reads back to the same
+        float; the CLI prints it indented: same values)."""
+        return _json.dumps(self._data, separators=(",", ":"))
 
     def __dir__(self):
         return sorted(set(super().__dir__()) | set(self._data) | set(self._extra))
@@ -148,11 +157,11 @@ def topography(
     "<array>") and whose ``summits`` is a dict of arrays: x_m, y_m (pixel centres, m), height_m (m),
     curvature_per_m (1/m), radius_m (m), ix, iy (pixel indices). Releases the GIL.
     """
-    text, summits = _stiction.topography_json(
+    data, summits = _stiction.topography_json(
         _heights(heights), pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff,
         scenario,
     )
-    return Result(text, {"summits": summits})
+    return Result(data, {"summits": summits})
 
 
 def study(
@@ -182,8 +191,8 @@ def study(
     a value a sample could not compute is NaN with its reason). Releases the GIL; Ctrl-C stops
     the study (KeyboardInterrupt within a second).
     """
-    text, csv_text = _stiction.study_json(scenario, samples, seed, threads, fixed_surface, progress)
-    return Result(text, {"samples": _samples(csv_text, as_pandas)})
+    data, csv_text = _stiction.study_json(scenario, samples, seed, threads, fixed_surface, progress)
+    return Result(data, {"samples": _samples(csv_text, as_pandas)})
 
 
 def _samples(csv_text: str, as_pandas: Optional[bool]):
@@ -260,11 +269,9 @@ def discrete(
     loads = load if isinstance(load, str) else _np.atleast_1d(_np.asarray(load, dtype=float)).ravel().tolist()
     if isinstance(loads, str):
         loads = [loads]
-    points = _json.loads(
-        _stiction.discrete_json(
-            contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion,
-            equilibrium_spacing, target_slope,
-        )
+    points = _stiction.discrete_json(
+        contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion,
+        equilibrium_spacing, target_slope,
     )
     out: Dict[str, Any] = dict(_columns(points))
     out["points"] = points
