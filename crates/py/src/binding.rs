@@ -41,7 +41,30 @@ fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
 /// A JSON value as the Python object `json.loads` makes of its text (null: None; true/false: bool;
 /// an integer: int; any other number: float; lists and objects: list and dict, in order), built
 /// directly, without the text and its float parsing in between: the numbers are the same f64s.
+/// Python's cyclic garbage collector is paused while the tree is built (a JSON tree has no
+/// cycles; a sweep's thousands of new dicts and lists would otherwise set off collections that
+/// walk them), and each distinct key is made into a Python string once (the points of a sweep
+/// repeat the same keys).
 fn to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    let gc = py.import("gc")?;
+    let was_enabled = gc.call_method0("isenabled")?.is_truthy()?;
+    if was_enabled {
+        gc.call_method0("disable")?;
+    }
+    let mut keys = std::collections::HashMap::new();
+    let out = to_py_with(py, value, &mut keys);
+    if was_enabled {
+        gc.call_method0("enable")?;
+    }
+    out
+}
+
+/// [`to_py`] with the key strings made so far.
+fn to_py_with<'py, 'v>(
+    py: Python<'py>,
+    value: &'v serde_json::Value,
+    keys: &mut std::collections::HashMap<&'v str, Bound<'py, PyString>>,
+) -> PyResult<Bound<'py, PyAny>> {
     use serde_json::Value;
     Ok(match value {
         Value::Null => py.None().into_bound(py),
@@ -55,18 +78,60 @@ fn to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py,
         Value::Array(items) => {
             let list = pyo3::types::PyList::empty(py);
             for item in items {
-                list.append(to_py(py, item)?)?;
+                list.append(to_py_with(py, item, keys)?)?;
             }
             list.into_any()
         }
         Value::Object(map) => {
             let dict = PyDict::new(py);
             for (key, item) in map {
-                dict.set_item(key, to_py(py, item)?)?;
+                let item = to_py_with(py, item, keys)?;
+                let key = keys.entry(key.as_str()).or_insert_with(|| PyString::new(py, key));
+                dict.set_item(&*key, item)?;
             }
             dict.into_any()
         }
     })
+}
+
+/// A result's JSON object held as the engine made it; its fields become Python objects when they
+/// are read (`get`), so that a call hands over its result without building every number and
+/// point of it at once (a load sweep's thousands of dicts are built when `points` is read).
+#[pyclass(name = "Json", module = "stiction._stiction", frozen)]
+struct PyJson {
+    value: serde_json::Value,
+}
+
+#[pymethods]
+impl PyJson {
+    /// get(key): the field `key` of the object as `json.loads` would give it (KeyError if absent).
+    fn get<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match self.value.get(key) {
+            Some(v) => to_py(py, v),
+            None => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
+        }
+    }
+
+    /// keys(): the fields of the object, in order.
+    fn keys(&self) -> Vec<String> {
+        self.value.as_object().map(|m| m.keys().cloned().collect()).unwrap_or_default()
+    }
+
+    /// to_py(): the whole object as `json.loads` of its text gives it (a fresh copy).
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.value)
+    }
+
+    /// to_json(): the object as compact JSON text (the command line's numbers, printed by the same
+    /// serializer).
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.value).map_err(err)
+    }
+}
+
+/// A result's JSON object as a [`PyJson`].
+fn json_object(py: Python<'_>, value: serde_json::Value) -> PyResult<Bound<'_, PyAny>> {
+    Ok(Bound::new(py, PyJson { value })?.into_any())
 }
 
 /// A scenario: a file (with `set` overrides applied in order) or a JSON tree built in Python.
@@ -294,13 +359,12 @@ fn run_json<'py>(
         let mut on_point = |done: usize, total: usize| {
             report.report(done, total);
         };
-        stiction_cli::api::run_json(&parsed, &name, &source.base, &mut on_point)
-            .map_err(|e| e.to_string())
+        stiction_cli::api::run_json(&parsed, &name, &source.base, &mut on_point).map_err(|e| e.to_string())
     })?;
     if let Some(e) = progress.take_error() {
         return Err(e);
     }
-    to_py(py, &out.map_err(err)?)
+    json_object(py, out.map_err(err)?)
 }
 
 /// contact_json(scenario, flags, loads=None) -> dict: what `stiction contact SCENARIO FLAGS --json`
@@ -331,7 +395,7 @@ fn contact_json<'py>(
     let out = interruptible(py, move |_| {
         stiction_cli::api::contact_json(&args, &source, loads.as_deref()).map_err(|e| e.to_string())
     })?;
-    to_py(py, &out.map_err(err)?)
+    json_object(py, out.map_err(err)?)
 }
 
 /// bem_json(heights, flags, pressures=None, scenario=None) -> dict: what `stiction bem --map
@@ -362,13 +426,13 @@ fn bem_json<'py>(
         let out = interruptible(py, move |_| {
             stiction_cli::api::bem_json_of_scenario(&args, &source, pressures.as_deref()).map_err(|e| e.to_string())
         })?;
-        return to_py(py, &out.map_err(err)?);
+        return json_object(py, out.map_err(err)?);
     }
     let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
     let out = interruptible(py, move |_| {
         stiction_cli::api::bem_json_of_map(&args, "<array>", raw, info, pressures.as_deref()).map_err(|e| e.to_string())
     })?;
-    to_py(py, &out.map_err(err)?)
+    json_object(py, out.map_err(err)?)
 }
 
 /// fit_json(scenario, flags, data_csv=None, data_name="<data>") -> dict: what `stiction fit [DATA]
@@ -393,7 +457,7 @@ fn fit_json<'py>(
         stiction_cli::api::fit_json(&args, &source, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
             .map_err(|e| e.to_string())
     })?;
-    to_py(py, &out.map_err(err)?)
+    json_object(py, out.map_err(err)?)
 }
 
 /// A length flag value: a unit string ("3.9 um") or an SI number, checked as the command line
@@ -499,7 +563,7 @@ fn topography_json<'py>(
     d.set_item("radius_m", PyArray1::from_vec(py, r))?;
     d.set_item("ix", PyArray1::from_vec(py, s.ix.clone()))?;
     d.set_item("iy", PyArray1::from_vec(py, s.iy.clone()))?;
-    Ok((to_py(py, &json)?, d))
+    Ok((json_object(py, json)?, d))
 }
 
 /// Runs `work` on a worker thread with the GIL released, while the calling thread waits and
@@ -638,7 +702,7 @@ fn study_json<'py>(
         return Err(e);
     }
     match out.map_err(err)? {
-        (Some(json), csv) => Ok((to_py(py, &json)?, csv)),
+        (Some(json), csv) => Ok((json_object(py, json)?, csv)),
         (None, _) => {
             // Stopped by Ctrl-C between the worker's end and the last check: raise it now.
             py.check_signals()?;
@@ -757,6 +821,7 @@ fn discrete_json<'py>(
 fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("StictionError", m.py().get_type::<StictionError>())?;
     m.add_class::<PyScenario>()?;
+    m.add_class::<PyJson>()?;
     m.add_function(wrap_pyfunction!(run_json, m)?)?;
     m.add_function(wrap_pyfunction!(topography_json, m)?)?;
     m.add_function(wrap_pyfunction!(study_json, m)?)?;

@@ -236,8 +236,8 @@ fn scenario_surface(args: &Args, source: &ScenarioSource) -> Result<Surface, Box
     let spec = scenario.require_surface().map_err(|e| format!("{file}: {e}"))?;
     let (patch, faces) =
         stiction_surface::height_map_patch(spec, &source.base).map_err(|e| format!("{file}: surface: {e}"))?;
-    let grid =
-        Grid::new(patch.nx(), patch.ny(), patch.dx_m(), patch.dy_m()).map_err(|e| format!("{file}: {e} (the BEM grid limit)"))?;
+    let grid = Grid::new(patch.nx(), patch.ny(), patch.dx_m(), patch.dy_m())
+        .map_err(|e| format!("{file}: {e} (the BEM grid limit)"))?;
     let heights = patch.into_heights_m();
     stiction_bem::spec::check_complete(&heights).map_err(|e| format!("{file}: {e}"))?;
     let e_star_pa = match args.e_star {

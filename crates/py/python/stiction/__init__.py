@@ -48,18 +48,29 @@ class Result:
     booleans stay bool) where the result has a list of points (made on first use).
     """
 
-    def __init__(self, data: Union[str, Dict[str, Any]], extra: Optional[Dict[str, Any]] = None):
-        # The engine hands over the JSON object itself (built in Rust from the same f64s); a JSON
-        # text is parsed.
-        self._data = _json.loads(data) if isinstance(data, str) else data
+    def __init__(self, data: Union[str, Dict[str, Any], "_stiction.Json"], extra: Optional[Dict[str, Any]] = None):
+        # The engine hands over its JSON object (a field becomes Python objects, the same f64s,
+        # when it is first read); a JSON text is parsed, a dict taken as it is.
+        if isinstance(data, str):
+            data = _json.loads(data)
+        self._json = data if isinstance(data, _stiction.Json) else None
+        self._data: Dict[str, Any] = {} if self._json is not None else data
+        self._keys = self._json.keys() if self._json is not None else list(data)
         self._extra = extra or {}
         self._columns: Optional[Dict[str, _np.ndarray]] = None
+
+    def _field(self, name: str) -> Any:
+        if name not in self._data:
+            if self._json is None or name not in self._keys:
+                raise KeyError(name)
+            self._data[name] = self._json.get(name)
+        return self._data[name]
 
     @property
     def columns(self) -> Dict[str, _np.ndarray]:
         """The per-point columns as NumPy arrays (float64 with null as NaN, or bool)."""
         if self._columns is None:
-            points = self._data.get("points") if isinstance(self._data, dict) else None
+            points = self._field("points") if "points" in self._keys else None
             self._columns = _columns(points) if isinstance(points, list) else {}
         return self._columns
 
@@ -69,31 +80,34 @@ class Result:
         if name in self._extra:
             return self._extra[name]
         try:
-            return self._data[name]
+            return self._field(name)
         except KeyError:
-            raise AttributeError(f"result has no field {name!r}; fields: {sorted(self._data)}") from None
+            raise AttributeError(f"result has no field {name!r}; fields: {sorted(self._keys)}") from None
 
     def __getitem__(self, key: str) -> Any:
-        return self._data[key]
+        return self._field(key)
 
     def keys(self):
         """The fields of the JSON object."""
-        return self._data.keys()
+        return dict.fromkeys(self._keys).keys()
 
     def to_dict(self) -> Dict[str, Any]:
         """The JSON object as a dict (a fresh copy): equals ``json.loads`` of the CLI's ``--json``."""
+        if self._json is not None:
+            return self._json.to_py()
         return _json.loads(self.to_json())
 
     def to_json(self) -> str:
-        """The JSON object as text (compact, floats as Python's repr, which reads back to the same
-        float; the CLI prints it indented: same values)."""
+        """The JSON object as compact text (the CLI prints it indented: same values)."""
+        if self._json is not None:
+            return self._json.to_json()
         return _json.dumps(self._data, separators=(",", ":"))
 
     def __dir__(self):
-        return sorted(set(super().__dir__()) | set(self._data) | set(self._extra))
+        return sorted(set(super().__dir__()) | set(self._keys) | set(self._extra))
 
     def __repr__(self) -> str:
-        return f"stiction.Result({', '.join(sorted(self._data))})"
+        return f"stiction.Result({', '.join(sorted(self._keys))})"
 
 
 def _columns(points: list) -> Dict[str, _np.ndarray]:
