@@ -134,7 +134,14 @@ fn json_object(py: Python<'_>, value: serde_json::Value) -> PyResult<Bound<'_, P
     Ok(Bound::new(py, PyJson { value })?.into_any())
 }
 
-/// A scenario: a file (with `set` overrides applied in order) or a JSON tree built in Python.
+/// A scenario (the device, its surface and material, the meter; docs/scenario.md): a file
+/// (`Scenario.load(path, sets)`), a dict shaped as the file (`Scenario.from_dict(d, base_dir)`)
+/// or its JSON text (`Scenario.from_json`), with `set(path, value)` overrides applied in order
+/// (`--set PATH=VALUE`: unit strings such as "50 nm" or SI numbers). Every function that takes a
+/// scenario also takes a path or a plain dict. Relative paths in a file are read from the file's
+/// folder; in a dict or a text, from `base_dir`, by default the current directory. Errors are
+/// `StictionError` with the command line's messages; a scenario built in memory is named
+/// "<scenario>" in them.
 #[pyclass(name = "Scenario", module = "stiction._stiction", from_py_object)]
 #[derive(Clone)]
 struct PyScenario {
