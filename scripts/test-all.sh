@@ -4,7 +4,8 @@
 # the module's results with the built `stiction` binary's --json.
 #
 # Needs python3 (>= 3.9, with venv) and network access to PyPI for maturin, pytest, numpy and the
-# optional companions the tests exercise: pandas (study samples as a DataFrame), and nbclient,
+# optional companions the tests exercise: pandas (study samples as a DataFrame), mypy (its
+# stubtest checks the type stubs against the module), and nbclient,
 # nbformat, ipykernel and matplotlib, which execute docs/notebooks/paper-experiment.ipynb.
 # The wheel is built by maturin in this workspace's target/ folder, so it reuses the Rust build.
 set -euo pipefail
@@ -17,7 +18,7 @@ trap 'rm -rf "$tmp"' EXIT
 venv=$tmp/venv
 python3 -m venv "$venv"
 "$venv/bin/pip" install -q --upgrade pip
-"$venv/bin/pip" install -q maturin pytest numpy pandas nbclient nbformat ipykernel matplotlib
+"$venv/bin/pip" install -q maturin pytest numpy pandas nbclient nbformat ipykernel matplotlib mypy
 # The binding with clippy (it is behind the `python` feature, so the workspace lint skips it).
 cargo clippy -p stiction-py --all-targets --release --features python -- -D warnings
 # The wheel (abi3: one wheel for CPython >= 3.9), installed as a user would install it.

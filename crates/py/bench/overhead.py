@@ -48,6 +48,7 @@ def main():
     cheap()
     long_call("run (tas2000)", lambda: stiction.run(TAS))
     long_call("contact sweep, 50 loads", lambda: stiction.contact(TAS, np.linspace(0, 5e-6, 50)))
+    long_call("contact sweep, 400 loads", lambda: stiction.contact(TAS, np.linspace(0, 5e-6, 400)))
     y, x = np.mgrid[0:128, 0:128] / 128.0
     heights = 30 * np.sin(2 * np.pi * 3 * x) * np.cos(2 * np.pi * 2 * y)
     long_call("bem 128^2, 3 pressures", lambda: stiction.bem(heights, [5e6, 2e7, 8e7], pixel_size="0.1 um", height_unit="nm"))

@@ -11,6 +11,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
+use stiction_cli::api::ScenarioSource;
 use stiction_scenario::Scenario;
 use stiction_study::{Calibration, Study, StudyConfig};
 use stiction_topography::{
@@ -37,7 +38,110 @@ fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (text,))
 }
 
-/// A scenario: a file (with `set` overrides applied in order) or a JSON tree built in Python.
+/// A JSON value as the Python object `json.loads` makes of its text (null: None; true/false: bool;
+/// an integer: int; any other number: float; lists and objects: list and dict, in order), built
+/// directly, without the text and its float parsing in between: the numbers are the same f64s.
+/// Python's cyclic garbage collector is paused while the tree is built (a JSON tree has no
+/// cycles; a sweep's thousands of new dicts and lists would otherwise set off collections that
+/// walk them), and each distinct key is made into a Python string once (the points of a sweep
+/// repeat the same keys).
+fn to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    let gc = py.import("gc")?;
+    let was_enabled = gc.call_method0("isenabled")?.is_truthy()?;
+    if was_enabled {
+        gc.call_method0("disable")?;
+    }
+    let mut keys = std::collections::HashMap::new();
+    let out = to_py_with(py, value, &mut keys);
+    if was_enabled {
+        gc.call_method0("enable")?;
+    }
+    out
+}
+
+/// [`to_py`] with the key strings made so far.
+fn to_py_with<'py, 'v>(
+    py: Python<'py>,
+    value: &'v serde_json::Value,
+    keys: &mut std::collections::HashMap<&'v str, Bound<'py, PyString>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use serde_json::Value;
+    Ok(match value {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => pyo3::types::PyBool::new(py, *b).to_owned().into_any(),
+        Value::Number(n) => match (n.as_i64(), n.as_u64()) {
+            (Some(i), _) => i.into_pyobject(py)?.into_any(),
+            (None, Some(u)) => u.into_pyobject(py)?.into_any(),
+            (None, None) => pyo3::types::PyFloat::new(py, n.as_f64().unwrap_or(f64::NAN)).into_any(),
+        },
+        Value::String(text) => PyString::new(py, text).into_any(),
+        Value::Array(items) => {
+            let list = pyo3::types::PyList::empty(py);
+            for item in items {
+                list.append(to_py_with(py, item, keys)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(map) => {
+            let dict = PyDict::new(py);
+            for (key, item) in map {
+                let item = to_py_with(py, item, keys)?;
+                let key = keys.entry(key.as_str()).or_insert_with(|| PyString::new(py, key));
+                dict.set_item(&*key, item)?;
+            }
+            dict.into_any()
+        }
+    })
+}
+
+/// A result's JSON object held as the engine made it; its fields become Python objects when they
+/// are read (`get`), so that a call hands over its result without building every number and
+/// point of it at once (a load sweep's thousands of dicts are built when `points` is read).
+#[pyclass(name = "Json", module = "stiction._stiction", frozen)]
+struct PyJson {
+    value: serde_json::Value,
+}
+
+#[pymethods]
+impl PyJson {
+    /// get(key): the field `key` of the object as `json.loads` would give it (KeyError if absent).
+    fn get<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match self.value.get(key) {
+            Some(v) => to_py(py, v),
+            None => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
+        }
+    }
+
+    /// keys(): the fields of the object, in order.
+    fn keys(&self) -> Vec<String> {
+        self.value.as_object().map(|m| m.keys().cloned().collect()).unwrap_or_default()
+    }
+
+    /// to_py(): the whole object as `json.loads` of its text gives it (a fresh copy).
+    fn to_py<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.value)
+    }
+
+    /// to_json(): the object as compact JSON text (the command line's numbers, printed by the same
+    /// serializer).
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.value).map_err(err)
+    }
+}
+
+/// A result's JSON object as a [`PyJson`].
+fn json_object(py: Python<'_>, value: serde_json::Value) -> PyResult<Bound<'_, PyAny>> {
+    Ok(Bound::new(py, PyJson { value })?.into_any())
+}
+
+/// A scenario (the device, its surface and material, the meter; docs/scenario.md): a file
+/// (`Scenario.load(path, sets)`), a dict shaped as the file (`Scenario.from_dict(d, base_dir)`)
+/// or its JSON text (`Scenario.from_json`), with `set(path, value)` overrides applied in order
+/// (`--set PATH=VALUE`: unit strings such as "50 nm" or SI numbers). Every function that takes a
+/// scenario also takes a path or a plain dict. Relative paths in a file are read from the file's
+/// folder; in a dict or a text, from `base_dir`, by default the current directory. Errors are
+/// `StictionError` with the command line's messages; a scenario built in memory is named
+/// "<scenario>" in them.
 #[pyclass(name = "Scenario", module = "stiction._stiction", from_py_object)]
 #[derive(Clone)]
 struct PyScenario {
@@ -57,13 +161,22 @@ impl PyScenario {
         self.path.as_ref().map_or_else(|| "<scenario>".to_string(), |p| p.display().to_string())
     }
 
+    /// The scenario as the commands read it: the file (read now) or the text, with the overrides.
+    fn source(&self) -> Result<ScenarioSource, stiction_scenario::ScenarioError> {
+        match &self.path {
+            Some(p) => ScenarioSource::file(p, &self.sets),
+            None => ScenarioSource::text(
+                self.text.as_deref().unwrap_or("{}"),
+                Path::new("<scenario>"),
+                &self.base,
+                &self.sets,
+            ),
+        }
+    }
+
     /// Parses and validates, as the command line does.
     fn parse(&self) -> Result<Scenario, stiction_scenario::ScenarioError> {
-        match (&self.path, &self.text) {
-            (Some(p), _) => Scenario::load(p, &self.sets),
-            (None, Some(t)) => Scenario::from_str_with_sets(t, Path::new("<scenario>"), &self.sets),
-            (None, None) => Scenario::from_str_with_sets("{}", Path::new("<scenario>"), &self.sets),
-        }
+        self.source()?.parse(&[])
     }
 
     fn from_path(path: PathBuf) -> PyScenario {
@@ -71,21 +184,34 @@ impl PyScenario {
         PyScenario { path: Some(path), text: None, base, sets: Vec::new() }
     }
 
-    /// A `Scenario`, or a path (str or os.PathLike) to a scenario file.
+    /// A `Scenario`, a dict shaped as a scenario file (its relative paths from the current
+    /// directory, as `Scenario.from_dict(d)`), or a path (str or os.PathLike) to a scenario file.
     fn extract(obj: &Bound<'_, PyAny>) -> PyResult<PyScenario> {
         if let Ok(s) = obj.cast::<PyScenario>() {
             return Ok(s.borrow().clone());
         }
+        if obj.is_instance_of::<PyDict>() {
+            return PyScenario::from_dict(obj, None);
+        }
         let os = obj.py().import("os")?;
-        let path: String = os.call_method1("fspath", (obj,))?.extract().map_err(|_| {
-            pyo3::exceptions::PyTypeError::new_err("expected a stiction.Scenario or a path to a scenario file")
+        let path: String = os.call_method1("fspath", (obj,)).and_then(|p| p.extract()).map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err(
+                "expected a stiction.Scenario, a dict shaped as a scenario file, or a path to a scenario file",
+            )
         })?;
         Ok(PyScenario::from_path(PathBuf::from(path)))
     }
+
+    /// The scenario source of a call's argument, checked (StictionError with the CLI's message).
+    fn source_of(obj: &Bound<'_, PyAny>) -> PyResult<ScenarioSource> {
+        PyScenario::extract(obj)?.source().map_err(err)
+    }
 }
 
-/// A value for `--set PATH=VALUE` or a quantity flag: a string as given, a number as Python's
-/// `repr` (which reads back to the same float), True/False/None as JSON.
+/// A value for `--set PATH=VALUE` or a quantity flag: a string as given, an integer (Python's or
+/// NumPy's) in decimal, any other number as the `repr` of the Python float it converts to (which
+/// reads back to the same float; NumPy 2's own repr, `np.float64(0.5)`, would not parse),
+/// True/False/None as JSON, lists and dicts as JSON.
 fn flag_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
     if let Ok(s) = value.cast::<PyString>() {
         return s.extract::<String>();
@@ -93,13 +219,21 @@ fn flag_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
     if value.is_none() {
         return Ok("null".into());
     }
-    if let Ok(b) = value.extract::<bool>()
-        && value.is_instance_of::<pyo3::types::PyBool>()
-    {
+    // Python's bool, and NumPy's (a scalar of dtype kind "b").
+    let numpy_bool = value.hasattr("dtype")?
+        && value.getattr("dtype")?.getattr("kind").and_then(|k| k.extract::<String>()).is_ok_and(|k| k == "b");
+    if value.is_instance_of::<pyo3::types::PyBool>() || numpy_bool {
+        let b: bool = value.call_method0("__bool__")?.extract()?;
         return Ok(if b { "true" } else { "false" }.into());
     }
-    if value.extract::<f64>().is_ok() {
-        return value.repr()?.extract::<String>();
+    // Python's int and NumPy's integers (they have __index__; floats have not).
+    if (value.is_instance_of::<pyo3::types::PyInt>() || value.hasattr("__index__")?)
+        && let Ok(i) = value.call_method0("__index__").and_then(|i| i.extract::<i128>())
+    {
+        return Ok(i.to_string());
+    }
+    if let Ok(f) = value.extract::<f64>() {
+        return pyo3::types::PyFloat::new(value.py(), f).repr()?.extract::<String>();
     }
     let json = value.py().import("json")?;
     json.call_method1("dumps", (value,))?.extract()
@@ -119,8 +253,9 @@ impl PyScenario {
         Ok(s)
     }
 
-    /// Scenario.from_json(text, base_dir="."): a scenario from its JSON text; relative paths in it
-    /// (surface CSVs, height maps, measured voltages) are read from `base_dir`.
+    /// Scenario.from_json(text, base_dir=None): a scenario from its JSON text; relative paths in it
+    /// (surface CSVs, height maps, measured voltages) are read from `base_dir`, by default the
+    /// current directory.
     #[staticmethod]
     #[pyo3(signature = (text, base_dir=None))]
     fn from_json(text: String, base_dir: Option<PathBuf>) -> PyResult<PyScenario> {
@@ -129,8 +264,10 @@ impl PyScenario {
         Ok(s)
     }
 
-    /// Scenario.from_dict(d, base_dir="."): a scenario from a dict shaped as the JSON file
-    /// (quantities as unit strings, "0.5 um", or SI numbers).
+    /// Scenario.from_dict(d, base_dir=None): a scenario from a dict shaped as the JSON file
+    /// (quantities as unit strings, "0.5 um", or SI numbers); relative paths in it (surface
+    /// CSVs, height maps, measured voltages) are read from `base_dir`, by default the current
+    /// directory.
     #[staticmethod]
     #[pyo3(signature = (d, base_dir=None))]
     fn from_dict(d: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<PyScenario> {
@@ -150,18 +287,42 @@ impl PyScenario {
         Ok(())
     }
 
-    /// validate(): parse and check the scenario as `stiction scenario FILE` does; returns the
-    /// notes (list of (code, message)) or raises StictionError.
+    /// validate(): check the scenario as `stiction scenario FILE` does (parsed and validated; a
+    /// height-map sidewall's map read and prepared as `run` reads it); returns the notes (list of
+    /// (code, message)) or raises StictionError with the command line's message.
     fn validate(&self) -> PyResult<Vec<(String, String)>> {
-        let s = self.parse().map_err(err)?;
+        let s = stiction_cli::api::check_scenario(&self.source().map_err(err)?).map_err(err)?;
         Ok(s.notes.iter().map(|n| (n.code.to_string(), n.message.clone())).collect())
     }
 
-    /// to_json(): the scenario as it is run, in SI units, as `stiction scenario FILE` prints it
-    /// (readable back with Scenario.from_json).
+    /// to_json(): the scenario as it is run, as `stiction scenario FILE` prints it: every field
+    /// the file or `set` gave, as written (units kept), and every default the parse filled in, in
+    /// SI (readable back with Scenario.from_json).
     fn to_json(&self) -> PyResult<String> {
         let s = self.parse().map_err(err)?;
         serde_json::to_string_pretty(&s.to_input_json()).map_err(err)
+    }
+
+    /// get(path): a field of the scenario as it is run, as `to_dict()` holds it: as written in the
+    /// file or by `set` (get("surface.summit_sd") -> "0.04 um"; an SI number stays a number), or
+    /// the default the parse filled in (SI); a section comes back as a dict. `path` is dotted as
+    /// `set` takes it (a list item by its index, "meter.clamp_voltages.0"). Raises StictionError
+    /// when the path names nothing in this scenario.
+    fn get<'py>(&self, py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyAny>> {
+        let mut node = self.parse().map_err(err)?.to_input_json();
+        for seg in path.split('.') {
+            let next = match node {
+                serde_json::Value::Object(mut m) => m.remove(seg),
+                serde_json::Value::Array(mut a) => {
+                    seg.parse::<usize>().ok().filter(|&i| i < a.len()).map(|i| a.swap_remove(i))
+                }
+                _ => None,
+            };
+            node = next.ok_or_else(|| {
+                err(format!("{path}: no field `{seg}` in this scenario (the fields as run, in SI: to_dict())"))
+            })?;
+        }
+        to_py(py, &node)
     }
 
     /// to_dict(): `json.loads(self.to_json())`.
@@ -186,59 +347,46 @@ impl PyScenario {
     }
 }
 
-/// run(scenario, progress=None) -> str: the JSON text `stiction run SCENARIO --json` prints.
+/// run(scenario, progress=None) -> dict: the JSON object `stiction run SCENARIO --json` prints.
 /// `progress(done, total)` is called after each clamp voltage. The GIL is released while the
 /// meter runs (it is taken back only for the callback).
 #[pyfunction]
 #[pyo3(signature = (scenario, progress=None))]
-fn run_json(py: Python<'_>, scenario: &Bound<'_, PyAny>, progress: Option<Py<PyAny>>) -> PyResult<String> {
-    let s = PyScenario::extract(scenario)?;
-    let parsed = s.parse().map_err(err)?;
-    let name = s.name();
+fn run_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let source = PyScenario::source_of(scenario)?;
+    let parsed = source.parse(&[]).map_err(err)?;
+    let name = source.name();
     let progress = Progress::new(progress);
     let report = progress.clone();
     let out = interruptible(py, move |_| {
         let mut on_point = |done: usize, total: usize| {
             report.report(done, total);
         };
-        stiction_cli::api::run_json(&parsed, &name, &s.base, &mut on_point)
-            .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
+        stiction_cli::api::run_json(&parsed, &name, &source.base, &mut on_point).map_err(|e| e.to_string())
     })?;
     if let Some(e) = progress.take_error() {
         return Err(e);
     }
-    out.map_err(err)
+    json_object(py, out.map_err(err)?)
 }
 
-/// The scenario file of a call that reads it by name (contact, fit) and its overrides as
-/// `--set` flags.
-fn file_flags(command: &str, scenario: &Bound<'_, PyAny>) -> PyResult<(PathBuf, Vec<String>)> {
-    let s = PyScenario::extract(scenario)?;
-    let Some(path) = s.path.clone() else {
-        return Err(err(format!("{command}: the scenario must come from a file (Scenario.load or a path)")));
-    };
-    let mut flags = Vec::new();
-    for set in &s.sets {
-        flags.push("--set".to_string());
-        flags.push(set.clone());
-    }
-    Ok((path, flags))
-}
-
-/// contact_json(scenario, flags, loads=None) -> str: what `stiction contact SCENARIO FLAGS --json`
+/// contact_json(scenario, flags, loads=None) -> dict: what `stiction contact SCENARIO FLAGS --json`
 /// prints with the explicit solver; `loads` (N, in order) is a sweep of those loads. The GIL is
 /// released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (scenario, flags, loads=None))]
-fn contact_json(
-    py: Python<'_>,
-    scenario: &Bound<'_, PyAny>,
+fn contact_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
     flags: Vec<String>,
     loads: Option<Vec<f64>>,
-) -> PyResult<String> {
-    let (path, mut all) = file_flags("contact", scenario)?;
-    all.insert(0, path.display().to_string());
+) -> PyResult<Bound<'py, PyAny>> {
+    let source = PyScenario::source_of(scenario)?;
+    let mut all = vec![source.name()];
     all.extend(flags);
     if let Some(loads) = &loads {
         if loads.is_empty() {
@@ -251,65 +399,72 @@ fn contact_json(
     }
     all.push("--json".into());
     let args: stiction_cli::api::ContactArgs = stiction_cli::api::parse_args("contact", &all).map_err(err)?;
-    interruptible(py, move |_| {
-        stiction_cli::api::contact_json(&args, loads.as_deref())
-            .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-    })?
-    .map_err(err)
+    let out = interruptible(py, move |_| {
+        stiction_cli::api::contact_json(&args, &source, loads.as_deref()).map_err(|e| e.to_string())
+    })?;
+    json_object(py, out.map_err(err)?)
 }
 
-/// bem_json(heights, flags, pressures=None) -> str: what `stiction bem --map FILE.npy FLAGS
-/// --json` prints for the height map `heights` (a 2-D array, read in place), its `file` being
-/// "<array>"; `pressures` (Pa, in order) instead of --pressure/--sweep. The GIL is released;
-/// Ctrl-C raises KeyboardInterrupt.
+/// bem_json(heights, flags, pressures=None, scenario=None) -> dict: what `stiction bem --map
+/// FILE.npy FLAGS --json` prints for the height map `heights` (a 2-D array, read in place), its
+/// `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a path),
+/// what `stiction bem --scenario SCENARIO FLAGS --json` prints. `pressures` (Pa, in order)
+/// instead of --pressure/--sweep. The GIL is released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (heights, flags, pressures=None))]
-fn bem_json(
-    py: Python<'_>,
-    heights: &Bound<'_, PyAny>,
+#[pyo3(signature = (heights, flags, pressures=None, scenario=None))]
+fn bem_json<'py>(
+    py: Python<'py>,
+    heights: &Bound<'py, PyAny>,
     flags: Vec<String>,
     pressures: Option<Vec<f64>>,
-) -> PyResult<String> {
+    scenario: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
     let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(err)?;
     if let Some(p) = &pressures
         && p.is_empty()
     {
         return Err(err("pressures: expected at least one mean pressure"));
     }
+    if let Some(scenario) = scenario.filter(|s| !s.is_none()) {
+        if !heights.is_none() {
+            return Err(err("bem: give a height map (heights) or a scenario, not both"));
+        }
+        let source = PyScenario::source_of(scenario)?;
+        let out = interruptible(py, move |_| {
+            stiction_cli::api::bem_json_of_scenario(&args, &source, pressures.as_deref()).map_err(|e| e.to_string())
+        })?;
+        return json_object(py, out.map_err(err)?);
+    }
     let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
-    interruptible(py, move |_| {
-        stiction_cli::api::bem_json_of_map(&args, "<array>", raw, info, pressures.as_deref())
-            .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-    })?
-    .map_err(err)
+    let out = interruptible(py, move |_| {
+        stiction_cli::api::bem_json_of_map(&args, "<array>", raw, info, pressures.as_deref()).map_err(|e| e.to_string())
+    })?;
+    json_object(py, out.map_err(err)?)
 }
 
-/// fit_json(scenario, flags, data_csv=None, data_name="<data>") -> str: what `stiction fit [DATA]
+/// fit_json(scenario, flags, data_csv=None, data_name="<data>") -> dict: what `stiction fit [DATA]
 /// --scenario SCENARIO FLAGS --json` prints; `data_csv`, the CSV text of the measured voltages,
 /// instead of a file. The GIL is released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (scenario, flags, data_csv=None, data_name=None))]
-fn fit_json(
-    py: Python<'_>,
-    scenario: &Bound<'_, PyAny>,
+fn fit_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
     flags: Vec<String>,
     data_csv: Option<String>,
     data_name: Option<String>,
-) -> PyResult<String> {
-    let (path, mut all) = file_flags("fit", scenario)?;
-    all.extend(["--scenario".to_string(), path.display().to_string()]);
-    all.extend(flags);
+) -> PyResult<Bound<'py, PyAny>> {
+    let source = PyScenario::source_of(scenario)?;
+    let mut all = flags;
+    all.extend(["--scenario".to_string(), source.name()]);
     all.push("--json".into());
     let args: stiction_cli::api::FitArgs = stiction_cli::api::parse_args("fit", &all).map_err(err)?;
     let name = data_name.unwrap_or_else(|| "<data>".into());
-    interruptible(py, move |_| {
-        stiction_cli::api::fit_json(&args, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
+    let out = interruptible(py, move |_| {
+        stiction_cli::api::fit_json(&args, &source, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
             .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_string(&v).map_err(|e| e.to_string()))
-    })?
-    .map_err(err)
+    })?;
+    json_object(py, out.map_err(err)?)
 }
 
 /// A length flag value: a unit string ("3.9 um") or an SI number, checked as the command line
@@ -377,8 +532,9 @@ fn topography_json<'py>(
     level: &str,
     cutoff: Option<&Bound<'py, PyAny>>,
     long_cutoff: Option<&Bound<'py, PyAny>>,
-    scenario: Option<PathBuf>,
-) -> PyResult<(String, Bound<'py, PyDict>)> {
+    scenario: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
+    let scenario = scenario.filter(|s| !s.is_none()).map(PyScenario::source_of).transpose()?;
     let meta = MapMetadata {
         pixel_size_x_m: length("pixel_size", pixel_size)?,
         pixel_size_y_m: length("pixel_size_y", pixel_size_y)?,
@@ -398,11 +554,11 @@ fn topography_json<'py>(
     };
     let (raw, info) = read_heights(heights, &meta)?;
     let out = py.detach(|| -> Result<_, String> {
-        let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_deref())
+        let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_ref())
             .map_err(|e| e.to_string())?;
-        Ok((serde_json::to_string(&json).map_err(|e| e.to_string())?, map, summits))
+        Ok((json, map, summits))
     });
-    let (json, map, s): (String, HeightMap, _) = out.map_err(err)?;
+    let (json, map, s): (serde_json::Value, HeightMap, _) = out.map_err(err)?;
     let d = PyDict::new(py);
     let x: Vec<f64> = s.ix.iter().map(|&i| (f64::from(i) + 0.5) * map.dx_m()).collect();
     let y: Vec<f64> = s.iy.iter().map(|&i| (f64::from(i) + 0.5) * map.dy_m()).collect();
@@ -414,7 +570,7 @@ fn topography_json<'py>(
     d.set_item("radius_m", PyArray1::from_vec(py, r))?;
     d.set_item("ix", PyArray1::from_vec(py, s.ix.clone()))?;
     d.set_item("iy", PyArray1::from_vec(py, s.iy.clone()))?;
-    Ok((json, d))
+    Ok((json_object(py, json)?, d))
 }
 
 /// Runs `work` on a worker thread with the GIL released, while the calling thread waits and
@@ -509,16 +665,16 @@ impl Progress {
 /// a dict (its relative paths from its base_dir). The GIL is released; Ctrl-C stops the study.
 #[pyfunction]
 #[pyo3(signature = (scenario, samples=100, seed=1, threads=None, fixed_surface=false, progress=None))]
-fn study_json(
-    py: Python<'_>,
-    scenario: &Bound<'_, PyAny>,
+fn study_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
     samples: usize,
     seed: u64,
     threads: Option<usize>,
     fixed_surface: bool,
     progress: Option<Py<PyAny>>,
-) -> PyResult<(String, String)> {
-    let s = PyScenario::extract(scenario)?;
+) -> PyResult<(Bound<'py, PyAny>, String)> {
+    let source = PyScenario::source_of(scenario)?;
     let config = StudyConfig {
         calibration: Calibration::Nominal,
         slip_path: stiction_meter::SlipPath::Light,
@@ -530,19 +686,10 @@ fn study_json(
     };
     config.validate().map_err(err)?;
     let pool = stiction_cli::api::study_pool(threads).map_err(err)?;
-    let study = match (&s.path, &s.text) {
-        (Some(path), _) => Study::prepare(path, &s.sets, &config),
-        (None, text) => {
-            s.parse().map_err(err)?;
-            let mut value: serde_json::Value = serde_json::from_str(text.as_deref().unwrap_or("{}")).map_err(err)?;
-            for set in &s.sets {
-                stiction_scenario::apply_set(&mut value, set).map_err(err)?;
-            }
-            Study::prepare_value(value, Path::new("<scenario>"), &s.base, &config)
-        }
-    }
-    .and_then(stiction_cli::api::with_lab_intervals)
-    .map_err(err)?;
+    let value = source.json(&[]).map_err(err)?;
+    let study = Study::prepare_value(value, &source.origin, &source.base, &config)
+        .and_then(stiction_cli::api::with_lab_intervals)
+        .map_err(err)?;
     let progress = Progress::new(progress);
     let report = progress.clone();
     let out = interruptible(py, move |interrupt| {
@@ -556,14 +703,13 @@ fn study_json(
         let mut csv = Vec::new();
         let summary = stiction_cli::api::study_json_of(&study, &pool, &on_sample, interrupt, Some(&mut csv))
             .map_err(|e| e.to_string())?;
-        let json = summary.map(|v| serde_json::to_string(&v).map_err(|e| e.to_string())).transpose()?;
-        Ok::<_, String>((json, String::from_utf8_lossy(&csv).into_owned()))
+        Ok::<_, String>((summary, String::from_utf8_lossy(&csv).into_owned()))
     })?;
     if let Some(e) = progress.take_error() {
         return Err(e);
     }
     match out.map_err(err)? {
-        (Some(json), csv) => Ok((json, csv)),
+        (Some(json), csv) => Ok((json_object(py, json)?, csv)),
         (None, _) => {
             // Stopped by Ctrl-C between the worker's end and the last check: raise it now.
             py.check_signals()?;
@@ -616,12 +762,12 @@ fn quantity(name: &str, value: &Bound<'_, PyAny>, dim: Dimension, constraint: Co
     parse_quantity_checked(&text, dim, constraint).map_err(|e| err(format!("{name}={text}: {e}")))
 }
 
-/// discrete_json(...) -> str: a JSON list, per load, of what `stiction discrete ... --json` prints.
+/// discrete_json(...) -> list: per load, the object `stiction discrete ... --json` prints.
 #[pyfunction]
 #[pyo3(signature = (contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion="dmt", equilibrium_spacing=None, target_slope=None))]
 #[allow(clippy::too_many_arguments)]
-fn discrete_json(
-    py: Python<'_>,
+fn discrete_json<'py>(
+    py: Python<'py>,
     contacts: u32,
     radius: &Bound<'_, PyAny>,
     work_of_adhesion: &Bound<'_, PyAny>,
@@ -631,7 +777,7 @@ fn discrete_json(
     adhesion: &str,
     equilibrium_spacing: Option<&Bound<'_, PyAny>>,
     target_slope: Option<f64>,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     use stiction_cli::api::{DiscreteArgs, Law};
     let law = match adhesion.to_ascii_lowercase().as_str() {
         "dmt" => Law::Dmt,
@@ -666,15 +812,15 @@ fn discrete_json(
         .enumerate()
         .map(|(i, l)| quantity(&format!("load[{i}]"), l, Dimension::Force, Constraint::Finite))
         .collect::<PyResult<_>>()?;
-    py.detach(|| {
+    let out = py.detach(|| {
         let mut out = Vec::with_capacity(loads.len());
         for (i, &load) in loads.iter().enumerate() {
             let args = DiscreteArgs { load, ..template };
             out.push(stiction_cli::api::discrete_json(&args).map_err(|e| format!("load[{i}] = {load} N: {e}"))?);
         }
-        serde_json::to_string(&out).map_err(|e| e.to_string())
-    })
-    .map_err(err)
+        Ok::<_, String>(serde_json::Value::Array(out))
+    });
+    to_py(py, &out.map_err(err)?)
 }
 
 /// The extension module `stiction._stiction`.
@@ -682,6 +828,7 @@ fn discrete_json(
 fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("StictionError", m.py().get_type::<StictionError>())?;
     m.add_class::<PyScenario>()?;
+    m.add_class::<PyJson>()?;
     m.add_function(wrap_pyfunction!(run_json, m)?)?;
     m.add_function(wrap_pyfunction!(topography_json, m)?)?;
     m.add_function(wrap_pyfunction!(study_json, m)?)?;

@@ -101,6 +101,14 @@ def test_hostile_scenario_dicts_raise_the_cli_message(in_root, cli, tmp_path):
                 assert code == 2, (case, err)
                 assert _cli_message(err).replace(str(path), "<scenario>") == message, case
                 compared += 1
+        if case % 5 == 0:
+            # The plain dict straight into the functions that take a scenario: a result with
+            # every number finite, or a StictionError; never another exception or a panic.
+            for call in (lambda: stiction.contact(d, "1 uN"), lambda: stiction.run(d)):
+                try:
+                    assert _finite(call().to_dict()), case
+                except stiction.StictionError as e:
+                    assert 0 < len(str(e)) < 2000, (case, str(e)[:300])
         assert time.perf_counter() - start < 30, case
     assert refused > CASES // 4 and compared > 0, (accepted, refused, compared)
 

@@ -96,7 +96,7 @@ def test_contact_at_a_load_and_a_sweep_equal_cli(in_root, cli_json):
     assert flat.to_dict() == cli_json("contact", TAS, "--set", "surface.summit_sd=50 nm", "--load", "2 uN", "--mode", "flat")
 
 
-def test_contact_errors_are_the_cli_messages(in_root, cli):
+def test_contact_errors_are_the_cli_messages(in_root, cli, tmp_path):
     code, _, err = cli("contact", TAS, "--load", "3 uN", "--mode", "sideways", "--json")
     assert code == 2
     with pytest.raises(stiction.StictionError) as e:
@@ -104,8 +104,14 @@ def test_contact_errors_are_the_cli_messages(in_root, cli):
     assert "sideways" in str(e.value) and "sideways" in err
     with pytest.raises(stiction.StictionError, match="loads\\[1\\]"):
         stiction.contact(TAS, [1e-6, np.nan])
-    with pytest.raises(stiction.StictionError, match="file"):
+    # A scenario built in memory meets the same checks as a file, named "<scenario>".
+    path = tmp_path / "no-material.json"
+    path.write_text('{"format_version": 1}')
+    code, _, err = cli("contact", path, "--load", "1e-6", "--json")
+    assert code == 2
+    with pytest.raises(stiction.StictionError) as e:
         stiction.contact(stiction.Scenario.from_dict({"format_version": 1}), 1e-6)
+    assert str(e.value) == err[len("error: "):].strip().replace(str(path), "<scenario>")
 
 
 # ---------------------------------------------------------------------------------------------

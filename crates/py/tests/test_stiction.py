@@ -143,9 +143,13 @@ def test_gw_at_a_load_vector_equals_cli(cli_json):
     g = stiction.gw(2.0, loads)
     for i, l in enumerate(loads):
         e = cli_json("gw", "--theta", "2", "--load-star", repr(float(l)))
-        for key in ["l_star", "h", "n_star", "a_star", "elastic_l_star", "adhesive_l_star", "elastic_pressure_star"]:
-            assert g[key][i] == e[key], key
-        assert g["pull_off_l_star"] == e["pull_off_l_star"]
+        # Every key of the CLI's JSON, bit for bit (it prints full precision).
+        for key in e:
+            if key in ("theta", "pull_off_l_star", "pull_off_h"):
+                assert g[key] == e[key], key
+            else:
+                assert g[key][i] == e[key], key
+        assert set(g) == set(e)
     plain = stiction.gw(None, 1.0)
     e = cli_json("gw", "--theta", "inf", "--load-star", "1")
     assert plain["h"][0] == e["h"] and plain["pull_off_l_star"] is None
@@ -251,3 +255,25 @@ def test_discrete_at_a_load_vector_equals_cli(cli_json):
         stiction.discrete(3, "-1 um", 0.1, 9.1e-12, 1.4e9, 0.0)
     with pytest.raises(stiction.StictionError, match="adhesion"):
         stiction.discrete(3, "1 um", 0.1, 9.1e-12, 1.4e9, 0.0, adhesion="sticky")
+
+
+def test_result_fields_equal_cli_when_read_and_leave_the_garbage_collector_as_found(in_root, cli_json):
+    """A result's fields are made into Python objects when read, with the cyclic collector paused
+    meanwhile: it must come back on (or stay off) as the caller had it."""
+    import gc
+
+    e = cli_json("contact", TAS, "--sweep", "0:5e-6:5")
+    loads = [5e-6 * i / 4 for i in range(5)]
+    assert gc.isenabled()
+    r = stiction.contact(TAS, loads)
+    assert r.points == e["points"] and r["events"] == e["events"]
+    assert sorted(r.keys()) == sorted(e) and json.loads(r.to_json()) == e
+    assert gc.isenabled(), "the collector was left off"
+    gc.disable()
+    try:
+        assert stiction.contact(TAS, loads).to_dict() == e
+        assert not gc.isenabled(), "the collector was turned on behind the caller's back"
+    finally:
+        gc.enable()
+    with pytest.raises(AttributeError, match="no field"):
+        r.no_such_field

@@ -159,7 +159,7 @@ impl Scenario {
     }
 
     /// Scenario text as JSON with the overrides applied; `origin` names it in errors.
-    fn json_with_sets(text: &str, origin: &Path, sets: &[String]) -> Result<Value, ScenarioError> {
+    pub fn json_with_sets(text: &str, origin: &Path, sets: &[String]) -> Result<Value, ScenarioError> {
         let mut value: Value = strict_json::from_str(text).map_err(|e| ScenarioError::Syntax {
             path: origin.to_path_buf(),
             line: e.line(),

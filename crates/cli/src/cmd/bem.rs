@@ -8,11 +8,11 @@ use std::path::PathBuf;
 use serde::Serialize;
 use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, SolverOptions, synth};
 use stiction_plot::{Chart, ImageMap, Series};
-use stiction_scenario::Scenario;
 use stiction_topography::{HeightMap, MapInfo, Patch, PreparationReport, prepare, read_file};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use super::map_args::MapArgs;
+use crate::api::ScenarioSource;
 use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q, quantity};
 
 /// Largest grid side of the command (the solver's own limit is 4096 x 4096 points).
@@ -228,6 +228,28 @@ fn map_surface(args: &Args, file: &str, raw: HeightMap, info: MapInfo) -> Result
     })
 }
 
+/// The composite patch of the height-map face(s) under the shoe of the scenario `source` (with
+/// `args.sets` after its own overrides); E* from `--e-star`, else 3/(4D) of its material.
+fn scenario_surface(args: &Args, source: &ScenarioSource) -> Result<Surface, Box<dyn std::error::Error>> {
+    let scenario = source.parse(&args.sets)?;
+    let file = source.name();
+    let spec = scenario.require_surface().map_err(|e| format!("{file}: {e}"))?;
+    let (patch, faces) =
+        stiction_surface::height_map_patch(spec, &source.base).map_err(|e| format!("{file}: surface: {e}"))?;
+    let grid = Grid::new(patch.nx(), patch.ny(), patch.dx_m(), patch.dy_m())
+        .map_err(|e| format!("{file}: {e} (the BEM grid limit)"))?;
+    let heights = patch.into_heights_m();
+    stiction_bem::spec::check_complete(&heights).map_err(|e| format!("{file}: {e}"))?;
+    let e_star_pa = match args.e_star {
+        Some(e) => e,
+        None => {
+            let m = scenario.require_material().map_err(|e| format!("{file}: {e}"))?;
+            0.75 / m.compliance_per_pa()
+        }
+    };
+    Ok(Surface { grid, heights, source: SurfaceSource::Scenario { file, faces }, e_star_pa })
+}
+
 /// The surface of the command line: generated, a map file, or a scenario's patch.
 fn build_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
     if let Some(file) = &args.map {
@@ -235,28 +257,7 @@ fn build_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
         return map_surface(args, &file.display().to_string(), raw, info);
     }
     if let Some(file) = &args.scenario {
-        let scenario = Scenario::load(file, &args.sets)?;
-        let base = file.parent().map(PathBuf::from).unwrap_or_default();
-        let spec = scenario.require_surface().map_err(|e| format!("{}: {e}", file.display()))?;
-        let (patch, faces) =
-            stiction_surface::height_map_patch(spec, &base).map_err(|e| format!("{}: surface: {e}", file.display()))?;
-        let grid = Grid::new(patch.nx(), patch.ny(), patch.dx_m(), patch.dy_m())
-            .map_err(|e| format!("{}: {e} (the BEM grid limit)", file.display()))?;
-        let heights = patch.into_heights_m();
-        stiction_bem::spec::check_complete(&heights).map_err(|e| format!("{}: {e}", file.display()))?;
-        let e_star_pa = match args.e_star {
-            Some(e) => e,
-            None => {
-                let m = scenario.require_material().map_err(|e| format!("{}: {e}", file.display()))?;
-                0.75 / m.compliance_per_pa()
-            }
-        };
-        return Ok(Surface {
-            grid,
-            heights,
-            source: SurfaceSource::Scenario { file: file.display().to_string(), faces },
-            e_star_pa,
-        });
+        return scenario_surface(args, &ScenarioSource::file(file, &[])?);
     }
     if !(2..=MAX_SIDE).contains(&args.grid) {
         return Err(format!("--grid {}: expected 2..={MAX_SIDE} points per side", args.grid).into());
@@ -400,6 +401,29 @@ pub fn bem_json_of_map(
     info: MapInfo,
     pressures: Option<&[f64]>,
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    check_front_end_path(args, pressures)?;
+    let (out, _, _) = solve(args, map_surface(args, file, raw, info)?, pressures)?;
+    Ok(crate::api::finite_value(&out)?)
+}
+
+/// What `stiction bem --scenario SCENARIO --json` prints for the scenario `source` (a file or a
+/// tree built in memory; `args.scenario` is not read, `args.sets` apply after the source's own):
+/// the patch of its height-map face(s) under the shoe, solved at `pressures` (mean pressures, Pa,
+/// in order, each from the previous state) when given, else along `args`' path; every number
+/// checked finite. For front ends other than the command line (the Python module).
+pub fn bem_json_of_scenario(
+    args: &Args,
+    source: &ScenarioSource,
+    pressures: Option<&[f64]>,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    check_front_end_path(args, pressures)?;
+    let (out, _, _) = solve(args, scenario_surface(args, source)?, pressures)?;
+    Ok(crate::api::finite_value(&out)?)
+}
+
+/// The checks of [`bem_json_of_map`] and [`bem_json_of_scenario`] before any work: no `--rh`, a
+/// tolerance in (0, 1), and a load path (`pressures`, each finite and > 0, or the flags').
+fn check_front_end_path(args: &Args, pressures: Option<&[f64]>) -> Result<(), Box<dyn std::error::Error>> {
     if args.humidity.rh.is_some() {
         return Err("rh: the adhesion energy against humidity is a command of its own (`stiction bem --rh`); \
                     this call solves a load path"
@@ -413,8 +437,7 @@ pub fn bem_json_of_map(
     if let Some(p) = pressures.and_then(|p| p.iter().find(|p| !(p.is_finite() && **p > 0.0))) {
         return Err(format!("pressure {p}: expected a mean pressure > 0 (compressive), Pa").into());
     }
-    let (out, _, _) = solve(args, map_surface(args, file, raw, info)?, pressures)?;
-    Ok(crate::api::finite_value(&out)?)
+    Ok(())
 }
 
 /// Runs the subcommand.

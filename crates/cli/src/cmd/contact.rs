@@ -9,6 +9,7 @@ use stiction_meter::{ContactModel, build_contact_model};
 use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, Scenario};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
+use crate::api::ScenarioSource;
 use crate::output::{CliResult, TextTable, print_json, print_table, q, quantity};
 
 /// Shoe degrees of freedom.
@@ -105,7 +106,7 @@ pub fn run(args: Args) -> CliResult {
     if args.model == Model::Bem {
         return run_bem(&args);
     }
-    let (mut solver, c, material) = explicit_solver(&args)?;
+    let (mut solver, c, material) = explicit_solver(&args, &ScenarioSource::file(&args.scenario, &[])?)?;
     // Per-contact detail only where an output shows it: the summit table (--summits) or the JSON
     // (contact indices); the plain table needs the totals only, which the solver's last pass holds.
     solver.set_detail(if args.summits {
@@ -186,6 +187,7 @@ pub fn run(args: Args) -> CliResult {
 /// solver, the scenario's contact settings and its material.
 fn explicit_solver(
     args: &Args,
+    source: &ScenarioSource,
 ) -> Result<
     (Box<stiction_contact::explicit::ExplicitSolver>, stiction_scenario::ContactSpec, MaterialSpec),
     Box<dyn std::error::Error>,
@@ -201,27 +203,32 @@ fn explicit_solver(
     if let Some(n) = args.contacts {
         sets.push(format!("contact.contacts={n}"));
     }
-    let scenario = Scenario::load(&args.scenario, &sets)?;
-    let material = scenario.require_material().map_err(|e| format!("{}: {e}", args.scenario.display()))?.clone();
-    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    let scenario = source.parse(&sets)?;
+    let name = source.name();
+    let material = scenario.require_material().map_err(|e| format!("{name}: {e}"))?.clone();
     let c = scenario.contact_or_default();
     debug_assert_eq!(c.model, ModelKind::Explicit);
-    let model =
-        build_contact_model(&scenario, &material, &base).map_err(|e| format!("{}: {e}", args.scenario.display()))?;
+    let model = build_contact_model(&scenario, &material, &source.base).map_err(|e| format!("{name}: {e}"))?;
     let ContactModel::Explicit(solver) = model else {
         return Err("the explicit solver could not be built".into());
     };
     Ok((solver, c, material))
 }
 
-/// What `stiction contact SCENARIO --json` prints with the explicit solver: the equilibrium at
-/// `--load`, or for a sweep (the loads given, else `--sweep`) {"points", "events"}; every number
-/// checked finite. For front ends other than the command line (the Python module).
-pub fn contact_json(args: &Args, sweep_loads: Option<&[f64]>) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+/// What `stiction contact SCENARIO --json` prints with the explicit solver for the scenario
+/// `source` (a file or a tree built in memory; `args.scenario` is not read, `args.sets` apply
+/// after the source's own): the equilibrium at `--load`, or for a sweep (the loads given, else
+/// `--sweep`) {"points", "events"}; every number checked finite. For front ends other than the
+/// command line (the Python module).
+pub fn contact_json(
+    args: &Args,
+    source: &ScenarioSource,
+    sweep_loads: Option<&[f64]>,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     if args.model == Model::Bem {
         return Err("contact_json: the explicit solver only".into());
     }
-    let (mut solver, _, _) = explicit_solver(args)?;
+    let (mut solver, _, _) = explicit_solver(args, source)?;
     solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });
     let parsed;
     let loads = match (sweep_loads, &args.sweep) {

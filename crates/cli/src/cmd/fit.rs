@@ -10,6 +10,7 @@ use stiction_scenario::Scenario;
 use stiction_units::io::write_atomic;
 use stiction_units::{Constraint, Dimension};
 
+use crate::api::ScenarioSource;
 use crate::figargs::FigureArgs;
 use crate::output::{CliResult, OutputSet, print_json, quantity};
 
@@ -130,21 +131,27 @@ fn options(args: &Args) -> Result<FitOptions, Box<dyn std::error::Error>> {
     })
 }
 
-/// What `stiction fit [DATA] --scenario S --json` prints; `data`, when given, is the CSV text of
-/// the measured voltages (named `source` in messages) instead of the file. Every number checked
+/// What `stiction fit [DATA] --scenario S --json` prints for the scenario `source` (a file or a
+/// tree built in memory; `args.scenario` is not read, `args.sets` apply after the source's own);
+/// `data`, when given, is the CSV text of the measured voltages (with its name in messages)
+/// instead of the file. Every number checked
 /// finite. For front ends other than the command line (the Python module).
-pub fn fit_json(args: &Args, data: Option<(&[u8], &str)>) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    let scenario = Scenario::load(&args.scenario, &args.sets)?;
+pub fn fit_json(
+    args: &Args,
+    source: &ScenarioSource,
+    data: Option<(&[u8], &str)>,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let scenario = source.parse(&args.sets)?;
     if let Some(conflict) = scenario.spring_force_conflict() {
-        return Err(format!("{}: {conflict}", args.scenario.display()).into());
+        return Err(format!("{}: {conflict}", source.name()).into());
     }
-    let json = Scenario::load_json(&args.scenario, &args.sets)?;
-    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
+    let json = source.json(&args.sets)?;
+    let base = &source.base;
     let data = match data {
-        Some((bytes, source)) => stiction_fit::parse_measured_voltages(bytes, source)?,
-        None => read_measured_voltages(&data_path(args, &scenario, &base)?)?,
+        Some((bytes, name)) => stiction_fit::parse_measured_voltages(bytes, name)?,
+        None => read_measured_voltages(&data_path(args, &scenario, base)?)?,
     };
-    let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options(args)?)?;
+    let report = stiction_fit::analyse(&data, &scenario, &json, base, &options(args)?)?;
     Ok(crate::api::finite_value(&report)?)
 }
 

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use stiction_scenario::Scenario;
 
+use crate::api::ScenarioSource;
 use crate::output::{CliResult, TextTable, print_json};
 
 /// Check a scenario (with overrides) and print it as it is run (readable as input: the file's
@@ -30,22 +31,27 @@ pub struct Args {
     pub schema: bool,
 }
 
+/// The checks of `stiction scenario`: the scenario `source` parsed and validated, and a height-map
+/// sidewall checked as `run` reads it: the map is read and prepared (cut-offs no longer than the
+/// map, a map at least as large as the shoe or `tile`), so a scenario that passes here does not
+/// fail there. The parsed scenario comes back.
+pub fn check(source: &ScenarioSource) -> Result<Scenario, Box<dyn std::error::Error>> {
+    let scenario = source.parse(&[])?;
+    if let Ok(surface) = scenario.require_surface()
+        && surface.source == stiction_surface::SurfaceSource::HeightMap
+    {
+        stiction_surface::height_map_patch(surface, &source.base).map_err(|e| format!("{}: {e}", source.name()))?;
+    }
+    Ok(scenario)
+}
+
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     if args.schema {
         return print_json(&Scenario::json_schema());
     }
     let path = args.scenario.ok_or("a scenario file is needed")?;
-    let scenario = Scenario::load(&path, &args.sets)?;
-    // A height-map sidewall is checked as `run` reads it: the map is read and prepared (cut-offs no
-    // longer than the map, a map at least as large as the shoe or `tile`), so a scenario that
-    // passes here does not fail there.
-    if let Ok(surface) = scenario.require_surface()
-        && surface.source == stiction_surface::SurfaceSource::HeightMap
-    {
-        let base = path.parent().map(std::path::PathBuf::from).unwrap_or_default();
-        stiction_surface::height_map_patch(surface, &base).map_err(|e| format!("{}: {e}", path.display()))?;
-    }
+    let scenario = check(&ScenarioSource::file(&path, &args.sets)?)?;
     if !args.explain {
         for n in &scenario.notes {
             crate::errln!("note [{}]: {}", n.code, n.message);

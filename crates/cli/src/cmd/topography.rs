@@ -1,10 +1,9 @@
 //! `stiction topography`: a measured height map in, its summits and statistics out.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde::Serialize;
 use stiction_plot::{Chart, ImageMap, Series};
-use stiction_scenario::Scenario;
 use stiction_surface::{Radii, Surface};
 use stiction_topography::{
     HeightMap, MapFormat, MapInfo, Nayak, Preparation, PreparationReport, PsdWindow, Statistics, Summits, find_summits,
@@ -13,6 +12,7 @@ use stiction_topography::{
 use stiction_units::io::write_atomic;
 
 use super::map_args::MapArgs;
+use crate::api::ScenarioSource;
 use crate::output::{CliResult, OutputSet, print_json, print_table};
 
 /// Read a measured height map (AFM, optical profiler): level it, filter it, find its summits
@@ -104,8 +104,9 @@ pub fn run(args: Args) -> CliResult {
     if let Some(path) = &args.summits {
         crate::output::check_output_flag("--summits", path)?;
     }
+    let scenario = args.scenario.as_deref().map(|p| ScenarioSource::file(p, &[])).transpose()?;
     let (out, map, summits) =
-        compose(args.file.display().to_string(), raw, info, &args.map.preparation(), args.scenario.as_deref())?;
+        compose(args.file.display().to_string(), raw, info, &args.map.preparation(), scenario.as_ref())?;
     let report = out.preparation;
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("statistics.json", crate::output::json_text(&out)?.as_bytes())?;
@@ -136,7 +137,7 @@ fn compose(
     raw: HeightMap,
     info: MapInfo,
     prep: &Preparation,
-    scenario: Option<&Path>,
+    scenario: Option<&ScenarioSource>,
 ) -> Result<(Output, HeightMap, Summits), Box<dyn std::error::Error>> {
     let (map, report) = prepare(&raw, prep)?;
     drop(raw);
@@ -169,31 +170,32 @@ fn compose(
 }
 
 /// The JSON object `stiction topography FILE --json` prints for the map `raw` as read (with
-/// `info`) from `file`, prepared with `prep`, with the material of `scenario` for theta; the
+/// `info`) from `file`, prepared with `prep`, with the material of `scenario` (a file or a tree
+/// built in memory) for theta; the
 /// prepared map and its summits beside it.
 pub fn topography_json(
     file: &str,
     raw: HeightMap,
     info: MapInfo,
     prep: &Preparation,
-    scenario: Option<&Path>,
+    scenario: Option<&ScenarioSource>,
 ) -> Result<(serde_json::Value, HeightMap, Summits), Box<dyn std::error::Error>> {
     let (out, map, summits) = compose(file.to_string(), raw, info, prep, scenario)?;
     Ok((crate::api::finite_value(&out)?, map, summits))
 }
 
-fn gw_of(st: &Statistics, scenario: Option<&Path>) -> Result<Gw, Box<dyn std::error::Error>> {
+fn gw_of(st: &Statistics, scenario: Option<&ScenarioSource>) -> Result<Gw, Box<dyn std::error::Error>> {
     let s = &st.summits;
     let (sd, r) = (s.height_sd_m, s.radius_mean_m);
     let (theta, note) = match scenario {
         None => (None, "no --scenario: theta needs a material (compliance, work of adhesion)".to_string()),
-        Some(path) => {
-            let sc = Scenario::load(path, &[])?;
-            let m = sc.require_material().map_err(|e| format!("{}: {e}", path.display()))?;
+        Some(source) => {
+            let sc = source.parse(&[])?;
+            let m = sc.require_material().map_err(|e| format!("{}: {e}", source.name()))?;
             match (sd, r) {
                 (Some(sd), Some(r)) if sd > 0.0 => {
                     match stiction_contact::gw::adhesion_parameter(sd, r, m.compliance_per_pa(), m.work_of_adhesion)? {
-                        Some(t) => (Some(t), format!("material of {}", path.display())),
+                        Some(t) => (Some(t), format!("material of {}", source.name())),
                         None => (None, "work of adhesion 0: theta is infinite (no adhesion)".into()),
                     }
                 }

@@ -15,7 +15,7 @@ import csv as _csv
 import io as _io
 import json as _json
 import os as _os
-from typing import Any, Callable, Dict, Optional, Union
+from typing import Any, Callable, Dict, Optional, Sequence, Union
 
 import numpy as _np
 
@@ -24,10 +24,20 @@ from . import _stiction
 
 __all__ = [
     "Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete", "asperity",
-    "contact", "bem", "fit",
+    "contact", "bem", "fit", "PathOrScenario", "Quantity", "Loads", "Heights",
 ]
 
-PathOrScenario = Union[str, "_os.PathLike[str]", Scenario]
+Quantity = Union[str, float, None]
+"""A quantity argument: a unit string ("0.5 um", "20 MPa") or an SI float (None: the default)."""
+Loads = Union[str, float, Sequence[float], _np.ndarray]
+"""Loads: one force ("3 uN" or N) or a vector of them (N)."""
+Heights = _np.ndarray
+"""A height map: a 2-D NumPy array of float32 or float64, rows = y, any order or strides."""
+
+PathOrScenario = Union[str, "_os.PathLike[str]", Scenario, Dict[str, Any]]
+"""A scenario argument: a path to a scenario file, a ``Scenario``, or a dict shaped as the file
+(as ``Scenario.from_dict(d)``: relative paths in a dict, such as a height map or a measured CSV,
+are read from the current directory; a file's relative paths from the file's folder)."""
 
 
 class Result:
@@ -35,15 +45,34 @@ class Result:
     attributes (``r.mu_apparent``), ``to_dict()`` (equal to that JSON) and ``to_json()``.
 
     ``columns`` holds the per-point columns as NumPy arrays (float64; None/null becomes NaN,
-    booleans stay bool) where the result has a list of points.
+    booleans stay bool) where the result has a list of points (made on first use).
     """
 
-    def __init__(self, text: str, extra: Optional[Dict[str, Any]] = None):
-        self._text = text
-        self._data = _json.loads(text)
+    def __init__(self, data: Union[str, Dict[str, Any], "_stiction.Json"], extra: Optional[Dict[str, Any]] = None):
+        # The engine hands over its JSON object (a field becomes Python objects, the same f64s,
+        # when it is first read); a JSON text is parsed, a dict taken as it is.
+        if isinstance(data, str):
+            data = _json.loads(data)
+        self._json = data if isinstance(data, _stiction.Json) else None
+        self._data: Dict[str, Any] = {} if self._json is not None else data
+        self._keys = self._json.keys() if self._json is not None else list(data)
         self._extra = extra or {}
-        points = self._data.get("points") if isinstance(self._data, dict) else None
-        self.columns: Dict[str, _np.ndarray] = _columns(points) if isinstance(points, list) else {}
+        self._columns: Optional[Dict[str, _np.ndarray]] = None
+
+    def _field(self, name: str) -> Any:
+        if name not in self._data:
+            if self._json is None or name not in self._keys:
+                raise KeyError(name)
+            self._data[name] = self._json.get(name)
+        return self._data[name]
+
+    @property
+    def columns(self) -> Dict[str, _np.ndarray]:
+        """The per-point columns as NumPy arrays (float64 with null as NaN, or bool)."""
+        if self._columns is None:
+            points = self._field("points") if "points" in self._keys else None
+            self._columns = _columns(points) if isinstance(points, list) else {}
+        return self._columns
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("_"):
@@ -51,30 +80,34 @@ class Result:
         if name in self._extra:
             return self._extra[name]
         try:
-            return self._data[name]
+            return self._field(name)
         except KeyError:
-            raise AttributeError(f"result has no field {name!r}; fields: {sorted(self._data)}") from None
+            raise AttributeError(f"result has no field {name!r}; fields: {sorted(self._keys)}") from None
 
     def __getitem__(self, key: str) -> Any:
-        return self._data[key]
+        return self._field(key)
 
     def keys(self):
         """The fields of the JSON object."""
-        return self._data.keys()
+        return dict.fromkeys(self._keys).keys()
 
     def to_dict(self) -> Dict[str, Any]:
         """The JSON object as a dict (a fresh copy): equals ``json.loads`` of the CLI's ``--json``."""
-        return _json.loads(self._text)
+        if self._json is not None:
+            return self._json.to_py()
+        return _json.loads(self.to_json())
 
     def to_json(self) -> str:
-        """The JSON object as text (compact; the CLI prints it indented: same values)."""
-        return self._text
+        """The JSON object as compact text (the CLI prints it indented: same values)."""
+        if self._json is not None:
+            return self._json.to_json()
+        return _json.dumps(self._data, separators=(",", ":"))
 
     def __dir__(self):
-        return sorted(set(super().__dir__()) | set(self._data) | set(self._extra))
+        return sorted(set(super().__dir__()) | set(self._keys) | set(self._extra))
 
     def __repr__(self) -> str:
-        return f"stiction.Result({', '.join(sorted(self._data))})"
+        return f"stiction.Result({', '.join(sorted(self._keys))})"
 
 
 def _columns(points: list) -> Dict[str, _np.ndarray]:
@@ -100,7 +133,8 @@ def run(scenario: PathOrScenario, progress: Optional[Callable[[int, int], Any]] 
     """Run the friction-meter experiment of a scenario (the paper's Fig. 5): clamp at each clamp
     voltage, ramp the pull voltage until slip, fit eq. 10 (F_f = mu_e,a (L + F_a0)).
 
-    scenario: a path to a scenario JSON file, or a ``Scenario``.
+    scenario: a path to a scenario JSON file, a ``Scenario``, or a dict shaped as the file (its
+    relative paths read from the current directory).
     progress: optional ``progress(done, total)`` called after each clamp voltage.
 
     Returns a ``Result`` equal to ``stiction run SCENARIO --json``: ``mu_apparent`` (mu_e,a,
@@ -119,7 +153,7 @@ def topography(
     level: str = "plane",
     cutoff: Union[str, float, None] = None,
     long_cutoff: Union[str, float, None] = None,
-    scenario: Union[str, "_os.PathLike[str]", None] = None,
+    scenario: Optional[PathOrScenario] = None,
 ) -> Result:
     """Analyse a measured height map given as a 2-D NumPy array (rows = y), float32 or float64,
     C or Fortran order: levelling, cut-offs, summits (8-neighbour maxima, curvature
@@ -130,17 +164,18 @@ def topography(
     height_unit: the unit of the array's numbers ("nm", "um", "mm") or metres per unit (1e-9).
     level: "none", "mean", "plane", "poly2" or "poly3".
     cutoff, long_cutoff: short- and long-wavelength Gaussian cut-offs, lengths or metres.
-    scenario: a scenario file whose material gives the adhesion parameter theta.
+    scenario: a scenario (file, ``Scenario`` or dict) whose material gives the adhesion parameter
+    theta (eq. 9) with the map's summit height SD and mean radius.
 
     Returns a ``Result`` whose ``to_dict()`` equals the CLI's JSON (its ``file`` field is
     "<array>") and whose ``summits`` is a dict of arrays: x_m, y_m (pixel centres, m), height_m (m),
     curvature_per_m (1/m), radius_m (m), ix, iy (pixel indices). Releases the GIL.
     """
-    text, summits = _stiction.topography_json(
+    data, summits = _stiction.topography_json(
         _heights(heights), pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff,
-        None if scenario is None else _os.fspath(scenario),
+        scenario,
     )
-    return Result(text, {"summits": summits})
+    return Result(data, {"summits": summits})
 
 
 def study(
@@ -152,7 +187,8 @@ def study(
     progress: Optional[Callable[[int, int], Any]] = None,
     as_pandas: Optional[bool] = None,
 ) -> Result:
-    """Monte Carlo study of a scenario (a file, or a ``Scenario`` built with ``Scenario.from_dict``):
+    """Monte Carlo study of a scenario (a file, a ``Scenario``, or a dict shaped as the file whose
+    relative paths are read from the current directory):
     every parameter written with an uncertainty is drawn anew and each sample gets its own rough
     surface (unless fixed_surface); the spread of mu_e,a (dimensionless) and F_a0 (N) of eq. 10.
 
@@ -169,8 +205,8 @@ def study(
     a value a sample could not compute is NaN with its reason). Releases the GIL; Ctrl-C stops
     the study (KeyboardInterrupt within a second).
     """
-    text, csv_text = _stiction.study_json(scenario, samples, seed, threads, fixed_surface, progress)
-    return Result(text, {"samples": _samples(csv_text, as_pandas)})
+    data, csv_text = _stiction.study_json(scenario, samples, seed, threads, fixed_surface, progress)
+    return Result(data, {"samples": _samples(csv_text, as_pandas)})
 
 
 def _samples(csv_text: str, as_pandas: Optional[bool]):
@@ -247,11 +283,9 @@ def discrete(
     loads = load if isinstance(load, str) else _np.atleast_1d(_np.asarray(load, dtype=float)).ravel().tolist()
     if isinstance(loads, str):
         loads = [loads]
-    points = _json.loads(
-        _stiction.discrete_json(
-            contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion,
-            equilibrium_spacing, target_slope,
-        )
+    points = _stiction.discrete_json(
+        contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion,
+        equilibrium_spacing, target_slope,
     )
     out: Dict[str, Any] = dict(_columns(points))
     out["points"] = points
@@ -324,7 +358,8 @@ def contact(
     mode: "tilt", "flat" or "fixed" (default: the scenario's). contacts: N for mode "fixed".
     summits: list every summit in contact.
 
-    The scenario must be a file (or a ``Scenario`` loaded from one). Equilibrium fields are SI
+    scenario: a file, a ``Scenario``, or a dict shaped as the file (its relative paths read from
+    the current directory). Equilibrium fields are SI
     (load_n N, separation_m m, tilt_x_rad rad, real_area_m2 m^2, max_pressure_pa Pa, ...).
     Releases the GIL; Ctrl-C raises KeyboardInterrupt.
     """
@@ -338,7 +373,7 @@ def contact(
 
 
 def bem(
-    heights,
+    heights=None,
     pressure=None,
     pixel_size: Union[str, float, None] = None,
     pixel_size_y: Union[str, float, None] = None,
@@ -355,6 +390,7 @@ def bem(
     shear_strength: Union[str, float, None] = None,
     tolerance: Optional[float] = None,
     compare_asperity: bool = False,
+    scenario: Optional[PathOrScenario] = None,
 ) -> Result:
     """FFT boundary-element contact of a rigid flat on the height map ``heights`` (a 2-D NumPy
     array, rows = y, float32 or float64, any order; read in place, as ``topography`` reads it),
@@ -369,6 +405,12 @@ def bem(
     Dugdale law. shear_strength: s (Pa) for the friction s A_r. tolerance: relative, of the
     conjugate gradient (default 1e-6). compare_asperity: also the summit model on the same grid.
 
+    scenario: instead of ``heights``, a scenario (file, ``Scenario`` or dict whose relative paths
+    are read from the current directory) with ``surface.source`` "height_map": the patch of its
+    face(s) under the shoe, as ``stiction bem --scenario SCENARIO --json`` (E* from its material
+    unless e_star is given; the map flags do not apply: the scenario's surface section prepares
+    the maps).
+
     Returns a ``Result``: grid, e_star_pa, rms_height_m, rms_slope, points (mean_pressure_pa Pa,
     load_n N, mean_gap_m m, contact_fraction, contact_area_m2 m^2, friction_n N, ...; also as
     NumPy ``columns``), pull_off_n. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
@@ -381,10 +423,29 @@ def bem(
         + _flag("shear_strength", shear_strength) + _flag("tolerance", tolerance)
         + _flag("compare_asperity", compare_asperity)
     )
+    if scenario is not None:
+        if heights is not None:
+            raise StictionError("bem: give a height map (heights) or a scenario, not both")
+        map_flags = {
+            "pixel_size": pixel_size, "pixel_size_y": pixel_size_y, "height_unit": height_unit,
+            "cutoff": cutoff, "long_cutoff": long_cutoff,
+        }
+        given = [k for k, v in map_flags.items() if v is not None] + (["level"] if level != "plane" else [])
+        if given:
+            raise StictionError(
+                f"bem: {', '.join(given)} prepare a height-map array; with a scenario its surface section "
+                "prepares the maps"
+            )
+        flags = [f for f in flags if not f.startswith("--level=")]
+        heights_arg = None
+    elif heights is None:
+        raise StictionError("bem: give a height map (heights, a 2-D array) or a scenario")
+    else:
+        heights_arg = _heights(heights)
     if _is_vector(pressure):
         pressures = _np.asarray(pressure, dtype=float).ravel().tolist()
-        return Result(_stiction.bem_json(_heights(heights), flags, pressures))
-    return Result(_stiction.bem_json(_heights(heights), flags + _flag("pressure", pressure), None))
+        return Result(_stiction.bem_json(heights_arg, flags, pressures, scenario))
+    return Result(_stiction.bem_json(heights_arg, flags + _flag("pressure", pressure), None, scenario))
 
 
 def fit(
@@ -403,7 +464,8 @@ def fit(
     data: a CSV path (columns v_clamp_v, v_pull_v [, v_pull_sd_v, device]); or the columns as
     arrays: a dict (or pandas DataFrame) with keys v_clamp_v and v_pull_v (V) and optionally
     v_pull_sd_v (V) and device; or None for the scenario's ``measured.voltages_csv``.
-    scenario: the device's scenario file. models: "discrete-n1,gw-dmt,explicit,..."; free: "s",
+    scenario: the device's scenario: a file, a ``Scenario``, or a dict shaped as the file (its
+    relative paths, such as ``measured.voltages_csv``, read from the current directory). models: "discrete-n1,gw-dmt,explicit,..."; free: "s",
     "s,R", "s,R,F_spring"; surfaces: realisations of the explicit ensemble; draws: calibration
     Monte Carlo draws; seed: its seed (the CLI's defaults when None).
     Releases the GIL; Ctrl-C raises KeyboardInterrupt.

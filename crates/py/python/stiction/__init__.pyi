@@ -1,14 +1,20 @@
 """Type stubs of the stiction package (quantities SI floats or unit strings; results as the CLI's --json)."""
 
 import os
-from typing import Any, Callable, Dict, KeysView, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, KeysView, List, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
 
+__all__ = [
+    "Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete", "asperity",
+    "contact", "bem", "fit", "PathOrScenario", "Quantity", "Loads", "Heights",
+]
+
 class StictionError(ValueError):
     """Bad input or a value that cannot be computed; the message is the command line's."""
 
+@final
 class Scenario:
     """A scenario: a file with overrides in order, or a JSON tree built in Python."""
     @staticmethod
@@ -17,7 +23,8 @@ class Scenario:
     def from_json(text: str, base_dir: Union[str, os.PathLike[str], None] = None) -> Scenario: ...
     @staticmethod
     def from_dict(d: Dict[str, Any], base_dir: Union[str, os.PathLike[str], None] = None) -> Scenario: ...
-    def set(self, path: str, value: Union[str, float, int, bool, None]) -> None: ...
+    def set(self, path: str, value: Union[str, float, int, bool, None, List[Any], Dict[str, Any]]) -> None: ...
+    def get(self, path: str) -> Any: ...
     def validate(self) -> List[Tuple[str, str]]: ...
     def to_json(self) -> str: ...
     def to_dict(self) -> Dict[str, Any]: ...
@@ -26,16 +33,18 @@ class Scenario:
     @property
     def sets(self) -> List[str]: ...
 
-PathOrScenario = Union[str, os.PathLike[str], Scenario]
+PathOrScenario = Union[str, os.PathLike[str], Scenario, Dict[str, Any]]
 Quantity = Union[str, float, None]
 
 class Result:
     """The CLI's --json object: keys as attributes, to_dict(), to_json(), per-point columns."""
-    columns: Dict[str, npt.NDArray[Any]]
+    @property
+    def columns(self) -> Dict[str, npt.NDArray[Any]]: ...
     summits: Dict[str, npt.NDArray[Any]]
     """topography: x_m, y_m, height_m, curvature_per_m, radius_m, ix, iy."""
     samples: Any
     """study: a dict of NumPy arrays, or a pandas DataFrame."""
+    def __init__(self, data: Union[str, Dict[str, Any], Any], extra: Optional[Dict[str, Any]] = None) -> None: ...
     def __getattr__(self, name: str) -> Any: ...
     def __getitem__(self, key: str) -> Any: ...
     def keys(self) -> KeysView[str]: ...
@@ -51,7 +60,7 @@ def topography(
     level: str = "plane",
     cutoff: Quantity = None,
     long_cutoff: Quantity = None,
-    scenario: Union[str, os.PathLike[str], None] = None,
+    scenario: Optional[PathOrScenario] = None,
 ) -> Result: ...
 def study(
     scenario: PathOrScenario,
@@ -92,7 +101,7 @@ def asperity(
 
 def contact(
     scenario: PathOrScenario,
-    load: Loads = None,
+    load: Optional[Loads] = None,
     mode: Optional[str] = None,
     contacts: Optional[int] = None,
     summits: bool = False,
@@ -100,7 +109,7 @@ def contact(
     """The explicit solver at a load (N) or over a vector of loads (a sweep)."""
 
 def bem(
-    heights: Heights,
+    heights: Optional[Heights] = None,
     pressure: Union[str, float, Sequence[float], npt.NDArray[np.float64], None] = None,
     pixel_size: Quantity = None,
     pixel_size_y: Quantity = None,
@@ -117,6 +126,7 @@ def bem(
     shear_strength: Quantity = None,
     tolerance: Optional[float] = None,
     compare_asperity: bool = False,
+    scenario: Optional[PathOrScenario] = None,
 ) -> Result:
     """Boundary-element contact on a height-map array; pressures in Pa, E* in Pa, lengths in m."""
 
