@@ -1041,7 +1041,8 @@ impl GwSurface {
             let mut step = k.max(1e-9 * h_upper.abs().max(1.0));
             let mut lo = h_upper - step;
             let mut tries = 0;
-            while !(residual(lo) > 0.0) {
+            // (NaN, from a separation out of range, continues the search like a tensile balance.)
+            while residual(lo).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 step *= 2.0;
                 lo = h_upper - step;
                 tries += 1;
