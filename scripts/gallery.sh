@@ -46,7 +46,9 @@ s plot actuator --scenario scenarios/tas2000.json --array pull --out "$TMP/act-p
 take act-pull.png plot-actuator-pull.png
 # mu_e,a, F_a0 and the capillary share against relative humidity, the measured reference at 35 +/- 5 %.
 s plot humidity --scenario scenarios/tas2000-humid.json --out "$TMP/humidity" $FIG
-for f in mu fa0 share; do take "humidity/humidity-$f.png" "plot-humidity-$f.png"; done
+take humidity/humidity-mu.png plot-humidity-mu.png
+take humidity/humidity-fa0.png plot-humidity-fa0.png
+take humidity/humidity-share.png plot-humidity-share.png
 
 # Monte Carlo study.
 s study scenarios/tas2000.json --samples 300 --quiet --out "$TMP/study" $FIG

@@ -55,7 +55,8 @@ pub struct Args {
     /// .csv, manifest.json); optional there.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Scenario file: its parameters for fig2, fig3, fig7 and actuator (required for actuator).
+    /// Scenario file: its parameters for fig2, fig3, fig7, actuator and humidity (required for
+    /// actuator and humidity).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// Actuator array name in the scenario (for `actuator`; default: the only one, or `clamp`).
