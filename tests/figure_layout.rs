@@ -49,6 +49,20 @@ const CASES: &[Case] = &[
         &["plot", "actuator", "--scenario", "scenarios/tas2000.json", "--array", "pull", "--out", "{dir}/a.png"],
         1,
     ),
+    case(
+        "plot-humidity",
+        &[
+            "plot",
+            "humidity",
+            "--scenario",
+            "scenarios/tas2000-humid.json",
+            "--rh",
+            "0.2,0.5,0.9",
+            "--out",
+            "{dir}/out",
+        ],
+        6,
+    ),
     case("study", &["study", "scenarios/tas2000.json", "--samples", "40", "--quiet", "--out", "{dir}/out"], 6),
     case(
         "design",
