@@ -56,8 +56,7 @@ pub struct VaryRange {
 /// longest prefix that parses as a finite f64.
 fn number_and_unit(s: &str) -> Option<(f64, String)> {
     let s = s.trim();
-    let longest =
-        s.char_indices().map(|(k, c)| k + c.len_utf8()).filter(|&end| s[..end].parse::<f64>().is_ok()).next_back()?;
+    let longest = s.char_indices().map(|(k, c)| k + c.len_utf8()).rfind(|&end| s[..end].parse::<f64>().is_ok())?;
     let x: f64 = s[..longest].parse().ok()?;
     x.is_finite().then(|| (x, s[longest..].trim().to_string()))
 }
