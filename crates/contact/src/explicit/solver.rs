@@ -184,6 +184,10 @@ struct Linear {
     hard_gap: f64,
     /// sum k u, sum k v (the flat shoe's Hessian holds only sum k).
     k_uv: [f64; 2],
+    /// Menisci: the magnitude of a tail's (negative) stiffness f R / h_m (0 when dry) \[N/m\].
+    tail_k: f64,
+    /// Menisci: the bridged summits' number and sums of u, v, u^2, u v, v^2 (zero when dry).
+    tail: [f64; 6],
 }
 
 enum LawImpl {
@@ -1026,7 +1030,8 @@ fn evaluate<L: LawEval + ?Sized>(
         g.scanned.fetch_add(scanned as u64, Ordering::Relaxed);
         if let (Some(lin), Some(&h_next)) = (ev.lin.as_mut(), g.hs.get(scanned)) {
             let wmin = a + (b * g.length).min(0.0) + (c * g.width).min(0.0);
-            let tail = wmin - h_next;
+            // (With menisci the summits beyond lie below -h_m: their distance to it.)
+            let tail = if k.cap_f != 0.0 { wmin - k.hm - h_next } else { wmin - h_next };
             lin.gap_out = if tail > 0.0 { lin.gap_out.min(tail) } else { 0.0 };
         }
         return ev;
@@ -1200,8 +1205,10 @@ fn linear_step<L: LawEval + ?Sized>(
     let (fall, rise) = (fall * (1.0 + 1e-9) + slack, rise * (1.0 + 1e-9) + slack);
     let m = mv.max(fall).max(rise) * (1.0 + 1e-9) + slack;
     // No contact releases (and the remainder below has xi >= gap_in / 2), none touches, none
-    // crosses the hardness limit.
-    if !(lin.gap_in > 2.0 * fall && lin.gap_out > rise && lin.hard_gap > m) {
+    // crosses the hardness limit. With menisci the others' gaps (to 0 and -h_m) hold either way.
+    let wet = lin.tail_k != 0.0;
+    let out_move = if wet { fall.max(rise) } else { rise };
+    if !(lin.gap_in > 2.0 * fall && lin.gap_out > out_move && lin.hard_gap > m) {
         return false;
     }
     let nd = g.ndof;
@@ -1209,7 +1216,18 @@ fn linear_step<L: LawEval + ?Sized>(
     for (gj, hj) in gl.iter_mut().zip(&ev.h).take(nd) {
         *gj += hj.iter().zip(dq).take(nd).map(|(h, d)| h * d).sum::<f64>();
     }
-    // Every contact has z > 0 here (|z| >= gap > 0 and no member is past release).
+    // Menisci: the bridged summits' tails, exactly linear in z (stiffness -f R / h_m each), which
+    // the Hessian leaves out: their change of the gradient, force and moments.
+    let [tn, tu, tv, tuu, tuv, tvv] = lin.tail;
+    let tk = lin.tail_k;
+    let th = [[-tk * tn, -tk * tu, -tk * tv], [-tk * tu, -tk * tuu, -tk * tuv], [-tk * tv, -tk * tuv, -tk * tvv]];
+    if wet {
+        for (gj, hj) in gl.iter_mut().zip(&th).take(nd) {
+            *gj += hj.iter().zip(dq).take(nd).map(|(h, d)| h * d).sum::<f64>();
+        }
+    }
+    // Every contact has z > 0 here (|z| >= gap > 0 and no member is past release); with menisci
+    // n also counts the bridged summits, whose tails are linear (an upper bound).
     let n = ev.contacts as f64;
     let rem = 0.5 * m * m * n * 0.75 * radius.sqrt() * inv_d / (lin.gap_in - fall).sqrt();
     let phi_max = [1.0, x0.abs().max((g.length - x0).abs()) * inv_ell, y0.abs().max((g.width - y0).abs()) * inv_ell];
@@ -1226,16 +1244,32 @@ fn linear_step<L: LawEval + ?Sized>(
     let dpv = -(kv * d0 + kuv * d1 + kvv * d2);
     let ell = 1.0 / inv_ell;
     ev.g = gl;
-    ev.force += dp;
-    ev.elastic += dp;
-    // (sum |P_i| is only the tolerance's scale: it moves by at most sum k m, relative ~1e-7 here.)
-    ev.moment_x += dpu * ell;
-    ev.moment_y += dpv * ell;
-    // Area pi R sum z+ over the contacts (all members, all with z > 0): linear in the pose, with
-    // the members' coordinate sums kept by the contact set.
-    let (su, sv) = (st.member_dx * inv_ell, st.member_dy * inv_ell);
-    ev.area -= std::f64::consts::PI * radius * (n * d0 + su * d1 + sv * d2);
-    ev.lin = Some(Linear { gap_in: lin.gap_in - fall, gap_out: lin.gap_out - rise, hard_gap: lin.hard_gap - m, ..lin });
+    if wet {
+        // The tails' change (only d0 on a flat shoe: d1 = d2 = 0 there).
+        let dpt = -(th[0][0] * d0 + th[0][1] * d1 + th[0][2] * d2);
+        let dptu = -(th[1][0] * d0 + th[1][1] * d1 + th[1][2] * d2);
+        let dptv = -(th[2][0] * d0 + th[2][1] * d1 + th[2][2] * d2);
+        ev.force += dp + dpt;
+        ev.elastic += dp;
+        ev.capillary -= dpt;
+        ev.moment_x += (dpu + dptu) * ell;
+        ev.moment_y += (dpv + dptv) * ell;
+        // Area over the summits in solid contact: the members but the bridged ones.
+        let (su, sv) = (st.member_dx * inv_ell - tu, st.member_dy * inv_ell - tv);
+        ev.area -= std::f64::consts::PI * radius * ((n - tn) * d0 + su * d1 + sv * d2);
+    } else {
+        ev.force += dp;
+        ev.elastic += dp;
+        // (sum |P_i| is only the tolerance's scale: it moves by at most sum k m, relative ~1e-7 here.)
+        ev.moment_x += dpu * ell;
+        ev.moment_y += dpv * ell;
+        // Area pi R sum z+ over the contacts (all members, all with z > 0): linear in the pose, with
+        // the members' coordinate sums kept by the contact set.
+        let (su, sv) = (st.member_dx * inv_ell, st.member_dy * inv_ell);
+        ev.area -= std::f64::consts::PI * radius * (n * d0 + su * d1 + sv * d2);
+    }
+    ev.lin =
+        Some(Linear { gap_in: lin.gap_in - fall, gap_out: lin.gap_out - out_move, hard_gap: lin.hard_gap - m, ..lin });
     st.q = [st.q[0] + d0, st.q[1] + d1, st.q[2] + d2];
     // Largest interference at the new pose, exactly as a pass computes it: z_i <= h_i - w_min and
     // the heights descend, so only the first few summits can hold it.
@@ -1691,8 +1725,10 @@ mod tests {
             let a_hard = s.geom.hardness * std::f64::consts::PI * radius / (1.5 * inv_d);
             // A pose slightly off the equilibrium (members past release, summits touching).
             let q = [s.state.q[0] - 1e-9, s.state.q[1] + 4e-9, s.state.q[2] - 4e-9];
-            // Dry, and with menisci (water at 35 %: f R = 0.45 uN, h_m = 1 nm; no linear steps).
-            for (lin, cap_f, hm) in [(false, 0.0, 0.0), (true, 0.0, 0.0), (false, 0.45e-6, 1e-9)] {
+            // Dry, and with menisci (water at 35 %: f R = 0.45 uN, h_m = 1 nm), each without and
+            // with the linear step's data.
+            for (lin, cap_f, hm) in [(false, 0.0, 0.0), (true, 0.0, 0.0), (false, 0.45e-6, 1e-9), (true, 0.45e-6, 1e-9)]
+            {
                 let k = fast::Kernel {
                     q,
                     x0,
@@ -1778,6 +1814,59 @@ mod tests {
             }
             // The shortcut is taken on most points of the curve.
             assert!(linear >= 20, "{mode:?}: {linear} linear last steps of 40");
+        }
+    }
+
+    /// The same with menisci (water at 35 %: f R = 0.45 uN, h_m = 1 nm): a fresh pass at every
+    /// final pose confirms the contacts (solid and wetted), the residuals, the capillary load and
+    /// the elastic load to the tolerance, and the real area to rounding, also where the last step
+    /// was a linear one with the tails in it. Tilt free and flat.
+    #[test]
+    fn linear_steps_with_menisci_agree_with_a_pass_at_the_final_pose() {
+        let men = Meniscus { force_per_radius_n_per_m: 0.45e-6 / 0.5e-6, height_m: 1e-9 };
+        for mode in [ShoeMode::TiltFree, ShoeMode::Flat] {
+            let mut s = table1_solver(3e4, mode, None);
+            s.set_meniscus(Some(men)).expect("meniscus");
+            let po = s.pull_off(0.0, 1e-6).expect("pull-off").load_n;
+            let l_max = load_star_01(s.len());
+            let mut linear = 0;
+            for k in 0..40 {
+                let load = po + (l_max - po) * f64::from(k) / 39.0;
+                let passes = s.work().passes;
+                let eq = s.solve(load).expect("solve");
+                linear += usize::from(s.work().passes - passes < eq.iterations as u64);
+                let dry =
+                    HertzDmt { inv_d: 1.0 / 9.1e-12, two_pi_dgamma: 0.2 * std::f64::consts::PI, radii: &s.geom.radii };
+                let law = Wet {
+                    dry: &dry,
+                    radii: &s.geom.radii,
+                    solid: &s.solid,
+                    force_per_radius_n_per_m: men.force_per_radius_n_per_m,
+                    height_m: men.height_m,
+                };
+                let mut touch = Vec::new();
+                let ev = evaluate(&s.geom, &law, &s.state, &s.state.q, load, true, true, &mut touch);
+                let scale = load.abs().max(ev.force_abs).max(s.adhesion_ref);
+                let tol = s.config.relative_tolerance * scale;
+                assert!(touch.is_empty() && ev.releases == 0, "{mode:?} point {k}: contact set changed");
+                assert_eq!(ev.contacts, eq.wetted_summits, "{mode:?} point {k}");
+                assert_eq!(ev.solid, eq.contacts, "{mode:?} point {k}");
+                assert!(ev.g[..s.geom.ndof].iter().all(|g| g.abs() <= tol), "{mode:?} point {k}: {:?} > {tol:e}", ev.g);
+                let ell = 1.0 / s.geom.uv.expect("fast pass").2;
+                for (a, b, what) in [
+                    (eq.force_residual_n, load - ev.force, "force residual"),
+                    (eq.moment_residual_x_n_m / ell, ev.moment_x / ell, "moment x"),
+                    (eq.moment_residual_y_n_m / ell, ev.moment_y / ell, "moment y"),
+                    (eq.elastic_load_n, ev.elastic, "elastic load"),
+                    (eq.capillary_load_n, ev.capillary, "capillary load"),
+                ] {
+                    assert!((a - b).abs() <= tol, "{mode:?} point {k}: {what} {a:e} against {b:e}");
+                }
+                assert!((eq.real_area_m2 - ev.area).abs() <= 1e-12 * ev.area, "{mode:?} point {k}: area");
+                assert_eq!(eq.max_pressure_pa, ev.q0_max, "{mode:?} point {k}");
+            }
+            // The shortcut is taken with menisci too.
+            assert!(linear >= 10, "{mode:?}: {linear} linear last steps of 40");
         }
     }
 

@@ -86,6 +86,10 @@ struct Acc {
     solid: [f64; W],
 }
 
+/// CAP and LIN: sums of u, v, u^2, u v, v^2 over the bridged summits (their tails' stiffness
+/// moments; their number is `Acc::wet_out`), apart from [`Acc`] (which the dry pass keeps as it is).
+type TailSums = [[f64; W]; 5];
+
 impl Acc {
     fn zero() -> Self {
         let z = [0.0; W];
@@ -146,6 +150,7 @@ const MIXED: u8 = 2;
 #[allow(clippy::too_many_arguments)]
 fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     acc: &mut Acc,
+    tails: &mut TailSums,
     buf: &mut Buf,
     xs: &[f32; B],
     ys: &[f32; B],
@@ -183,7 +188,15 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
                 let za = z.abs();
                 let stays = act && z >= 0.0;
                 let gi = if stays { za } else { f64::INFINITY };
-                let go = if stays { f64::INFINITY } else { za };
+                // With menisci the others also change state at z = -h_m (touch, release) and a
+                // bridged summit at z = 0 (solid contact): the nearer of both, either direction.
+                let zo = if CAP {
+                    let zh = (z + k.hm).abs();
+                    if zh < za { zh } else { za }
+                } else {
+                    za
+                };
+                let go = if stays { f64::INFINITY } else { zo };
                 gap_in[l] = if gi < gap_in[l] { gi } else { gap_in[l] };
                 gap_out[l] = if go < gap_out[l] { go } else { gap_out[l] };
             }
@@ -234,6 +247,17 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
                 // Their pull and number (the summary's capillary load).
                 cap_tail[l] -= if bridged { pt } else { 0.0 };
                 wet_out[l] += if bridged { 1.0 } else { 0.0 };
+                if LIN {
+                    // The tails' stiffness moments (a tail is linear in z: -f R / h_m).
+                    let (u, v) = if bridged { (us[j], vs[j]) } else { (0.0, 0.0) };
+                    tails[0][l] += u;
+                    tails[1][l] += v;
+                    if TILT {
+                        tails[2][l] += u * u;
+                        tails[3][l] += u * v;
+                        tails[4][l] += v * v;
+                    }
+                }
             }
         }
         acc.cap_tail = cap_tail;
@@ -291,6 +315,7 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
 #[allow(clippy::too_many_arguments)]
 fn block_dispatch<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     acc: &mut Acc,
+    tails: &mut TailSums,
     buf: &mut Buf,
     xs: &[f32; B],
     ys: &[f32; B],
@@ -299,15 +324,16 @@ fn block_dispatch<const TILT: bool, const HARD: bool, const LIN: bool, const CAP
     k: &Kernel,
 ) -> Counts {
     match word {
-        u64::MAX => block::<ALL, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, k),
-        0 => block::<NONE, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, k),
-        _ => block::<MIXED, TILT, HARD, LIN, CAP>(acc, buf, xs, ys, hs, word, k),
+        u64::MAX => block::<ALL, TILT, HARD, LIN, CAP>(acc, tails, buf, xs, ys, hs, word, k),
+        0 => block::<NONE, TILT, HARD, LIN, CAP>(acc, tails, buf, xs, ys, hs, word, k),
+        _ => block::<MIXED, TILT, HARD, LIN, CAP>(acc, tails, buf, xs, ys, hs, word, k),
     }
 }
 
 /// Totals of one pass before they become an [`Eval`].
 struct Totals {
     acc: Acc,
+    tails: TailSums,
     contacts: usize,
     releases: usize,
     /// First and last word of the contact bit set holding a member past release.
@@ -326,6 +352,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
 ) -> Totals {
     let n = g.hs.len();
     let mut acc = Acc::zero();
+    let mut tails: TailSums = [[0.0; W]; 5];
     let z = [0.0; B];
     let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z, zs: z };
     let mut contacts = 0usize;
@@ -345,7 +372,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
         let ys: &[f32; B] = g.ys[r.clone()].try_into().expect("block");
         let hs: &[f64; B] = g.hs[r].try_into().expect("block");
         let word = st.member[blk];
-        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, xs, ys, hs, word, k);
+        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut tails, &mut buf, xs, ys, hs, word, k);
         if c.touches > 0 {
             push_touches(xs, ys, hs, word, blk * B, k, touch);
         }
@@ -360,18 +387,19 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
         ys[..len].copy_from_slice(&g.ys[base..]);
         hs[..len].copy_from_slice(&g.hs[base..]);
         let word = st.member[full];
-        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut buf, &xs, &ys, &hs, word, k);
+        let c = block_dispatch::<TILT, HARD, LIN, CAP>(&mut acc, &mut tails, &mut buf, &xs, &ys, &hs, word, k);
         if c.touches > 0 {
             push_touches(&xs, &ys, &hs, word, base, k, touch);
         }
         on_block(full, c, word);
     }
-    Totals { acc, contacts, releases, release_words }
+    Totals { acc, tails, contacts, releases, release_words }
 }
 
 /// The pass as a `pulp` operation: `with_simd` is inlined into the function `pulp` compiles for
 /// each instruction set (a closure would be called, and compiled for the baseline only).
-struct PassOp<'a> {
+/// `CAP`: the menisci's pass, compiled into its own function (the dry one stays as it is).
+struct PassOp<'a, const CAP: bool> {
     g: &'a Geom,
     st: &'a State,
     k: &'a Kernel,
@@ -381,18 +409,22 @@ struct PassOp<'a> {
     hard: bool,
 }
 
-impl pulp::WithSimd for PassOp<'_> {
+impl<const CAP: bool> pulp::WithSimd for PassOp<'_, CAP> {
     type Output = Totals;
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> Totals {
         let PassOp { g, st, k, end, touch, tilt, hard } = self;
-        if k.cap_f != 0.0 {
-            // Capillarity: no linear steps (the meniscus tails are not in their error bound).
-            return match (tilt, hard) {
-                (true, false) => pass::<true, false, false, true>(g, st, k, end, touch),
-                (true, true) => pass::<true, true, false, true>(g, st, k, end, touch),
-                (false, false) => pass::<false, false, false, true>(g, st, k, end, touch),
-                (false, true) => pass::<false, true, false, true>(g, st, k, end, touch),
+        if CAP {
+            // Capillarity: with linear steps, the tails' stiffness moments too.
+            return match (tilt, hard, k.lin) {
+                (true, false, false) => pass::<true, false, false, true>(g, st, k, end, touch),
+                (true, true, false) => pass::<true, true, false, true>(g, st, k, end, touch),
+                (false, false, false) => pass::<false, false, false, true>(g, st, k, end, touch),
+                (false, true, false) => pass::<false, true, false, true>(g, st, k, end, touch),
+                (true, false, true) => pass::<true, false, true, true>(g, st, k, end, touch),
+                (true, true, true) => pass::<true, true, true, true>(g, st, k, end, touch),
+                (false, false, true) => pass::<false, false, true, true>(g, st, k, end, touch),
+                (false, true, true) => pass::<false, true, true, true>(g, st, k, end, touch),
             };
         }
         match (tilt, hard, k.lin) {
@@ -424,7 +456,11 @@ pub(crate) fn evaluate_with(
     touch.clear();
     let tilt = g.ndof > 1;
     let hard = k.a_hard.is_finite();
-    let t = arch.dispatch(PassOp { g, st, k, end, touch, tilt, hard });
+    let t = if k.cap_f != 0.0 {
+        arch.dispatch(PassOp::<true> { g, st, k, end, touch, tilt, hard })
+    } else {
+        arch.dispatch(PassOp::<false> { g, st, k, end, touch, tilt, hard })
+    };
     let acc = &t.acc;
     let s = |v: &[f64; W]| (v[0] + v[1]) + (v[2] + v[3]);
     let (p, pu, pv) = (s(&acc.p), s(&acc.pu), s(&acc.pv));
@@ -457,11 +493,18 @@ pub(crate) fn evaluate_with(
         },
         solid: s(&acc.solid) as usize,
         released: false,
-        lin: (k.lin && k.cap_f == 0.0).then(|| Linear {
+        lin: k.lin.then(|| Linear {
             gap_in: min(&acc.gap_in),
             gap_out: min(&acc.gap_out),
             hard_gap: min(&acc.hgap),
             k_uv: [s(&acc.ku), s(&acc.kv)],
+            tail_k: k.cap_f * k.inv_hm,
+            tail: if k.cap_f != 0.0 {
+                let t = &t.tails;
+                [s(&acc.wet_out), s(&t[0]), s(&t[1]), s(&t[2]), s(&t[3]), s(&t[4])]
+            } else {
+                [0.0; 6]
+            },
         }),
     };
     if !tilt {
