@@ -11,10 +11,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-cargo test --workspace --release
-
+# Everything the tests print also goes to a log, from which the last line counts the tests.
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+log=$tmp/test.log
+
+cargo test --workspace --release 2>&1 | tee "$log"
+
 venv=$tmp/venv
 python3 -m venv "$venv"
 "$venv/bin/pip" install -q --upgrade pip
@@ -25,5 +28,11 @@ cargo clippy -p stiction-py --all-targets --release --features python -- -D warn
 "$venv/bin/maturin" build --release -q -m crates/py/Cargo.toml --out "$tmp/wheels"
 "$venv/bin/pip" install -q --no-deps "$tmp"/wheels/stiction-*.whl
 cargo build --release -q -p stiction-cli
-# pytest prints its own summary; the line below is read by .ci/run beside cargo's.
-"$venv/bin/python" -m pytest -q -p no:cacheprovider crates/py/tests
+"$venv/bin/python" -m pytest -q -p no:cacheprovider crates/py/tests 2>&1 | tee -a "$log"
+
+# One closing line over every test binary (cargo's own last line is often a doc-test run of 0) and
+# pytest's summary ("15 passed in 0.6s", "1 failed, 14 passed ..."); no test run at all, or none
+# from Python, is a failure too.
+awk '/^test result:/ { p += $4; f += $6; i += $8 }
+     /^[0-9]+ (passed|failed).* in [0-9.]+s/ { for (k = 1; k < NF; k++) { if ($(k+1) ~ /^passed/) yp += $k; if ($(k+1) ~ /^failed/) yf += $k; if ($(k+1) ~ /^skipped/) ys += $k } }
+     END { p += yp; f += yf; i += ys; printf "tests: %d passed, %d failed, %d skipped (python: %d passed)\n", p, f, i, yp; if (p == 0 || f > 0 || yp == 0) exit 1 }' "$log"
