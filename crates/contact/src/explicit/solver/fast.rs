@@ -414,28 +414,17 @@ impl<const CAP: bool> pulp::WithSimd for PassOp<'_, CAP> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> Totals {
         let PassOp { g, st, k, end, touch, tilt, hard } = self;
-        if CAP {
-            // Capillarity: with linear steps, the tails' stiffness moments too.
-            return match (tilt, hard, k.lin) {
-                (true, false, false) => pass::<true, false, false, true>(g, st, k, end, touch),
-                (true, true, false) => pass::<true, true, false, true>(g, st, k, end, touch),
-                (false, false, false) => pass::<false, false, false, true>(g, st, k, end, touch),
-                (false, true, false) => pass::<false, true, false, true>(g, st, k, end, touch),
-                (true, false, true) => pass::<true, false, true, true>(g, st, k, end, touch),
-                (true, true, true) => pass::<true, true, true, true>(g, st, k, end, touch),
-                (false, false, true) => pass::<false, false, true, true>(g, st, k, end, touch),
-                (false, true, true) => pass::<false, true, true, true>(g, st, k, end, touch),
-            };
-        }
+        // One instance per CAP: the menisci's pass (with linear steps, the tails' stiffness
+        // moments too) is compiled apart from the dry one.
         match (tilt, hard, k.lin) {
-            (true, false, false) => pass::<true, false, false, false>(g, st, k, end, touch),
-            (true, true, false) => pass::<true, true, false, false>(g, st, k, end, touch),
-            (false, false, false) => pass::<false, false, false, false>(g, st, k, end, touch),
-            (false, true, false) => pass::<false, true, false, false>(g, st, k, end, touch),
-            (true, false, true) => pass::<true, false, true, false>(g, st, k, end, touch),
-            (true, true, true) => pass::<true, true, true, false>(g, st, k, end, touch),
-            (false, false, true) => pass::<false, false, true, false>(g, st, k, end, touch),
-            (false, true, true) => pass::<false, true, true, false>(g, st, k, end, touch),
+            (true, false, false) => pass::<true, false, false, CAP>(g, st, k, end, touch),
+            (true, true, false) => pass::<true, true, false, CAP>(g, st, k, end, touch),
+            (false, false, false) => pass::<false, false, false, CAP>(g, st, k, end, touch),
+            (false, true, false) => pass::<false, true, false, CAP>(g, st, k, end, touch),
+            (true, false, true) => pass::<true, false, true, CAP>(g, st, k, end, touch),
+            (true, true, true) => pass::<true, true, true, CAP>(g, st, k, end, touch),
+            (false, false, true) => pass::<false, false, true, CAP>(g, st, k, end, touch),
+            (false, true, true) => pass::<false, true, true, CAP>(g, st, k, end, touch),
         }
     }
 }
