@@ -194,11 +194,11 @@ pub(crate) fn draw(src: &CalibrationSource, rng: &mut ChaCha8Rng) -> Result<f64,
     }
 }
 
-/// The rows of the line, `(V_clamp^2, V_pull^2, sd)`: those with V_pull > 0 and L > 0 under the
-/// nominal reduction, and the line through them ([`eq10_line`]).
 /// Rows of the line: `(V_clamp^2, V_pull^2, pull-voltage SD)`.
 type LineRows = Vec<(f64, f64, f64)>;
 
+/// The rows of the line, `(V_clamp^2, V_pull^2, sd)`: those with V_pull > 0 and L > 0 under the
+/// nominal reduction, and the line through them ([`eq10_line`]).
 fn nominal_line(points: &[Eq10Point], nominal: &Reduction) -> Result<(LineRows, Line), FitError> {
     let cut = nominal.spring_force_n / nominal.a_clamp_n_per_v2;
     let pts: Vec<(f64, f64, f64)> = points
@@ -269,6 +269,27 @@ pub fn interval_widths(
     if draws == 0 {
         return Ok(IntervalWidths { mu, fa0_n, ..IntervalWidths::default() });
     }
+    let (mut ms, mut fs, _) = joint_draws(&line, sources, draws, seed)?;
+    Ok(IntervalWidths {
+        mu,
+        mu_with_calibration: percentile_width(&mut ms).and_then(finite),
+        fa0_n,
+        fa0_with_calibration_n: percentile_width(&mut fs).and_then(finite),
+    })
+}
+
+/// The joint calibration Monte Carlo of [`fit_eq10`] and [`interval_widths`]: `draws` draws from
+/// stream 0 of `seed`, each of a_clamp, a_pull and F_spring from its stated distribution (parsed
+/// once, [`stiction_study::Sampler`]; the nominal without one) and of the line's slope and
+/// intercept from their joint normal distribution (`beta = b + sd_b z1` and
+/// `alpha = a + (cov/sd_b) z1 + sqrt(var_a - cov^2/var_b) z2`), reduced to mu_e,a and F_a0 (N).
+/// Returns those of the finite draws and the number of draws that were not finite.
+fn joint_draws(
+    line: &Line,
+    sources: &[CalibrationSource; 3],
+    draws: usize,
+    seed: u64,
+) -> Result<(Vec<f64>, Vec<f64>, usize), FitError> {
     let samplers = sources
         .iter()
         .map(|s| match &s.uncertainty {
@@ -283,6 +304,7 @@ pub fn interval_widths(
             None => Ok(sources[i].nominal),
         }
     };
+    let (a, b) = (line.intercept, line.slope);
     let sb = line.var_slope.sqrt();
     let (cz, rest) = if sb > 0.0 {
         (line.cov / sb, (line.var_intercept - line.cov * line.cov / line.var_slope).max(0.0).sqrt())
@@ -291,7 +313,7 @@ pub fn interval_widths(
     };
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(0);
-    let (mut ms, mut fs) = (Vec::with_capacity(draws), Vec::with_capacity(draws));
+    let (mut ms, mut fs, mut failed) = (Vec::with_capacity(draws), Vec::with_capacity(draws), 0);
     for _ in 0..draws {
         let r = Reduction {
             a_clamp_n_per_v2: one(0, &mut rng)?,
@@ -303,14 +325,11 @@ pub fn interval_widths(
         if m.is_finite() && f.is_finite() {
             ms.push(m);
             fs.push(f);
+        } else {
+            failed += 1;
         }
     }
-    Ok(IntervalWidths {
-        mu,
-        mu_with_calibration: percentile_width(&mut ms).and_then(finite),
-        fa0_n,
-        fa0_with_calibration_n: percentile_width(&mut fs).and_then(finite),
-    })
+    Ok((ms, fs, failed))
 }
 
 /// The 2.5-97.5 percentile range of `v` (reordered), exactly [`percentile`] of the sorted values
@@ -377,9 +396,7 @@ pub fn fit_eq10(
     // The calibration Monte Carlo: stream 0 joint (with regression draws), streams 1-3 one source,
     // stream 4 all sources without the regression. The rows and the line stay those of the
     // nominal reduction (they slipped, so they were in contact whatever the true factors).
-    let mut joint_mu = Vec::with_capacity(draws);
-    let mut joint_fa0 = Vec::with_capacity(draws);
-    let mut failed = 0usize;
+    let (mut joint_mu, mut joint_fa0, mut failed) = (Vec::new(), Vec::new(), 0usize);
     let mut one_at_a_time = [(0.0, 0.0); 3];
     let mut cal_only_mu = Vec::new();
     let mut cal_only_fa0 = Vec::new();
@@ -391,31 +408,7 @@ pub fn fit_eq10(
         None
     };
     if mc_note.is_none() {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        rng.set_stream(0);
-        let sb = line.var_slope.sqrt();
-        for _ in 0..draws {
-            let r = Reduction {
-                a_clamp_n_per_v2: draw(&sources[0], &mut rng)?,
-                a_pull_n_per_v2: draw(&sources[1], &mut rng)?,
-                spring_force_n: draw(&sources[2], &mut rng)?,
-            };
-            let (z1, z2): (f64, f64) = (StandardNormal.sample(&mut rng), StandardNormal.sample(&mut rng));
-            let beta = line.slope + sb * z1;
-            let alpha = line.intercept
-                + if sb > 0.0 { line.cov / sb * z1 } else { 0.0 }
-                + (line.var_intercept - if sb > 0.0 { line.cov * line.cov / line.var_slope } else { 0.0 })
-                    .max(0.0)
-                    .sqrt()
-                    * z2;
-            let (m, f) = reduce(beta, alpha, &r);
-            if m.is_finite() && f.is_finite() {
-                joint_mu.push(m);
-                joint_fa0.push(f);
-            } else {
-                failed += 1;
-            }
-        }
+        (joint_mu, joint_fa0, failed) = joint_draws(&line, sources, draws, seed)?;
         for (which, slot) in one_at_a_time.iter_mut().enumerate() {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             rng.set_stream(which as u64 + 1);
