@@ -117,7 +117,7 @@ pub fn humidity_json(
     rh: Option<&str>,
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     let rhs = crate::cmd::humidity::rh_grid(rh)?;
-    let sweep = crate::cmd::humidity::sweep(path, sets, &rhs, &mut |_, _| {})?;
+    let sweep = crate::cmd::humidity::sweep(&ScenarioSource::file(path, sets)?, &rhs, &mut |_, _| {})?;
     Ok(finite_value(&sweep)?)
 }
 

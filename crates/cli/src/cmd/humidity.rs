@@ -4,14 +4,13 @@
 //! The composition ([`sweep`], [`charts`]) is library code that a front end other than the command
 //! line can call ([`crate::api::humidity_json`]); `plot.rs` only parses flags, prints and writes.
 
-use std::path::Path;
-
 use serde::Serialize;
 use stiction_meter::{Meter, MeterResult};
 use stiction_plot::{Chart, LegendPosition, Series};
 use stiction_scenario::{Scenario, Warning};
 use stiction_units::Dimension;
 
+use crate::api::ScenarioSource;
 use crate::figargs::reference;
 
 /// The default grid of `--rh`: 0 to 90 % in ten steps.
@@ -124,21 +123,20 @@ pub struct HumiditySweep {
     pub warnings: Vec<Warning>,
 }
 
-/// Runs the friction meter of the scenario `path` (with `sets`) at each relative humidity of `rhs`
-/// (from [`rh_grid`]): `environment.relative_humidity` is set to each value, every other field as
-/// the scenario gives it. An error of the dry point (RH = 0) is the scenario's and is returned; at a
+/// Runs the friction meter of the scenario `source` (a file or a tree built in memory, with its
+/// `--set` overrides; [`crate::api::ScenarioSource`]) at each relative humidity of `rhs` (from
+/// [`rh_grid`]): `environment.relative_humidity` is set to each value, every other field as the
+/// scenario gives it. An error of the dry point (RH = 0) is the scenario's and is returned; at a
 /// humid point the meter's error becomes that point's `reason` with null values. `progress(done,
 /// total)` after each humidity.
 pub fn sweep(
-    path: &Path,
-    sets: &[String],
+    source: &ScenarioSource,
     rhs: &[f64],
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<HumiditySweep, Box<dyn std::error::Error>> {
-    let name = path.display().to_string();
-    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let value = Scenario::load_json(path, sets)?;
-    let scenario = Scenario::from_value_with_sets(value.clone(), path, sets)?;
+    let name = source.name();
+    let value = source.json(&[])?;
+    let scenario = source.parse(&[])?;
     if let Some(conflict) = scenario.spring_force_conflict() {
         return Err(format!("{name}: {conflict}").into());
     }
@@ -169,9 +167,9 @@ pub fn sweep(
             env["relative_humidity"] = serde_json::json!(rh);
         }
         let at = |e: &dyn std::fmt::Display| format!("{name}: at relative humidity {rh}: {e}");
-        let result = Scenario::from_value_with_sets(v, path, sets)
+        let result = Scenario::from_value_with_sets(v, &source.origin, &source.sets)
             .map_err(|e| at(&e))
-            .and_then(|s| Meter::from_scenario(&s, &base).map_err(|e| at(&e)))
+            .and_then(|s| Meter::from_scenario(&s, &source.base).map_err(|e| at(&e)))
             .and_then(|mut m| m.run(&mut |_, _| {}).map_err(|e| at(&e)));
         let point = match result {
             Ok(r) => {

@@ -178,7 +178,8 @@ fn humidity(args: &Args) -> CliResult {
         indicatif::ProgressStyle::with_template("{spinner} humidities {pos}/{len} [{bar:30}] {elapsed_precise}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let sweep = h::sweep(path, &args.sets, &rhs, &mut |done, _| bar.set_position(done as u64))?;
+    let source = crate::api::ScenarioSource::file(path, &args.sets)?;
+    let sweep = h::sweep(&source, &rhs, &mut |done, _| bar.set_position(done as u64))?;
     bar.finish_and_clear();
     if let Some(mut set) = outputs {
         let charts: Vec<(&str, Chart)> = h::charts(&sweep)
