@@ -492,6 +492,20 @@ impl OutputSet {
         Ok(())
     }
 
+    /// A figure as every command writes one: `{stem}.svg` and `{stem}.png` through
+    /// [`OutputSet::add_chart`], with their data `{stem}.csv`.
+    pub fn add_figure(&mut self, stem: &str, chart: &stiction_plot::Chart) -> CliResult {
+        self.add_chart(&format!("{stem}.svg"), chart)?;
+        self.add_chart(&format!("{stem}.png"), chart)
+    }
+
+    /// A map as every command writes one: `{stem}.svg` and `{stem}.png` through
+    /// [`OutputSet::add_image_map`], with their data `{stem}.csv`.
+    pub fn add_map_figure(&mut self, stem: &str, map: &stiction_plot::ImageMap) -> CliResult {
+        self.add_image_map(&format!("{stem}.svg"), map)?;
+        self.add_image_map(&format!("{stem}.png"), map)
+    }
+
     /// The staging folder, for a writer that takes a folder (the study folder `merge` writes);
     /// [`OutputSet::adopt_staged`] then adds what it wrote.
     pub fn staging_dir(&self) -> &Path {

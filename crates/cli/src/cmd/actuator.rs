@@ -162,14 +162,10 @@ pub fn run(args: Args) -> CliResult {
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("results.json", crate::output::json_text(&summary)?.as_bytes())?;
         if let Some(sweep) = &summary.sweep {
-            let chart = args.fig.apply(sweep_chart(&name, sweep, &model))?;
-            set.add_chart("hysteresis.svg", &chart)?;
-            set.add_chart("hysteresis.png", &chart)?;
+            set.add_figure("hysteresis", &args.fig.apply(sweep_chart(&name, sweep, &model))?)?;
         }
         if let Some(report) = &summary.validation {
-            let chart = args.fig.apply(validation_chart(&spec, report)?)?;
-            set.add_chart("validation.svg", &chart)?;
-            set.add_chart("validation.png", &chart)?;
+            set.add_figure("validation", &args.fig.apply(validation_chart(&spec, report)?)?)?;
         }
         if let Some(report) = &summary.transients {
             write_transients(&mut set, report, &model_curves(&spec, report)?, &args.fig)?;
@@ -569,10 +565,7 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport, curves: &Transient
     lengths.sort_by(f64::total_cmp);
     lengths.dedup();
     for l in lengths {
-        let chart = fig.apply(transient_chart(r, curves, l))?;
-        let stem = format!("transients_L{:.2}um", l * 1e6);
-        set.add_chart(&format!("{stem}.svg"), &chart)?;
-        set.add_chart(&format!("{stem}.png"), &chart)?;
+        set.add_figure(&format!("transients_L{:.2}um", l * 1e6), &fig.apply(transient_chart(r, curves, l))?)?;
     }
     Ok(())
 }

@@ -594,8 +594,7 @@ fn write_outputs(
     let pressure = draw(&last.pressure_pa, &format!("Pressure{state}"), "pressure", "Pa");
     let gap = draw(&last.gap_m, &format!("Gap{state}"), "gap", "m");
     for (stem, map) in [("height", &height), ("pressure", &pressure), ("gap", &gap)] {
-        set.add_image_map(&format!("{stem}.svg"), map)?;
-        set.add_image_map(&format!("{stem}.png"), map)?;
+        set.add_map_figure(stem, map)?;
     }
     let pts = &out.points;
     // The solved loads as markers (not joined: a path may leave decades between them), on a log
@@ -612,17 +611,13 @@ fn write_outputs(
             .with(Series::markers("BEM, solved loads", area).with_color(0));
         chart.x_log = p_log;
         chart.y_log = decades(&mut pts.iter().map(|p| p.contact_fraction));
-        let chart = fig.apply(chart)?;
-        set.add_chart("load_area.svg", &chart)?;
-        set.add_chart("load_area.png", &chart)?;
+        set.add_figure("load_area", &fig.apply(chart)?)?;
         let gap: Vec<(f64, f64)> = pts.iter().map(|p| (p.mean_gap_m * 1e9, p.mean_pressure_pa * 1e-6)).collect();
         let mut chart = Chart::new("Load-mean gap (BEM)", "mean gap (nm)", "mean pressure p (MPa)")
             .keys("mean_gap_nm", "mean_pressure_mpa")
             .with(Series::markers("BEM, solved loads", gap).with_color(0));
         chart.y_log = p_log;
-        let chart = fig.apply(chart)?;
-        set.add_chart("load_gap.svg", &chart)?;
-        set.add_chart("load_gap.png", &chart)?;
+        set.add_figure("load_gap", &fig.apply(chart)?)?;
         let ratio: Vec<(f64, f64)> =
             pts.iter().filter_map(|p| p.area_ratio_bem_over_asperity.map(|r| (p.mean_pressure_pa * 1e-6, r))).collect();
         if ratio.len() > 1 {
@@ -634,9 +629,7 @@ fn write_outputs(
             .keys("mean_pressure_mpa", "area_ratio")
             .with(Series::markers("BEM / independent Hertz summits, solved loads", ratio).with_color(0));
             chart.x_log = p_log;
-            let chart = fig.apply(chart)?;
-            set.add_chart("area_ratio.svg", &chart)?;
-            set.add_chart("area_ratio.png", &chart)?;
+            set.add_figure("area_ratio", &fig.apply(chart)?)?;
         }
     }
     set.commit()

@@ -315,9 +315,7 @@ type Groups = BTreeMap<(String, u64), Vec<(f64, Option<f64>)>>;
 /// Writes the three figures through [`OutputSet::add_chart`] (SVG, PNG and the data CSV of each).
 fn write_figures(set: &mut OutputSet, data: &Dataset, r: &FitReport, fig: &FigureArgs) -> CliResult {
     for (stem, chart) in fit_charts(data, r) {
-        let chart = fig.apply(chart)?;
-        set.add_chart(&format!("{stem}.svg"), &chart)?;
-        set.add_chart(&format!("{stem}.png"), &chart)?;
+        set.add_figure(stem, &fig.apply(chart)?)?;
     }
     Ok(())
 }

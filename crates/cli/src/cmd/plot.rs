@@ -195,8 +195,7 @@ fn humidity(args: &Args) -> CliResult {
         set.add_bytes("results.json", crate::output::json_text(&json)?.as_bytes())?;
         set.add_bytes("humidity.csv", &h::table_csv(&sweep)?)?;
         for (stem, chart) in &charts {
-            set.add_chart(&format!("{stem}.svg"), chart)?;
-            set.add_chart(&format!("{stem}.png"), chart)?;
+            set.add_figure(stem, chart)?;
         }
         set.commit()?;
     }

@@ -399,10 +399,8 @@ fn write_outputs(
     }
     let csv_bytes = w.into_inner().map_err(|e| format!("results.csv: {e}"))?;
     set.add_bytes("results.csv", &csv_bytes)?;
-    set.add_chart("fig5.svg", &fig5)?;
-    set.add_chart("fig5.png", &fig5)?;
-    set.add_chart("fig7.svg", &fig7)?;
-    set.add_chart("fig7.png", &fig7)?;
+    set.add_figure("fig5", &fig5)?;
+    set.add_figure("fig7", &fig7)?;
     set.commit()
 }
 

@@ -372,8 +372,7 @@ fn figures(
         markers: if s.len() <= 5000 { markers } else { Vec::new() },
         ..Default::default()
     });
-    set.add_image_map("height_map.svg", &height_map)?;
-    set.add_image_map("height_map.png", &height_map)?;
+    set.add_map_figure("height_map", &height_map)?;
 
     // PSD with the cut-offs.
     let psd = radial_psd(map, PsdWindow::Hann);
@@ -484,7 +483,5 @@ fn figures(
 
 /// Adds a chart as `{stem}.svg` and `{stem}.png` with its data CSV.
 fn add_chart(set: &mut OutputSet, stem: &str, chart: Chart, fig: &crate::figargs::FigureArgs) -> CliResult {
-    let chart = fig.apply(chart)?;
-    set.add_chart(&format!("{stem}.svg"), &chart)?;
-    set.add_chart(&format!("{stem}.png"), &chart)
+    set.add_figure(stem, &fig.apply(chart)?)
 }
