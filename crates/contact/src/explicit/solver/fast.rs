@@ -126,8 +126,6 @@ struct Buf {
     ps: [f64; B],
     zcs: [f64; B],
     as_: [f64; B],
-    /// CAP only: the interference z.
-    zs: [f64; B],
 }
 
 /// Per-block counts: summits touching at this pose, members past release.
@@ -159,11 +157,13 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
     k: &Kernel,
 ) -> Counts {
     let touch_zero = k.c0 != 0.0;
-    let Buf { us, vs, ps, zcs, as_, zs } = buf;
+    let Buf { us, vs, ps, zcs, as_ } = buf;
     // Counts as f64 lanes (exact below 2^53): mixing integer lanes into the float code costs packing.
     let mut touches = [0.0f64; W];
     let mut rels = [0.0f64; W];
     let (mut gap_in, mut gap_out) = (acc.gap_in, acc.gap_out);
+    // CAP only: active summits out of solid contact (z < 0), the ones stage 1b revisits.
+    let mut wet_neg = [0.0f64; W];
     // Stage 1: map.
     for grp in 0..B / W {
         for l in 0..W {
@@ -207,7 +207,7 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             vs[j] = v;
             ps[j] = if act { el - k.c0 } else { 0.0 };
             if CAP {
-                zs[j] = z;
+                wet_neg[l] += if act && z < 0.0 { 1.0 } else { 0.0 };
             }
             zcs[j] = if act { zc } else { 0.0 };
             as_[j] = if act { a } else { 0.0 };
@@ -221,7 +221,9 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
         // Nothing active: every term below is +0 (skipping them leaves the same bits).
         return counts;
     }
-    if CAP {
+    // Stage 1b only changes active summits with z < 0: a block without one (the summits in
+    // solid contact, or out of reach) skips it, leaving the same bits (its terms are +0, -0).
+    if CAP && wet_neg.iter().sum::<f64>() > 0.0 {
         let (mut cap_tail, mut wet_out) = (acc.cap_tail, acc.wet_out);
         // Stage 1b (menisci): an active summit out of solid contact (z < 0) pulls with its
         // meniscus while within h_m (bridged), with nothing beyond (a member there is past
@@ -229,7 +231,8 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
         for grp in 0..B / W {
             for l in 0..W {
                 let j = grp * W + l;
-                let z = zs[j];
+                // (z again, from the same u, v: the same bits as stage 1's.)
+                let z = hs[j] - (k.q[0] + k.q[1] * us[j] + k.q[2] * vs[j]);
                 let mem = match M {
                     ALL => true,
                     NONE => false,
@@ -354,7 +357,7 @@ fn pass<const TILT: bool, const HARD: bool, const LIN: bool, const CAP: bool>(
     let mut acc = Acc::zero();
     let mut tails: TailSums = [[0.0; W]; 5];
     let z = [0.0; B];
-    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z, zs: z };
+    let mut buf = Buf { us: z, vs: z, ps: z, zcs: z, as_: z };
     let mut contacts = 0usize;
     let mut releases = 0usize;
     let mut release_words: Option<(usize, usize)> = None;
