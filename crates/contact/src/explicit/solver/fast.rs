@@ -80,10 +80,12 @@ struct Acc {
     kuv: [f64; W],
     kvv: [f64; W],
     /// CAP only: meniscus pull of the members out of solid contact (bridged, -h_m <= z < 0), their
-    /// number, and the number of active summits with a > 0 (in solid contact).
+    /// number, and the number of active summits without solid contact (contact radius a = 0: the
+    /// bridged ones, those at z = 0 and members past release; the active ones less these are the
+    /// summits in solid contact).
     cap_tail: [f64; W],
     wet_out: [f64; W],
-    solid: [f64; W],
+    dry_touch: [f64; W],
 }
 
 /// CAP and LIN: sums of u, v, u^2, u v, v^2 over the bridged summits (their tails' stiffness
@@ -114,7 +116,7 @@ impl Acc {
             kvv: z,
             cap_tail: z,
             wet_out: z,
-            solid: z,
+            dry_touch: z,
         }
     }
 }
@@ -162,8 +164,8 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
     let mut touches = [0.0f64; W];
     let mut rels = [0.0f64; W];
     let (mut gap_in, mut gap_out) = (acc.gap_in, acc.gap_out);
-    // CAP only: active summits out of solid contact (z < 0), the ones stage 1b revisits.
-    let mut wet_neg = [0.0f64; W];
+    // CAP only: active summits out of solid contact (contact radius 0), the test for stage 1b.
+    let mut no_solid = [0.0f64; W];
     // Stage 1: map.
     for grp in 0..B / W {
         for l in 0..W {
@@ -206,11 +208,11 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             us[j] = u;
             vs[j] = v;
             ps[j] = if act { el - k.c0 } else { 0.0 };
-            if CAP {
-                wet_neg[l] += if act && z < 0.0 { 1.0 } else { 0.0 };
-            }
             zcs[j] = if act { zc } else { 0.0 };
             as_[j] = if act { a } else { 0.0 };
+            if CAP {
+                no_solid[l] += if act && !(a > 0.0) { 1.0 } else { 0.0 };
+            }
         }
     }
     acc.gap_in = gap_in;
@@ -221,9 +223,13 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
         // Nothing active: every term below is +0 (skipping them leaves the same bits).
         return counts;
     }
-    // Stage 1b only changes active summits with z < 0: a block without one (the summits in
-    // solid contact, or out of reach) skips it, leaving the same bits (its terms are +0, -0).
-    if CAP && wet_neg.iter().sum::<f64>() > 0.0 {
+    // Stage 1b changes only active summits with z < 0 and counts those without solid contact
+    // (z <= 0): a block whose active summits all have z > 0 skips it, leaving the same bits (its terms
+    // would be +0 and -0).
+    if CAP && no_solid.iter().sum::<f64>() > 0.0 {
+        for l in 0..W {
+            acc.dry_touch[l] += no_solid[l];
+        }
         let (mut cap_tail, mut wet_out) = (acc.cap_tail, acc.wet_out);
         // Stage 1b (menisci): an active summit out of solid contact (z < 0) pulls with its
         // meniscus while within h_m (bridged), with nothing beyond (a member there is past
@@ -294,10 +300,6 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             let j = grp * W + l;
             let kk = 1.5 * as_[j] * k.inv_d;
             acc.k[l] += kk;
-            if CAP {
-                // Summits in solid contact (contact radius > 0).
-                acc.solid[l] += if as_[j] > 0.0 { 1.0 } else { 0.0 };
-            }
             if TILT || LIN {
                 acc.ku[l] += kk * us[j];
                 acc.kv[l] += kk * vs[j];
@@ -483,7 +485,7 @@ pub(crate) fn evaluate_with(
         } else {
             0.0
         },
-        solid: s(&acc.solid) as usize,
+        solid: t.contacts - s(&acc.dry_touch) as usize,
         released: false,
         lin: k.lin.then(|| Linear {
             gap_in: min(&acc.gap_in),
