@@ -211,7 +211,7 @@ fn block<const M: u8, const TILT: bool, const HARD: bool, const LIN: bool, const
             zcs[j] = if act { zc } else { 0.0 };
             as_[j] = if act { a } else { 0.0 };
             if CAP {
-                no_solid[l] += if act && !(a > 0.0) { 1.0 } else { 0.0 };
+                no_solid[l] += if act && a <= 0.0 { 1.0 } else { 0.0 };
             }
         }
     }
