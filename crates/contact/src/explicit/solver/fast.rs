@@ -15,6 +15,11 @@
 //! 2. force sums: P, P u, P v, |P|, z+, elastic load, largest z+, summits over the hardness;
 //! 3. stiffness sums: k, k u, k v, and (tilt free only) k u^2, k u v, k v^2.
 //!
+//! With menisci (`CAP`), stage 1 also counts the active summits without solid contact, and a
+//! stage 1b between 1 and 2 gives the bridged ones (-h_m <= z < 0) their meniscus tail
+//! `-f R (1 + z/h_m)` and sums their pull, number and stiffness moments; it runs only on a block
+//! holding such a summit (a thin band of blocks, the summits being stored by height).
+//!
 //! Splitting the stages keeps each loop's accumulators in registers (one pass with all 16 sums
 //! spilled them to the stack) and breaks the square-root-to-add dependency chain. Every sum has
 //! `W = 4` fixed lanes (summit j adds to lane j mod 4), combined in a fixed order at the end, so
