@@ -362,8 +362,10 @@ pub fn charts(s: &HumiditySweep) -> Vec<(&'static str, Chart)> {
             }
         }
         let span = if hi > lo { hi - lo } else { 1.0 };
-        // From 0 (or below, for a negative value), 3 % margins, headroom for the legend.
-        chart.y_range = Some((lo - 0.03 * span, hi + 0.35 * span));
+        // From 0 (or below, for a negative value), 3 % margins, headroom for the legend; the share
+        // runs to 100 % (a share cannot exceed it; the legend finds a free corner or goes below).
+        let headroom = if stem == "humidity-share" { 0.03 } else { 0.35 };
+        chart.y_range = Some((lo - 0.03 * span, hi + headroom * span));
         out.push((stem, chart));
     }
     out
