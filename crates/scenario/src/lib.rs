@@ -337,4 +337,75 @@ impl Scenario {
     pub fn json_schema() -> Value {
         serde_json::to_value(schemars::schema_for!(Scenario)).unwrap_or(Value::Null)
     }
+
+    /// Whether the field at `path` (dotted, as `--set` names it) takes only whole numbers (a
+    /// count such as `actuators.clamp.plate_count`), by the format's JSON Schema: the field's
+    /// type is `integer` in every alternative that is not null. `false` for an unknown path.
+    pub fn field_is_integer(path: &str) -> bool {
+        let schema = Self::json_schema();
+        let defs = schema.get("$defs").cloned().unwrap_or(Value::Null);
+        // Follows `$ref` (to `#/$defs/NAME`) to the node it names.
+        let resolve = |node: &Value| -> Value {
+            let mut node = node.clone();
+            for _ in 0..16 {
+                let Some(r) = node.get("$ref").and_then(Value::as_str) else { break };
+                let name = r.rsplit('/').next().unwrap_or("");
+                node = defs.get(name).cloned().unwrap_or(Value::Null);
+            }
+            node
+        };
+        // The alternatives of a node (anyOf / oneOf, else the node itself), resolved.
+        let alternatives = |node: &Value| -> Vec<Value> {
+            let node = resolve(node);
+            match node.get("anyOf").or_else(|| node.get("oneOf")).and_then(Value::as_array) {
+                Some(alts) => alts.iter().map(&resolve).collect(),
+                None => vec![node],
+            }
+        };
+        let mut nodes = vec![schema.clone()];
+        for segment in path.split('.') {
+            nodes = nodes
+                .iter()
+                .flat_map(|n| alternatives(n))
+                .filter_map(|n| {
+                    n.get("properties")
+                        .and_then(|p| p.get(segment))
+                        .or_else(|| n.get("additionalProperties").filter(|a| a.is_object()))
+                        .cloned()
+                })
+                .collect();
+            if nodes.is_empty() {
+                return false;
+            }
+        }
+        let types: Vec<Value> = nodes
+            .iter()
+            .flat_map(|n| alternatives(n))
+            .flat_map(|n| match n.get("type") {
+                Some(Value::Array(t)) => t.clone(),
+                Some(t) => vec![t.clone()],
+                None => vec![Value::Null],
+            })
+            .filter(|t| t != "null")
+            .collect();
+        !types.is_empty() && types.iter().all(|t| t == "integer")
+    }
+}
+
+#[cfg(test)]
+mod field_type_tests {
+    use super::Scenario;
+
+    /// Counts are integers by the schema (through `additionalProperties` for the named arrays and
+    /// an optional section); quantities (unit strings or numbers) and unknown paths are not.
+    #[test]
+    fn integer_fields_are_found_through_the_schema() {
+        assert!(Scenario::field_is_integer("actuators.clamp.plate_count"));
+        assert!(Scenario::field_is_integer("actuators.pull.plate_count"));
+        assert!(!Scenario::field_is_integer("actuators.clamp.front_gap"));
+        assert!(!Scenario::field_is_integer("surface.summit_sd"));
+        assert!(!Scenario::field_is_integer("environment.relative_humidity"));
+        assert!(!Scenario::field_is_integer("actuators.clamp.no_such_field"));
+        assert!(!Scenario::field_is_integer(""));
+    }
 }

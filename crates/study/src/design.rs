@@ -79,9 +79,11 @@ impl VaryRange {
         Some(Ok(VaryRange { lo, hi, unit: u1 }))
     }
 
-    /// The value at the fraction `t` of the range (0 at `lo`, 1 at `hi`), as `--set` takes it.
-    fn value_at(&self, t: f64) -> String {
+    /// The value at the fraction `t` of the range (0 at `lo`, 1 at `hi`), as `--set` takes it;
+    /// for a field of whole numbers (`integer`), rounded to the nearest one.
+    fn value_at(&self, t: f64, integer: bool) -> String {
         let x = self.lo + t * (self.hi - self.lo);
+        let x = if integer { x.round() } else { x };
         if self.unit.is_empty() { format!("{x}") } else { format!("{x} {}", self.unit) }
     }
 }
@@ -234,7 +236,20 @@ pub fn grid(
         let cube = latin_hypercube(lhs_points, ranged.len(), seed);
         for (d, &k) in ranged.iter().enumerate() {
             let range = varies[k].range.clone().expect("a ranged field");
-            varies[k].values = cube.iter().map(|p| range.value_at(p[d])).collect();
+            // A count (the schema's integer) takes the hypercube's values rounded; its range must
+            // hold at least one whole number per design point.
+            let integer = stiction_scenario::Scenario::field_is_integer(&varies[k].path);
+            if integer {
+                let whole = (range.hi.floor() - range.lo.ceil() + 1.0).max(0.0);
+                if !range.unit.is_empty() || whole < lhs_points as f64 {
+                    return Err(StudyError::Setting(format!(
+                        "--vary {}={}..{}: the field takes whole numbers without a unit, and the range needs at \
+                         least {lhs_points} of them (one per --design-points)",
+                        varies[k].path, range.lo, range.hi
+                    )));
+                }
+            }
+            varies[k].values = cube.iter().map(|p| range.value_at(p[d], integer)).collect();
         }
     }
     // The grid: the listed fields crossed (first --vary slowest), the ranges moving together
@@ -664,5 +679,31 @@ mod tests {
         assert!(e.contains("--design-points"), "{e}");
         let e = grid(&mut [Vary::parse("a=1,2").unwrap()], &[], Some(3), 1).unwrap_err().to_string();
         assert!(e.contains("needs a range"), "{e}");
+    }
+
+    /// A range over a count (the schema's integer, e.g. the clamp array's plate count) gives whole
+    /// numbers, one in each stratum of the range; a range with fewer whole numbers than design
+    /// points, or with a unit, is refused naming the field.
+    #[test]
+    fn ranges_over_counts_give_whole_numbers() {
+        let path = "actuators.clamp.plate_count";
+        let mut varies = [Vary::parse(&format!("{path}=1..1000")).unwrap()];
+        let g = grid(&mut varies, &[], Some(4), 1).unwrap();
+        let mut quarters: Vec<usize> = g
+            .iter()
+            .map(|p| {
+                let n: u32 = p[0].parse().unwrap_or_else(|_| panic!("{} is not a whole number", p[0]));
+                ((f64::from(n) - 1.0) / 999.0 * 4.0).floor() as usize
+            })
+            .collect();
+        quarters.sort_unstable();
+        assert_eq!(quarters, vec![0, 1, 2, 3]);
+        for bad in [format!("{path}=1..3"), format!("{path}=1 V..100 V")] {
+            let e = grid(&mut [Vary::parse(&bad).unwrap()], &[], Some(4), 1).unwrap_err().to_string();
+            assert!(e.contains(path) && e.contains("whole numbers"), "{e}");
+        }
+        // A quantity keeps the hypercube's fractions.
+        let g = grid(&mut [Vary::parse("actuators.clamp.front_gap=1..1000").unwrap()], &[], Some(4), 1).unwrap();
+        assert!(g.iter().any(|p| p[0].contains('.')), "{g:?}");
     }
 }
