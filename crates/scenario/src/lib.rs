@@ -366,7 +366,7 @@ impl Scenario {
         for segment in path.split('.') {
             nodes = nodes
                 .iter()
-                .flat_map(|n| alternatives(n))
+                .flat_map(&alternatives)
                 .filter_map(|n| {
                     n.get("properties")
                         .and_then(|p| p.get(segment))
@@ -380,7 +380,7 @@ impl Scenario {
         }
         let types: Vec<Value> = nodes
             .iter()
-            .flat_map(|n| alternatives(n))
+            .flat_map(alternatives)
             .flat_map(|n| match n.get("type") {
                 Some(Value::Array(t)) => t.clone(),
                 Some(t) => vec![t.clone()],
