@@ -97,6 +97,10 @@ pub struct Series {
     /// What each point is (one per point, e.g. the input a Sobol index belongs to): the data CSV's
     /// `label` column, present when any series of the chart has labels.
     pub labels: Option<Vec<String>>,
+    /// Markers only: drawn shifted sideways by this fraction of the plot's width (a "dodge", so
+    /// that series of nearly equal values at the same x stay apart); the data and its CSV keep the
+    /// true x.
+    pub dodge: f64,
 }
 
 impl Series {
@@ -165,6 +169,12 @@ impl Series {
     /// Draws the markers in this shape.
     pub fn with_marker(mut self, marker: Marker) -> Self {
         self.marker = Some(marker);
+        self
+    }
+    /// Draws the markers (and their error bars) shifted sideways by `fraction` of the plot's
+    /// width; the data keep their x (see [`Series::dodge`]).
+    pub fn with_dodge(mut self, fraction: f64) -> Self {
+        self.dodge = fraction;
         self
     }
 }
@@ -911,6 +921,30 @@ mod tests {
             .with(Series::line("model", (0..10).map(|i| (i as f64, (i * i) as f64)).collect()))
             .with(Series::markers("data", vec![(1.0, 1.2), (2.0, 3.9)]).with_y_err(vec![0.3, 0.4]))
             .with(Series::y_range("measured range", 2.0, 5.0))
+    }
+
+    /// A dodge draws the markers (and their error bars) shifted by its fraction of the plot's
+    /// width, and the data CSV keeps the true x: two series at the same point stay apart.
+    #[test]
+    fn a_dodge_shifts_the_drawn_markers_not_the_data() {
+        let chart = |dodge: f64| {
+            let mut c = Chart::new("dodge", "x", "y")
+                .with(Series::markers("a", vec![(1.0, 1.0), (2.0, 2.0)]).with_y_err(vec![0.1, 0.1]).with_dodge(dodge));
+            // (Room on both sides, so that no shifted position leaves the axes.)
+            c.x_range = Some((0.0, 3.0));
+            c.y_range = Some((0.0, 3.0));
+            c
+        };
+        let (plain, moved) = (chart(0.0), chart(0.05));
+        let (lp, lm) = (plain.layout().unwrap(), moved.layout().unwrap());
+        assert_eq!(lp.plot, lm.plot);
+        let shift = 0.05 * lp.plot.width();
+        // Markers and the sampled error bars: every drawn position moves by the shift, none stays.
+        assert_eq!(lp.points.len(), lm.points.len());
+        for (a, b) in lp.points.iter().zip(&lm.points) {
+            assert!((b.0 - a.0 - shift).abs() < 1e-9 && (b.1 - a.1).abs() < 1e-9, "{a:?} -> {b:?}");
+        }
+        assert_eq!(plain.data_csv(), moved.data_csv());
     }
 
     #[test]

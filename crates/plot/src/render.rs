@@ -1041,6 +1041,9 @@ impl Chart {
                         vec![stairs]
                     }
                     SeriesStyle::Markers => {
+                        let shift = if s.dodge.is_finite() { s.dodge * p.width() } else { 0.0 };
+                        let to = |x: f64, y: f64| to(x, y).map(|(a, b)| (a + shift, b));
+                        let pts: Vec<(f64, f64)> = s.points.iter().filter_map(|&(x, y)| to(x, y)).collect();
                         let mut v: Vec<Vec<(f64, f64)>> = pts.iter().map(|q| vec![*q]).collect();
                         for (i, &(x, y)) in s.points.iter().enumerate() {
                             if let Some(e) =
