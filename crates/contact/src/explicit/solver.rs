@@ -1499,7 +1499,7 @@ fn iterate<L: LawEval + ?Sized>(
 /// directions of positive curvature and a long step down the energy (to be capped by the trust
 /// radius) along those of negative curvature, and of none where a force acts along them (`tol`:
 /// the force tolerance). None if the differences are not finite.
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
 fn exact_newton_direction<L: LawEval + ?Sized>(
     g: &Geom,
     law: &L,
