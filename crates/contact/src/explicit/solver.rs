@@ -1452,9 +1452,8 @@ fn predictor(st: &State, load: f64) -> Option<[f64; 3]> {
 
 /// The Newton iteration of one solve: [`iterate_phase`] with the Hessian of the evaluation pass
 /// (each summit's stiffness clipped at >= 0, the meniscus tails left out), and, only if that does
-/// not converge within `max_iterations`, a second phase of up to `max_iterations` more with the
-/// Hessian of the exact forces (by central differences of the gradient) wherever it is positive
-/// definite.
+/// not converge within `max_iterations`, a second phase of up to `max_iterations` more on the
+/// Hessian of the exact forces (central differences of the gradient).
 ///
 /// Why: the clipped Hessian is exact for Hertz/DMT dry, but it overestimates the stiffness of a
 /// summit on the falling part of its JKR/Maugis-Dugdale branch (dP/dz < 0 between its
@@ -1463,9 +1462,12 @@ fn predictor(st: &State, load: f64) -> Option<[f64; 3]> {
 /// `1 - K / K_c`; near the pull-off of the contact `K -> 0` (at a load `eps` above it
 /// `K ~ sqrt(eps)`), so a pull-off bisection, which probes ever closer to the fold, ran out of
 /// iterations (NotConverged a few parts per million above the pull-off, e.g. one JKR summit with
-/// a meniscus at -0.665 uN). With the exact Hessian the convergence is quadratic again; where it
-/// is not positive definite (beyond the fold) the clipped direction keeps the descent. Every solve
-/// that converged in the first phase is unchanged to the bit.
+/// a meniscus at -0.665 uN), and just below the pull-off a solve crawled towards separation (steps
+/// of 1e-17 m: the clipped stiffness resists a force excess of 1e-15 N). With the exact Hessian the
+/// convergence is quadratic again; where it is not positive definite (beyond the fold: the load is
+/// below the pull-off of this contact) the step goes down the energy along its negative curvature,
+/// capped by the trust radius, and the shoe comes off in a few steps ([`exact_newton_direction`]).
+/// Every solve that converged in the first phase is unchanged to the bit.
 #[allow(clippy::too_many_arguments)]
 fn iterate<L: LawEval + ?Sized>(
     g: &Geom,
@@ -1537,11 +1539,17 @@ fn exact_newton_direction<L: LawEval + ?Sized>(
     // Not positive definite: Newton on the curvature directions (eigenvalue > 1e-8 of the
     // largest magnitude), and down the energy along the others (negative or no curvature: the
     // energy falls without bound there, so a long step, capped by the trust radius).
+    // (Unused degrees of freedom padded with the largest used diagonal: their own eigenvectors.)
     let mut m = Matrix3::zeros();
+    let mut diag_abs = 0.0f64;
     for i in 0..nd {
         for j in 0..nd {
             m[(i, j)] = hs[i][j];
         }
+        diag_abs = diag_abs.max(hs[i][i].abs());
+    }
+    for j in nd..3 {
+        m[(j, j)] = if diag_abs > 0.0 { diag_abs } else { 1.0 };
     }
     let eig = m.symmetric_eigen();
     let lam_abs = eig.eigenvalues.iter().take(3).fold(0.0f64, |a, &b| a.max(b.abs()));
@@ -1552,9 +1560,6 @@ fn exact_newton_direction<L: LawEval + ?Sized>(
     let mut d = nalgebra::Vector3::zeros();
     for k in 0..3 {
         let v = eig.eigenvectors.column(k);
-        if v.iter().skip(nd).any(|x| x.abs() > 1e-12) {
-            continue;
-        }
         let (gk, lam) = (v.dot(&gv), eig.eigenvalues[k]);
         if lam > 1e-8 * lam_abs {
             d -= v * (gk / lam);
@@ -1564,6 +1569,9 @@ fn exact_newton_direction<L: LawEval + ?Sized>(
             let sense = if gk > 0.0 { -1.0 } else { 1.0 };
             d += v * (sense * 1e3 * st.tau.max(1e-300));
         }
+    }
+    for j in nd..3 {
+        d[j] = 0.0;
     }
     let out = [d[0], d[1], d[2]];
     out.iter().all(|x| x.is_finite()).then_some(out)
