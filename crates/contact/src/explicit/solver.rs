@@ -1450,6 +1450,24 @@ fn predictor(st: &State, load: f64) -> Option<[f64; 3]> {
     Some([0, 1, 2].map(|j| w1 * q1[j] + w2 * q2[j] + w3 * q3[j]))
 }
 
+/// The Newton iteration of one solve: [`iterate_phase`] with the Hessian of the evaluation pass
+/// (each summit's stiffness clipped at >= 0, the meniscus tails left out), and, only if that does
+/// not converge within `max_iterations`, a second phase of up to `max_iterations` more on the
+/// Hessian of the exact forces (central differences of the gradient).
+///
+/// Why: the clipped Hessian is exact for Hertz/DMT dry, but it overestimates the stiffness of a
+/// summit on the falling part of its JKR/Maugis-Dugdale branch (dP/dz < 0 between its
+/// load-controlled pull-off and its release) and of a meniscus tail (`-f R / h_m`). Newton's
+/// method with a stiffness `K_c` above the true `K` converges linearly with the ratio
+/// `1 - K / K_c`; near the pull-off of the contact `K -> 0` (at a load `eps` above it
+/// `K ~ sqrt(eps)`), so a pull-off bisection, which probes ever closer to the fold, ran out of
+/// iterations (NotConverged a few parts per million above the pull-off, e.g. one JKR summit with
+/// a meniscus at -0.665 uN), and just below the pull-off a solve crawled towards separation (steps
+/// of 1e-17 m: the clipped stiffness resists a force excess of 1e-15 N). With the exact Hessian the
+/// convergence is quadratic again; where it is not positive definite (beyond the fold: the load is
+/// below the pull-off of this contact) the step goes down the energy along its negative curvature,
+/// capped by the trust radius, and the shoe comes off in a few steps ([`exact_newton_direction`]).
+/// Every solve that converged in the first phase is unchanged to the bit.
 #[allow(clippy::too_many_arguments)]
 fn iterate<L: LawEval + ?Sized>(
     g: &Geom,
@@ -1461,12 +1479,125 @@ fn iterate<L: LawEval + ?Sized>(
     adhesion_ref: f64,
     height_range: f64,
     ev: &mut Eval,
+    predict: Option<[f64; 3]>,
+) -> Result<usize, SolveError> {
+    let phase = |st: &mut State, touch: &mut Vec<u32>, ev: &mut Eval, predict, fd: Option<f64>, it, limit| {
+        iterate_phase(g, law, st, touch, load, cfg, adhesion_ref, height_range, ev, predict, fd, it, limit)
+    };
+    match phase(st, touch, ev, predict, None, 0, cfg.max_iterations) {
+        Err(SolveError::NotConverged { iterations, .. }) => {
+            // Difference step: 1e-5 of the law's reach (JKR/MD release, meniscus height), or of
+            // a thousandth of the height range for Hertz/DMT dry.
+            let fd = 1e-5 * (-law.z_min()).max(1e-3 * height_range.max(1e-9));
+            phase(st, touch, ev, None, Some(fd), iterations, iterations + cfg.max_iterations)
+        }
+        other => other,
+    }
+}
+
+/// Hessian of the exact forces at `st.q` on the used degrees of freedom by central differences
+/// of the gradient (step `h` in each pose coordinate; members only, as at the current pose), and
+/// its Newton direction if it is positive definite ([`newton_ldlt`]); otherwise Newton along its
+/// directions of positive curvature and a long step down the energy (to be capped by the trust
+/// radius) along those of negative curvature, and of none where a force acts along them (`tol`:
+/// the force tolerance). None if the differences are not finite.
+#[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
+fn exact_newton_direction<L: LawEval + ?Sized>(
+    g: &Geom,
+    law: &L,
+    st: &State,
+    touch: &mut Vec<u32>,
+    load: f64,
+    ev: &Eval,
+    h: f64,
+    tol: f64,
+) -> Option<[f64; 3]> {
+    let nd = g.ndof;
+    let mut hs = [[0.0f64; 3]; 3];
+    for j in 0..nd {
+        let (mut qp, mut qm) = (st.q, st.q);
+        qp[j] += h;
+        qm[j] -= h;
+        let ep = evaluate(g, law, st, &qp, load, false, false, touch);
+        let em = evaluate(g, law, st, &qm, load, false, false, touch);
+        let step = qp[j] - qm[j];
+        for i in 0..nd {
+            hs[i][j] = (ep.g[i] - em.g[i]) / step;
+        }
+    }
+    touch.clear();
+    for i in 0..nd {
+        for j in 0..i {
+            let m = 0.5 * (hs[i][j] + hs[j][i]);
+            hs[i][j] = m;
+            hs[j][i] = m;
+        }
+    }
+    if let Some(d) = newton_ldlt(&hs, &ev.g, nd) {
+        return Some(d);
+    }
+    // Not positive definite: Newton on the curvature directions (eigenvalue > 1e-8 of the
+    // largest magnitude), and down the energy along the others (negative or no curvature: the
+    // energy falls without bound there, so a long step, capped by the trust radius).
+    // (Unused degrees of freedom padded with the largest used diagonal: their own eigenvectors.)
+    let mut m = Matrix3::zeros();
+    let mut diag_abs = 0.0f64;
+    for i in 0..nd {
+        for j in 0..nd {
+            m[(i, j)] = hs[i][j];
+        }
+        diag_abs = diag_abs.max(hs[i][i].abs());
+    }
+    for j in nd..3 {
+        m[(j, j)] = if diag_abs > 0.0 { diag_abs } else { 1.0 };
+    }
+    let eig = m.symmetric_eigen();
+    let lam_abs = eig.eigenvalues.iter().take(3).fold(0.0f64, |a, &b| a.max(b.abs()));
+    if !(lam_abs.is_finite() && lam_abs > 0.0) {
+        return None;
+    }
+    let gv = nalgebra::Vector3::new(ev.g[0], ev.g[1], ev.g[2]);
+    let mut d = nalgebra::Vector3::zeros();
+    for k in 0..3 {
+        let v = eig.eigenvectors.column(k);
+        let (gk, lam) = (v.dot(&gv), eig.eigenvalues[k]);
+        if lam > 1e-8 * lam_abs {
+            d -= v * (gk / lam);
+        } else if lam < -1e-8 * lam_abs || gk.abs() > 0.1 * tol {
+            // (A direction of no curvature without a force along it, e.g. the tilt of a shoe on
+            // one summit under its load point, is neutral: no step.)
+            let sense = if gk > 0.0 { -1.0 } else { 1.0 };
+            d += v * (sense * 1e3 * st.tau.max(1e-300));
+        }
+    }
+    for j in nd..3 {
+        d[j] = 0.0;
+    }
+    let out = [d[0], d[1], d[2]];
+    out.iter().all(|x| x.is_finite()).then_some(out)
+}
+
+/// One phase of the Newton iteration (see [`iterate`]): from iteration `it` up to `limit`; `fd`:
+/// the difference step of the exact Hessian (None: the pass's clipped Hessian).
+#[allow(clippy::too_many_arguments)]
+fn iterate_phase<L: LawEval + ?Sized>(
+    g: &Geom,
+    law: &L,
+    st: &mut State,
+    touch: &mut Vec<u32>,
+    load: f64,
+    cfg: &SolverConfig,
+    adhesion_ref: f64,
+    height_range: f64,
+    ev: &mut Eval,
     mut predict: Option<[f64; 3]>,
+    fd: Option<f64>,
+    mut it: usize,
+    limit: usize,
 ) -> Result<usize, SolveError> {
     let fixed = g.support.is_some();
     let tau_min = 1e-15 * height_range.max(1e-9);
     let tau_max = 1e3 * height_range + 1e-6;
-    let mut it = 0;
     loop {
         let scale = load.abs().max(ev.force_abs).max(adhesion_ref).max(1e-300);
         let tol = cfg.relative_tolerance * scale;
@@ -1492,7 +1623,7 @@ fn iterate<L: LawEval + ?Sized>(
                 return Err(separates(load));
             }
             it += 1;
-            if it >= cfg.max_iterations {
+            if it >= limit {
                 break;
             }
             continue;
@@ -1506,7 +1637,7 @@ fn iterate<L: LawEval + ?Sized>(
                 // is not stable: tip the shoe until the nearest summit touches, then go on.
                 if !fixed
                     && g.ndof > 1
-                    && it < cfg.max_iterations
+                    && it < limit
                     && let Some(dq) = tip_to_next_contact(g, law, st, ev)
                 {
                     st.q = [st.q[0] + dq[0], st.q[1] + dq[1], st.q[2] + dq[2]];
@@ -1539,7 +1670,7 @@ fn iterate<L: LawEval + ?Sized>(
                 return Err(separates(load));
             }
             it += 1;
-            if it >= cfg.max_iterations {
+            if it >= limit {
                 break;
             }
             continue;
@@ -1548,11 +1679,15 @@ fn iterate<L: LawEval + ?Sized>(
             return Err(separates(load));
         }
         it += 1;
-        if it >= cfg.max_iterations {
+        if it >= limit {
             break;
         }
         // Direction, capped by the trust radius.
-        let mut dq = direction(ev, g.ndof, tol, st.tau);
+        let mut dq = match fd {
+            Some(h) => exact_newton_direction(g, law, st, touch, load, ev, h, tol)
+                .unwrap_or_else(|| direction(ev, g.ndof, tol, st.tau)),
+            None => direction(ev, g.ndof, tol, st.tau),
+        };
         // First step of a solve along a smooth load path: the extrapolated pose, when it agrees
         // with the Newton step (whose stiffness misses the summits that will touch and the
         // change of the stiffness along the step) to 10 % of the step.
@@ -1570,7 +1705,7 @@ fn iterate<L: LawEval + ?Sized>(
             dq.iter_mut().for_each(|v| *v *= s);
             capped = true;
         }
-        if !capped && !fixed && g.shortcuts && linear_step(g, law, st, ev, &dq, mv, tol) {
+        if !capped && !fixed && g.shortcuts && fd.is_none() && linear_step(g, law, st, ev, &dq, mv, tol) {
             continue;
         }
         let slope0: f64 = (0..3).map(|j| ev.g[j] * dq[j]).sum();

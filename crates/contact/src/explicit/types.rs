@@ -55,7 +55,9 @@ pub struct SolverConfig {
     /// apparent area) below this fraction of the load scale max(|L|, sum |P_i|, one summit's
     /// adhesion 2 pi dgamma R) \[1e-9\].
     pub relative_tolerance: f64,
-    /// Newton iterations allowed per solve before [`SolveError::NotConverged`] \[500\].
+    /// Newton iterations per phase of a solve \[500\]: a solve not converged after them on the
+    /// clipped Hessian goes on for as many more on the Hessian of the exact forces before
+    /// [`SolveError::NotConverged`] (docs/explicit-solver.md, step 4).
     pub max_iterations: usize,
     /// Per-summit detail in results \[full\].
     pub detail: Detail,
