@@ -335,60 +335,20 @@ impl Scenario {
 
     /// The JSON Schema of the format (draft 2020-12), as shipped in docs/scenario.schema.json.
     pub fn json_schema() -> Value {
-        serde_json::to_value(schemars::schema_for!(Scenario)).unwrap_or(Value::Null)
+        Self::schema().clone()
+    }
+
+    /// The JSON Schema, generated once per process (every `--set` walks it).
+    pub(crate) fn schema() -> &'static Value {
+        static SCHEMA: std::sync::OnceLock<Value> = std::sync::OnceLock::new();
+        SCHEMA.get_or_init(|| serde_json::to_value(schemars::schema_for!(Scenario)).unwrap_or(Value::Null))
     }
 
     /// Whether the field at `path` (dotted, as `--set` names it) takes only whole numbers (a
     /// count such as `actuators.clamp.plate_count`), by the format's JSON Schema: the field's
     /// type is `integer` in every alternative that is not null. `false` for an unknown path.
     pub fn field_is_integer(path: &str) -> bool {
-        let schema = Self::json_schema();
-        let defs = schema.get("$defs").cloned().unwrap_or(Value::Null);
-        // Follows `$ref` (to `#/$defs/NAME`) to the node it names.
-        let resolve = |node: &Value| -> Value {
-            let mut node = node.clone();
-            for _ in 0..16 {
-                let Some(r) = node.get("$ref").and_then(Value::as_str) else { break };
-                let name = r.rsplit('/').next().unwrap_or("");
-                node = defs.get(name).cloned().unwrap_or(Value::Null);
-            }
-            node
-        };
-        // The alternatives of a node (anyOf / oneOf, else the node itself), resolved.
-        let alternatives = |node: &Value| -> Vec<Value> {
-            let node = resolve(node);
-            match node.get("anyOf").or_else(|| node.get("oneOf")).and_then(Value::as_array) {
-                Some(alts) => alts.iter().map(&resolve).collect(),
-                None => vec![node],
-            }
-        };
-        let mut nodes = vec![schema.clone()];
-        for segment in path.split('.') {
-            nodes = nodes
-                .iter()
-                .flat_map(&alternatives)
-                .filter_map(|n| {
-                    n.get("properties")
-                        .and_then(|p| p.get(segment))
-                        .or_else(|| n.get("additionalProperties").filter(|a| a.is_object()))
-                        .cloned()
-                })
-                .collect();
-            if nodes.is_empty() {
-                return false;
-            }
-        }
-        let types: Vec<Value> = nodes
-            .iter()
-            .flat_map(alternatives)
-            .flat_map(|n| match n.get("type") {
-                Some(Value::Array(t)) => t.clone(),
-                Some(t) => vec![t.clone()],
-                None => vec![Value::Null],
-            })
-            .filter(|t| t != "null")
-            .collect();
-        !types.is_empty() && types.iter().all(|t| t == "integer")
+        overrides::field_is_integer(path)
     }
 }
 

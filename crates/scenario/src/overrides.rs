@@ -61,7 +61,7 @@ pub fn apply_set(root: &mut Value, set: &str) -> Result<(), ScenarioError> {
     }
     let cwd = std::env::current_dir()
         .map_err(|e| err(format!("cannot read the current directory to resolve a relative path: {e}")))?;
-    let defs = Scenario::json_schema().get("$defs").cloned().unwrap_or(Value::Null);
+    let defs = Scenario::schema().get("$defs").cloned().unwrap_or(Value::Null);
     absolutize_paths(&mut value, &target, &defs, &cwd);
     let mut node = root;
     for (i, seg) in segments.iter().enumerate() {
@@ -144,10 +144,28 @@ fn absolutize_paths(value: &mut Value, nodes: &[Value], defs: &Value, cwd: &std:
     }
 }
 
+/// Whether the field at the dotted `path` is typed `integer` in every schema alternative that is
+/// not null (see [`Scenario::field_is_integer`]).
+pub(crate) fn field_is_integer(path: &str) -> bool {
+    let segments: Vec<String> = path.split('.').map(str::to_string).collect();
+    let Ok(nodes) = check_path(&segments) else { return false };
+    let defs = Scenario::schema().get("$defs").cloned().unwrap_or(Value::Null);
+    let types: Vec<Value> = expand(&nodes, &defs)
+        .iter()
+        .flat_map(|n| match n.get("type") {
+            Some(Value::Array(t)) => t.clone(),
+            Some(t) => vec![t.clone()],
+            None => Vec::new(),
+        })
+        .filter(|t| t != "null")
+        .collect();
+    !types.is_empty() && types.iter().all(|t| t == "integer")
+}
+
 /// Walks the JSON Schema of [`Scenario`] along `segments`; on a wrong name, lists the near ones.
 /// Returns the schema nodes of the target field.
 fn check_path(segments: &[String]) -> Result<Vec<Value>, String> {
-    let schema = Scenario::json_schema();
+    let schema = Scenario::schema();
     let defs = schema.get("$defs").cloned().unwrap_or(Value::Null);
     let mut nodes = vec![schema.clone()];
     for (i, seg) in segments.iter().enumerate() {
