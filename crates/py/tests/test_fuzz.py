@@ -202,7 +202,7 @@ RH_ATOMS = [
 
 # Generator arguments of bem: sizes, grids, exponents and seeds in and out of range, other types.
 GENERATOR = {
-    "grid": [0, 1, 2, 3, 8, 4097, -1, 2.5, "8", True, 2**70],
+    "grid": [0, 1, 2, 3, 8, 32, 4097, -1, 2.5, "8", True, 2**70],
     "hurst": [0.0, 0.5, 1.0, 1.5, -0.5, float("nan"), float("inf"), 1e-300, "x"],
     "size": ["10 um", "-1 um", 0.0, 1e300, 1e-300, "nan um", "5 kg", float("inf")],
     "rms_height": ["0.1 um", "0 um", 1e300, -1.0, 1e-300],
@@ -244,7 +244,7 @@ def test_hostile_rh_and_generator_arguments_raise_stiction_errors(in_root, cli):
             counts["compared"] += 1
         kwargs = {name: values[int(rng.integers(len(values)))] for name, values in GENERATOR.items()
                   if rng.random() < 0.4}
-        kwargs.setdefault("grid", 8)
+        kwargs.setdefault("grid", 32)
         if rng.random() < 0.5:
             kwargs["rh"] = rh
         else:

@@ -109,7 +109,7 @@ def test_bem_of_a_scenario_equals_cli_bem_scenario(in_root, cli_json):
     with pytest.raises(stiction.StictionError, match="pixel_size"):
         stiction.bem(scenario=HEIGHT_MAP, pressure="5 MPa", pixel_size="1 um")
     # Neither heights nor a scenario: the generated surface, as `stiction bem` without --map/--scenario.
-    assert stiction.bem(pressure="5 MPa", grid=8).surface["source"] == "generated"
+    assert stiction.bem(pressure="5 MPa", grid=32).surface["source"] == "generated"
 
 
 def test_topography_theta_from_a_dict_scenario_equals_cli(in_root, cli_json, tmp_path):
