@@ -91,8 +91,8 @@ pub fn finite_value<T: serde::Serialize + ?Sized>(
     serde_json::to_value(value).map_err(|e| stiction_units::finite::NonFinite(format!("internal error: {e}")))
 }
 pub use crate::cmd::bem::{Args as BemArgs, BemSurface, bem_json, check_rh_values};
-pub use crate::cmd::humidity::{DEFAULT_RH, rh_grid, rh_grid_of};
 pub use crate::cmd::fit::{Args as FitArgs, fit_json};
+pub use crate::cmd::humidity::{DEFAULT_RH, rh_grid, rh_grid_of};
 
 /// A subcommand's arguments parsed from flags as the command line parses them (`["--pressure",
 /// "20 MPa"]`), so that a front end's keyword arguments meet the same checks and the same messages

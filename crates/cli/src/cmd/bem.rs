@@ -682,8 +682,8 @@ fn heat_map(maps: &MapArgs, field: &[f64], g: Grid, title: &str, value_label: &s
     }
 }
 
-pub(crate) use humidity::parse_rh;
 pub use humidity::check_rh_values;
+pub(crate) use humidity::parse_rh;
 
 /// `stiction bem --rh`: adhesion energy against relative humidity.
 mod humidity {
@@ -889,7 +889,8 @@ mod humidity {
             }
             build_surface(args)
         })?;
-        let (grid, e_star_pa, temperature_k, angle) = (out.grid, out.e_star_pa, out.temperature_k, out.contact_angle_rad);
+        let (grid, e_star_pa, temperature_k, angle) =
+            (out.grid, out.e_star_pa, out.temperature_k, out.contact_angle_rad);
         if let Some(mut set) = outputs {
             set.add_bytes("results.json", crate::output::json_text(&out)?.as_bytes())?;
             set.add_bytes("humidity.csv", &csv_bytes(&out.points)?)?;

@@ -318,7 +318,11 @@ struct BemRun {
 /// The boundary-element model of the scenario `source` (`args.sets` after its own overrides) at
 /// each load of `sweep_loads` when given, else of `--sweep` or `--load` (N, compressive, in order;
 /// the loading branch).
-fn bem_run(args: &Args, source: &ScenarioSource, sweep_loads: Option<&[f64]>) -> Result<BemRun, Box<dyn std::error::Error>> {
+fn bem_run(
+    args: &Args,
+    source: &ScenarioSource,
+    sweep_loads: Option<&[f64]>,
+) -> Result<BemRun, Box<dyn std::error::Error>> {
     if args.mode.is_some() || args.contacts.is_some() || args.summits {
         return Err("--mode, --contacts and --summits belong to the explicit solver; --model bem has a flat shoe and \
                     reports contact patches"
