@@ -160,6 +160,9 @@ def test_a_bad_dict_scenario_raises_the_cli_message_in_every_function(in_root, c
         lambda: stiction.study(bad, samples=2),
         lambda: stiction.fit(None, bad),
         lambda: stiction.bem(scenario=bad, pressure="1 MPa"),
+        lambda: stiction.bem(scenario=bad, rh=[0.3]),
+        lambda: stiction.contact(bad, "1 uN", model="bem"),
+        lambda: stiction.humidity(bad, rh=[0.3]),
         lambda: stiction.topography(np.ones((8, 8)), pixel_size="1 um", scenario=bad),
     ]
     for call in calls:
