@@ -90,8 +90,9 @@ pub fn finite_value<T: serde::Serialize + ?Sized>(
     stiction_units::finite::check_finite(value)?;
     serde_json::to_value(value).map_err(|e| stiction_units::finite::NonFinite(format!("internal error: {e}")))
 }
-pub use crate::cmd::bem::{Args as BemArgs, bem_json_of_map, bem_json_of_scenario};
+pub use crate::cmd::bem::{Args as BemArgs, BemSurface, bem_json, check_rh_values};
 pub use crate::cmd::fit::{Args as FitArgs, fit_json};
+pub use crate::cmd::humidity::{DEFAULT_RH, rh_grid, rh_grid_of};
 
 /// A subcommand's arguments parsed from flags as the command line parses them (`["--pressure",
 /// "20 MPa"]`), so that a front end's keyword arguments meet the same checks and the same messages
@@ -108,16 +109,16 @@ pub fn parse_args<A: clap::Args + clap::FromArgMatches>(command: &'static str, f
     A::from_arg_matches(&matches).map_err(message)
 }
 
-/// The JSON object `stiction plot humidity --scenario PATH [--set ...] --rh RH --json` prints:
-/// the friction meter of the scenario at each relative humidity of `rh` (a list or FROM:TO:STEPS,
-/// default 0:0.9:10; the dry point first).
+/// The JSON object `stiction plot humidity --scenario S [--set ...] --rh RH --json` prints for
+/// the scenario `source` (a file or a tree built in memory): the friction meter at each relative
+/// humidity of `rhs` ([`rh_grid`] of the `--rh` text, or [`rh_grid_of`] of numbers; the dry point
+/// first), `progress(done, total)` after each humidity; every number checked finite.
 pub fn humidity_json(
-    path: &std::path::Path,
-    sets: &[String],
-    rh: Option<&str>,
+    source: &ScenarioSource,
+    rhs: &[f64],
+    progress: &mut dyn FnMut(usize, usize),
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    let rhs = crate::cmd::humidity::rh_grid(rh)?;
-    let sweep = crate::cmd::humidity::sweep(&ScenarioSource::file(path, sets)?, &rhs, &mut |_, _| {})?;
+    let sweep = crate::cmd::humidity::sweep(source, rhs, progress)?;
     Ok(finite_value(&sweep)?)
 }
 

@@ -405,20 +405,31 @@ fn contact_json<'py>(
     json_object(py, out.map_err(err)?)
 }
 
-/// bem_json(heights, flags, pressures=None, scenario=None) -> dict: what `stiction bem --map
-/// FILE.npy FLAGS --json` prints for the height map `heights` (a 2-D array, read in place), its
-/// `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a path),
-/// what `stiction bem --scenario SCENARIO FLAGS --json` prints. `pressures` (Pa, in order)
-/// instead of --pressure/--sweep. The GIL is released; Ctrl-C raises KeyboardInterrupt.
+/// bem_json(heights, flags, pressures=None, scenario=None, rh=None) -> dict: what `stiction bem
+/// --map FILE.npy FLAGS --json` prints for the height map `heights` (a 2-D array, read in place),
+/// its `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a
+/// path), what `stiction bem --scenario SCENARIO FLAGS --json` prints; or, with neither, what
+/// `stiction bem FLAGS --json` prints on the generated surface of the generator flags.
+/// `pressures` (Pa, in order) instead of --pressure/--sweep; `rh` (fractions) instead of the text
+/// of --rh. The GIL is released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (heights, flags, pressures=None, scenario=None))]
+#[pyo3(signature = (heights, flags, pressures=None, scenario=None, rh=None))]
 fn bem_json<'py>(
     py: Python<'py>,
     heights: &Bound<'py, PyAny>,
     flags: Vec<String>,
     pressures: Option<Vec<f64>>,
     scenario: Option<&Bound<'py, PyAny>>,
+    rh: Option<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    use stiction_cli::api::BemSurface;
+    let mut flags = flags;
+    if let Some(values) = &rh {
+        // Checked and named here (rh[i]); then the --rh text of the same numbers, which the
+        // command line reads back to the same f64s (Rust's `{:?}` is the shortest round trip).
+        stiction_cli::api::check_rh_values(values).map_err(err)?;
+        flags.push(format!("--rh={}", values.iter().map(|v| format!("{v:?}")).collect::<Vec<_>>().join(",")));
+    }
     let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(err)?;
     if let Some(p) = &pressures
         && p.is_empty()
@@ -431,14 +442,59 @@ fn bem_json<'py>(
         }
         let source = PyScenario::source_of(scenario)?;
         let out = interruptible(py, move |_| {
-            stiction_cli::api::bem_json_of_scenario(&args, &source, pressures.as_deref()).map_err(|e| e.to_string())
+            stiction_cli::api::bem_json(&args, BemSurface::Scenario(&source), pressures.as_deref())
+                .map_err(|e| e.to_string())
+        })?;
+        return json_object(py, out.map_err(err)?);
+    }
+    if heights.is_none() {
+        let out = interruptible(py, move |_| {
+            stiction_cli::api::bem_json(&args, BemSurface::Generated, pressures.as_deref()).map_err(|e| e.to_string())
         })?;
         return json_object(py, out.map_err(err)?);
     }
     let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
     let out = interruptible(py, move |_| {
-        stiction_cli::api::bem_json_of_map(&args, "<array>", raw, info, pressures.as_deref()).map_err(|e| e.to_string())
+        let surface = BemSurface::Map { file: "<array>", raw, info };
+        stiction_cli::api::bem_json(&args, surface, pressures.as_deref()).map_err(|e| e.to_string())
     })?;
+    json_object(py, out.map_err(err)?)
+}
+
+/// humidity_json(scenario, rh_text=None, rh=None, progress=None) -> dict: what `stiction plot
+/// humidity --scenario SCENARIO --rh RH --json` prints: the friction meter at each relative
+/// humidity, the dry point first. `rh_text` is the text of --rh ("0:0.9:10", "0.1,35 %"); `rh`
+/// the humidities as fractions (each in [0, 1), increasing); neither: the command line's default.
+/// `progress(done, total)` is called after each humidity. The GIL is released; Ctrl-C raises
+/// KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (scenario, rh_text=None, rh=None, progress=None))]
+fn humidity_json<'py>(
+    py: Python<'py>,
+    scenario: &Bound<'py, PyAny>,
+    rh_text: Option<String>,
+    rh: Option<Vec<f64>>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let rhs = match (rh_text, rh) {
+        (Some(_), Some(_)) => return Err(err("rh: give the humidities as text or as numbers, not both")),
+        (Some(text), None) => stiction_cli::api::rh_grid(Some(&text)),
+        (None, Some(values)) => stiction_cli::api::rh_grid_of(&values),
+        (None, None) => stiction_cli::api::rh_grid(None),
+    }
+    .map_err(err)?;
+    let source = PyScenario::source_of(scenario)?;
+    let progress = Progress::new(progress);
+    let report = progress.clone();
+    let out = interruptible(py, move |_| {
+        let mut on_point = |done: usize, total: usize| {
+            report.report(done, total);
+        };
+        stiction_cli::api::humidity_json(&source, &rhs, &mut on_point).map_err(|e| e.to_string())
+    })?;
+    if let Some(e) = progress.take_error() {
+        return Err(e);
+    }
     json_object(py, out.map_err(err)?)
 }
 
@@ -836,6 +892,7 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(discrete_json, m)?)?;
     m.add_function(wrap_pyfunction!(contact_json, m)?)?;
     m.add_function(wrap_pyfunction!(bem_json, m)?)?;
+    m.add_function(wrap_pyfunction!(humidity_json, m)?)?;
     m.add_function(wrap_pyfunction!(fit_json, m)?)?;
     m.add_function(wrap_pyfunction!(_heap, m)?)?;
     m.add_function(wrap_pyfunction!(_last_engine_seconds, m)?)?;

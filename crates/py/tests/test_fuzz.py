@@ -104,7 +104,11 @@ def test_hostile_scenario_dicts_raise_the_cli_message(in_root, cli, tmp_path):
         if case % 5 == 0:
             # The plain dict straight into the functions that take a scenario: a result with
             # every number finite, or a StictionError; never another exception or a panic.
-            for call in (lambda: stiction.contact(d, "1 uN"), lambda: stiction.run(d)):
+            for call in (
+                lambda: stiction.contact(d, "1 uN"),
+                lambda: stiction.run(d),
+                lambda: stiction.humidity(d, rh=[0.35]),
+            ):
                 try:
                     assert _finite(call().to_dict()), case
                 except stiction.StictionError as e:
@@ -185,3 +189,66 @@ def test_non_arrays_are_refused_as_stiction_errors():
     for bad in (None, "heights", [[1, 2], [3]], {"a": 1}, [[float("nan")] * 3] * 3):
         with pytest.raises(stiction.StictionError):
             stiction.topography(bad, pixel_size="1 um", height_unit="nm")
+
+
+# Relative humidities as a caller might give them: numbers in and out of [0, 1), NaN, infinities,
+# the command line's --rh texts (good and bad), and other types.
+RH_ATOMS = [
+    0.0, 0.35, 0.9, 0.999999, 1.0, -0.1, -0.0, 1e-300, 1e300, float("nan"), float("inf"), 2, True, None,
+    "0.35", "35 %", "0:0.6:3", "0.2,0.5", "0.5,0.2", "1.5", "nan", "0:0.5:0", "0:0.5:2000", "", "x", "μ",
+    [], [0.1, 0.2], [0.2, 0.1], [[0.1]], {"a": 1}, np.array([0.1, np.nan]), np.array([0.3], dtype=np.float32),
+    np.array([1, 2], dtype=np.int8), np.array(["0.1"]), np.zeros((2, 2)),
+]
+
+# Generator arguments of bem: sizes, grids, exponents and seeds in and out of range, other types.
+GENERATOR = {
+    "grid": [0, 1, 2, 3, 8, 32, 4097, -1, 2.5, "8", True, 2**70],
+    "hurst": [0.0, 0.5, 1.0, 1.5, -0.5, float("nan"), float("inf"), 1e-300, "x"],
+    "size": ["10 um", "-1 um", 0.0, 1e300, 1e-300, "nan um", "5 kg", float("inf")],
+    "rms_height": ["0.1 um", "0 um", 1e300, -1.0, 1e-300],
+    "roll_off": ["2 um", 1e-300, 1e300, "-2 um"],
+    "short": ["1 um", 1e-300, 1e300],
+    "seed": [0, 1, -1, 2**64, 2**70, 2.5],
+}
+
+
+def _check(call, counts, case):
+    """A result with every number finite, or a StictionError with a short message."""
+    try:
+        r = call()
+        assert _finite(r.to_dict()), case
+        counts["ok"] += 1
+    except stiction.StictionError as e:
+        counts["refused"] += 1
+        assert 0 < len(str(e)) < 2000, (case, str(e)[:300])
+        return str(e)
+    return None
+
+
+def test_hostile_rh_and_generator_arguments_raise_stiction_errors(in_root, cli):
+    """humidity(rh=...) and bem(rh=..., generator arguments) with seeded hostile values: a result
+    with finite numbers or a StictionError (the CLI's message for a --rh text), never another
+    exception, a panic or a hang."""
+    rng = np.random.default_rng(SEED)
+    counts = {"ok": 0, "refused": 0, "compared": 0}
+    for case in range(CASES):
+        k = int(rng.integers(3))
+        rh = RH_ATOMS[int(rng.integers(len(RH_ATOMS)))] if k == 0 else [
+            RH_ATOMS[int(rng.integers(len(RH_ATOMS)))] for _ in range(k)
+        ]
+        start = time.perf_counter()
+        message = _check(lambda: stiction.humidity(TAS, rh=rh), counts, case)
+        if isinstance(rh, str) and message is not None and case % 3 == 0:
+            code, _, err = cli("plot", "humidity", "--scenario", TAS, "--rh", rh, "--json")
+            assert code == 2 and _cli_message(err) == message, (case, rh, err)
+            counts["compared"] += 1
+        kwargs = {name: values[int(rng.integers(len(values)))] for name, values in GENERATOR.items()
+                  if rng.random() < 0.4}
+        kwargs.setdefault("grid", 32)
+        if rng.random() < 0.5:
+            kwargs["rh"] = rh
+        else:
+            kwargs["pressure"] = "5 MPa"
+        _check(lambda: stiction.bem(**kwargs), counts, (case, kwargs))
+        assert time.perf_counter() - start < 30, (case, rh, kwargs)
+    assert counts["ok"] > 10 and counts["refused"] > CASES // 4 and counts["compared"] > 0, counts

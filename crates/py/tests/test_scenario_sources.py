@@ -108,8 +108,8 @@ def test_bem_of_a_scenario_equals_cli_bem_scenario(in_root, cli_json):
         stiction.bem(np.zeros((8, 8)), "5 MPa", scenario=HEIGHT_MAP)
     with pytest.raises(stiction.StictionError, match="pixel_size"):
         stiction.bem(scenario=HEIGHT_MAP, pressure="5 MPa", pixel_size="1 um")
-    with pytest.raises(stiction.StictionError, match="heights"):
-        stiction.bem(pressure="5 MPa")
+    # Neither heights nor a scenario: the generated surface, as `stiction bem` without --map/--scenario.
+    assert stiction.bem(pressure="5 MPa", grid=32).surface["source"] == "generated"
 
 
 def test_topography_theta_from_a_dict_scenario_equals_cli(in_root, cli_json, tmp_path):
@@ -160,6 +160,9 @@ def test_a_bad_dict_scenario_raises_the_cli_message_in_every_function(in_root, c
         lambda: stiction.study(bad, samples=2),
         lambda: stiction.fit(None, bad),
         lambda: stiction.bem(scenario=bad, pressure="1 MPa"),
+        lambda: stiction.bem(scenario=bad, rh=[0.3]),
+        lambda: stiction.contact(bad, "1 uN", model="bem"),
+        lambda: stiction.humidity(bad, rh=[0.3]),
         lambda: stiction.topography(np.ones((8, 8)), pixel_size="1 um", scenario=bad),
     ]
     for call in calls:

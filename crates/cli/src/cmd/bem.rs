@@ -259,6 +259,12 @@ fn build_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
     if let Some(file) = &args.scenario {
         return scenario_surface(args, &ScenarioSource::file(file, &[])?);
     }
+    generated_surface(args)
+}
+
+/// The generated surface of `--size`, `--grid`, `--hurst`, `--roll-off`, `--short`,
+/// `--rms-height` and `--seed`: a Gaussian self-affine surface ([`synth::self_affine`]).
+fn generated_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
     if !(2..=MAX_SIDE).contains(&args.grid) {
         return Err(format!("--grid {}: expected 2..={MAX_SIDE} points per side", args.grid).into());
     }
@@ -279,6 +285,37 @@ fn build_surface(args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
         },
         e_star_pa: args.e_star.unwrap_or(85e9),
     })
+}
+
+/// The surface a front end other than the command line solves on: the command line's three
+/// sources, with the map already read and the scenario already held in memory.
+pub enum BemSurface<'a> {
+    /// The generated surface of the generator flags (`--size`, `--grid`, ...; the command line's
+    /// default).
+    Generated,
+    /// A height map read as `file` (`raw`, `info` from the reader), prepared with the map flags
+    /// (`stiction bem --map FILE`).
+    Map {
+        /// Its name in the output (`surface.file`) and in errors.
+        file: &'a str,
+        /// The heights as read.
+        raw: HeightMap,
+        /// What the reader found.
+        info: MapInfo,
+    },
+    /// The patch under the shoe of a scenario's height-map face(s) (`stiction bem --scenario S`;
+    /// `args.sets` apply after the source's own).
+    Scenario(&'a ScenarioSource),
+}
+
+impl BemSurface<'_> {
+    fn build(self, args: &Args) -> Result<Surface, Box<dyn std::error::Error>> {
+        match self {
+            BemSurface::Generated => generated_surface(args),
+            BemSurface::Map { file, raw, info } => map_surface(args, file, raw, info),
+            BemSurface::Scenario(source) => scenario_surface(args, source),
+        }
+    }
 }
 
 /// The checks of the solver's flags (before any work): the tolerance and a load or gap path.
@@ -390,45 +427,35 @@ fn solve(
     Ok((out, states, heights))
 }
 
-/// What `stiction bem --map FILE --json` prints, for a height map already read (`raw`, `info`)
-/// and named `file`: prepared with `args`' map flags, solved at `pressures` (mean pressures, Pa,
-/// in order, each from the previous state) when given, else along `args`' path; every number
-/// checked finite. For front ends other than the command line (the Python module).
-pub fn bem_json_of_map(
+/// What `stiction bem ... --json` prints for the surface `surface` (generated, a height map already
+/// read, or a scenario held in memory; `args.map`, `args.scenario` are not read): with `--rh`, the
+/// adhesion energy against relative humidity (`stiction bem --rh`); else the load path, solved at
+/// `pressures` (mean pressures, Pa, in order, each from the previous state) when given, else along
+/// `args`' path. Every number checked finite. For front ends other than the command line (the
+/// Python module).
+pub fn bem_json(
     args: &Args,
-    file: &str,
-    raw: HeightMap,
-    info: MapInfo,
+    surface: BemSurface<'_>,
     pressures: Option<&[f64]>,
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    check_front_end_path(args, pressures)?;
-    let (out, _, _) = solve(args, map_surface(args, file, raw, info)?, pressures)?;
-    Ok(crate::api::finite_value(&out)?)
-}
-
-/// What `stiction bem --scenario SCENARIO --json` prints for the scenario `source` (a file or a
-/// tree built in memory; `args.scenario` is not read, `args.sets` apply after the source's own):
-/// the patch of its height-map face(s) under the shoe, solved at `pressures` (mean pressures, Pa,
-/// in order, each from the previous state) when given, else along `args`' path; every number
-/// checked finite. For front ends other than the command line (the Python module).
-pub fn bem_json_of_scenario(
-    args: &Args,
-    source: &ScenarioSource,
-    pressures: Option<&[f64]>,
-) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    check_front_end_path(args, pressures)?;
-    let (out, _, _) = solve(args, scenario_surface(args, source)?, pressures)?;
-    Ok(crate::api::finite_value(&out)?)
-}
-
-/// The checks of [`bem_json_of_map`] and [`bem_json_of_scenario`] before any work: no `--rh`, a
-/// tolerance in (0, 1), and a load path (`pressures`, each finite and > 0, or the flags').
-fn check_front_end_path(args: &Args, pressures: Option<&[f64]>) -> Result<(), Box<dyn std::error::Error>> {
     if args.humidity.rh.is_some() {
-        return Err("rh: the adhesion energy against humidity is a command of its own (`stiction bem --rh`); \
-                    this call solves a load path"
-            .into());
+        if pressures.is_some() {
+            return Err("pressure: with rh, one mean pressure (the compressed state each retraction starts from), \
+                        not a vector"
+                .into());
+        }
+        check_path_args(args)?;
+        let out = humidity::output(args, || surface.build(args))?;
+        return Ok(crate::api::finite_value(&out)?);
     }
+    check_front_end_path(args, pressures)?;
+    let (out, _, _) = solve(args, surface.build(args)?, pressures)?;
+    Ok(crate::api::finite_value(&out)?)
+}
+
+/// The checks of [`bem_json`]'s load path before any work: a tolerance in (0, 1), and a load
+/// path (`pressures`, each finite and > 0, or the flags').
+fn check_front_end_path(args: &Args, pressures: Option<&[f64]>) -> Result<(), Box<dyn std::error::Error>> {
     if pressures.is_none() {
         check_path_args(args)?;
     } else if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
@@ -655,6 +682,7 @@ fn heat_map(maps: &MapArgs, field: &[f64], g: Grid, title: &str, value_label: &s
     }
 }
 
+pub use humidity::check_rh_values;
 pub(crate) use humidity::parse_rh;
 
 /// `stiction bem --rh`: adhesion energy against relative humidity.
@@ -705,6 +733,18 @@ mod humidity {
         Ok(values)
     }
 
+    /// Relative humidities given as numbers (a front end's list, named `rh`): 1 to 1000 of them,
+    /// each finite and in [0, 1), as [`parse_rh`] takes them as text.
+    pub fn check_rh_values(values: &[f64]) -> Result<(), String> {
+        if values.is_empty() || values.len() > MAX_RH {
+            return Err(format!("rh: expected 1 to {MAX_RH} humidities, got {}", values.len()));
+        }
+        if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !(v.is_finite() && (0.0..1.0).contains(*v))) {
+            return Err(format!("rh[{i}] = {v}: expected a relative humidity in [0, 1) (0 to 99.9 %)"));
+        }
+        Ok(())
+    }
+
     /// `--temperature`: "25 C", "298.15 K" or a bare number in kelvin; > 0 K.
     pub(super) fn parse_temperature(text: &str) -> Result<f64, String> {
         let t = text.trim();
@@ -744,7 +784,7 @@ mod humidity {
     }
 
     #[derive(Serialize)]
-    struct Output {
+    pub(super) struct Output {
         surface: SurfaceSource,
         grid: Grid,
         e_star_pa: f64,
@@ -762,7 +802,12 @@ mod humidity {
         points: Vec<Point>,
     }
 
-    pub(super) fn run(args: &Args) -> CliResult {
+    /// The adhesion energy against humidity of `args` on the surface `surface` makes (called
+    /// after the cheap checks of the flags).
+    pub(super) fn output(
+        args: &Args,
+        surface: impl FnOnce() -> Result<super::Surface, Box<dyn std::error::Error>>,
+    ) -> Result<Output, Box<dyn std::error::Error>> {
         let h = &args.humidity;
         let rhs = parse_rh(h.rh.as_deref().unwrap_or_default())?;
         let temperature_k = parse_temperature(&h.temperature)?;
@@ -770,10 +815,6 @@ mod humidity {
         if !(0.0..=std::f64::consts::PI).contains(&angle) {
             return Err(format!("--contact-angle {angle} rad: expected 0 to 180 deg").into());
         }
-        let outputs = match &args.out {
-            Some(dir) => Some(OutputSet::begin(dir, "bem", args.force)?),
-            None => None,
-        };
         let vdw = match (args.work_of_adhesion, args.range) {
             (Some(w), Some(h0)) => Some(Dugdale::from_work_and_range(w, h0)?),
             _ => None,
@@ -784,7 +825,7 @@ mod humidity {
             .map(|&rh| Capillarity::new(liquid, temperature_k, rh, angle, angle))
             .collect::<Result<_, _>>()
             .map_err(|e| format!("--rh: {e}"))?;
-        let super::Surface { grid, heights, source, e_star_pa } = build_surface(args)?;
+        let super::Surface { grid, heights, source, e_star_pa } = surface()?;
         let mut solver = BemSolver::new(grid.nx, grid.ny, grid.dx_m, grid.dy_m, &heights, e_star_pa)?;
         let opts = SolverOptions { tolerance: args.tolerance, ..Default::default() };
         let start_pressure_pa = args.pressure.unwrap_or(1e6);
@@ -836,6 +877,20 @@ mod humidity {
             tolerance: args.tolerance,
             points,
         };
+        Ok(out)
+    }
+
+    pub(super) fn run(args: &Args) -> CliResult {
+        // The output folder is checked after the flags and before the work, so a refusal comes at once.
+        let mut outputs = None;
+        let out = output(args, || {
+            if let Some(dir) = &args.out {
+                outputs = Some(OutputSet::begin(dir, "bem", args.force)?);
+            }
+            build_surface(args)
+        })?;
+        let (grid, e_star_pa, temperature_k, angle) =
+            (out.grid, out.e_star_pa, out.temperature_k, out.contact_angle_rad);
         if let Some(mut set) = outputs {
             set.add_bytes("results.json", crate::output::json_text(&out)?.as_bytes())?;
             set.add_bytes("humidity.csv", &csv_bytes(&out.points)?)?;

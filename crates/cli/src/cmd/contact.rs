@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use stiction_contact::explicit::{Detail, Equilibrium, SweepEvent};
 use stiction_contact::single::Branch;
 use stiction_meter::{ContactModel, build_contact_model};
-use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, Scenario};
+use stiction_scenario::{ContactModel as ModelKind, MaterialSpec};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use crate::api::ScenarioSource;
@@ -215,10 +215,11 @@ fn explicit_solver(
     Ok((solver, c, material))
 }
 
-/// What `stiction contact SCENARIO --json` prints with the explicit solver for the scenario
-/// `source` (a file or a tree built in memory; `args.scenario` is not read, `args.sets` apply
-/// after the source's own): the equilibrium at `--load`, or for a sweep (the loads given, else
-/// `--sweep`) {"points", "events"}; every number checked finite. For front ends other than the
+/// What `stiction contact SCENARIO --json` prints for the scenario `source` (a file or a tree
+/// built in memory; `args.scenario` is not read, `args.sets` apply after the source's own). With
+/// the explicit solver: the equilibrium at `--load`, or for a sweep (the loads given, else
+/// `--sweep`) {"points", "events"}; with `--model bem`: the boundary-element model at those loads
+/// (`model`, `grid`, ..., `points`). Every number checked finite. For front ends other than the
 /// command line (the Python module).
 pub fn contact_json(
     args: &Args,
@@ -226,7 +227,7 @@ pub fn contact_json(
     sweep_loads: Option<&[f64]>,
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     if args.model == Model::Bem {
-        return Err("contact_json: the explicit solver only".into());
+        return Ok(crate::api::finite_value(&bem_run(args, source, sweep_loads)?)?);
     }
     let (mut solver, _, _) = explicit_solver(args, source)?;
     solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });
@@ -314,8 +315,14 @@ struct BemRun {
     points: Vec<BemPoint>,
 }
 
-/// `--model bem`: the boundary-element model of the meter at each load (loading branch).
-fn run_bem(args: &Args) -> CliResult {
+/// The boundary-element model of the scenario `source` (`args.sets` after its own overrides) at
+/// each load of `sweep_loads` when given, else of `--sweep` or `--load` (N, compressive, in order;
+/// the loading branch).
+fn bem_run(
+    args: &Args,
+    source: &ScenarioSource,
+    sweep_loads: Option<&[f64]>,
+) -> Result<BemRun, Box<dyn std::error::Error>> {
     if args.mode.is_some() || args.contacts.is_some() || args.summits {
         return Err("--mode, --contacts and --summits belong to the explicit solver; --model bem has a flat shoe and \
                     reports contact patches"
@@ -323,15 +330,15 @@ fn run_bem(args: &Args) -> CliResult {
     }
     let mut sets = args.sets.clone();
     sets.push("contact.model=\"bem\"".into());
-    let scenario = Scenario::load(&args.scenario, &sets)?;
-    let material = scenario.require_material().map_err(|e| format!("{}: {e}", args.scenario.display()))?.clone();
-    let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
-    let mut bem = stiction_meter::build_bem(&scenario, &material, &base)
-        .map_err(|e| format!("{}: {e}", args.scenario.display()))?;
-    let loads = match (&args.sweep, args.load) {
-        (Some(sweep), _) => parse_sweep(sweep, args.max_sweep_steps)?,
-        (None, Some(l)) => vec![l],
-        (None, None) => return Err("give --load or --sweep".into()),
+    let scenario = source.parse(&sets)?;
+    let name = source.name();
+    let material = scenario.require_material().map_err(|e| format!("{name}: {e}"))?.clone();
+    let mut bem = stiction_meter::build_bem(&scenario, &material, &source.base).map_err(|e| format!("{name}: {e}"))?;
+    let loads = match (sweep_loads, &args.sweep, args.load) {
+        (Some(l), _, _) => l.to_vec(),
+        (None, Some(sweep), _) => parse_sweep(sweep, args.max_sweep_steps)?,
+        (None, None, Some(l)) => vec![l],
+        (None, None, None) => return Err("give --load or --sweep".into()),
     };
     if let Some(l) = loads.iter().find(|l| l.is_nan() || **l <= 0.0) {
         return Err(format!(
@@ -360,7 +367,7 @@ fn run_bem(args: &Args) -> CliResult {
             iterations: s.iterations,
         });
     }
-    let out = BemRun {
+    Ok(BemRun {
         model: "bem",
         grid,
         coarsening: bem.coarsening,
@@ -368,7 +375,13 @@ fn run_bem(args: &Args) -> CliResult {
         dugdale: bem.law(),
         shear_strength_pa: material.shear_strength,
         points,
-    };
+    })
+}
+
+/// `--model bem`: the boundary-element model of the meter at each load (loading branch).
+fn run_bem(args: &Args) -> CliResult {
+    let out = bem_run(args, &ScenarioSource::file(&args.scenario, &[])?, None)?;
+    let grid = out.grid;
     if args.json {
         return print_json(&out);
     }

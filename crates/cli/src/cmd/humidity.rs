@@ -21,15 +21,27 @@ pub const DEFAULT_RH: &str = "0:0.9:10";
 /// increasing, with the dry point RH = 0 put first when the list does not start there.
 pub fn rh_grid(text: Option<&str>) -> Result<Vec<f64>, String> {
     let text = text.unwrap_or(DEFAULT_RH);
-    let mut values = crate::cmd::bem::parse_rh(text)?;
+    dry_first(crate::cmd::bem::parse_rh(text)?, &format!("--rh {text:?}"))
+}
+
+/// The relative humidities given as numbers (a front end's list, named `rh`): each finite and in
+/// [0, 1), 1 to 1000 of them, strictly increasing, with the dry point RH = 0 put first when the
+/// list does not start there; the same grid as [`rh_grid`] of the same numbers written as text.
+pub fn rh_grid_of(values: &[f64]) -> Result<Vec<f64>, String> {
+    crate::cmd::bem::check_rh_values(values)?;
+    dry_first(values.to_vec(), "rh")
+}
+
+/// `values` (non-empty) checked strictly increasing, with 0 put first when they start above it;
+/// `label` names the input in the error.
+fn dry_first(mut values: Vec<f64>, label: &str) -> Result<Vec<f64>, String> {
     if let Some(w) = values.windows(2).find(|w| w[1] <= w[0]) {
         return Err(format!(
-            "--rh {text:?}: the humidities must increase ({:?} is followed by {:?}); the dry point 0 comes first \
-             by itself",
+            "{label}: the humidities must increase ({:?} is followed by {:?}); the dry point 0 comes first by itself",
             w[0], w[1]
         ));
     }
-    if values[0] > 0.0 {
+    if values.first().is_some_and(|&v| v > 0.0) {
         values.insert(0, 0.0);
     }
     Ok(values)
@@ -383,7 +395,7 @@ pub fn table_csv(s: &HumiditySweep) -> Result<Vec<u8>, Box<dyn std::error::Error
 
 #[cfg(test)]
 mod tests {
-    use super::rh_grid;
+    use super::{rh_grid, rh_grid_of};
 
     #[test]
     fn the_grid_starts_dry_and_increases() {
@@ -395,6 +407,20 @@ mod tests {
         assert!((d[9] - 0.9).abs() < 1e-15);
         for bad in ["0.5,0.2", "0.2,0.2", "0.9:0.1:5", "1.2", "x", "0:0.5:0"] {
             assert!(rh_grid(Some(bad)).is_err(), "{bad}");
+        }
+        // The same grid from numbers as from their text; a bad number named by its index.
+        assert_eq!(rh_grid_of(&[0.2, 0.5]).unwrap(), rh_grid(Some("0.2,0.5")).unwrap());
+        assert_eq!(rh_grid_of(&[0.0, 0.3]).unwrap(), vec![0.0, 0.3]);
+        for (bad, names) in [
+            (vec![], "rh:"),
+            (vec![0.1, f64::NAN], "rh[1]"),
+            (vec![1.0], "rh[0]"),
+            (vec![-0.1], "rh[0]"),
+            (vec![0.5, 0.2], "rh:"),
+            (vec![0.1; 1001], "rh:"),
+        ] {
+            let e = rh_grid_of(&bad).unwrap_err();
+            assert!(e.starts_with(names), "{bad:?}: {e}");
         }
     }
 

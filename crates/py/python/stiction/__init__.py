@@ -24,7 +24,7 @@ from . import _stiction
 
 __all__ = [
     "Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete", "asperity",
-    "contact", "bem", "fit", "PathOrScenario", "Quantity", "Loads", "Heights",
+    "contact", "bem", "fit", "humidity", "PathOrScenario", "Quantity", "Loads", "Heights", "Humidities",
 ]
 
 Quantity = Union[str, float, None]
@@ -33,6 +33,9 @@ Loads = Union[str, float, Sequence[float], _np.ndarray]
 """Loads: one force ("3 uN" or N) or a vector of them (N)."""
 Heights = _np.ndarray
 """A height map: a 2-D NumPy array of float32 or float64, rows = y, any order or strides."""
+Humidities = Union[str, float, Sequence[float], _np.ndarray]
+"""Relative humidities: fractions in [0, 1) as a list or array, or the command line's ``--rh``
+text (a list "0.1,35 %" or "FROM:TO:STEPS")."""
 
 PathOrScenario = Union[str, "_os.PathLike[str]", Scenario, Dict[str, Any]]
 """A scenario argument: a path to a scenario file, a ``Scenario``, or a dict shaped as the file
@@ -347,16 +350,24 @@ def contact(
     mode: Optional[str] = None,
     contacts: Optional[int] = None,
     summits: bool = False,
+    model: Optional[str] = None,
 ) -> Result:
     """The explicit asperity-by-asperity solver on the scenario's surface (rigid shoe, summits
-    from the scenario, its contact law), as ``stiction contact SCENARIO --json``.
+    from the scenario, its contact law), as ``stiction contact SCENARIO --json``; with
+    model="bem", the boundary-element model of the height-map patch under the shoe (the scenario's
+    ``surface.source`` "height_map", settings from ``contact.bem``), as ``stiction contact SCENARIO
+    --model bem --json``: ``model``, ``grid``, ``coarsening``, ``e_star_pa``, ``dugdale``,
+    ``shear_strength_pa`` and ``points`` (per load, on the loading branch: load_n N, real_area_m2
+    m^2, contact_fraction, patches, mean_gap_m m, adhesive_load_n N, friction_capacity_n N,
+    max_pressure_pa Pa, ...; compressive loads > 0 only).
 
     load: the normal load, compressive positive, a force ("3 uN") or N, for one equilibrium; or a
     vector of loads (N, in order, each from the previous equilibrium) for a sweep, whose result
     has ``points`` (one equilibrium per load, also as NumPy ``columns``) and ``events`` (jump_in,
     release, pull_off).
     mode: "tilt", "flat" or "fixed" (default: the scenario's). contacts: N for mode "fixed".
-    summits: list every summit in contact.
+    summits: list every summit in contact. model: "explicit" (default) or "bem"; mode, contacts
+    and summits belong to the explicit solver.
 
     scenario: a file, a ``Scenario``, or a dict shaped as the file (its relative paths read from
     the current directory). Equilibrium fields are SI
@@ -365,7 +376,7 @@ def contact(
     """
     if load is None:
         raise StictionError("contact: give a load (a force) or a vector of loads")
-    flags = _flag("mode", mode) + _flag("contacts", contacts) + _flag("summits", summits)
+    flags = _flag("model", model) + _flag("mode", mode) + _flag("contacts", contacts) + _flag("summits", summits)
     if _is_vector(load):
         loads = _np.asarray(load, dtype=float).ravel().tolist()
         return Result(_stiction.contact_json(scenario, flags, loads))
@@ -391,6 +402,17 @@ def bem(
     tolerance: Optional[float] = None,
     compare_asperity: bool = False,
     scenario: Optional[PathOrScenario] = None,
+    rh=None,
+    temperature: Union[str, float, None] = None,
+    contact_angle: Union[str, float, None] = None,
+    rh_step: Union[str, float, None] = None,
+    size: Union[str, float, None] = None,
+    grid: Optional[int] = None,
+    hurst: Optional[float] = None,
+    roll_off: Union[str, float, None] = None,
+    short: Union[str, float, None] = None,
+    rms_height: Union[str, float, None] = None,
+    seed: Optional[int] = None,
 ) -> Result:
     """FFT boundary-element contact of a rigid flat on the height map ``heights`` (a 2-D NumPy
     array, rows = y, float32 or float64, any order; read in place, as ``topography`` reads it),
@@ -411,21 +433,57 @@ def bem(
     unless e_star is given; the map flags do not apply: the scenario's surface section prepares
     the maps).
 
+    Neither ``heights`` nor ``scenario``: the generated Gaussian self-affine surface of the
+    command line (``stiction bem --json``, its default): size, the side of the square periodic
+    cell (length; default "100 um"); grid, points per side (2 to 4096; default 256); hurst, the
+    Hurst exponent (0 < H <= 1; default 0.8); roll_off, the roll-off wavelength (length; default a
+    quarter of the cell); short, the short-wavelength cut-off (length; default 4 pixels);
+    rms_height (length; default "0.5 um"); seed (default 1). These apply to the generated surface
+    only.
+
+    rh: the adhesion energy against relative humidity instead of a load path (``stiction bem
+    --rh``): fractions in [0, 1) as a list or array, or the ``--rh`` text ("0.1,35 %",
+    "0.1:0.9:9"). For each RH, a capillary cohesive zone of water and (with work_of_adhesion and
+    range) van der Waals; the work of separation of a retraction from the compressed state at
+    ``pressure`` (one pressure; default 1 MPa). temperature ("25 C", "298.15 K" or kelvin),
+    contact_angle (of water on both faces, "0 deg" or rad), rh_step (the retraction's mean-gap
+    step, length). The result: surface, grid, e_star_pa, rms_height_m, temperature_k,
+    surface_tension_n_per_m, contact_angle_rad, capillary_limit_j_per_m2, van_der_waals,
+    start_pressure_pa, tolerance and points (relative_humidity, kelvin_radius_m m,
+    meniscus_height_m m, adhesion_energy_j_per_m2 J/m^2, adhesion_energy_mj_per_m2,
+    pull_off_pressure_pa Pa, steps).
+
     Returns a ``Result``: grid, e_star_pa, rms_height_m, rms_slope, points (mean_pressure_pa Pa,
     load_n N, mean_gap_m m, contact_fraction, contact_area_m2 m^2, friction_n N, ...; also as
     NumPy ``columns``), pull_off_n. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
     """
+    generator = {
+        "size": size, "grid": grid, "hurst": hurst, "roll_off": roll_off, "short": short,
+        "rms_height": rms_height, "seed": seed,
+    }
+    humidity_flags = {"temperature": temperature, "contact_angle": contact_angle, "rh_step": rh_step}
+    given_humidity = [k for k, v in humidity_flags.items() if v is not None]
+    if rh is None and given_humidity:
+        raise StictionError(f"bem: {', '.join(given_humidity)} apply with rh (the adhesion energy against humidity)")
+    rh_text, rh_values = _rh(rh) if rh is not None else (None, None)
     flags = (
         _flag("pixel_size", pixel_size) + _flag("pixel_size_y", pixel_size_y) + _flag("height_unit", height_unit)
         + _flag("level", level) + _flag("cutoff", cutoff) + _flag("long_cutoff", long_cutoff)
         + _flag("e_star", e_star) + _flag("sweep", sweep) + _flag("gap_sweep", gap_sweep)
         + _flag("gap_back", gap_back) + _flag("work_of_adhesion", work_of_adhesion) + _flag("range", range)
         + _flag("shear_strength", shear_strength) + _flag("tolerance", tolerance)
-        + _flag("compare_asperity", compare_asperity)
+        + _flag("compare_asperity", compare_asperity) + _flag("rh", rh_text)
+        + _flag("temperature", temperature) + _flag("contact_angle", contact_angle) + _flag("rh_step", rh_step)
     )
-    if scenario is not None:
-        if heights is not None:
-            raise StictionError("bem: give a height map (heights) or a scenario, not both")
+    given_generator = [k for k, v in generator.items() if v is not None]
+    if (scenario is not None or heights is not None) and given_generator:
+        raise StictionError(
+            f"bem: {', '.join(given_generator)} make the generated surface; they do not apply to a height map "
+            "or a scenario"
+        )
+    if scenario is not None and heights is not None:
+        raise StictionError("bem: give a height map (heights) or a scenario, not both")
+    if heights is None:
         map_flags = {
             "pixel_size": pixel_size, "pixel_size_y": pixel_size_y, "height_unit": height_unit,
             "cutoff": cutoff, "long_cutoff": long_cutoff,
@@ -433,19 +491,70 @@ def bem(
         given = [k for k, v in map_flags.items() if v is not None] + (["level"] if level != "plane" else [])
         if given:
             raise StictionError(
-                f"bem: {', '.join(given)} prepare a height-map array; with a scenario its surface section "
-                "prepares the maps"
+                f"bem: {', '.join(given)} prepare a height-map array; "
+                + ("with a scenario its surface section prepares the maps" if scenario is not None
+                   else "the generated surface (no heights, no scenario) has none")
             )
         flags = [f for f in flags if not f.startswith("--level=")]
+        if scenario is None:
+            for k, v in generator.items():
+                flags += _flag(k, v)
         heights_arg = None
-    elif heights is None:
-        raise StictionError("bem: give a height map (heights, a 2-D array) or a scenario")
     else:
         heights_arg = _heights(heights)
     if _is_vector(pressure):
         pressures = _np.asarray(pressure, dtype=float).ravel().tolist()
-        return Result(_stiction.bem_json(heights_arg, flags, pressures, scenario))
-    return Result(_stiction.bem_json(heights_arg, flags + _flag("pressure", pressure), None, scenario))
+        return Result(_stiction.bem_json(heights_arg, flags, pressures, scenario, rh_values))
+    return Result(_stiction.bem_json(heights_arg, flags + _flag("pressure", pressure), None, scenario, rh_values))
+
+
+def _rh(rh) -> tuple:
+    """Relative humidities as (the --rh text, None) for a string, or (None, a list of floats) for a
+    number, a list or a 1-D array; anything else raises StictionError naming rh."""
+    if isinstance(rh, str):
+        return rh, None
+    if isinstance(rh, (bool, _np.bool_)) or rh is None:
+        raise StictionError(f"rh: expected fractions in [0, 1) (a list or array) or a --rh text, got {rh!r}")
+    try:
+        values = _np.asarray(rh, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise StictionError(
+            f"rh: expected fractions in [0, 1) (a list or array) or a --rh text, got {type(rh).__name__} ({e})"
+        ) from None
+    if values.ndim > 1:
+        raise StictionError(f"rh: expected a 1-D list of fractions, got {values.ndim} dimensions")
+    return None, _np.atleast_1d(values).tolist()
+
+
+def humidity(
+    scenario: PathOrScenario,
+    rh=None,
+    progress: Optional[Callable[[int, int], Any]] = None,
+) -> Result:
+    """The friction meter of a scenario at each relative humidity, the dry point (RH = 0) first:
+    ``environment.relative_humidity`` set to each value, every other field as the scenario gives
+    it; as ``stiction plot humidity --scenario SCENARIO --rh RH --json``.
+
+    scenario: a path to a scenario file, a ``Scenario``, or a dict shaped as the file (its
+    relative paths read from the current directory).
+    rh: the humidities, fractions in [0, 1) increasing, as a list or NumPy array, or the
+    ``--rh`` text ("0.1,35 %" or "FROM:TO:STEPS"); 0 is put first when they start above it.
+    Default "0:0.9:10" (0 to 90 % in ten steps).
+    progress: optional ``progress(done, total)`` called after each humidity.
+
+    Returns a ``Result`` equal to the command line's JSON: scenario, description, contact_model,
+    temperature_k (K), contact_angle_rad, counter_face_contact_angle_rad (rad), reference (the
+    scenario's measured mu_e,a and F_a0 at the humidity of its experiment, or None), warnings, and
+    points, one per humidity: relative_humidity, mu_apparent, mu_apparent_se,
+    apparent_adhesion_force_n (N), r_squared, adhesive_load_summed_n and capillary_load_summed_n
+    (N, summed over the clamp voltages in contact), capillary_share, kelvin_radius_m (m),
+    meniscus_height_m (m), reason (why mu_e,a and F_a0 are None at a point); the points also as
+    NumPy ``columns``. An error of the dry point is the scenario's and is raised; a humid point
+    where the meter fails has None values and a reason. Raises StictionError naming the field on
+    bad input. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+    """
+    rh_text, rh_values = _rh(rh) if rh is not None else (None, None)
+    return Result(_stiction.humidity_json(scenario, rh_text, rh_values, progress))
 
 
 def fit(

@@ -8,7 +8,7 @@ import numpy.typing as npt
 
 __all__ = [
     "Scenario", "StictionError", "Result", "run", "topography", "study", "gw", "discrete", "asperity",
-    "contact", "bem", "fit", "PathOrScenario", "Quantity", "Loads", "Heights",
+    "contact", "bem", "fit", "humidity", "PathOrScenario", "Quantity", "Loads", "Heights", "Humidities",
 ]
 
 class StictionError(ValueError):
@@ -87,6 +87,7 @@ def discrete(
 
 Heights = npt.NDArray[Union[np.float32, np.float64]]
 Loads = Union[str, float, Sequence[float], npt.NDArray[np.float64]]
+Humidities = Union[str, float, Sequence[float], npt.NDArray[np.float64]]
 
 def asperity(
     radius: Union[str, float],
@@ -105,8 +106,9 @@ def contact(
     mode: Optional[str] = None,
     contacts: Optional[int] = None,
     summits: bool = False,
+    model: Optional[str] = None,
 ) -> Result:
-    """The explicit solver at a load (N) or over a vector of loads (a sweep)."""
+    """The explicit solver (or model="bem", the boundary-element model) at a load (N) or over a vector of loads."""
 
 def bem(
     heights: Optional[Heights] = None,
@@ -127,8 +129,20 @@ def bem(
     tolerance: Optional[float] = None,
     compare_asperity: bool = False,
     scenario: Optional[PathOrScenario] = None,
+    rh: Optional[Humidities] = None,
+    temperature: Quantity = None,
+    contact_angle: Quantity = None,
+    rh_step: Quantity = None,
+    size: Quantity = None,
+    grid: Optional[int] = None,
+    hurst: Optional[float] = None,
+    roll_off: Quantity = None,
+    short: Quantity = None,
+    rms_height: Quantity = None,
+    seed: Optional[int] = None,
 ) -> Result:
-    """Boundary-element contact on a height-map array; pressures in Pa, E* in Pa, lengths in m."""
+    """Boundary-element contact on a height-map array, a scenario's patch or a generated surface;
+    pressures in Pa, E* in Pa, lengths in m; with rh, the adhesion energy (J/m^2) against humidity."""
 
 def fit(
     data: Union[str, os.PathLike[str], Dict[str, Any], Any, None],
@@ -140,3 +154,10 @@ def fit(
     seed: Optional[int] = None,
 ) -> Result:
     """Fit measured voltages (V): eq. 10 and the shear strength s (Pa) per contact model."""
+
+def humidity(
+    scenario: PathOrScenario,
+    rh: Optional[Humidities] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
+) -> Result:
+    """The friction meter at each relative humidity (fractions), the dry point first: mu_e,a, F_a0 (N), capillary share."""
