@@ -140,3 +140,83 @@ fn a_humid_study_draws_the_relative_humidity() {
     let dry_inputs = dry["sensitivity"]["inputs"].as_array().unwrap();
     assert!(dry_inputs.iter().all(|r| r["input"] != "environment.relative_humidity"), "{dry_inputs:?}");
 }
+
+/// `environment.min_kelvin_radius` (the dry regime: no meniscus below a molecular Kelvin radius).
+/// At RH 0.1 (r_K = 0.228 nm for water at 25 C, below 0.28 nm) the run is the dry run bit for bit
+/// (points, eq. 10 line, fit) and says so; at RH 0.35 (r_K = 0.500 nm) the cut-off changes nothing.
+/// `bem --rh` likewise: below the cut-off only the van der Waals law acts (its RH 0 value), above
+/// it the adhesion energy is the one without the cut-off. A cut-off that is not a positive length
+/// is refused naming the field.
+#[test]
+fn below_the_min_kelvin_radius_no_meniscus_condenses() {
+    let cut = "environment.min_kelvin_radius=0.28 nm";
+    let dry = stiction_json(&["run", "scenarios/tas2000.json", "--json"]);
+    let low = stiction_json(&[
+        "run",
+        "scenarios/tas2000.json",
+        "--set",
+        "environment.relative_humidity=0.1",
+        "--set",
+        cut,
+        "--json",
+    ]);
+    // (A humid run adds `capillary_load_n` to each point: 0 here; the rest is the dry point.)
+    let mut low_points = low["points"].clone();
+    for p in low_points.as_array_mut().unwrap() {
+        let cap = p.as_object_mut().unwrap().remove("capillary_load_n");
+        assert_eq!(cap, Some(serde_json::json!(0.0)), "RH 0.1 below the cut-off: a capillary load");
+    }
+    assert!(low_points == dry["points"], "RH 0.1 below the cut-off: the points are not the dry ones");
+    for key in ["mu_apparent", "apparent_adhesion_force_n", "fit"] {
+        assert!(low[key] == dry[key], "RH 0.1 below the cut-off: {key} {} is not the dry {}", low[key], dry[key]);
+    }
+    let env = &low["environment"];
+    assert!((num(env, "kelvin_radius_m") - 0.228e-9).abs() < 0.001e-9, "{env}");
+    assert!(env["meniscus_height_m"].is_null() && (num(env, "min_kelvin_radius_m") - 0.28e-9).abs() < 1e-24, "{env}");
+    let out = crate::util::stiction(&[
+        "run",
+        "scenarios/tas2000.json",
+        "--set",
+        "environment.relative_humidity=0.1",
+        "--set",
+        cut,
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("below environment.min_kelvin_radius") && text.contains("dry"), "{text}");
+    let humid = ["run", "scenarios/tas2000.json", "--set", "environment.relative_humidity=0.35", "--json"];
+    let plain = stiction_json(&humid);
+    let mut with_cut: Vec<&str> = humid.to_vec();
+    with_cut.extend_from_slice(&["--set", cut]);
+    let cut_above = stiction_json(&with_cut);
+    for key in ["points", "mu_apparent", "apparent_adhesion_force_n", "fit"] {
+        assert!(cut_above[key] == plain[key], "RH 0.35 above the cut-off: {key} changed");
+    }
+    assert!(plain["points"] != dry["points"], "RH 0.35 must differ from dry");
+
+    let bem = |extra: &[&str]| {
+        let mut a =
+            vec!["bem", "--size", "0.5um", "--grid", "32", "--rms-height", "2nm", "--work-of-adhesion", "0.1 J/m^2"];
+        a.extend_from_slice(&["--range", "0.4 nm", "--rh", "0,0.1,0.35", "--json"]);
+        a.extend_from_slice(extra);
+        let v = stiction_json(&a);
+        v["points"].as_array().unwrap().iter().map(|p| num(p, "adhesion_energy_j_per_m2")).collect::<Vec<f64>>()
+    };
+    let (plain, cut) = (bem(&[]), bem(&["--min-kelvin-radius", "0.28 nm"]));
+    assert_eq!(cut[1], cut[0], "RH 0.1 below the cut-off: the van der Waals value");
+    assert!(plain[1] > plain[0], "without the cut-off RH 0.1 condenses: {plain:?}");
+    assert_eq!(cut[2], plain[2], "RH 0.35 above the cut-off");
+
+    for bad in ["environment.min_kelvin_radius=-1 nm", "environment.min_kelvin_radius=0.3 V"] {
+        let out = crate::util::stiction(&[
+            "run",
+            "scenarios/tas2000.json",
+            "--set",
+            "environment.relative_humidity=0.1",
+            "--set",
+            bad,
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("min_kelvin_radius"), "{bad}: {err}");
+    }
+}

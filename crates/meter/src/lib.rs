@@ -176,8 +176,13 @@ pub struct Humidity {
     pub contact_angles_rad: (f64, f64),
     /// Kelvin radius r_K, m (None: no meniscus forms, cos th1 + cos th2 <= 0).
     pub kelvin_radius_m: Option<f64>,
-    /// Largest gap a meniscus bridges h_m = r_K (cos th1 + cos th2), m (None: no meniscus).
+    /// Largest gap a meniscus bridges h_m = r_K (cos th1 + cos th2), m (None: no meniscus, also
+    /// when r_K lies below `min_kelvin_radius_m`).
     pub meniscus_height_m: Option<f64>,
+    /// The scenario's `environment.min_kelvin_radius`, m (absent: none): below it no meniscus
+    /// condenses and the contact is dry.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_kelvin_radius_m: Option<f64>,
 }
 
 impl Humidity {
@@ -187,13 +192,15 @@ impl Humidity {
         if env.relative_humidity == 0.0 {
             return Ok(None);
         }
+        let air = s.capillarity_before_cut_off().map_err(MeterError::Scenario)?;
         let cap = s.capillarity().map_err(MeterError::Scenario)?;
         Ok(Some(Humidity {
             relative_humidity: env.relative_humidity,
             temperature_k: env.temperature,
             contact_angles_rad: s.material.as_ref().map_or((0.0, 0.0), |m| m.contact_angles_rad()),
-            kelvin_radius_m: cap.map(|c| c.kelvin_radius_m),
+            kelvin_radius_m: air.map(|c| c.kelvin_radius_m),
             meniscus_height_m: cap.map(|c| c.meniscus_height_m()),
+            min_kelvin_radius_m: env.min_kelvin_radius,
         }))
     }
 }

@@ -160,6 +160,12 @@ def test_bem_rh_equals_cli_on_a_map_a_generated_surface_and_a_scenario(in_root, 
     assert got.columns["adhesion_energy_j_per_m2"].shape == (3,)
     e = cli_json("bem", "--scenario", HEIGHT_MAP, "--rh", "0.3")
     assert stiction.bem(scenario=HEIGHT_MAP, rh=0.3).to_dict() == e
+    # The smallest Kelvin radius: below it (RH 0.1: r_K = 0.228 nm) no meniscus, as the CLI.
+    e = cli_json("bem", "--grid", "16", "--rh", "0.1,0.3", "--min-kelvin-radius", "0.28 nm")
+    got = stiction.bem(grid=16, rh=[0.1, 0.3], min_kelvin_radius="0.28 nm").to_dict()
+    assert got == e
+    assert got["min_kelvin_radius_m"] == 0.28e-9 and got["points"][0]["meniscus_height_m"] is None
+    assert got["points"][1]["meniscus_height_m"] > 0
 
 
 def test_bem_new_arguments_refuse_bad_input_naming_the_field(cli):

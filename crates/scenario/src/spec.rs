@@ -146,6 +146,16 @@ pub struct EnvironmentSpec {
     #[serde(default = "default_temperature", deserialize_with = "temperature_k")]
     #[schemars(with = "TemperatureInput")]
     pub temperature: f64,
+    /// Smallest Kelvin radius at which a meniscus condenses ("0.28 nm", a water molecule's
+    /// diameter; optional, default none: the continuum meniscus at every humidity). Below it the
+    /// contact is dry (the dry regime of rough hydrophilic surfaces at low humidity).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "stiction_units::de::opt_length_positive"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub min_kelvin_radius: Option<f64>,
 }
 
 /// A temperature: a number (kelvin) or a string "25 C", "25 degC", "298.15 K".

@@ -132,6 +132,12 @@ pub struct HumidityArgs {
     /// range of the cohesive laws).
     #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "rh")]
     pub rh_step: Option<f64>,
+    /// With --rh: smallest Kelvin radius at which water condenses ("0.28 nm", a water molecule's
+    /// diameter; default none: the continuum meniscus at every humidity). Below it only the van der
+    /// Waals law acts (the dry regime at low humidity); the scenario's
+    /// `environment.min_kelvin_radius`.
+    #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Length, Constraint::Positive), requires = "rh")]
+    pub min_kelvin_radius: Option<f64>,
 }
 
 /// One point of a load or gap path.
@@ -771,7 +777,8 @@ mod humidity {
         relative_humidity: f64,
         /// Kelvin radius r_K, m (null when dry: RH = 0 or a non-wetting angle).
         kelvin_radius_m: Option<f64>,
-        /// Meniscus height h_m = r_K (cos th1 + cos th2), m (null when dry).
+        /// Meniscus height h_m = r_K (cos th1 + cos th2), m (null when dry, also when r_K lies
+        /// below --min-kelvin-radius).
         meniscus_height_m: Option<f64>,
         /// Work of separation per nominal area, J/m^2.
         adhesion_energy_j_per_m2: f64,
@@ -799,6 +806,9 @@ mod humidity {
         /// Mean pressure of the compressed state the retractions start from, Pa.
         start_pressure_pa: f64,
         tolerance: f64,
+        /// --min-kelvin-radius, m (absent: none).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        min_kelvin_radius_m: Option<f64>,
         points: Vec<Point>,
     }
 
@@ -831,7 +841,9 @@ mod humidity {
         let start_pressure_pa = args.pressure.unwrap_or(1e6);
         let start = solver.solve_load(start_pressure_pa, &opts, None)?;
         let mut points = Vec::with_capacity(rhs.len());
-        for (&rh, cap) in rhs.iter().zip(&caps) {
+        for (&rh, air) in rhs.iter().zip(&caps) {
+            // No meniscus below the smallest Kelvin radius (the dry regime).
+            let cap = air.filter(|c| h.min_kelvin_radius.is_none_or(|m| c.kelvin_radius_m >= m));
             let mut laws: Vec<Dugdale> = vdw.into_iter().collect();
             if let Some(c) = cap {
                 laws.push(Dugdale::capillary(c.surface_tension_n_per_m, c.kelvin_radius_m, c.cos_angle_sum)?);
@@ -849,7 +861,7 @@ mod humidity {
             };
             points.push(Point {
                 relative_humidity: rh,
-                kelvin_radius_m: cap.map(|c| c.kelvin_radius_m),
+                kelvin_radius_m: air.map(|c| c.kelvin_radius_m),
                 meniscus_height_m: cap.map(|c| c.meniscus_height_m()),
                 adhesion_energy_j_per_m2: energy,
                 adhesion_energy_mj_per_m2: energy * 1e3,
@@ -875,6 +887,7 @@ mod humidity {
             van_der_waals: vdw,
             start_pressure_pa,
             tolerance: args.tolerance,
+            min_kelvin_radius_m: h.min_kelvin_radius,
             points,
         };
         Ok(out)
@@ -899,17 +912,21 @@ mod humidity {
         if args.json {
             return print_json(&out);
         }
-        print_table(
-            "BEM adhesion energy against relative humidity (capillary cohesive zone)",
-            &[
-                ("grid", format!("{} x {}, pixel {}", grid.nx, grid.ny, q(grid.dx_m, Dimension::Length))),
-                ("rms height", q(out.rms_height_m, Dimension::Length)),
-                ("E*", q(e_star_pa, Dimension::Pressure)),
-                ("temperature", format!("{temperature_k:.2} K")),
-                ("contact angle", format!("{:.1} deg", angle.to_degrees())),
-                ("2 gamma cos theta", format!("{:.1} mJ/m^2", out.capillary_limit_j_per_m2 * 1e3)),
-            ],
-        );
+        let mut rows = vec![
+            ("grid", format!("{} x {}, pixel {}", grid.nx, grid.ny, q(grid.dx_m, Dimension::Length))),
+            ("rms height", q(out.rms_height_m, Dimension::Length)),
+            ("E*", q(e_star_pa, Dimension::Pressure)),
+            ("temperature", format!("{temperature_k:.2} K")),
+            ("contact angle", format!("{:.1} deg", angle.to_degrees())),
+            ("2 gamma cos theta", format!("{:.1} mJ/m^2", out.capillary_limit_j_per_m2 * 1e3)),
+        ];
+        if let Some(m) = out.min_kelvin_radius_m {
+            rows.push((
+                "min Kelvin radius",
+                format!("{}: below it no meniscus condenses (h_m shown as -)", q(m, Dimension::Length)),
+            ));
+        }
+        print_table("BEM adhesion energy against relative humidity (capillary cohesive zone)", &rows);
         let mut t = TextTable::new(&["RH", "r_K", "h_m", "Gamma (mJ/m^2)", "pull-off pressure"]);
         for p in &out.points {
             t.row(vec![

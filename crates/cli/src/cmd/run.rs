@@ -305,6 +305,12 @@ fn print_humidity(r: &MeterResult, h: &stiction_meter::Humidity) {
         (Some(rk), Some(hm)) => {
             format!("Kelvin radius {:.3} nm, menisci bridge gaps up to {:.3} nm", rk * 1e9, hm * 1e9)
         }
+        (Some(rk), None) => format!(
+            "Kelvin radius {:.3} nm, below environment.min_kelvin_radius {:.3} nm: no meniscus condenses, the \
+             contact is dry",
+            rk * 1e9,
+            h.min_kelvin_radius_m.unwrap_or(f64::NAN) * 1e9
+        ),
         _ => "cos th1 + cos th2 <= 0: hydrophobic faces, no meniscus forms".to_string(),
     };
     crate::outln!(

@@ -406,6 +406,7 @@ def bem(
     temperature: Union[str, float, None] = None,
     contact_angle: Union[str, float, None] = None,
     rh_step: Union[str, float, None] = None,
+    min_kelvin_radius: Union[str, float, None] = None,
     size: Union[str, float, None] = None,
     grid: Optional[int] = None,
     hurst: Optional[float] = None,
@@ -447,7 +448,8 @@ def bem(
     range) van der Waals; the work of separation of a retraction from the compressed state at
     ``pressure`` (one pressure; default 1 MPa). temperature ("25 C", "298.15 K" or kelvin),
     contact_angle (of water on both faces, "0 deg" or rad), rh_step (the retraction's mean-gap
-    step, length). The result: surface, grid, e_star_pa, rms_height_m, temperature_k,
+    step, length), min_kelvin_radius (length: no meniscus condenses below this Kelvin radius;
+    default none). The result: surface, grid, e_star_pa, rms_height_m, temperature_k,
     surface_tension_n_per_m, contact_angle_rad, capillary_limit_j_per_m2, van_der_waals,
     start_pressure_pa, tolerance and points (relative_humidity, kelvin_radius_m m,
     meniscus_height_m m, adhesion_energy_j_per_m2 J/m^2, adhesion_energy_mj_per_m2,
@@ -461,7 +463,10 @@ def bem(
         "size": size, "grid": grid, "hurst": hurst, "roll_off": roll_off, "short": short,
         "rms_height": rms_height, "seed": seed,
     }
-    humidity_flags = {"temperature": temperature, "contact_angle": contact_angle, "rh_step": rh_step}
+    humidity_flags = {
+        "temperature": temperature, "contact_angle": contact_angle, "rh_step": rh_step,
+        "min_kelvin_radius": min_kelvin_radius,
+    }
     given_humidity = [k for k, v in humidity_flags.items() if v is not None]
     if rh is None and given_humidity:
         raise StictionError(f"bem: {', '.join(given_humidity)} apply with rh (the adhesion energy against humidity)")
@@ -474,6 +479,7 @@ def bem(
         + _flag("shear_strength", shear_strength) + _flag("tolerance", tolerance)
         + _flag("compare_asperity", compare_asperity) + _flag("rh", rh_text)
         + _flag("temperature", temperature) + _flag("contact_angle", contact_angle) + _flag("rh_step", rh_step)
+        + _flag("min_kelvin_radius", min_kelvin_radius)
     )
     given_generator = [k for k, v in generator.items() if v is not None]
     if (scenario is not None or heights is not None) and given_generator:

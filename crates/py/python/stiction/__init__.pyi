@@ -133,6 +133,7 @@ def bem(
     temperature: Quantity = None,
     contact_angle: Quantity = None,
     rh_step: Quantity = None,
+    min_kelvin_radius: Quantity = None,
     size: Quantity = None,
     grid: Optional[int] = None,
     hurst: Optional[float] = None,
