@@ -239,6 +239,12 @@ fn mutated_bundled_scenarios_and_sets_keep_the_contract() {
         {
             s.insert("generator".into(), Value::from(2));
         }
+        // Nor its smallest Kelvin radius: one humid case in two gets one (0.28 nm), a leaf too.
+        if rng.below(2) == 0
+            && let Some(e) = v.get_mut("environment").and_then(Value::as_object_mut)
+        {
+            e.insert("min_kelvin_radius".into(), Value::from("0.28 nm"));
+        }
         let mut paths = Vec::new();
         leaves(&v, &mut Vec::new(), &mut paths);
         paths.retain(|p| p.last().is_none_or(|l| l != "max_summits"));
