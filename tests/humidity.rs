@@ -151,15 +151,8 @@ fn a_humid_study_draws_the_relative_humidity() {
 fn below_the_min_kelvin_radius_no_meniscus_condenses() {
     let cut = "environment.min_kelvin_radius=0.28 nm";
     let dry = stiction_json(&["run", "scenarios/tas2000.json", "--json"]);
-    let low = stiction_json(&[
-        "run",
-        "scenarios/tas2000.json",
-        "--set",
-        "environment.relative_humidity=0.1",
-        "--set",
-        cut,
-        "--json",
-    ]);
+    let below = ["run", "scenarios/tas2000.json", "--set", "environment.relative_humidity=0.1", "--set", cut];
+    let low = stiction_json(&[&below[..], &["--json"]].concat());
     // (A humid run adds `capillary_load_n` to each point: 0 here; the rest is the dry point.)
     let mut low_points = low["points"].clone();
     for p in low_points.as_array_mut().unwrap() {
@@ -173,14 +166,7 @@ fn below_the_min_kelvin_radius_no_meniscus_condenses() {
     let env = &low["environment"];
     assert!((num(env, "kelvin_radius_m") - 0.228e-9).abs() < 0.001e-9, "{env}");
     assert!(env["meniscus_height_m"].is_null() && (num(env, "min_kelvin_radius_m") - 0.28e-9).abs() < 1e-24, "{env}");
-    let out = crate::util::stiction(&[
-        "run",
-        "scenarios/tas2000.json",
-        "--set",
-        "environment.relative_humidity=0.1",
-        "--set",
-        cut,
-    ]);
+    let out = crate::util::stiction(&below);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("below environment.min_kelvin_radius") && text.contains("dry"), "{text}");
     let humid = ["run", "scenarios/tas2000.json", "--set", "environment.relative_humidity=0.35", "--json"];

@@ -181,6 +181,13 @@ impl Capillarity {
         Ok(Some(Capillarity { surface_tension_n_per_m: gamma, kelvin_radius_m, cos_angle_sum }))
     }
 
+    /// This capillarity if its Kelvin radius is at least `min_kelvin_radius_m` (None: no
+    /// minimum), else None: below that radius (a molecular size) no meniscus condenses and the
+    /// contact is dry.
+    pub fn above_min_kelvin_radius(self, min_kelvin_radius_m: Option<f64>) -> Option<Capillarity> {
+        min_kelvin_radius_m.is_none_or(|m| self.kelvin_radius_m >= m).then_some(self)
+    }
+
     /// `h_m = r_K (cos theta_1 + cos theta_2)`: the largest gap a meniscus bridges, m.
     pub fn meniscus_height_m(&self) -> f64 {
         self.kelvin_radius_m * self.cos_angle_sum

@@ -193,7 +193,7 @@ impl Humidity {
             return Ok(None);
         }
         let air = s.capillarity_before_cut_off().map_err(MeterError::Scenario)?;
-        let cap = s.capillarity().map_err(MeterError::Scenario)?;
+        let cap = air.and_then(|c| c.above_min_kelvin_radius(env.min_kelvin_radius));
         Ok(Some(Humidity {
             relative_humidity: env.relative_humidity,
             temperature_k: env.temperature,

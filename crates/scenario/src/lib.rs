@@ -319,7 +319,8 @@ impl Scenario {
     /// hydrophobic faces with `cos theta_1 + cos theta_2 <= 0`, or a Kelvin radius below
     /// `environment.min_kelvin_radius`). `Err` names the field.
     pub fn capillarity(&self) -> Result<Option<stiction_contact::capillary::Capillarity>, String> {
-        Ok(self.capillarity_before_cut_off()?.filter(|c| !self.below_min_kelvin_radius(c)))
+        let min = self.environment.as_ref().and_then(|e| e.min_kelvin_radius);
+        Ok(self.capillarity_before_cut_off()?.and_then(|c| c.above_min_kelvin_radius(min)))
     }
 
     /// [`Scenario::capillarity`] without the `min_kelvin_radius` cut-off (what would condense).
@@ -332,13 +333,6 @@ impl Scenario {
         let (a1, a2) = self.material.as_ref().map_or((0.0, 0.0), MaterialSpec::contact_angles_rad);
         let t = env.temperature;
         Capillarity::new(Liquid::water(t), t, env.relative_humidity, a1, a2).map_err(|e| format!("environment: {e}"))
-    }
-
-    /// Whether `c`'s Kelvin radius lies below `environment.min_kelvin_radius` (no meniscus
-    /// condenses: the contact is dry).
-    pub fn below_min_kelvin_radius(&self, c: &stiction_contact::capillary::Capillarity) -> bool {
-        let min = self.environment.as_ref().and_then(|e| e.min_kelvin_radius);
-        min.is_some_and(|m| c.kelvin_radius_m < m)
     }
 
     /// The contact section, or the paper's default (explicit solver, DMT, tilt free).

@@ -843,7 +843,7 @@ mod humidity {
         let mut points = Vec::with_capacity(rhs.len());
         for (&rh, air) in rhs.iter().zip(&caps) {
             // No meniscus below the smallest Kelvin radius (the dry regime).
-            let cap = air.filter(|c| h.min_kelvin_radius.is_none_or(|m| c.kelvin_radius_m >= m));
+            let cap = air.and_then(|c| c.above_min_kelvin_radius(h.min_kelvin_radius));
             let mut laws: Vec<Dugdale> = vdw.into_iter().collect();
             if let Some(c) = cap {
                 laws.push(Dugdale::capillary(c.surface_tension_n_per_m, c.kelvin_radius_m, c.cos_angle_sum)?);
