@@ -82,6 +82,11 @@ pub fn parse_quantity_checked(text: &str, dim: Dimension, constraint: Constraint
     if (dim == Dimension::Angle) && unit_text == "%" {
         return Err(err("a percentage is not an angle".into()));
     }
+    // Angles are pure numbers in SI, but a pure-number field (a humidity, a ratio, a coefficient)
+    // is never an angle: "35 deg" as a relative humidity would be read as 0.61.
+    if dim == Dimension::Dimensionless && !unit_text.is_empty() && unit_text != "%" {
+        return Err(err(format!("unit `{unit_text}`: a pure number takes no unit but `%`")));
+    }
     let value = number * factor;
     check_value(value, text, dim, constraint)
 }
@@ -339,6 +344,22 @@ mod tests {
         assert!(e.unwrap_err().to_string().contains("beyond"));
         assert!(parse_quantity("1 m^127", Dimension::Length).is_err());
         assert!(parse_quantity("1 m^-128", Dimension::Length).is_err());
+    }
+
+    /// A pure-number field takes a bare number or a percentage, never an angle (an angle is a
+    /// pure number in SI: "35 deg" as a relative humidity was read as 0.61).
+    #[test]
+    fn a_pure_number_is_never_an_angle() {
+        use crate::{Constraint, Dimension};
+        for text in ["35 deg", "0.6 rad", "1 mrad", "2 m/m"] {
+            let e = parse_quantity_checked(text, Dimension::Dimensionless, Constraint::NonNegative).unwrap_err();
+            assert!(e.to_string().contains("no unit but `%`"), "{text}: {e}");
+        }
+        let pct = parse_quantity_checked("35 %", Dimension::Dimensionless, Constraint::NonNegative).unwrap();
+        assert!((pct - 0.35).abs() < 1e-16, "{pct}");
+        assert_eq!(parse_quantity_checked("0.35", Dimension::Dimensionless, Constraint::NonNegative).unwrap(), 0.35);
+        let deg = parse_quantity_checked("35 deg", Dimension::Angle, Constraint::NonNegative).unwrap();
+        assert!((deg - 35f64.to_radians()).abs() < 1e-15);
     }
 
     #[test]
