@@ -41,6 +41,9 @@ pub const GAS_CONSTANT_J_PER_MOL_K: f64 = 8.314462618;
 /// Molar mass of water (IAPWS-95), kg/mol.
 pub const WATER_MOLAR_MASS_KG_PER_MOL: f64 = 18.015268e-3;
 
+/// Triple point of water (IAPWS), K: the low end of the validity of the water correlations here.
+pub const WATER_TRIPLE_POINT_K: f64 = 273.16;
+
 /// Critical temperature of water (IAPWS), K.
 pub const WATER_CRITICAL_TEMPERATURE_K: f64 = 647.096;
 

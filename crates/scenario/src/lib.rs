@@ -23,6 +23,7 @@ use serde_json::Value;
 
 pub mod design;
 mod device;
+pub mod domain;
 mod overrides;
 mod spec;
 pub use device::{Explanation, Quantity, SPRING_FORCE_RELATIVE_TOLERANCE, Warning};
@@ -219,7 +220,13 @@ impl Scenario {
             field(if p == "." { "(top level)".into() } else { p }, truncate(&e.into_inner().to_string(), 300))
         })?;
         scenario.validate().map_err(|(p, m)| field(p, m))?;
+        // Every number against its physical domain (crate::domain), by its key path: refused
+        // outside it, a note outside its usual range.
+        let typed = serde_json::to_value(&scenario).map_err(|e| field("(top level)".into(), e.to_string()))?;
+        let unusual = domain::check_tree(&typed).map_err(|e| field(e.field, e.message))?;
+        scenario.check_physics().map_err(|(p, m)| field(p, m))?;
         scenario.source_json = source_json;
+        scenario.notes.extend(unusual);
         scenario.check_reference_device();
         Ok(scenario)
     }
@@ -300,6 +307,32 @@ impl Scenario {
             if self.material.is_none() {
                 return Err(("material".into(), "missing: a scenario with a `meter` needs a material".into()));
             }
+        }
+        Ok(())
+    }
+
+    /// Cross-field physical rules that a range per field cannot state (after [`domain::check_tree`]):
+    /// the Kelvin radius of the humid air must stay below the shoe (a meniscus of that curvature
+    /// spans the whole contact: the gap floods and the meniscus model of separate summits does not
+    /// hold). Returns (JSON path, message) naming the field that drives it.
+    fn check_physics(&self) -> Result<(), (String, String)> {
+        let (Some(env), Some(surface)) = (&self.environment, &self.surface) else { return Ok(()) };
+        let Ok(Some(cap)) = self.capillarity_before_cut_off() else { return Ok(()) };
+        let shoe_m = surface.apparent_length.min(surface.apparent_width);
+        if cap.meniscus_height_m() >= shoe_m {
+            return Err((
+                "environment.relative_humidity".into(),
+                format!(
+                    "{} gives a Kelvin radius of {} m and a meniscus {} m high at {} K, not below the shoe's \
+                     smaller side ({} m): the whole contact floods and no model of separate menisci holds; \
+                     expected a humidity whose meniscus fits the shoe",
+                    domain::short(env.relative_humidity),
+                    domain::short(cap.kelvin_radius_m),
+                    domain::short(cap.meniscus_height_m()),
+                    domain::short(env.temperature),
+                    domain::short(shoe_m)
+                ),
+            ));
         }
         Ok(())
     }

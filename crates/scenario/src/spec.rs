@@ -176,11 +176,15 @@ fn default_temperature() -> f64 {
     DEFAULT_TEMPERATURE_K
 }
 
-/// Parses a temperature (see [`EnvironmentSpec::temperature`]) to kelvin; `Err` names what was expected.
+/// Parses a temperature (see [`EnvironmentSpec::temperature`]) to kelvin and checks it against
+/// its domain (`crate::domain`: the water correlations' validity, 273.16 K to 647.096 K); `Err`
+/// names what was expected. The one rule for the scenario's `environment.temperature`, `bem
+/// --temperature` and Python.
 pub fn parse_temperature_k(v: &Value) -> Result<f64, String> {
-    const EXPECTED: &str = "expected a temperature above 0 K and below 647 K (water's critical point), like \"25 C\", \"298.15 K\" or 298.15";
-    let k = match v {
-        Value::Number(n) => n.as_f64().unwrap_or(f64::NAN),
+    const EXPECTED: &str = "expected a temperature of liquid water from 273.16 K (0.01 C) to 647.096 K (water's \
+                            critical point), like \"25 C\", \"298.15 K\" or 298.15 (a bare number is kelvin)";
+    let (k, bare) = match v {
+        Value::Number(n) => (n.as_f64().unwrap_or(f64::NAN), true),
         Value::String(s) => {
             let t = s.trim();
             let (num, unit) = match t.find(|c: char| c.is_alphabetic() || c == '\u{b0}') {
@@ -190,8 +194,9 @@ pub fn parse_temperature_k(v: &Value) -> Result<f64, String> {
             let x: f64 =
                 num.parse().map_err(|_| format!("{:?}: not a temperature; {EXPECTED}", crate::truncate(s, 40)))?;
             match unit {
-                "C" | "degC" | "\u{b0}C" => x + 273.15,
-                "K" | "" => x,
+                "C" | "degC" | "\u{b0}C" => (x + 273.15, false),
+                "K" => (x, false),
+                "" => (x, true),
                 _ => {
                     return Err(format!(
                         "{:?}: unknown temperature unit `{}`; {EXPECTED}",
@@ -203,11 +208,16 @@ pub fn parse_temperature_k(v: &Value) -> Result<f64, String> {
         }
         other => return Err(format!("{}: {EXPECTED}", crate::truncate(&other.to_string(), 40))),
     };
-    if k.is_finite() && k > 0.0 && k < stiction_contact::capillary::WATER_CRITICAL_TEMPERATURE_K {
-        Ok(k)
-    } else {
-        Err(format!("{k} K: {EXPECTED}"))
+    let domain = crate::domain::lookup("environment.temperature").expect("the temperature has a domain");
+    if domain.contains(k) {
+        return Ok(k);
     }
+    let hint = if bare && k.is_finite() && (-50.0..=200.0).contains(&k) {
+        format!(" (a bare number is kelvin: for {k} degrees Celsius write \"{k} C\")")
+    } else {
+        String::new()
+    };
+    Err(format!("{} K is outside {}{hint}; {EXPECTED}", crate::domain::short(k), domain.range_text()))
 }
 
 fn temperature_k<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {

@@ -751,24 +751,12 @@ mod humidity {
         Ok(())
     }
 
-    /// `--temperature`: "25 C", "298.15 K" or a bare number in kelvin; > 0 K.
+    /// `--temperature`: "25 C", "298.15 K" or a bare number in kelvin, in the domain of the water
+    /// correlations: the one rule of the scenario's `environment.temperature`
+    /// (`stiction_scenario::parse_temperature_k`).
     pub(super) fn parse_temperature(text: &str) -> Result<f64, String> {
-        let t = text.trim();
-        let (num, offset) = if let Some(n) = t.strip_suffix('C') {
-            (n.trim_end().trim_end_matches('\u{b0}').trim(), 273.15)
-        } else if let Some(n) = t.strip_suffix('K') {
-            (n.trim(), 0.0)
-        } else {
-            (t, 0.0)
-        };
-        let v: f64 =
-            num.parse().map_err(|_| format!("--temperature {text:?}: expected \"25 C\", \"298.15 K\" or kelvin"))?;
-        let k = v + offset;
-        if k.is_finite() && (273.15..647.096).contains(&k) {
-            Ok(k)
-        } else {
-            Err(format!("--temperature {text:?}: expected a temperature of liquid water, 0 C (273.15 K) to 647 K"))
-        }
+        stiction_scenario::parse_temperature_k(&serde_json::Value::String(text.to_string()))
+            .map_err(|e| format!("--temperature: {e}"))
     }
 
     /// One humidity.
