@@ -76,6 +76,17 @@ impl ContactModel {
         }
     }
 
+    /// The number of summits the model holds (the expected number `eta A_a` for GW, the contacts
+    /// of the discrete model, the grid points of the boundary-element patch): no more can touch.
+    pub fn summit_count(&self) -> f64 {
+        match self {
+            ContactModel::Explicit(solver) => solver.len() as f64,
+            ContactModel::Gw(surface, _) => surface.summit_density_per_m2 * surface.apparent_area_m2,
+            ContactModel::Bem(bem) => (bem.grid.nx * bem.grid.ny) as f64,
+            ContactModel::Discrete { contacts, .. } => *contacts as f64,
+        }
+    }
+
     /// The contact state at external load `load_n` (N). Below pull-off there is no equilibrium,
     /// which is an error (the meter treats it as "no contact").
     ///

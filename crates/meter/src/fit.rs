@@ -145,13 +145,90 @@ pub fn eq10_warnings(
     out
 }
 
-/// Eq. 10 from (L, F_f) points: the least-squares line, mu_e,a = its slope and
-/// F_a0 = intercept / slope (None without a line of positive slope).
-pub fn eq10(points: &[(f64, f64)]) -> (Option<LineFit>, Option<f64>, Option<f64>) {
-    let line = LineFit::least_squares(points);
-    match &line {
-        Some(l) if l.slope > 0.0 => (line, Some(l.slope), Some(l.intercept / l.slope)),
-        _ => (line, None, None),
+/// One-sided confidence at which the eq. 10 slope must be above zero to count as a slope: 95 %.
+pub const SLOPE_CONFIDENCE: f64 = 0.95;
+
+/// Eq. 10 of a set of (L, F_f) points: the line, mu_e,a, F_a0, and why they are null when they are.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Eq10Fit {
+    /// The least-squares line, when eq. 10 is determined.
+    pub line: Option<LineFit>,
+    /// mu_e,a, the slope (None when eq. 10 is not determined).
+    pub mu_apparent: Option<f64>,
+    /// F_a0 = intercept / slope, N (None when eq. 10 is not determined).
+    pub apparent_adhesion_force_n: Option<f64>,
+    /// Why there is no mu_e,a (None exactly when there is one).
+    pub note: Option<String>,
+}
+
+/// The number of distinct values among `v`, two values being equal when they differ by at most
+/// [`DISTINCT_X_RELATIVE_TOLERANCE`] of the largest |v|.
+fn distinct_values(v: impl Iterator<Item = f64>) -> usize {
+    distinct_abscissae(&v.map(|x| (x, 0.0)).collect::<Vec<_>>())
+}
+
+/// The one-sided Student t quantile at [`SLOPE_CONFIDENCE`] for `dof` degrees of freedom: the
+/// closed forms for 1 and 2 degrees of freedom, the Cornish-Fisher expansion about the normal
+/// quantile beyond (Abramowitz & Stegun 26.7.5; within 2e-3 of their table 26.10 from 3 on).
+pub fn t_one_sided_95(dof: usize) -> f64 {
+    match dof {
+        0 => f64::INFINITY,
+        // t_1 = tan(pi (p - 1/2)), t_2 = (2p - 1) sqrt(2 / (1 - (2p - 1)^2)) at p = 0.95.
+        1 => (std::f64::consts::PI * (SLOPE_CONFIDENCE - 0.5)).tan(),
+        2 => {
+            let a = 2.0 * SLOPE_CONFIDENCE - 1.0;
+            a * (2.0 / (1.0 - a * a)).sqrt()
+        }
+        _ => {
+            let z: f64 = 1.644_853_626_951_472_2; // the normal quantile at 0.95
+            let n = dof as f64;
+            let g1 = (z.powi(3) + z) / 4.0;
+            let g2 = (5.0 * z.powi(5) + 16.0 * z.powi(3) + 3.0 * z) / 96.0;
+            let g3 = (3.0 * z.powi(7) + 19.0 * z.powi(5) + 17.0 * z.powi(3) - 15.0 * z) / 384.0;
+            let g4 = (79.0 * z.powi(9) + 776.0 * z.powi(7) + 1482.0 * z.powi(5) - 1920.0 * z.powi(3) - 945.0 * z)
+                / 92160.0;
+            z + g1 / n + g2 / (n * n) + g3 / n.powi(3) + g4 / n.powi(4)
+        }
+    }
+}
+
+/// Eq. 10 from (L, F_f) points, determined only when the data determine it: at least
+/// [`MIN_DISTINCT_X`] distinct loads, at least two distinct frictions (a flat line, every point
+/// slipping at the same pull voltage, has no slope to fit: rounding left slopes of 4e-31 and
+/// F_a0 = 2.5e25 N), and a slope above zero at [`SLOPE_CONFIDENCE`] one-sided (slope > t se).
+/// Then mu_e,a is the slope and F_a0 = intercept / slope; otherwise all three are None and
+/// `note` says why.
+pub fn eq10(points: &[(f64, f64)]) -> Eq10Fit {
+    let none = |note: String| Eq10Fit { line: None, mu_apparent: None, apparent_adhesion_force_n: None, note: Some(note) };
+    let Some(line) = LineFit::least_squares(points) else {
+        return none(no_fit_reason(points).unwrap_or_default());
+    };
+    if distinct_values(points.iter().map(|p| p.1)) < 2 {
+        return none(format!(
+            "every one of the {} points has the same friction F_f = {:.6} uN (the same pull voltage at slip): the \
+             line is flat and eq. 10 has no slope to fit; the pull ramp does not resolve how friction changes \
+             with load",
+            points.len(),
+            points[0].1 * 1e6
+        ));
+    }
+    let t = t_one_sided_95(line.points.saturating_sub(2));
+    if !(line.slope > t * line.slope_se) {
+        return none(format!(
+            "the slope {:.4e} +/- {:.2e} (standard error) is not above zero at {:.0} % confidence (t = {:.3} for \
+             {} degrees of freedom): the data do not determine mu_e,a",
+            line.slope,
+            line.slope_se,
+            SLOPE_CONFIDENCE * 100.0,
+            t,
+            line.points.saturating_sub(2)
+        ));
+    }
+    Eq10Fit {
+        line: Some(line),
+        mu_apparent: Some(line.slope),
+        apparent_adhesion_force_n: Some(line.intercept / line.slope),
+        note: None,
     }
 }
 
@@ -192,5 +269,38 @@ mod tests {
         assert!((f.slope - 0.5).abs() < 1e-15);
         assert!((f.intercept - 1.0 / 6.0).abs() < 1e-15);
         assert!((f.slope_se - (1.0f64 / 12.0).sqrt()).abs() < 1e-15);
+    }
+
+    /// The t quantile against tables (t_0.95 for 1, 2, 3, 5, 10, 30 degrees of freedom: 6.314,
+    /// 2.920, 2.353, 2.015, 1.812, 1.697; Abramowitz & Stegun table 26.10) within 2e-3.
+    #[test]
+    fn t_quantiles_match_the_tables() {
+        for (dof, table) in [(1, 6.314), (2, 2.920), (3, 2.353), (5, 2.015), (10, 1.812), (30, 1.697)] {
+            assert!((t_one_sided_95(dof) - table).abs() < 2e-3, "{dof}: {}", t_one_sided_95(dof));
+        }
+    }
+
+    /// Eq. 10 is determined only when the data determine it: a flat line (every point at one pull
+    /// voltage, a rounding slope of 4e-31) and a slope within its noise are null with a reason; a
+    /// clean line gives mu_e,a and F_a0 and no note.
+    #[test]
+    fn undetermined_lines_are_null_with_a_reason() {
+        let flat: Vec<(f64, f64)> = (0..6).map(|i| (1e-6 * (1 + i) as f64, 2.5e-6)).collect();
+        let f = eq10(&flat);
+        assert!(f.mu_apparent.is_none() && f.line.is_none() && f.note.as_deref().unwrap().contains("flat"), "{f:?}");
+        // Rounding noise on a flat line: y differs in the last bits only.
+        let noisy: Vec<(f64, f64)> =
+            (0..6).map(|i| (1e-6 * (1 + i) as f64, 2.5e-6 * (1.0 + (i % 2) as f64 * 1e-16))).collect();
+        assert!(eq10(&noisy).note.unwrap().contains("flat"));
+        // A slope of 0.01 under noise of 1 uN on 4 points: not above zero at 95 %.
+        let weak = [(1e-6, 3e-6), (2e-6, 2e-6), (3e-6, 4e-6), (4e-6, 3.04e-6)];
+        let w = eq10(&weak);
+        assert!(w.mu_apparent.is_none() && w.note.as_deref().unwrap().contains("not above zero"), "{w:?}");
+        let down = [(1e-6, 4e-6), (2e-6, 3e-6), (3e-6, 2e-6)];
+        assert!(eq10(&down).note.unwrap().contains("not above zero"));
+        let line: Vec<(f64, f64)> = (0..6).map(|i| (1e-6 * i as f64, 0.7 * (2.3e-6 + 1e-6 * i as f64))).collect();
+        let g = eq10(&line);
+        assert!(g.note.is_none() && (g.mu_apparent.unwrap() - 0.7).abs() < 1e-12, "{g:?}");
+        assert!((g.apparent_adhesion_force_n.unwrap() - 2.3e-6).abs() < 1e-17);
     }
 }

@@ -19,6 +19,7 @@ use stiction_surface::SurfaceSpec;
 
 mod contact_model;
 pub mod fit;
+pub mod invariants;
 pub mod measured;
 pub mod slip;
 pub use contact_model::{BemContact, ContactModel, ContactState};
@@ -50,6 +51,10 @@ pub enum MeterError {
     /// A measured-data file is wrong.
     #[error("measured data: {0}")]
     Measured(String),
+    /// A result broke a physical invariant (a real area above the apparent one, more contacts
+    /// than summits): the inputs lie outside what the model describes; never printed as a number.
+    #[error("{0}")]
+    Invariant(String),
 }
 
 /// How the lab turns voltages into forces (section 5): `F_elec = a_clamp V_clamp^2`,
@@ -103,6 +108,10 @@ pub struct MeterPoint {
     pub slip_time_to_stop_s: Option<f64>,
     /// With slip dynamics: shuttle speed when it reaches the stop, m/s.
     pub slip_impact_velocity_m_per_s: Option<f64>,
+    /// Why the slip dynamics give no time to the stop and no impact speed at a slip: the shuttle
+    /// finds an equilibrium before its stop.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slip_note: Option<String>,
     /// Real contact area A_r, m^2.
     pub real_area_m2: f64,
     /// Summits in contact.
@@ -146,7 +155,8 @@ pub struct MeterResult {
     pub apparent_adhesion_force_n: Option<f64>,
     /// The straight-line fit behind the two numbers.
     pub fit: Option<fit::LineFit>,
-    /// Why there is no fit (fewer than three distinct loads with slip), when there is none.
+    /// Why there is no mu_e,a (fewer than three distinct loads with slip, a flat line, a slope not
+    /// above zero, slips at the first pull step), exactly when there is none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fit_note: Option<String>,
     /// F_spring used, N.
@@ -217,6 +227,8 @@ pub struct Meter {
     reduction: Option<Reduction>,
     slip_path: SlipPath,
     humidity: Option<Humidity>,
+    /// The apparent (shoe) area A_a, m^2: no real area exceeds it.
+    apparent_area_m2: f64,
 }
 
 impl Meter {
@@ -233,7 +245,10 @@ impl Meter {
         let contact_travel_m = protocol.contact_travel.unwrap_or(s.actuators["clamp"].operating_travel);
         let contact = build_contact_model(s, &material, base_dir)?;
         let humidity = Humidity::of(s)?;
+        let surface = s.require_surface().map_err(MeterError::Scenario)?;
+        let apparent_area_m2 = surface.apparent_length * surface.apparent_width;
         Ok(Meter {
+            apparent_area_m2,
             humidity,
             clamp,
             pull,
@@ -328,6 +343,7 @@ impl Meter {
                 pull_in_at_slip: None,
                 slip_time_to_stop_s: None,
                 slip_impact_velocity_m_per_s: None,
+                slip_note: None,
                 real_area_m2: 0.0,
                 contacts: 0.0,
                 adhesive_load_n: 0.0,
@@ -378,6 +394,7 @@ impl Meter {
                         continue;
                     }
                 };
+                invariants::check_state(&state, self.apparent_area_m2, self.contact.summit_count(), v_clamp)?;
                 let capacity = self.slip_threshold_n(&state);
                 point.friction_capacity_n = capacity;
                 point.real_area_m2 = state.real_area_m2;
@@ -434,6 +451,15 @@ impl Meter {
                     }
                 };
                 let v_pull = n * step;
+                if n <= 1.0 {
+                    // Slip at the first step: the friction lies anywhere below a_pull step^2, so the
+                    // point bounds it and does not measure it.
+                    point.reason = Some(format!(
+                        "slip at the first pull step ({step} V): the friction is at most {:.4} uN, not measured; \
+                         left out of the eq. 10 fit (refine meter.pull_voltage_step)",
+                        reduction.a_pull_n_per_v2 * step * step * 1e6
+                    ));
+                }
                 if n <= n_max {
                     point.v_pull = Some(v_pull);
                     point.v_pull_sq = Some(v_pull * v_pull);
@@ -456,6 +482,13 @@ impl Meter {
                             point.pull_in_at_slip = Some(t.runs_away);
                             point.slip_time_to_stop_s = t.time_to_stop_s;
                             point.slip_impact_velocity_m_per_s = t.impact_velocity_m_per_s;
+                            if t.time_to_stop_s.is_none() || t.impact_velocity_m_per_s.is_none() {
+                                point.slip_note = Some(
+                                    "after slip the pull shuttle settles before its stop: no time to the stop and \
+                                     no impact speed"
+                                        .into(),
+                                );
+                            }
                         }
                         None => {
                             // Quasi-static: with kinetic friction taken as zero, does the pull array
@@ -471,22 +504,46 @@ impl Meter {
             points.push(point);
             progress(k + 1, voltages.len());
         }
+        // A slip at the first pull step bounds the friction, it does not measure it: such points
+        // stay out of the fit.
+        let step = self.protocol.pull_voltage_step;
+        let first_step = |p: &MeterPoint| p.v_pull.is_some_and(|v| v <= step);
+        let used = |p: &&MeterPoint| p.load_n > 0.0 && p.friction_n.is_some() && !first_step(p);
         let pairs: Vec<(f64, f64)> =
-            points.iter().filter(|p| p.load_n > 0.0).filter_map(|p| p.friction_n.map(|f| (p.load_n, f))).collect();
-        let (line, mu, fa0) = fit::eq10(&pairs);
-        let fitted: Vec<f64> =
-            points.iter().filter(|p| p.load_n > 0.0 && p.friction_n.is_some()).map(|p| p.v_clamp).collect();
-        let warnings = match &line {
+            points.iter().filter(used).filter_map(|p| p.friction_n.map(|f| (p.load_n, f))).collect();
+        let fitted: Vec<f64> = points.iter().filter(used).map(|p| p.v_clamp).collect();
+        let mut eq10 = fit::eq10(&pairs);
+        let censored: Vec<&MeterPoint> = points.iter().filter(|p| first_step(p)).collect();
+        let mut warnings = match &eq10.line {
             Some(l) => fit::eq10_warnings(l, voltages, &fitted, &points),
             None => Vec::new(),
         };
+        if !censored.is_empty() {
+            // The step that resolves the smallest friction capacity in ten steps.
+            let smallest = censored.iter().map(|p| p.friction_capacity_n).fold(f64::INFINITY, f64::min);
+            let v_slip = (smallest / a_pull).sqrt();
+            let refine = format!(
+                "{} of {} clamp voltages slipped at the first pull step ({step} V), where the friction is only \
+                 bounded; refine meter.pull_voltage_step to at most {} V (a tenth of the {} V at which the \
+                 smallest friction capacity, {:.4} uN, slips)",
+                censored.len(),
+                points.len(),
+                stiction_scenario::domain::short(v_slip / 10.0),
+                stiction_scenario::domain::short(v_slip),
+                smallest * 1e6
+            );
+            match &mut eq10.note {
+                Some(note) => *note = format!("{note}; {refine}"),
+                None => warnings.push(stiction_scenario::Warning::new("coarse_pull_step", refine)),
+            }
+        }
         Ok(MeterResult {
             contact_model: self.contact.name(),
             points,
-            mu_apparent: mu,
-            apparent_adhesion_force_n: fa0,
-            fit_note: fit::no_fit_reason(&pairs),
-            fit: line,
+            mu_apparent: eq10.mu_apparent,
+            apparent_adhesion_force_n: eq10.apparent_adhesion_force_n,
+            fit_note: eq10.note,
+            fit: eq10.line,
             spring_force_n: spring_force_used,
             pull_array_pull_in_v: pull_in_v,
             reduction,

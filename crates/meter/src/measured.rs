@@ -397,15 +397,15 @@ impl Meter {
                 (load, reduction.a_pull_n_per_v2 * m.v_pull_v * m.v_pull_v)
             })
             .collect();
-        let (fit, mu, fa0) = crate::fit::eq10(&pairs);
+        let eq10 = crate::fit::eq10(&pairs);
         Ok(Comparison {
             points,
             rms_v_pull_sq_residual_v2: rms,
             rows_rejected,
-            measured_fit: fit,
-            mu_apparent_measured: mu,
-            apparent_adhesion_force_measured_n: fa0,
-            measured_fit_note: crate::fit::no_fit_reason(&pairs),
+            measured_fit: eq10.line,
+            mu_apparent_measured: eq10.mu_apparent,
+            apparent_adhesion_force_measured_n: eq10.apparent_adhesion_force_n,
+            measured_fit_note: eq10.note,
         })
     }
 }

@@ -1,0 +1,138 @@
+//! Physical invariants of every contact state before it is used, printed or written.
+//!
+//! A contact model run outside its validity (a summit radius of metres, a work of adhesion far
+//! beyond any solid's) can return numbers that no contact can have: a real area 95,070 times the
+//! apparent area, more summits in contact than the surface holds. Such a result is an error that
+//! names the inputs driving it ([`MeterError::Invariant`]), never a printed number. The bounds:
+//!
+//! * `0 <= A_r <= A_a` (the real area is part of the apparent one), with a relative slack of
+//!   [`RELATIVE_SLACK`] for rounding;
+//! * `0 <= contacts <= summits` (the summits the model holds);
+//! * every force and pressure finite, the contacts' elastic load `L + L_adh >= 0` (they can only
+//!   push), the adhesive load `>= 0`, and the capillary load within `[0, L_adh]` (the menisci
+//!   are part of the adhesion).
+
+use crate::MeterError;
+use crate::contact_model::ContactState;
+
+/// Relative slack of the bounds, for rounding: 1e-9.
+pub const RELATIVE_SLACK: f64 = 1e-9;
+
+/// The inputs that set the real area, the contact count and the adhesive load of a state: named
+/// in every invariant error.
+pub const AREA_INPUTS: &str = "surface.summit_radius, surface.summit_density, surface.summit_sd, \
+     material.compliance (or youngs_modulus), material.work_of_adhesion, environment.relative_humidity and the clamp \
+     load (actuators.clamp, meter.clamp_voltages)";
+
+fn broken(what: String, v_clamp: f64) -> MeterError {
+    MeterError::Invariant(format!(
+        "the contact model's result at V_clamp = {} V breaks a physical invariant: {what}; the inputs lie outside \
+         what the model describes (check {AREA_INPUTS})",
+        stiction_scenario::domain::short(v_clamp)
+    ))
+}
+
+/// Checks a contact state against the invariants of the module documentation; `apparent_area_m2`
+/// is A_a, `summits` the number of summits the model holds.
+pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_clamp: f64) -> Result<(), MeterError> {
+    let short = stiction_scenario::domain::short;
+    let values = [
+        ("real area", state.real_area_m2),
+        ("contacts", state.contacts),
+        ("adhesive load", state.adhesive_load_n),
+        ("capillary load", state.capillary_load_n),
+        ("largest pressure", state.max_pressure_pa),
+        ("tilt", state.tilt_x_rad),
+        ("tilt", state.tilt_y_rad),
+    ];
+    if let Some((name, v)) = values.iter().find(|(_, v)| !v.is_finite()) {
+        return Err(broken(format!("the {name} is {v}, not a finite number"), v_clamp));
+    }
+    if state.real_area_m2 < 0.0 || state.real_area_m2 > apparent_area_m2 * (1.0 + RELATIVE_SLACK) {
+        return Err(broken(
+            format!(
+                "a real contact area of {} m^2 is {} times the apparent area {} m^2 (it must lie within it)",
+                short(state.real_area_m2),
+                short(state.real_area_m2 / apparent_area_m2),
+                short(apparent_area_m2)
+            ),
+            v_clamp,
+        ));
+    }
+    if state.contacts < 0.0 || state.contacts > summits * (1.0 + RELATIVE_SLACK) {
+        return Err(broken(
+            format!("{} summits in contact of the {} the surface holds", short(state.contacts), short(summits)),
+            v_clamp,
+        ));
+    }
+    let scale = state.load_n.abs().max(state.adhesive_load_n.abs()) * RELATIVE_SLACK;
+    if state.adhesive_load_n < -scale || state.elastic_load_n() < -scale {
+        return Err(broken(
+            format!(
+                "the contacts carry {} N at a load of {} N with an adhesive load of {} N (contacts only push, \
+                 adhesion only pulls)",
+                short(state.elastic_load_n()),
+                short(state.load_n),
+                short(state.adhesive_load_n)
+            ),
+            v_clamp,
+        ));
+    }
+    if state.capillary_load_n < -scale || state.capillary_load_n > state.adhesive_load_n + scale {
+        return Err(broken(
+            format!(
+                "a capillary load of {} N outside [0, the adhesive load {} N]",
+                short(state.capillary_load_n),
+                short(state.adhesive_load_n)
+            ),
+            v_clamp,
+        ));
+    }
+    if state.max_pressure_pa < 0.0 {
+        return Err(broken(format!("a largest pressure of {} Pa", short(state.max_pressure_pa)), v_clamp));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn state() -> ContactState {
+        ContactState {
+            load_n: 3e-6,
+            real_area_m2: 1e-14,
+            contacts: 3.0,
+            adhesive_load_n: 2e-6,
+            capillary_load_n: 0.5e-6,
+            tilt_x_rad: 1e-4,
+            tilt_y_rad: 0.0,
+            max_pressure_pa: 5e9,
+        }
+    }
+
+    /// The paper's state passes; each broken bound is refused naming what broke it and the inputs.
+    #[test]
+    fn each_invariant_is_enforced() {
+        let a_a = 20e-6 * 5e-6;
+        assert!(check_state(&state(), a_a, 108.0, 20.0).is_ok());
+        let cases: [(&str, fn(&mut ContactState)); 6] = [
+            ("times the apparent area", |s| s.real_area_m2 = 9.5e-6),
+            ("summits in contact", |s| s.contacts = 109.0),
+            ("contacts only push", |s| s.adhesive_load_n = -1e-6),
+            ("capillary load", |s| s.capillary_load_n = 3e-6),
+            ("not a finite number", |s| s.max_pressure_pa = f64::NAN),
+            ("largest pressure", |s| s.max_pressure_pa = -1.0),
+        ];
+        for (needle, breaks) in cases {
+            let mut s = state();
+            breaks(&mut s);
+            let e = check_state(&s, a_a, 108.0, 20.0).unwrap_err().to_string();
+            assert!(e.contains(needle) && e.contains("surface.summit_radius") && e.contains("20 V"), "{needle}: {e}");
+        }
+        // Rounding at the bound is not a violation.
+        let mut s = state();
+        s.real_area_m2 = a_a * (1.0 + 1e-12);
+        assert!(check_state(&s, a_a, 108.0, 20.0).is_ok());
+    }
+}
