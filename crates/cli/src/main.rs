@@ -51,7 +51,15 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    // A flag's error quotes the value given; a value of a megabyte is cut, as every message is.
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            stiction_cli::errln!("{}", stiction_units::text::bounded_message(e.render().to_string().trim_end()));
+            return ExitCode::from(2);
+        }
+    };
     output::install_interrupt_handler();
     let result = match cli.command {
         Command::Gw(a) => cmd::gw::run(a),
@@ -76,7 +84,7 @@ fn main() -> ExitCode {
             ExitCode::from(130)
         }
         Err(e) => {
-            stiction_cli::errln!("error: {e}");
+            stiction_cli::errln!("error: {}", stiction_units::text::bounded_message(&e.to_string()));
             ExitCode::from(2)
         }
     }

@@ -72,6 +72,28 @@ pub fn quantity(
     move |s: &str| parse_quantity_checked(s, dim, constraint).map_err(|e| e.to_string())
 }
 
+/// A quantity flag in the physical domain of the scenario quantity `path`
+/// (`stiction_scenario::domain`: the one table for the file, `--set`, flags and Python): outside
+/// it the flag is refused with the domain and its reason; outside the usual range it runs with a
+/// warning on standard error naming `flag`.
+pub fn domain_quantity(
+    dim: Dimension,
+    path: &'static str,
+    flag: &'static str,
+) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
+    move |s: &str| {
+        let v = parse_quantity_checked(s, dim, Constraint::Finite).map_err(|e| e.to_string())?;
+        match stiction_scenario::domain::check_value(path, flag, v) {
+            Ok(Some(w)) => {
+                crate::errln!("warning [{}]: {}", w.code, w.message);
+                Ok(v)
+            }
+            Ok(None) => Ok(v),
+            Err(e) => Err(e.message),
+        }
+    }
+}
+
 /// Prints a value as pretty JSON on stdout ([`json_text`]: every number finite).
 pub fn print_json<T: serde::Serialize>(value: &T) -> CliResult {
     let text = json_text(value)?;

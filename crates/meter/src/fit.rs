@@ -185,8 +185,8 @@ pub fn t_one_sided_95(dof: usize) -> f64 {
             let g1 = (z.powi(3) + z) / 4.0;
             let g2 = (5.0 * z.powi(5) + 16.0 * z.powi(3) + 3.0 * z) / 96.0;
             let g3 = (3.0 * z.powi(7) + 19.0 * z.powi(5) + 17.0 * z.powi(3) - 15.0 * z) / 384.0;
-            let g4 = (79.0 * z.powi(9) + 776.0 * z.powi(7) + 1482.0 * z.powi(5) - 1920.0 * z.powi(3) - 945.0 * z)
-                / 92160.0;
+            let g4 =
+                (79.0 * z.powi(9) + 776.0 * z.powi(7) + 1482.0 * z.powi(5) - 1920.0 * z.powi(3) - 945.0 * z) / 92160.0;
             z + g1 / n + g2 / (n * n) + g3 / n.powi(3) + g4 / n.powi(4)
         }
     }
@@ -199,7 +199,8 @@ pub fn t_one_sided_95(dof: usize) -> f64 {
 /// Then mu_e,a is the slope and F_a0 = intercept / slope; otherwise all three are None and
 /// `note` says why.
 pub fn eq10(points: &[(f64, f64)]) -> Eq10Fit {
-    let none = |note: String| Eq10Fit { line: None, mu_apparent: None, apparent_adhesion_force_n: None, note: Some(note) };
+    let none =
+        |note: String| Eq10Fit { line: None, mu_apparent: None, apparent_adhesion_force_n: None, note: Some(note) };
     let Some(line) = LineFit::least_squares(points) else {
         return none(no_fit_reason(points).unwrap_or_default());
     };

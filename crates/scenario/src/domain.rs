@@ -509,6 +509,17 @@ pub static DOMAINS: &[Domain] = &[
         (0.0, 5.0),
         "a kinetic friction coefficient: measured MEMS values lie between 0.1 and 5",
     ),
+    // --- loads given directly (flags and Python arguments, not a scenario field) ---
+    Domain {
+        paths: &["load"],
+        unit: "N",
+        min: -1.0,
+        min_inclusive: true,
+        max: 1.0,
+        max_inclusive: true,
+        usual: (-1e-3, 1e-3),
+        reason: "a normal load on a MEMS contact: micronewtons to millinewtons; beyond a newton no MEMS actuator pushes",
+    },
     // --- reference ---
     d(
         &["reference.mu_apparent", "reference.mu_apparent_uncertainty"],
@@ -540,17 +551,22 @@ pub fn lookup(path: &str) -> Option<&'static Domain> {
     DOMAINS.iter().find(|d| d.paths.iter().any(|p| matches(p, path)))
 }
 
-/// A number short enough for a message: `1e-3`, `0.35`, `9.1e-12`.
+/// A number short enough for a message, at most four significant digits: `0.001`, `2.361`,
+/// `9.1e-12`, `2.362e6`, `5e-324`.
 pub fn short(v: f64) -> String {
     let plain = format!("{v}");
-    if plain.len() <= 8 && (v == 0.0 || v.abs() >= 1e-3) {
+    if v == 0.0 || !v.is_finite() || (plain.len() <= 8 && v.abs() >= 1e-3) {
         return plain;
+    }
+    if (1e-3..1e6).contains(&v.abs()) {
+        let decimals = (3 - v.abs().log10().floor() as i32).max(0) as usize;
+        let fixed = format!("{v:.decimals$}");
+        return if fixed.contains('.') { fixed.trim_end_matches('0').trim_end_matches('.').to_string() } else { fixed };
     }
     let exact = format!("{v:e}");
     if exact.len() <= 10 {
         return exact;
     }
-    // Four significant digits, trailing zeros dropped.
     let rounded = format!("{v:.3e}");
     match rounded.split_once('e') {
         Some((m, x)) => format!("{}e{x}", m.trim_end_matches('0').trim_end_matches('.')),
@@ -685,6 +701,9 @@ mod tests {
         assert_eq!(short(0.001), "0.001");
         assert_eq!(short(2362e3 + 0.123), "2.362e6");
         assert_eq!(short(5e-324), "5e-324");
+        assert_eq!(short(2.3609876), "2.361");
+        assert_eq!(short(23.609876), "23.61");
+        assert_eq!(short(0.0023609876), "0.002361");
     }
 
     /// The impossible inputs are refused naming the field, the value and the domain; the

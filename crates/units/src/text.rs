@@ -64,6 +64,23 @@ impl fmt::Display for LineTooLong {
 
 impl std::error::Error for LineTooLong {}
 
+/// Longest error message a front end prints, characters: a message is a sentence or three; one
+/// that quotes a whole argument or prints numbers in full decimal is cut here.
+pub const MAX_MESSAGE_CHARS: usize = 1000;
+
+/// `message` cut to at most [`MAX_MESSAGE_CHARS`] characters (control characters but newlines
+/// and tabs shown as `?`), with the length of what was left out: the edge's guarantee that no
+/// error floods a terminal or a log whatever a layer below quoted.
+pub fn bounded_message(message: &str) -> String {
+    let clean = |c: char| if c.is_control() && c != '\n' && c != '\t' { '?' } else { c };
+    let total = message.chars().count();
+    if total <= MAX_MESSAGE_CHARS {
+        return message.chars().map(clean).collect();
+    }
+    let kept: String = message.chars().take(MAX_MESSAGE_CHARS - 60).map(clean).collect();
+    format!("{kept}… (message cut: {total} characters)")
+}
+
 /// Checks that no line of `text` (split at `\n`, a `\r` before it counted) is longer than
 /// `limit_bytes`; one pass, no allocation.
 pub fn check_lines(text: &str, limit_bytes: usize) -> Result<(), LineTooLong> {
@@ -141,5 +158,14 @@ mod tests {
         let b = e.brief();
         assert!(b.len() < 300, "{b}");
         assert!(b.contains("expected a length"), "{b}");
+    }
+
+    #[test]
+    fn messages_are_bounded() {
+        assert_eq!(bounded_message("at `x`: 1 m"), "at `x`: 1 m");
+        let long = format!("value {}", "9".repeat(1_500_000));
+        let b = bounded_message(&long);
+        assert!(b.chars().count() <= MAX_MESSAGE_CHARS && b.ends_with("(message cut: 1500006 characters)"), "{b}");
+        assert_eq!(bounded_message("a\u{1b}[31mb"), "a?[31mb");
     }
 }

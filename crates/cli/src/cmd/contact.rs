@@ -10,7 +10,7 @@ use stiction_scenario::{ContactModel as ModelKind, MaterialSpec};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use crate::api::ScenarioSource;
-use crate::output::{CliResult, TextTable, print_json, print_table, q, quantity};
+use crate::output::{CliResult, TextTable, domain_quantity, print_json, print_table, q};
 
 /// Shoe degrees of freedom.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -42,7 +42,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "explicit")]
     pub model: Model,
     /// Normal load, compressive positive ("3 uN"; negative = adhesive pull, down to pull-off).
-    #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Force, Constraint::Finite), required_unless_present = "sweep")]
+    #[arg(long, allow_hyphen_values = true, value_parser = domain_quantity(Dimension::Force, "load", "--load"), required_unless_present = "sweep")]
     pub load: Option<f64>,
     /// Shoe degrees of freedom (default: the scenario's, else tilt).
     #[arg(long, value_enum)]
@@ -82,7 +82,11 @@ pub fn parse_sweep(text: &str, max_steps: usize) -> Result<Vec<f64>, String> {
         return Err(format!("--sweep {text:?}: expected FROM:TO:STEPS, like \"0uN:10uN:21\""));
     }
     let f = |s: &str, what: &str| {
-        parse_quantity_checked(s, Dimension::Force, Constraint::Finite).map_err(|e| format!("--sweep {what}: {e}"))
+        let v = parse_quantity_checked(s, Dimension::Force, Constraint::Finite)
+            .map_err(|e| format!("--sweep {what}: {e}"))?;
+        stiction_scenario::domain::check_value("load", "load", v)
+            .map_err(|e| format!("--sweep {what}: {}", e.message))?;
+        Ok::<f64, String>(v)
     };
     let (from, to) = (f(parts[0], "FROM")?, f(parts[1], "TO")?);
     let steps: usize = parts[2]
@@ -260,10 +264,14 @@ fn event_line(ev: &SweepEvent) -> String {
         SweepEvent::Release { point, load_n, contacts_before, contacts_after } => {
             format!("release at L = {} (point {point}): contacts {contacts_before} -> {contacts_after}", un(*load_n))
         }
-        SweepEvent::PullOff { load_n, last_stable_load_n } => format!(
-            "pull_off: no equilibrium at L = {} (the shoe comes off); the last stable load was {}; the sweep stops",
+        SweepEvent::PullOff { load_n, last_stable_load_n, note } => format!(
+            "pull_off: no equilibrium at L = {} (the shoe comes off); {}; the sweep stops",
             un(*load_n),
-            un(*last_stable_load_n)
+            match (last_stable_load_n, note) {
+                (Some(l), _) => format!("the last stable load was {}", un(*l)),
+                (None, Some(n)) => n.clone(),
+                (None, None) => "no load had an equilibrium".into(),
+            }
         ),
     }
 }

@@ -7,7 +7,7 @@ use stiction_plot::{Chart, Series};
 use stiction_scenario::MaterialSpec;
 use stiction_units::{Constraint, Dimension};
 
-use crate::output::{CliResult, print_json, print_table, q, quantity};
+use crate::output::{CliResult, domain_quantity, print_json, print_table, q, quantity};
 
 /// Single-asperity law for each contact.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -33,32 +33,36 @@ impl From<Law> for AdhesionLaw {
     }
 }
 
+/// The most contacts the discrete model takes: the paper's 1, 2 or 3 (a rigid shoe's degrees of
+/// freedom put it on at most three summits; section 3.4), as the scenario's `contact.contacts`.
+pub const MAX_CONTACTS: u32 = 3;
+
 /// Friction of N equally loaded summits: F_f = s N pi a^2 with a from the single-asperity law at L/N (eq. 12).
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Number of contacts N (the paper: 1, 2 or 3 by the shoe's degrees of freedom; 3 in section 5).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_CONTACTS as i64))]
     pub contacts: u32,
     /// Summit radius R ("0.5 um").
-    #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    #[arg(long, value_parser = domain_quantity(Dimension::Length, "surface.summit_radius", "--radius"))]
     pub radius: f64,
     /// Work of adhesion dgamma ("0.1 J/m^2").
-    #[arg(long, value_parser = quantity(Dimension::SurfaceEnergy, Constraint::NonNegative))]
+    #[arg(long, value_parser = domain_quantity(Dimension::SurfaceEnergy, "material.work_of_adhesion", "--work-of-adhesion"))]
     pub work_of_adhesion: f64,
     /// Composite compliance D = 3/4 ((1-nu1^2)/E1 + (1-nu2^2)/E2) ("9.1e-12 1/Pa").
-    #[arg(long, value_parser = quantity(Dimension::Compliance, Constraint::Positive))]
+    #[arg(long, value_parser = domain_quantity(Dimension::Compliance, "material.compliance", "--compliance"))]
     pub compliance: f64,
     /// Interfacial shear strength s ("1.4 GPa").
     #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::NonNegative))]
     pub shear_strength: f64,
     /// Applied load L ("3 uN"; negative down to the pull-off load).
-    #[arg(long, allow_hyphen_values = true, value_parser = quantity(Dimension::Force, Constraint::Finite))]
+    #[arg(long, allow_hyphen_values = true, value_parser = domain_quantity(Dimension::Force, "load", "--load"))]
     pub load: f64,
     /// Single-asperity law.
     #[arg(long, value_enum, default_value = "dmt")]
     pub adhesion: Law,
     /// Equilibrium spacing z0 of the surface forces, for the Tabor and Maugis parameters ("0.3 nm").
-    #[arg(long, default_value = "0.3 nm", value_parser = quantity(Dimension::Length, Constraint::Positive))]
+    #[arg(long, default_value = "0.3 nm", value_parser = domain_quantity(Dimension::Length, "material.equilibrium_spacing", "--equilibrium-spacing"))]
     pub equilibrium_spacing: f64,
     /// Also give the shear strength for which the slope at --load equals this value (the paper: 0.7).
     #[arg(long)]
@@ -80,6 +84,9 @@ struct Output {
     friction_slope_null_reason: Option<&'static str>,
     zero_load_friction_n: f64,
     apparent_adhesion_force_n: Option<f64>,
+    /// Why F_a0 is null (the slope at the load is not positive or not defined).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    apparent_adhesion_force_note: Option<&'static str>,
     pull_off_load_n: f64,
     real_area_m2: f64,
     contact_radius_m: f64,
@@ -117,6 +124,11 @@ fn compose(args: &Args) -> Result<Output, Box<dyn std::error::Error>> {
         zero_load_friction_n: zero.friction_n,
         // Eq. 10 as the paper evaluates it in section 5: F_a0 = F_f(0) / (dF_f/dL at the load).
         apparent_adhesion_force_n: at.friction_slope.filter(|s| *s > 0.0).map(|s| zero.friction_n / s),
+        apparent_adhesion_force_note: at
+            .friction_slope
+            .filter(|s| *s > 0.0)
+            .is_none()
+            .then_some("F_a0 = F_f(0) / (dF_f/dL) needs a positive friction slope at the load, and it has none there"),
         pull_off_load_n: model.pull_off_load_n()?,
         real_area_m2: at.real_area_m2,
         contact_radius_m: at.contact_radius_m,

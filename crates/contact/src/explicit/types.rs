@@ -192,8 +192,11 @@ pub enum SweepEvent {
     PullOff {
         /// The load without equilibrium \[N\].
         load_n: f64,
-        /// The last load with an equilibrium \[N\].
-        last_stable_load_n: f64,
+        /// The last load with an equilibrium \[N\] (None: the first load of the sweep had none).
+        last_stable_load_n: Option<f64>,
+        /// Why there is no last stable load, when there is none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        note: Option<String>,
     },
 }
 
