@@ -193,6 +193,9 @@ pub struct Humidity {
     /// condenses and the contact is dry.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_kelvin_radius_m: Option<f64>,
+    /// Why the Kelvin radius or the meniscus height is null.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meniscus_note: Option<&'static str>,
 }
 
 impl Humidity {
@@ -211,6 +214,9 @@ impl Humidity {
             kelvin_radius_m: air.map(|c| c.kelvin_radius_m),
             meniscus_height_m: cap.map(|c| c.meniscus_height_m()),
             min_kelvin_radius_m: env.min_kelvin_radius,
+            meniscus_note: cap.is_none().then_some(
+                "no meniscus: dry (RH 0), faces that do not condense water (cos theta_1 + cos theta_2 <= 0), or a Kelvin radius below the smallest one (min_kelvin_radius)",
+            ),
         }))
     }
 }

@@ -334,6 +334,9 @@ pub struct ComparedPoint {
     pub load_measured_n: f64,
     /// V_pull,model^2 - V_pull,measured^2, V^2.
     pub v_pull_sq_residual_v2: Option<f64>,
+    /// Why the model gives no pull voltage here (its point's reason: no contact, no slip, ...).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_note: Option<String>,
 }
 
 /// The measured data beside the model.
@@ -377,6 +380,7 @@ impl Meter {
         let mut points = Vec::with_capacity(measured.len());
         for (m, p) in measured.iter().zip(&model.points) {
             let v_pull_model = p.v_pull;
+            let model_reason = p.reason.clone();
             points.push(ComparedPoint {
                 line: m.line,
                 v_clamp: m.v_clamp_v,
@@ -385,6 +389,9 @@ impl Meter {
                 friction_measured_n: reduction.a_pull_n_per_v2 * m.v_pull_v * m.v_pull_v,
                 load_measured_n: reduction.a_clamp_n_per_v2 * m.v_clamp_v * m.v_clamp_v - reduction.spring_force_n,
                 v_pull_sq_residual_v2: v_pull_model.map(|v| v * v - m.v_pull_v * m.v_pull_v),
+                model_note: v_pull_model.is_none().then(|| {
+                    model_reason.clone().unwrap_or_else(|| "the model has no slip at this clamp voltage".into())
+                }),
             });
         }
         let res: Vec<f64> = points.iter().filter_map(|p| p.v_pull_sq_residual_v2).collect();

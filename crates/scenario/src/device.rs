@@ -17,7 +17,7 @@ use serde::Serialize;
 use serde_json::Value;
 use stiction_units::{Constraint, Dimension, format_quantity, nominal_from_json};
 
-use crate::Scenario;
+use crate::{MaterialSpec, Scenario};
 
 /// A note about a scenario or a result that the user must see: a stable `code` and a sentence.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -52,6 +52,9 @@ pub struct Quantity {
     pub unit: String,
     /// Standard uncertainty as given (`sd` of an uncertain parameter), SI; None: none given.
     pub uncertainty: Option<f64>,
+    /// Why `uncertainty` is null: the scenario gives no `sd` for this quantity.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub uncertainty_note: Option<&'static str>,
     /// `given`, `calibrated`, `derived` or `default`, with the fields it comes from.
     pub origin: String,
     /// A disagreement or a re-derivation the user must know about.
@@ -230,7 +233,8 @@ impl Scenario {
                     uncertainty: Option<f64>,
                     origin: String,
                     flag: Option<String>| {
-            q.push(Quantity { key, name, value, unit: unit.into(), uncertainty, origin, flag, dim });
+            let uncertainty_note = uncertainty.is_none().then_some("no `sd` given: the quantity is taken as exact");
+            q.push(Quantity { key, name, value, unit: unit.into(), uncertainty, uncertainty_note, origin, flag, dim });
         };
         for name in ["clamp", "pull"] {
             let Some(spec) = self.actuators.get(name) else { continue };
@@ -462,6 +466,95 @@ impl Scenario {
                     "1/m^2",
                     self.given_sd(&["surface", "summit_density"], Dimension::ArealDensity),
                     "given: surface.summit_density".into(),
+                    None,
+                );
+            }
+        }
+        if let Some(env) = &self.environment {
+            let given = |f: &str| self.source_json.pointer(&format!("/environment/{f}")).is_some();
+            let origin = |f: &str, default: &str| {
+                if given(f) { format!("given: environment.{f}") } else { format!("default: {default}") }
+            };
+            push(
+                &mut q,
+                "relative_humidity".into(),
+                "relative humidity RH (environment.relative_humidity)".into(),
+                env.relative_humidity,
+                None,
+                "",
+                self.given_sd(&["environment", "relative_humidity"], Dimension::Dimensionless),
+                "given: environment.relative_humidity".into(),
+                None,
+            );
+            push(
+                &mut q,
+                "temperature".into(),
+                "temperature T (environment.temperature)".into(),
+                env.temperature,
+                None,
+                "K",
+                None,
+                origin("temperature", "25 C"),
+                None,
+            );
+            let (a1, a2) = self.material.as_ref().map_or((0.0, 0.0), MaterialSpec::contact_angles_rad);
+            for (key, name, field, v) in [
+                ("contact_angle", "water contact angle of the sidewall", "contact_angle", a1),
+                ("counter_face_contact_angle", "water contact angle of the shoe", "counter_face_contact_angle", a2),
+            ] {
+                let given = self.source_json.pointer(&format!("/material/{field}")).is_some();
+                push(
+                    &mut q,
+                    key.into(),
+                    format!("{name} (material.{field})"),
+                    v,
+                    Some(Dimension::Angle),
+                    "rad",
+                    self.given_sd(&["material", field], Dimension::Angle),
+                    if given {
+                        format!("given: material.{field}")
+                    } else if field == "contact_angle" {
+                        "default: 0 deg (a clean, fully wetting oxide)".into()
+                    } else {
+                        "default: material.contact_angle".into()
+                    },
+                    None,
+                );
+            }
+            if let Some(m) = env.min_kelvin_radius {
+                push(
+                    &mut q,
+                    "min_kelvin_radius".into(),
+                    "smallest Kelvin radius (environment.min_kelvin_radius)".into(),
+                    m,
+                    Some(Dimension::Length),
+                    "m",
+                    None,
+                    "given: environment.min_kelvin_radius".into(),
+                    None,
+                );
+            }
+            if let Ok(Some(cap)) = self.capillarity_before_cut_off() {
+                push(
+                    &mut q,
+                    "kelvin_radius".into(),
+                    "Kelvin radius r_K".into(),
+                    cap.kelvin_radius_m,
+                    Some(Dimension::Length),
+                    "m",
+                    None,
+                    "derived: r_K = gamma V_m / (R T ln(1/RH)), water at T (IAPWS)".into(),
+                    None,
+                );
+                push(
+                    &mut q,
+                    "meniscus_height".into(),
+                    "meniscus height h_m".into(),
+                    cap.meniscus_height_m(),
+                    Some(Dimension::Length),
+                    "m",
+                    None,
+                    "derived: h_m = r_K (cos theta_1 + cos theta_2)".into(),
                     None,
                 );
             }

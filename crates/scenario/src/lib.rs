@@ -28,7 +28,7 @@ mod overrides;
 mod spec;
 pub use device::{Explanation, Quantity, SPRING_FORCE_RELATIVE_TOLERANCE, Warning};
 pub mod strict_json;
-pub use overrides::{apply_set, parse_set};
+pub use overrides::{absolutize_file_paths, apply_set, parse_set};
 pub use spec::*;
 
 /// Largest scenario file read, bytes (16 MiB: the bundled ones are a few kB).

@@ -94,6 +94,20 @@ pub fn apply_set(root: &mut Value, set: &str) -> Result<(), ScenarioError> {
     Ok(())
 }
 
+/// Makes every relative file path of a whole scenario tree (the fields with [`PATH_KEYWORD`])
+/// absolute against `base` (the scenario file's folder): a scenario printed by `stiction scenario`
+/// then runs from any folder.
+pub fn absolutize_file_paths(root: &mut Value, base: &std::path::Path) {
+    let schema = Scenario::schema();
+    let defs = schema.get("$defs").cloned().unwrap_or(Value::Null);
+    let base = if base.is_relative() {
+        std::env::current_dir().map(|d| d.join(base)).unwrap_or_else(|_| base.to_path_buf())
+    } else {
+        base.to_path_buf()
+    };
+    absolutize_paths(root, std::slice::from_ref(schema), &defs, &base);
+}
+
 fn kind(v: &Value) -> &'static str {
     match v {
         Value::Null => "null",

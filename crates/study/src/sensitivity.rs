@@ -329,6 +329,9 @@ pub struct InputShare {
     pub mu_spearman: Option<f64>,
     /// Spearman's rho with F_a0.
     pub fa0_spearman: Option<f64>,
+    /// Why an index or interval of this row is null.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 /// The sensitivity table of a study.
@@ -391,7 +394,29 @@ pub fn table(names: &[String], x: &[Vec<f64>], mu: &[f64], fa0: &[f64], vary_sur
             fa0_total_order_ci: tf.map(|t| t.1),
             mu_spearman: spearman(&xk, mu),
             fa0_spearman: spearman(&xk, fa0),
+            note: None,
         });
+        let row = inputs.last_mut().expect("just pushed");
+        let nulls = [
+            row.mu_first_order,
+            row.fa0_first_order,
+            row.mu_total_order,
+            row.fa0_total_order,
+            row.mu_spearman,
+            row.fa0_spearman,
+        ]
+        .iter()
+        .any(Option::is_none)
+            || [row.mu_first_order_ci, row.fa0_first_order_ci, row.mu_total_order_ci, row.fa0_total_order_ci]
+                .iter()
+                .any(Option::is_none);
+        if nulls {
+            row.note = Some(format!(
+                "null where the {} samples with a fit cannot estimate it: fewer than 20 samples, no spread of the \
+                 input or the output, or an undrawn parameter",
+                mu.len()
+            ));
+        }
     }
     let enough = mu.len() >= 20;
     inputs.push(InputShare {
@@ -410,6 +435,11 @@ pub fn table(names: &[String], x: &[Vec<f64>], mu: &[f64], fa0: &[f64], vary_sur
         fa0_total_order_ci: None,
         mu_spearman: None,
         fa0_spearman: None,
+        note: Some(
+            "the remainder row has first-order shares only (1 - the sum of the inputs' indices), from 20 samples \
+             with a fit on; no intervals, total orders or rank correlations"
+                .into(),
+        ),
     });
     Sensitivity {
         method: "first-order Sobol index S_i = Var(E[Y|X_i]) / Var(Y), binned given-data estimator (sqrt(n) bins, \

@@ -59,6 +59,9 @@ pub struct Spread {
     pub min: f64,
     /// Largest value.
     pub max: f64,
+    /// Why a percentile's interval is null: too few samples to bound it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub percentile_ci_note: Option<&'static str>,
 }
 
 impl Spread {
@@ -95,6 +98,10 @@ impl Spread {
             p95_ci: quantile_interval(v, 0.95),
             min: v[0],
             max: v[n - 1],
+            percentile_ci_note: [0.05, 0.5, 0.95].iter().any(|p| quantile_interval(v, *p).is_none()).then_some(
+                "too few samples for a distribution-free 95 % interval of this percentile (Conover's binomial \
+                 bound needs ranks inside the sample)",
+            ),
         }
     }
 }
@@ -221,6 +228,9 @@ pub struct LabIntervals {
     pub fa0_ci95_width_n: Option<Spread>,
     /// Width of F_a0's interval with the calibration uncertainty, N.
     pub fa0_ci95_width_with_calibration_n: Option<Spread>,
+    /// Why a width is null: no experiment gave that interval.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<&'static str>,
 }
 
 /// What the figures need besides the summary.
@@ -322,6 +332,10 @@ pub fn summarize(path: &Path, mut csv: Option<&mut Vec<u8>>) -> Result<(StudySum
             mu_ci95_width_with_calibration: Spread::of(&widths[1]),
             fa0_ci95_width_n: Spread::of(&widths[2]),
             fa0_ci95_width_with_calibration_n: Spread::of(&widths[3]),
+            note: widths
+                .iter()
+                .any(|w| w.is_empty())
+                .then_some("no experiment gave this interval (no fit, an unbounded interval, or no calibration draws)"),
         },
         interface_mu: Spread::of(&iface),
         mu_bias: Spread::of(&bias),

@@ -776,6 +776,9 @@ mod humidity {
         pull_off_pressure_pa: f64,
         /// Mean-gap steps of the retraction.
         steps: usize,
+        /// Why the Kelvin radius or the meniscus height is null.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        meniscus_note: Option<&'static str>,
     }
 
     #[derive(Serialize)]
@@ -855,6 +858,9 @@ mod humidity {
                 adhesion_energy_mj_per_m2: energy * 1e3,
                 pull_off_pressure_pa: pull_off,
                 steps,
+                meniscus_note: cap.is_none().then_some(
+                    "no meniscus: dry (RH 0), faces that do not condense water (cos theta_1 + cos theta_2 <= 0), or a Kelvin radius below the smallest one (min_kelvin_radius)",
+                ),
             });
         }
         let out = Output {

@@ -52,6 +52,9 @@ struct Output {
     elastic_pressure_star: f64,
     pull_off_l_star: Option<f64>,
     pull_off_h: Option<f64>,
+    /// Why theta and the pull-off are null: plain GW, no adhesion (theta infinite).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    theta_note: Option<&'static str>,
 }
 
 /// Runs the subcommand.
@@ -74,6 +77,7 @@ pub fn run(args: Args) -> CliResult {
         elastic_pressure_star: st.elastic_pressure_star,
         pull_off_l_star: model.pull_off().map(|p| p.l_star),
         pull_off_h: model.pull_off().map(|p| p.h),
+        theta_note: st.theta.is_none().then_some("theta is infinite: plain GW without adhesion, so no pull-off"),
     };
     if args.json {
         return print_json(&out);

@@ -52,7 +52,9 @@ fn dry_first(mut values: Vec<f64>, label: &str) -> Result<Vec<f64>, String> {
 /// adhesive load). 0 when dry.
 pub fn capillary_share(r: &MeterResult) -> Option<f64> {
     let (adh, cap) = summed_loads(r);
-    (adh > 0.0).then(|| cap / adh)
+    // Each contact state holds 0 <= capillary <= adhesive (meter::invariants), so the share lies in
+    // [0, 1]; the clamp removes the rounding of the sums (a share of 1.0000000000000002).
+    (adh > 0.0).then(|| (cap / adh).clamp(0.0, 1.0))
 }
 
 /// Adhesive and capillary load, N, summed over the clamp voltages in contact without an error.
@@ -88,6 +90,9 @@ pub struct HumidityPoint {
     pub meniscus_height_m: Option<f64>,
     /// Why mu_e,a and F_a0 are null (no usable eq. 10 line, or the meter failed at this humidity).
     pub reason: Option<String>,
+    /// Why the Kelvin radius, the meniscus height or the capillary share is null.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meniscus_note: Option<&'static str>,
 }
 
 /// The measured reference of the scenario, placed at the humidity of its experiment.
@@ -202,6 +207,7 @@ pub fn sweep(
                 kelvin_radius_m: None,
                 meniscus_height_m: None,
                 reason: Some(format!("the meter failed: {e}")),
+                meniscus_note: None,
             },
         };
         points.push(point);
@@ -247,6 +253,9 @@ fn point_of(rh: f64, r: &MeterResult) -> HumidityPoint {
         kelvin_radius_m: r.environment.as_ref().and_then(|h| h.kelvin_radius_m),
         meniscus_height_m: r.environment.as_ref().and_then(|h| h.meniscus_height_m),
         reason,
+        meniscus_note: (r.environment.as_ref().and_then(|h| h.meniscus_height_m).is_none()
+            || capillary_share(r).is_none())
+        .then_some("no meniscus: dry (RH 0), faces that do not condense water (cos theta_1 + cos theta_2 <= 0), or a Kelvin radius below the smallest one (min_kelvin_radius), or no adhesive load to share"),
     }
 }
 

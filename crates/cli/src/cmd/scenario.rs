@@ -51,12 +51,16 @@ pub fn run(args: Args) -> CliResult {
         return print_json(&Scenario::json_schema());
     }
     let path = args.scenario.ok_or("a scenario file is needed")?;
-    let scenario = check(&ScenarioSource::file(&path, &args.sets)?)?;
+    let source = ScenarioSource::file(&path, &args.sets)?;
+    let scenario = check(&source)?;
     if !args.explain {
         for n in &scenario.notes {
             crate::errln!("note [{}]: {}", n.code, n.message);
         }
-        return print_json(&scenario.to_input_json());
+        // File paths absolute, so that the printed scenario runs from wherever it is saved.
+        let mut printed = scenario.to_input_json();
+        stiction_scenario::absolutize_file_paths(&mut printed, &source.base);
+        return print_json(&printed);
     }
     let e = scenario.explain();
     if args.json {
