@@ -204,7 +204,15 @@ impl Vary {
     /// `--set` parse with every quantity in SI ("7 uN" and "0.007 mN"; 30 and 30.0; objects key
     /// by key), equal to 1e-12 relative. Sorted, then neighbours compared: O(n log n).
     pub fn check_values(&self) -> Result<(), StudyError> {
-        let canon: Vec<Canon> = self.values.iter().map(|v| Canon::of_set_text(v)).collect();
+        let mut canon: Vec<Canon> = self.values.iter().map(|v| Canon::of_set_text(v)).collect();
+        // A bare number is SI in the field's unit: with one unit among the values, it takes it.
+        let mut dims: Vec<[i8; 4]> = Vec::new();
+        canon.iter().for_each(|c| c.dims(&mut dims));
+        dims.sort_unstable();
+        dims.dedup();
+        if let [dim] = dims[..] {
+            canon.iter_mut().for_each(|c| c.assume_dim(dim));
+        }
         let mut order: Vec<usize> = (0..canon.len()).collect();
         order.sort_by(|&a, &b| canon[a].cmp(&canon[b]).then(a.cmp(&b)));
         for w in order.windows(2) {
@@ -258,8 +266,30 @@ impl Canon {
                 _ => Canon::Text(s.clone()),
             },
             V::Array(a) => Canon::List(a.iter().map(Canon::of).collect()),
+            // An uncertain parameter without an sd or bounds is its value (drawn as itself).
+            V::Object(m) if fixed_value(m).is_some() => Canon::of(fixed_value(m).unwrap_or(&V::Null)),
             // serde_json's map is sorted by key.
             V::Object(m) => Canon::Map(m.iter().map(|(k, v)| (k.clone(), Canon::of(v))).collect()),
+        }
+    }
+
+    /// The units (other than none) of the numbers in it.
+    fn dims(&self, out: &mut Vec<[i8; 4]>) {
+        match self {
+            Canon::Num(_, d) if *d != [0; 4] => out.push(*d),
+            Canon::List(a) => a.iter().for_each(|c| c.dims(out)),
+            Canon::Map(m) => m.iter().for_each(|(_, c)| c.dims(out)),
+            _ => {}
+        }
+    }
+
+    /// Gives its bare numbers the unit `dim`.
+    fn assume_dim(&mut self, dim: [i8; 4]) {
+        match self {
+            Canon::Num(_, d) if *d == [0; 4] => *d = dim,
+            Canon::List(a) => a.iter_mut().for_each(|c| c.assume_dim(dim)),
+            Canon::Map(m) => m.iter_mut().for_each(|(_, c)| c.assume_dim(dim)),
+            _ => {}
         }
     }
 
@@ -362,6 +392,7 @@ pub fn ignored_field(path: &str, vary_surface: bool) -> Option<&'static str> {
         ["description", ..] => Some("only printed: no result of a study depends on it"),
         ["format_version", ..] => Some("the file format's version, not a property of the device"),
         ["design", ..] => Some("the design study itself, not the device; a design cannot vary it"),
+        ["actuators", _, "description", ..] => Some("only printed: no result of a study depends on it"),
         ["reference", ..] => Some(
             "a measured value drawn beside the results; no sample of a study reads it, so every design would run the same",
         ),
@@ -580,10 +611,14 @@ pub fn label(varies: &[Vary], point: &[String]) -> String {
     varies.iter().zip(point).map(|(v, x)| format!("{}={x}", v.path)).collect::<Vec<_>>().join(", ")
 }
 
-/// Refuses two designs whose studies would be the same: their scenarios ([`design_scenarios`])
-/// are equal once the fields a study ignores are dropped ([`ignored_field`]) and every quantity is
-/// read in SI (to 12 significant digits). A safety net under [`check_fields`] and
-/// [`Vary::check_values`]; hashed, linear in the number of designs.
+/// Refuses two designs whose studies would be the same: their scenarios ([`design_scenarios`]),
+/// read as the study reads them, are equal: the typed scenario (every quantity in SI, every
+/// default filled in) and every uncertain parameter (its value, sd, distribution and bounds in
+/// SI, to 12 significant digits), without the fields a study ignores ([`ignored_field`]). A
+/// scenario that does not parse is compared as its JSON with units read (its design is refused
+/// when it is prepared). A safety net under [`check_fields`] and [`Vary::check_values`] (it
+/// catches, say, a value equal to the field's default beside `null`); hashed, linear in the
+/// number of designs.
 pub fn check_distinct(
     base: &serde_json::Value,
     varies: &[Vary],
@@ -592,26 +627,88 @@ pub fn check_distinct(
 ) -> Result<(), StudyError> {
     let scenarios = design_scenarios(base, varies, points)?;
     let mut seen: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
-    for (d, mut s) in scenarios.into_iter().enumerate() {
-        if let Some(m) = s.as_object_mut() {
-            m.retain(|k, _| ignored_field(k, vary_surface).is_none());
-            if vary_surface && let Some(surface) = m.get_mut("surface").and_then(serde_json::Value::as_object_mut) {
-                surface.remove("seed");
-            }
-        }
-        let mut key = String::new();
-        Canon::of(&s).key(&mut key);
+    for (d, s) in scenarios.into_iter().enumerate() {
+        let key = study_key(s, vary_surface);
         if let Some(&e) = seen.get(&key) {
             return Err(StudyError::Setting(format!(
-                "designs {e} ({}) and {d} ({}) run the same scenario once units are read and the fields a study \
-                 ignores are left out; vary values that differ",
-                stiction_scenario::truncate(&label(varies, &points[e]), 80),
-                stiction_scenario::truncate(&label(varies, &points[d]), 80)
+                "designs {e} ({}) and {d} ({}) run the same study (equal once units, defaults and the fields a \
+                 study ignores are read); vary values that differ",
+                stiction_scenario::truncate(&label(varies, &points[e]), 70),
+                stiction_scenario::truncate(&label(varies, &points[d]), 70)
             )));
         }
         seen.insert(key, d);
     }
     Ok(())
+}
+
+/// Whether a JSON object is an uncertain parameter (`value` and only the uncertain keys).
+fn is_uncertain(m: &serde_json::Map<String, serde_json::Value>) -> bool {
+    m.contains_key("value") && m.keys().all(|k| ["value", "sd", "distribution", "min", "max"].contains(&k.as_str()))
+}
+
+/// The value of an uncertain parameter that has no spread (`{"value": X}`, with at most a
+/// `distribution`: drawn as X itself).
+fn fixed_value(m: &serde_json::Map<String, serde_json::Value>) -> Option<&serde_json::Value> {
+    (is_uncertain(m) && !m.contains_key("sd") && !m.contains_key("min") && !m.contains_key("max"))
+        .then(|| m.get("value"))
+        .flatten()
+}
+
+/// Appends every uncertain parameter of `v` (path and its object with units read) to `key`.
+fn uncertain_key(v: &serde_json::Value, path: &str, key: &mut String) {
+    use serde_json::Value;
+    match v {
+        Value::Object(m) if fixed_value(m).is_some() => {}
+        Value::Object(m) if is_uncertain(m) => {
+            key.push_str(path);
+            key.push('=');
+            Canon::of(v).key(key);
+            key.push(';');
+        }
+        Value::Object(m) => m.iter().for_each(|(k, x)| uncertain_key(x, &format!("{path}.{k}"), key)),
+        Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| uncertain_key(x, &format!("{path}.{i}"), key)),
+        _ => {}
+    }
+}
+
+/// Drops the fields a study ignores ([`ignored_field`]) from a scenario tree (JSON or typed).
+fn strip_ignored(v: &mut serde_json::Value, vary_surface: bool) {
+    use serde_json::Value;
+    if let Some(m) = v.as_object_mut() {
+        m.retain(|k, _| ignored_field(k, vary_surface).is_none());
+        if vary_surface && let Some(surface) = m.get_mut("surface").and_then(Value::as_object_mut) {
+            surface.remove("seed");
+        }
+        if let Some(a) = m.get_mut("actuators").and_then(Value::as_object_mut) {
+            for spec in a.values_mut().filter_map(Value::as_object_mut) {
+                spec.remove("description");
+            }
+        }
+    }
+}
+
+/// What a study of scenario `s` depends on, as a text key (see [`check_distinct`]).
+fn study_key(mut s: serde_json::Value, vary_surface: bool) -> String {
+    let typed = stiction_scenario::Scenario::from_value(s.clone(), std::path::Path::new("design"));
+    strip_ignored(&mut s, vary_surface);
+    let mut key = String::new();
+    match typed {
+        Ok(typed) => {
+            let mut t = serde_json::to_value(&typed).unwrap_or(serde_json::Value::Null);
+            strip_ignored(&mut t, vary_surface);
+            key.push_str("typed:");
+            Canon::of(&t).key(&mut key);
+            // The uncertain parameters (the typed scenario holds their nominal values only).
+            key.push_str("|uncertain:");
+            uncertain_key(&s, "", &mut key);
+        }
+        Err(_) => {
+            key.push_str("json:");
+            Canon::of(&s).key(&mut key);
+        }
+    }
+    key
 }
 
 /// One design point's results.
@@ -941,6 +1038,51 @@ mod tests {
         let e =
             grid(&mut [many.clone(), Vary { path: "n".into(), ..many }], &[], None, 1, true).unwrap_err().to_string();
         assert!(e.contains("1600 design points") && e.contains("1000"), "{e}");
+    }
+
+    /// Overlapping fields (a parent beside its child, a field twice, a --set of the same field, a
+    /// parent or a child), equal values in two units or as equal objects, fields a study ignores:
+    /// refused naming both; a field `a.bc` is not a child of `a.b`. A list past the limit is
+    /// refused by its count, in linear time.
+    #[test]
+    fn overlaps_equal_values_and_ignored_fields_are_refused_naming_both() {
+        let g = |flags: &[&str], sets: &[&str], vary_surface: bool| -> Result<usize, String> {
+            let mut v: Vec<Vary> =
+                flags.iter().map(|f| Vary::parse(f)).collect::<Result<_, _>>().map_err(|e| e.to_string())?;
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            grid(&mut v, &sets, None, 1, vary_surface).map(|p| p.len()).map_err(|e| e.to_string())
+        };
+        let e = g(&["a.b=1,2", "a.b.c=3,4"], &[], true).unwrap_err();
+        assert!(e.contains("--vary a.b and --vary a.b.c"), "{e}");
+        assert_eq!(g(&["a.b=1,2", "a.bc=3,4"], &[], true), Ok(4));
+        let e = g(&["a.b=1,2"], &["a=3"], true).unwrap_err();
+        assert!(e.contains("--vary a.b and --set a=3"), "{e}");
+        let e = g(&["a.b=1,2"], &["a.b.c=3"], true).unwrap_err();
+        assert!(e.contains("--set a.b.c=3"), "{e}");
+        assert_eq!(g(&["a.b=1,2"], &["a.bc=3"], true), Ok(2));
+        for (flag, both) in [
+            ("f=7 uN,0.007 mN", ["\"7 uN\"", "\"0.007 mN\""]),
+            ("f=1 N/m,2 N/m,1000 mN/m", ["\"1 N/m\"", "\"1000 mN/m\""]),
+            ("f=1,1000 mN/m", ["\"1\"", "\"1000 mN/m\""]),
+            (r#"f={"value":"0.5 um"},{"value":"500 nm"}"#, ["0.5 um", "500 nm"]),
+            (r#"f={"value":"0.5 um"},500 nm"#, ["0.5 um", "500 nm"]),
+        ] {
+            let e = Vary::parse(flag).unwrap_err().to_string();
+            assert!(e.contains("--vary f") && both.iter().all(|b| e.contains(b)), "{flag}: {e}");
+        }
+        assert!(Vary::parse("f=7 uN,7.1 uN").is_ok());
+        assert!(Vary::parse(r#"f={"value":"0.5 um","sd":"1 nm"},{"value":"0.5 um"}"#).is_ok());
+        let e = g(&["surface.seed=1,2"], &[], true).unwrap_err();
+        assert!(e.contains("--vary surface.seed") && e.contains("--fixed-surface"), "{e}");
+        assert_eq!(g(&["surface.seed=1,2"], &[], false), Ok(2));
+        for path in ["description", "reference.source", "design.points", "measured", "actuators.clamp.description"] {
+            let e = g(&[&format!("{path}=1,2")], &[], true).unwrap_err();
+            assert!(e.contains(&format!("--vary {path}")) && e.contains("cannot be varied"), "{e}");
+        }
+        let many = format!("n={}", (0..1_000_000).map(|i| i.to_string()).collect::<Vec<_>>().join(","));
+        let t = std::time::Instant::now();
+        let e = Vary::parse(&many).unwrap_err().to_string();
+        assert!(e.contains("1000000 values") && t.elapsed().as_secs_f64() < 2.0, "{e} {:?}", t.elapsed());
     }
 
     /// A centred Latin hypercube (McKay, Beckman and Conover, Technometrics 21, 239 (1979)): in
