@@ -340,7 +340,7 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
             let chart = args.fig.apply(design_chart(&varies, &rows, k, rank_by))?;
             files.extend(crate::output::write_chart_files(out, &chart_stem(v), &chart)?);
         }
-        files.extend((0..points.len()).map(|d| design_name(d)));
+        files.extend((0..points.len()).map(design_name));
         finish_top(out, top, &files, &args)?;
     }
     if args.json {
