@@ -107,7 +107,8 @@ fn prepare_top(out: &Path, varies: &[Vary], n: usize, args: &Args) -> Result<Top
         if !args.resume && std::fs::symlink_metadata(&log).is_ok() {
             if !args.force {
                 return Err(format!(
-                    "--out: {} exists: this folder holds a design study already; add --resume to finish it, or                      --force to start again",
+                    "--out: {} exists: this folder holds a design study already; add --resume to finish it, or \
+                     --force to start again",
                     log.display()
                 )
                 .into());

@@ -39,7 +39,9 @@ pub fn run(args: Args) -> CliResult {
     for d in &args.dirs {
         if !d.join(log::LOG_NAME).exists() && is_design_study(d) {
             return Err(format!(
-                "{} is a design study's folder (designs.json, design-NNN): merge each design's shard folders on                  their own (stiction merge A/design-000 B/design-000 --out M/design-000, and so on), then run the                  design study with --out M --resume for its table",
+                "{} is a design study's folder (designs.json, design-NNN): merge each design's shard folders on \
+                 their own (stiction merge A/design-000 B/design-000 --out M/design-000, and so on), then run the \
+                 design study with --out M --resume for its table",
                 d.display()
             )
             .into());
