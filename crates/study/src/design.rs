@@ -1043,7 +1043,8 @@ mod tests {
     /// Overlapping fields (a parent beside its child, a field twice, a --set of the same field, a
     /// parent or a child), equal values in two units or as equal objects, fields a study ignores:
     /// refused naming both; a field `a.bc` is not a child of `a.b`. A list past the limit is
-    /// refused by its count, in linear time.
+    /// refused by its count, in linear time. Deliberate bug caught: a parent found by a plain
+    /// `starts_with` (seen failing: `a.bc` refused as a child of `a.b`).
     #[test]
     fn overlaps_equal_values_and_ignored_fields_are_refused_naming_both() {
         let g = |flags: &[&str], sets: &[&str], vary_surface: bool| -> Result<usize, String> {

@@ -271,7 +271,9 @@ fn drawn(v: &Value, i: u64, vary_surface: bool, origin: &Path) -> String {
 /// and checks. Each case is refused naming a flag or field (`--vary`, `--set`, `design`), or gives
 /// designs whose studies differ (two draws of each design's typed scenario, pairwise distinct) and
 /// whose labels are what runs (each varied field holds its label's value). Short in CI;
-/// `STICTION_FUZZ_CASES` for the long mode.
+/// `STICTION_FUZZ_CASES` for the long mode. Deliberate bug caught: the designs' distinctness check,
+/// the unit-aware value comparison and the overlap check off (seen failing at case 2: `1 N/m` and
+/// `1000 mN/m` run the same study).
 #[test]
 fn generated_vary_sets_are_refused_or_give_distinct_designs_labelled_as_they_run() {
     let origin = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/tas2000.json");
