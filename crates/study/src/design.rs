@@ -37,6 +37,9 @@ pub struct Vary {
     /// unit written after them (the same unit at both ends, or none), sampled by a Latin hypercube.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub range: Option<VaryRange>,
+    /// Given in the scenario's `design` section (errors name `design.vary.PATH`), not as `--vary`.
+    #[serde(skip)]
+    pub from_section: bool,
 }
 
 /// A continuous range of a varied field: `lo..hi` in `unit` (as written, e.g. "V" or "N/m";
@@ -134,9 +137,12 @@ fn split_values(s: &str) -> Vec<String> {
 }
 
 impl Vary {
-    /// Parses `PATH=V1,V2,...`.
+    /// Parses `PATH=V1,V2,...`. The count is checked before the values are compared (a list of
+    /// more than [`MAX_DESIGNS`] values can never run), and values are compared by what they mean
+    /// ([`Vary::check_values`]), in O(n log n).
     pub fn parse(s: &str) -> Result<Vary, StudyError> {
-        let bad = |m: &str| StudyError::Setting(format!("--vary {s:?}: {m}"));
+        let shown = stiction_scenario::truncate(s, 60);
+        let bad = |m: &str| StudyError::Setting(format!("--vary {shown:?}: {m}"));
         let (path, values) = s.split_once('=').ok_or_else(|| bad("expected PATH=V1,V2,..."))?;
         let path = path.trim();
         if path.is_empty() {
@@ -144,22 +150,24 @@ impl Vary {
         }
         if let Some(range) = VaryRange::parse(values) {
             let range = range.map_err(|m| bad(&m))?;
-            return Ok(Vary { path: path.to_string(), values: Vec::new(), range: Some(range) });
+            return Ok(Vary { path: path.to_string(), values: Vec::new(), range: Some(range), from_section: false });
         }
         let values = split_values(values);
-        if let Some(k) = values.iter().position(String::is_empty) {
+        let v = Vary { path: path.to_string(), values, range: None, from_section: false };
+        if v.values.len() > MAX_DESIGNS {
+            return Err(StudyError::Setting(format!(
+                "{}: {} values, more than the limit of {MAX_DESIGNS} designs",
+                v.flag(),
+                v.values.len()
+            )));
+        }
+        if let Some(k) = v.values.iter().position(String::is_empty) {
             return Err(bad(&format!("value {} is empty (expected V1,V2,... without empty entries)", k + 1)));
         }
-        for (k, v) in values.iter().enumerate() {
-            if values[..k].contains(v) {
-                return Err(bad(&format!("the value {v:?} is given twice")));
-            }
-        }
-        Ok(Vary { path: path.to_string(), values, range: None })
+        v.check_values()?;
+        Ok(v)
     }
-}
 
-impl Vary {
     /// A varied field from the scenario's `design` section: `path` with its listed `values`
     /// (as `--set` takes them), or a `range` "LO..HI"; errors name `design.vary.PATH` or
     /// `design.ranges.PATH`.
@@ -168,20 +176,308 @@ impl Vary {
             let range = VaryRange::parse(r)
                 .unwrap_or_else(|| Err("expected LO..HI".into()))
                 .map_err(|m| StudyError::Setting(format!("`design.ranges.{path}` = {r:?}: {m}")))?;
-            return Ok(Vary { path: path.to_string(), values: Vec::new(), range: Some(range) });
+            return Ok(Vary { path: path.to_string(), values: Vec::new(), range: Some(range), from_section: true });
         }
-        for (k, v) in values.iter().enumerate() {
-            if values[..k].contains(v) {
-                return Err(StudyError::Setting(format!("`design.vary.{path}`: the value {v:?} is given twice")));
+        let v = Vary { path: path.to_string(), values, range: None, from_section: true };
+        if v.values.len() > MAX_DESIGNS {
+            return Err(StudyError::Setting(format!(
+                "{}: {} values, more than the limit of {MAX_DESIGNS} designs",
+                v.flag(),
+                v.values.len()
+            )));
+        }
+        v.check_values()?;
+        Ok(v)
+    }
+
+    /// How the user wrote this field: `--vary PATH`, or `design.vary.PATH` / `design.ranges.PATH`
+    /// of the scenario's section.
+    pub fn flag(&self) -> String {
+        match (self.from_section, self.range.is_some()) {
+            (false, _) => format!("--vary {}", self.path),
+            (true, false) => format!("`design.vary.{}`", self.path),
+            (true, true) => format!("`design.ranges.{}`", self.path),
+        }
+    }
+
+    /// Refuses two listed values that mean the same: the same text, or the same JSON after the
+    /// `--set` parse with every quantity in SI ("7 uN" and "0.007 mN"; 30 and 30.0; objects key
+    /// by key), equal to 1e-12 relative. Sorted, then neighbours compared: O(n log n).
+    pub fn check_values(&self) -> Result<(), StudyError> {
+        let mut canon: Vec<Canon> = self.values.iter().map(|v| Canon::of_set_text(v)).collect();
+        // A bare number is SI in the field's unit: with one unit among the values, it takes it.
+        let mut dims: Vec<[i8; 4]> = Vec::new();
+        canon.iter().for_each(|c| c.dims(&mut dims));
+        dims.sort_unstable();
+        dims.dedup();
+        if let [dim] = dims[..] {
+            canon.iter_mut().for_each(|c| c.assume_dim(dim));
+        }
+        let mut order: Vec<usize> = (0..canon.len()).collect();
+        order.sort_by(|&a, &b| canon[a].cmp(&canon[b]).then(a.cmp(&b)));
+        for w in order.windows(2) {
+            let (a, b) = (w[0].min(w[1]), w[0].max(w[1]));
+            if canon[a].close(&canon[b]) {
+                let (x, y) = (&self.values[a], &self.values[b]);
+                let (xs, ys) = (stiction_scenario::truncate(x, 40), stiction_scenario::truncate(y, 40));
+                return Err(StudyError::Setting(if x == y {
+                    format!("{}: the value {xs:?} is given twice", self.flag())
+                } else {
+                    format!(
+                        "{}: the values {xs:?} and {ys:?} are the same value ({}); give each value once",
+                        self.flag(),
+                        canon[a].describe()
+                    )
+                }));
             }
         }
-        Ok(Vary { path: path.to_string(), values, range: None })
+        Ok(())
     }
 }
 
+/// A `--set` value as it means: the JSON `--set` reads, each number and each string that parses
+/// as a quantity in SI with its dimension (to compare "7 uN" with "0.007 mN").
+#[derive(Debug, Clone)]
+enum Canon {
+    Null,
+    Bool(bool),
+    Num(f64, [i8; 4]),
+    Text(String),
+    List(Vec<Canon>),
+    Map(Vec<(String, Canon)>),
+}
+
+impl Canon {
+    fn of_set_text(text: &str) -> Canon {
+        let raw = text.trim();
+        let value = stiction_scenario::strict_json::from_str(raw)
+            .unwrap_or_else(|_| serde_json::Value::String(raw.to_string()));
+        Canon::of(&value)
+    }
+
+    fn of(v: &serde_json::Value) -> Canon {
+        use serde_json::Value as V;
+        match v {
+            V::Null => Canon::Null,
+            V::Bool(b) => Canon::Bool(*b),
+            V::Number(n) => Canon::Num(n.as_f64().unwrap_or(f64::NAN), [0; 4]),
+            V::String(s) => match stiction_units::parse_any(s) {
+                Ok((x, d)) if x.is_finite() => Canon::Num(x, d.0),
+                _ => Canon::Text(s.clone()),
+            },
+            V::Array(a) => Canon::List(a.iter().map(Canon::of).collect()),
+            // An uncertain parameter without an sd or bounds is its value (drawn as itself).
+            V::Object(m) if fixed_value(m).is_some() => Canon::of(fixed_value(m).unwrap_or(&V::Null)),
+            // serde_json's map is sorted by key.
+            V::Object(m) => Canon::Map(m.iter().map(|(k, v)| (k.clone(), Canon::of(v))).collect()),
+        }
+    }
+
+    /// The units (other than none) of the numbers in it.
+    fn dims(&self, out: &mut Vec<[i8; 4]>) {
+        match self {
+            Canon::Num(_, d) if *d != [0; 4] => out.push(*d),
+            Canon::List(a) => a.iter().for_each(|c| c.dims(out)),
+            Canon::Map(m) => m.iter().for_each(|(_, c)| c.dims(out)),
+            _ => {}
+        }
+    }
+
+    /// Gives its bare numbers the unit `dim`.
+    fn assume_dim(&mut self, dim: [i8; 4]) {
+        match self {
+            Canon::Num(_, d) if *d == [0; 4] => *d = dim,
+            Canon::List(a) => a.iter_mut().for_each(|c| c.assume_dim(dim)),
+            Canon::Map(m) => m.iter_mut().for_each(|(_, c)| c.assume_dim(dim)),
+            _ => {}
+        }
+    }
+
+    fn rank(&self) -> u8 {
+        match self {
+            Canon::Null => 0,
+            Canon::Bool(_) => 1,
+            Canon::Num(..) => 2,
+            Canon::Text(_) => 3,
+            Canon::List(_) => 4,
+            Canon::Map(_) => 5,
+        }
+    }
+
+    /// A total order (numbers by dimension, then value).
+    fn cmp(&self, other: &Canon) -> std::cmp::Ordering {
+        use std::cmp::Ordering;
+        match (self, other) {
+            (Canon::Bool(a), Canon::Bool(b)) => a.cmp(b),
+            (Canon::Num(x, d), Canon::Num(y, e)) => d.cmp(e).then(x.total_cmp(y)),
+            (Canon::Text(a), Canon::Text(b)) => a.cmp(b),
+            (Canon::List(a), Canon::List(b)) => {
+                a.iter().zip(b).map(|(x, y)| x.cmp(y)).find(|o| *o != Ordering::Equal).unwrap_or(a.len().cmp(&b.len()))
+            }
+            (Canon::Map(a), Canon::Map(b)) => a
+                .iter()
+                .zip(b)
+                .map(|((k, x), (l, y))| k.cmp(l).then_with(|| x.cmp(y)))
+                .find(|o| *o != Ordering::Equal)
+                .unwrap_or(a.len().cmp(&b.len())),
+            _ => self.rank().cmp(&other.rank()),
+        }
+    }
+
+    /// Equal, numbers to 1e-12 relative.
+    fn close(&self, other: &Canon) -> bool {
+        match (self, other) {
+            (Canon::Null, Canon::Null) => true,
+            (Canon::Bool(a), Canon::Bool(b)) => a == b,
+            (Canon::Num(x, d), Canon::Num(y, e)) => d == e && (x == y || (x - y).abs() <= 1e-12 * x.abs().max(y.abs())),
+            (Canon::Text(a), Canon::Text(b)) => a == b,
+            (Canon::List(a), Canon::List(b)) => a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.close(y)),
+            (Canon::Map(a), Canon::Map(b)) => {
+                a.len() == b.len() && a.iter().zip(b).all(|((k, x), (l, y))| k == l && x.close(y))
+            }
+            _ => false,
+        }
+    }
+
+    /// A short description for a message: the SI number, or "the same JSON".
+    fn describe(&self) -> String {
+        match self {
+            Canon::Num(x, _) => format!("{x:e} in SI units"),
+            _ => "the same JSON once units are read".into(),
+        }
+    }
+
+    /// A key for hashing: numbers to 12 significant digits.
+    fn key(&self, out: &mut String) {
+        use std::fmt::Write;
+        match self {
+            Canon::Null => out.push('n'),
+            Canon::Bool(b) => out.push(if *b { 't' } else { 'f' }),
+            Canon::Num(x, d) => {
+                let _ = write!(out, "#{x:.11e}{d:?}");
+            }
+            Canon::Text(s) => {
+                let _ = write!(out, "{s:?}");
+            }
+            Canon::List(a) => {
+                out.push('[');
+                for x in a {
+                    x.key(out);
+                    out.push(',');
+                }
+                out.push(']');
+            }
+            Canon::Map(m) => {
+                out.push('{');
+                for (k, x) in m {
+                    let _ = write!(out, "{k:?}:");
+                    x.key(out);
+                    out.push(',');
+                }
+                out.push('}');
+            }
+        }
+    }
+}
+
+/// Largest number of varied fields in one design study.
+pub const MAX_VARIED_FIELDS: usize = 32;
+
+/// Why a design study cannot vary the field at `path` (dotted): a field the study overrides in
+/// every sample or never reads, so its designs would run the same study. `vary_surface`: the
+/// study gives each sample its own surface (no `--fixed-surface`).
+pub fn ignored_field(path: &str, vary_surface: bool) -> Option<&'static str> {
+    let segments: Vec<&str> = path.split('.').collect();
+    match segments.as_slice() {
+        ["description", ..] => Some("only printed: no result of a study depends on it"),
+        ["format_version", ..] => Some("the file format's version, not a property of the device"),
+        ["design", ..] => Some("the design study itself, not the device; a design cannot vary it"),
+        ["actuators", _, "description", ..] => Some("only printed: no result of a study depends on it"),
+        ["reference", ..] => Some(
+            "a measured value drawn beside the results; no sample of a study reads it, so every design would run the same",
+        ),
+        ["measured", ..] => Some("the measured voltages `stiction run` compares with; a study never reads them"),
+        ["surface", "seed", ..] if vary_surface => Some(
+            "a study gives sample i the surface seed --seed + i, replacing it in every design; add --fixed-surface to \
+             keep the file's surface (then its seed counts)",
+        ),
+        _ => None,
+    }
+}
+
+/// Whether dotted path `a` is `b` or a parent of it (segment by segment: `a.b` is a parent of
+/// `a.b.c`, not of `a.bc`).
+fn covers(a: &str, b: &str) -> bool {
+    b == a || (b.len() > a.len() && b.starts_with(a) && b.as_bytes()[a.len()] == b'.')
+}
+
+/// The checks of the varied fields, before any value is expanded: at most
+/// [`MAX_VARIED_FIELDS`], no field that the study ignores ([`ignored_field`]), no field varied
+/// twice or inside another varied field (the parent's value would replace the child's), and no
+/// field that a `--set` also writes (the same field, a parent or a child: one source of truth).
+pub fn check_fields(varies: &[Vary], sets: &[String], vary_surface: bool) -> Result<(), StudyError> {
+    if varies.len() > MAX_VARIED_FIELDS {
+        return Err(StudyError::Setting(format!(
+            "--vary: {} varied fields, more than the limit of {MAX_VARIED_FIELDS}",
+            varies.len()
+        )));
+    }
+    for v in varies {
+        if let Some(why) = ignored_field(&v.path, vary_surface) {
+            return Err(StudyError::Setting(format!("{}: cannot be varied: {why}", v.flag())));
+        }
+    }
+    // Sorted by path, a parent comes right before its children (and a repeat beside its twin).
+    let mut order: Vec<usize> = (0..varies.len()).collect();
+    order.sort_by(|&a, &b| varies[a].path.split('.').cmp(varies[b].path.split('.')).then(a.cmp(&b)));
+    for w in order.windows(2) {
+        let (p, c) = (&varies[w[0]], &varies[w[1]]);
+        if p.path == c.path {
+            let (a, b) = (&varies[w[0].min(w[1])], &varies[w[0].max(w[1])]);
+            return Err(StudyError::Setting(format!("{} and {}: the field is varied twice", a.flag(), b.flag())));
+        }
+        if covers(&p.path, &c.path) {
+            return Err(StudyError::Setting(format!(
+                "{} and {}: the first contains the second, so its value would replace the second's and designs \
+                 labelled differently would run the same scenario; vary one of them",
+                p.flag(),
+                c.flag()
+            )));
+        }
+    }
+    let mut set_paths: Vec<(&str, &String)> =
+        sets.iter().filter_map(|s| s.split_once('=').map(|(p, _)| (p.trim(), s))).collect();
+    set_paths.sort_unstable();
+    for v in varies {
+        // A --set of the same field, a parent or a child (binary search: the parents are the
+        // prefixes of the path; the children sort right after it).
+        let segs: Vec<&str> = v.path.split('.').collect();
+        let parent = (1..=segs.len()).find_map(|k| {
+            let p = segs[..k].join(".");
+            set_paths.binary_search_by(|(q, _)| (*q).cmp(p.as_str())).ok().map(|i| set_paths[i].1)
+        });
+        let start = set_paths.partition_point(|(q, _)| *q <= v.path.as_str());
+        let child = set_paths[start..]
+            .iter()
+            .take_while(|(q, _)| q.starts_with(v.path.as_str()))
+            .find(|(q, _)| covers(&v.path, q))
+            .map(|s| s.1);
+        if let Some(s) = parent.or(child) {
+            let s = stiction_scenario::truncate(s, 80);
+            return Err(StudyError::Setting(format!(
+                "{} and --set {s}: the field is both set and varied (the --set writes it, a field inside it or \
+                 one around it); one source of truth: set it in the file or vary it, not both",
+                v.flag()
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// The design points: every combination of the varied values, the first `--vary` slowest.
-/// Refuses a path varied twice, a path also given with `--set` (one source of truth), and more
-/// than [`MAX_DESIGNS`] points.
+/// Checks first, in linear or O(n log n) time: the number of designs against [`MAX_DESIGNS`],
+/// then the fields ([`check_fields`]: overlaps, `--set`s, ignored fields). `vary_surface`: the
+/// study gives each sample its own surface (no `--fixed-surface`).
 ///
 /// Ranges (`PATH=LO..HI`) take `design_points` values each from one centred Latin hypercube over
 /// all ranges (seeded by `seed`, so the same command gives the same designs): the ranges vary
@@ -192,18 +488,8 @@ pub fn grid(
     sets: &[String],
     design_points: Option<usize>,
     seed: u64,
+    vary_surface: bool,
 ) -> Result<Vec<Vec<String>>, StudyError> {
-    for (k, v) in varies.iter().enumerate() {
-        if varies[..k].iter().any(|w| w.path == v.path) {
-            return Err(StudyError::Setting(format!("--vary {}: the field is varied twice", v.path)));
-        }
-        if let Some(s) = sets.iter().find(|s| s.split_once('=').is_some_and(|(p, _)| p.trim() == v.path)) {
-            return Err(StudyError::Setting(format!(
-                "--vary {} and --set {s}: the field is both set and varied; drop one",
-                v.path
-            )));
-        }
-    }
     let ranged: Vec<usize> = (0..varies.len()).filter(|&k| varies[k].range.is_some()).collect();
     let lhs_points = match (ranged.is_empty(), design_points) {
         (true, None) => 1,
@@ -227,10 +513,12 @@ pub fn grid(
         .try_fold(lhs_points, |n, v| n.checked_mul(v.values.len()))
         .unwrap_or(usize::MAX);
     if count > MAX_DESIGNS {
+        let shown = if count == usize::MAX { "too many".to_string() } else { count.to_string() };
         return Err(StudyError::Setting(format!(
-            "--vary: {count} design points, more than the limit of {MAX_DESIGNS}; vary fewer fields or values"
+            "--vary: {shown} design points, more than the limit of {MAX_DESIGNS}; vary fewer fields or values"
         )));
     }
+    check_fields(varies, sets, vary_surface)?;
     // The ranges' values, one per hypercube point.
     if !ranged.is_empty() {
         let cube = latin_hypercube(lhs_points, ranged.len(), seed);
@@ -290,6 +578,137 @@ pub fn sets_for(sets: &[String], varies: &[Vary], point: &[String]) -> Vec<Strin
     let mut all = sets.to_vec();
     all.extend(varies.iter().zip(point).map(|(v, x)| format!("{}={x}", v.path)));
     all
+}
+
+/// The scenario of each design as the study reads it: `base` (the scenario's JSON after the
+/// user's `--set`s) without its `design` section, then `PATH=V` of every varied field applied as
+/// `--set` applies it. Errors name the design and the field.
+pub fn design_scenarios(
+    base: &serde_json::Value,
+    varies: &[Vary],
+    points: &[Vec<String>],
+) -> Result<Vec<serde_json::Value>, StudyError> {
+    let mut base = base.clone();
+    if let Some(m) = base.as_object_mut() {
+        m.remove("design");
+    }
+    points
+        .iter()
+        .enumerate()
+        .map(|(d, p)| {
+            let mut v = base.clone();
+            for (vary, x) in varies.iter().zip(p) {
+                stiction_scenario::apply_set(&mut v, &format!("{}={x}", vary.path))
+                    .map_err(|e| StudyError::Setting(format!("design {d} ({}): {e}", label(varies, p))))?;
+            }
+            Ok(v)
+        })
+        .collect()
+}
+
+/// `PATH=V, PATH=V` of a design point.
+pub fn label(varies: &[Vary], point: &[String]) -> String {
+    varies.iter().zip(point).map(|(v, x)| format!("{}={x}", v.path)).collect::<Vec<_>>().join(", ")
+}
+
+/// Refuses two designs whose studies would be the same: their scenarios ([`design_scenarios`]),
+/// read as the study reads them, are equal: the typed scenario (every quantity in SI, every
+/// default filled in) and every uncertain parameter (its value, sd, distribution and bounds in
+/// SI, to 12 significant digits), without the fields a study ignores ([`ignored_field`]). A
+/// scenario that does not parse is compared as its JSON with units read (its design is refused
+/// when it is prepared). A safety net under [`check_fields`] and [`Vary::check_values`] (it
+/// catches, say, a value equal to the field's default beside `null`); hashed, linear in the
+/// number of designs.
+pub fn check_distinct(
+    base: &serde_json::Value,
+    varies: &[Vary],
+    points: &[Vec<String>],
+    vary_surface: bool,
+) -> Result<(), StudyError> {
+    let scenarios = design_scenarios(base, varies, points)?;
+    let mut seen: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
+    for (d, s) in scenarios.into_iter().enumerate() {
+        let key = study_key(s, vary_surface);
+        if let Some(&e) = seen.get(&key) {
+            return Err(StudyError::Setting(format!(
+                "designs {e} ({}) and {d} ({}) run the same study (equal once units, defaults and the fields a \
+                 study ignores are read); vary values that differ",
+                stiction_scenario::truncate(&label(varies, &points[e]), 70),
+                stiction_scenario::truncate(&label(varies, &points[d]), 70)
+            )));
+        }
+        seen.insert(key, d);
+    }
+    Ok(())
+}
+
+/// Whether a JSON object is an uncertain parameter (`value` and only the uncertain keys).
+fn is_uncertain(m: &serde_json::Map<String, serde_json::Value>) -> bool {
+    m.contains_key("value") && m.keys().all(|k| ["value", "sd", "distribution", "min", "max"].contains(&k.as_str()))
+}
+
+/// The value of an uncertain parameter that has no spread (`{"value": X}`, with at most a
+/// `distribution`: drawn as X itself).
+fn fixed_value(m: &serde_json::Map<String, serde_json::Value>) -> Option<&serde_json::Value> {
+    (is_uncertain(m) && !m.contains_key("sd") && !m.contains_key("min") && !m.contains_key("max"))
+        .then(|| m.get("value"))
+        .flatten()
+}
+
+/// Appends every uncertain parameter of `v` (path and its object with units read) to `key`.
+fn uncertain_key(v: &serde_json::Value, path: &str, key: &mut String) {
+    use serde_json::Value;
+    match v {
+        Value::Object(m) if fixed_value(m).is_some() => {}
+        Value::Object(m) if is_uncertain(m) => {
+            key.push_str(path);
+            key.push('=');
+            Canon::of(v).key(key);
+            key.push(';');
+        }
+        Value::Object(m) => m.iter().for_each(|(k, x)| uncertain_key(x, &format!("{path}.{k}"), key)),
+        Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| uncertain_key(x, &format!("{path}.{i}"), key)),
+        _ => {}
+    }
+}
+
+/// Drops the fields a study ignores ([`ignored_field`]) from a scenario tree (JSON or typed).
+fn strip_ignored(v: &mut serde_json::Value, vary_surface: bool) {
+    use serde_json::Value;
+    if let Some(m) = v.as_object_mut() {
+        m.retain(|k, _| ignored_field(k, vary_surface).is_none());
+        if vary_surface && let Some(surface) = m.get_mut("surface").and_then(Value::as_object_mut) {
+            surface.remove("seed");
+        }
+        if let Some(a) = m.get_mut("actuators").and_then(Value::as_object_mut) {
+            for spec in a.values_mut().filter_map(Value::as_object_mut) {
+                spec.remove("description");
+            }
+        }
+    }
+}
+
+/// What a study of scenario `s` depends on, as a text key (see [`check_distinct`]).
+fn study_key(mut s: serde_json::Value, vary_surface: bool) -> String {
+    let typed = stiction_scenario::Scenario::from_value(s.clone(), std::path::Path::new("design"));
+    strip_ignored(&mut s, vary_surface);
+    let mut key = String::new();
+    match typed {
+        Ok(typed) => {
+            let mut t = serde_json::to_value(&typed).unwrap_or(serde_json::Value::Null);
+            strip_ignored(&mut t, vary_surface);
+            key.push_str("typed:");
+            Canon::of(&t).key(&mut key);
+            // The uncertain parameters (the typed scenario holds their nominal values only).
+            key.push_str("|uncertain:");
+            uncertain_key(&s, "", &mut key);
+        }
+        Err(_) => {
+            key.push_str("json:");
+            Canon::of(&s).key(&mut key);
+        }
+    }
+    key
 }
 
 /// One design point's results.
@@ -538,8 +957,8 @@ mod tests {
             let text: String = (0..len).map(|_| alphabet[rng.random_range(0..alphabet.len())]).collect();
             if let Ok(v) = Vary::parse(&text) {
                 assert!(!v.path.is_empty() && v.values.iter().all(|x| !x.is_empty()), "{text:?} -> {v:?}");
-                let _ = grid(&mut [v.clone()], &[], Some(3), 1);
-                let _ = grid(&mut [v], &[], None, 1);
+                let _ = grid(&mut [v.clone()], &[], Some(3), 1, true);
+                let _ = grid(&mut [v], &[], None, 1, true);
             }
         }
     }
@@ -602,19 +1021,69 @@ mod tests {
     fn the_grid_is_every_combination_first_vary_slowest() {
         let a = Vary::parse("a=1,2").unwrap();
         let b = Vary::parse("b=x,y,z").unwrap();
-        let g = grid(&mut [a.clone(), b.clone()], &[], None, 1).unwrap();
+        let g = grid(&mut [a.clone(), b.clone()], &[], None, 1, true).unwrap();
         assert_eq!(g.len(), 6);
         assert_eq!(g[0], vec!["1", "x"]);
         assert_eq!(g[1], vec!["1", "y"]);
         assert_eq!(g[3], vec!["2", "x"]);
         assert_eq!(sets_for(&["c=3".into()], &[a.clone(), b.clone()], &g[5]), vec!["c=3", "a=2", "b=z"]);
         assert!(
-            grid(&mut [a.clone()], &["a=5".into()], None, 1).unwrap_err().to_string().contains("both set and varied")
+            grid(&mut [a.clone()], &["a=5".into()], None, 1, true)
+                .unwrap_err()
+                .to_string()
+                .contains("one source of truth")
         );
-        assert!(grid(&mut [a.clone(), a.clone()], &[], None, 1).unwrap_err().to_string().contains("twice"));
+        assert!(grid(&mut [a.clone(), a.clone()], &[], None, 1, true).unwrap_err().to_string().contains("twice"));
         let many = Vary::parse(&format!("m={}", (0..40).map(|i| i.to_string()).collect::<Vec<_>>().join(","))).unwrap();
-        let e = grid(&mut [many.clone(), Vary { path: "n".into(), ..many }], &[], None, 1).unwrap_err().to_string();
+        let e =
+            grid(&mut [many.clone(), Vary { path: "n".into(), ..many }], &[], None, 1, true).unwrap_err().to_string();
         assert!(e.contains("1600 design points") && e.contains("1000"), "{e}");
+    }
+
+    /// Overlapping fields (a parent beside its child, a field twice, a --set of the same field, a
+    /// parent or a child), equal values in two units or as equal objects, fields a study ignores:
+    /// refused naming both; a field `a.bc` is not a child of `a.b`. A list past the limit is
+    /// refused by its count, in linear time. Deliberate bug caught: a parent found by a plain
+    /// `starts_with` (seen failing: `a.bc` refused as a child of `a.b`).
+    #[test]
+    fn overlaps_equal_values_and_ignored_fields_are_refused_naming_both() {
+        let g = |flags: &[&str], sets: &[&str], vary_surface: bool| -> Result<usize, String> {
+            let mut v: Vec<Vary> =
+                flags.iter().map(|f| Vary::parse(f)).collect::<Result<_, _>>().map_err(|e| e.to_string())?;
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            grid(&mut v, &sets, None, 1, vary_surface).map(|p| p.len()).map_err(|e| e.to_string())
+        };
+        let e = g(&["a.b=1,2", "a.b.c=3,4"], &[], true).unwrap_err();
+        assert!(e.contains("--vary a.b and --vary a.b.c"), "{e}");
+        assert_eq!(g(&["a.b=1,2", "a.bc=3,4"], &[], true), Ok(4));
+        let e = g(&["a.b=1,2"], &["a=3"], true).unwrap_err();
+        assert!(e.contains("--vary a.b and --set a=3"), "{e}");
+        let e = g(&["a.b=1,2"], &["a.b.c=3"], true).unwrap_err();
+        assert!(e.contains("--set a.b.c=3"), "{e}");
+        assert_eq!(g(&["a.b=1,2"], &["a.bc=3"], true), Ok(2));
+        for (flag, both) in [
+            ("f=7 uN,0.007 mN", ["\"7 uN\"", "\"0.007 mN\""]),
+            ("f=1 N/m,2 N/m,1000 mN/m", ["\"1 N/m\"", "\"1000 mN/m\""]),
+            ("f=1,1000 mN/m", ["\"1\"", "\"1000 mN/m\""]),
+            (r#"f={"value":"0.5 um"},{"value":"500 nm"}"#, ["0.5 um", "500 nm"]),
+            (r#"f={"value":"0.5 um"},500 nm"#, ["0.5 um", "500 nm"]),
+        ] {
+            let e = Vary::parse(flag).unwrap_err().to_string();
+            assert!(e.contains("--vary f") && both.iter().all(|b| e.contains(b)), "{flag}: {e}");
+        }
+        assert!(Vary::parse("f=7 uN,7.1 uN").is_ok());
+        assert!(Vary::parse(r#"f={"value":"0.5 um","sd":"1 nm"},{"value":"0.5 um"}"#).is_ok());
+        let e = g(&["surface.seed=1,2"], &[], true).unwrap_err();
+        assert!(e.contains("--vary surface.seed") && e.contains("--fixed-surface"), "{e}");
+        assert_eq!(g(&["surface.seed=1,2"], &[], false), Ok(2));
+        for path in ["description", "reference.source", "design.points", "measured", "actuators.clamp.description"] {
+            let e = g(&[&format!("{path}=1,2")], &[], true).unwrap_err();
+            assert!(e.contains(&format!("--vary {path}")) && e.contains("cannot be varied"), "{e}");
+        }
+        let many = format!("n={}", (0..1_000_000).map(|i| i.to_string()).collect::<Vec<_>>().join(","));
+        let t = std::time::Instant::now();
+        let e = Vary::parse(&many).unwrap_err().to_string();
+        assert!(e.contains("1000000 values") && t.elapsed().as_secs_f64() < 2.0, "{e} {:?}", t.elapsed());
     }
 
     /// A centred Latin hypercube (McKay, Beckman and Conover, Technometrics 21, 239 (1979)): in
@@ -652,7 +1121,7 @@ mod tests {
         let k = Vary::parse("k=1..3").unwrap();
         let list = Vary::parse("n=30,60").unwrap();
         let mut varies = [list, r, k];
-        let g = grid(&mut varies, &[], Some(4), 7).unwrap();
+        let g = grid(&mut varies, &[], Some(4), 7, true).unwrap();
         assert_eq!(g.len(), 8);
         // The listed field is slowest; the four hypercube points repeat for each listed value.
         assert!(g[..4].iter().all(|p| p[0] == "30") && g[4..].iter().all(|p| p[0] == "60"));
@@ -675,9 +1144,9 @@ mod tests {
         for bad in ["a=40 V..29 V", "a=1 V..2 mV", "a=x..2", "a=1..inf"] {
             assert!(Vary::parse(bad).is_err(), "{bad}");
         }
-        let e = grid(&mut [Vary::parse("a=1..2").unwrap()], &[], None, 1).unwrap_err().to_string();
+        let e = grid(&mut [Vary::parse("a=1..2").unwrap()], &[], None, 1, true).unwrap_err().to_string();
         assert!(e.contains("--design-points"), "{e}");
-        let e = grid(&mut [Vary::parse("a=1,2").unwrap()], &[], Some(3), 1).unwrap_err().to_string();
+        let e = grid(&mut [Vary::parse("a=1,2").unwrap()], &[], Some(3), 1, true).unwrap_err().to_string();
         assert!(e.contains("needs a range"), "{e}");
     }
 
@@ -688,7 +1157,7 @@ mod tests {
     fn ranges_over_counts_give_whole_numbers() {
         let path = "actuators.clamp.plate_count";
         let mut varies = [Vary::parse(&format!("{path}=1..1000")).unwrap()];
-        let g = grid(&mut varies, &[], Some(4), 1).unwrap();
+        let g = grid(&mut varies, &[], Some(4), 1, true).unwrap();
         let mut quarters: Vec<usize> = g
             .iter()
             .map(|p| {
@@ -699,11 +1168,11 @@ mod tests {
         quarters.sort_unstable();
         assert_eq!(quarters, vec![0, 1, 2, 3]);
         for bad in [format!("{path}=1..3"), format!("{path}=1 V..100 V")] {
-            let e = grid(&mut [Vary::parse(&bad).unwrap()], &[], Some(4), 1).unwrap_err().to_string();
+            let e = grid(&mut [Vary::parse(&bad).unwrap()], &[], Some(4), 1, true).unwrap_err().to_string();
             assert!(e.contains(path) && e.contains("whole numbers"), "{e}");
         }
         // A quantity keeps the hypercube's fractions.
-        let g = grid(&mut [Vary::parse("actuators.clamp.front_gap=1..1000").unwrap()], &[], Some(4), 1).unwrap();
+        let g = grid(&mut [Vary::parse("actuators.clamp.front_gap=1..1000").unwrap()], &[], Some(4), 1, true).unwrap();
         assert!(g.iter().any(|p| p[0].contains('.')), "{g:?}");
     }
 }

@@ -310,6 +310,11 @@ impl Study {
             }
             Scenario::from_value(with, path)?;
         }
+        // The device checks `stiction run` makes (one source of truth): a given spring force that
+        // contradicts the clamp spring is refused here too.
+        if let Some(conflict) = nominal.spring_force_conflict() {
+            return Err(StudyError::Setting(format!("{}: {conflict}", path.display())));
+        }
         let base_dir = base_dir.to_path_buf();
         let reduction = Meter::from_scenario(&nominal, &base_dir)
             .and_then(|m| m.device_reduction())

@@ -46,7 +46,137 @@ struct DesignReport<'a> {
 
 /// The folder of design `d` inside the design study's --out.
 pub fn design_folder(out: &Path, d: usize) -> PathBuf {
-    out.join(format!("design-{d:03}"))
+    out.join(design_name(d))
+}
+
+/// The name of design `d`'s folder: `design-NNN`.
+fn design_name(d: usize) -> String {
+    format!("design-{d:03}")
+}
+
+/// Whether a name is a design folder's (`design-` and at least three digits).
+fn is_design_name(n: &str) -> bool {
+    n.strip_prefix("design-").is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// The stem of a varied field's design chart.
+fn chart_stem(v: &Vary) -> String {
+    format!("design_{}", v.path.replace(['.', '/'], "_"))
+}
+
+/// What [`prepare_top`] found in a design study's --out: the names an earlier design study of
+/// the folder listed, and the stale design folders (of an earlier study with more designs).
+struct Top {
+    listed: Vec<String>,
+    stale: Vec<String>,
+}
+
+/// The `--out` rules of a design study's folder, checked before any work. The folder is written
+/// in place (its designs' logs grow sample by sample), like a study's folder, and follows the same
+/// rules: names that no earlier stiction run listed in its manifest.json (a user's designs.csv,
+/// notes, a design-NNN folder no design study made) are refused unless --force (then left
+/// alone); each design folder follows a study folder's rules (an existing log needs --resume to
+/// finish it or --force to start again; --force removes the earlier run's files). The manifest is
+/// rewritten at once to list this run's design folders beside the earlier ones, so an
+/// interrupted run leaves nothing unaccounted for.
+fn prepare_top(out: &Path, varies: &[Vary], n: usize, args: &Args) -> Result<Top, Box<dyn std::error::Error>> {
+    use stiction_study::log::LOG_NAME;
+    ensure_dir(out)?;
+    let own: Vec<String> = (0..n).map(design_name).collect();
+    let own_refs: Vec<&str> = own.iter().map(String::as_str).collect();
+    crate::output::check_foreign(out, &own_refs, args.force).map_err(|e| format!("--out: {e}"))?;
+    let listed = crate::output::listed_files(out)?;
+    let mut outputs = vec!["designs.csv".to_string(), "designs.json".into()];
+    for v in varies {
+        outputs.extend(["svg", "png", "csv"].map(|e| format!("{}.{e}", chart_stem(v))));
+    }
+    for f in &outputs {
+        crate::output::check_output_flag("--out", &out.join(f))?;
+    }
+    for d in 0..n {
+        let dir = design_folder(out, d);
+        match std::fs::symlink_metadata(&dir) {
+            Ok(m) if !m.is_dir() => {
+                return Err(format!("--out: {} exists and is not a folder", dir.display()).into());
+            }
+            Ok(_) => {}
+            Err(_) => continue,
+        }
+        crate::output::check_foreign(&dir, &[LOG_NAME], args.force)?;
+        let log = dir.join(LOG_NAME);
+        if !args.resume && std::fs::symlink_metadata(&log).is_ok() {
+            if !args.force {
+                return Err(format!(
+                    "--out: {} exists: this folder holds a design study already; add --resume to finish it, or \
+                     --force to start again",
+                    log.display()
+                )
+                .into());
+            }
+            let mut old = crate::output::listed_files(&dir)?;
+            old.extend([LOG_NAME.to_string(), crate::output::MANIFEST.to_string()]);
+            for f in old {
+                let p = dir.join(&f);
+                if std::fs::symlink_metadata(&p).is_ok_and(|m| m.is_file()) {
+                    std::fs::remove_file(&p).map_err(|e| format!("cannot remove {}: {e}", p.display()))?;
+                }
+            }
+        }
+    }
+    // Design folders beyond this study's count that an earlier design study of this folder
+    // listed: stale, removed when this study has finished.
+    let mut stale: Vec<String> = listed.iter().filter(|f| is_design_name(f) && !own.contains(f)).cloned().collect();
+    stale.retain(|f| out.join(f).is_dir());
+    stale.sort();
+    let mut in_progress = listed.clone();
+    in_progress.extend(own.iter().filter(|f| !listed.contains(f)).cloned());
+    crate::output::write_manifest(out, "study --vary", &in_progress)?;
+    Ok(Top { listed, stale })
+}
+
+/// The end of a design study with --out: removes the stale design folders and the files of the
+/// earlier run that this one did not write again (only files and folders an earlier design study
+/// listed; inside a stale design folder only the files its own manifest lists and its log), says
+/// what it removed, and writes the manifest of this run's `files`.
+fn finish_top(out: &Path, top: &Top, files: &[String], args: &Args) -> CliResult {
+    use stiction_study::log::LOG_NAME;
+    let mut removed = Vec::new();
+    let mut kept = Vec::new();
+    for name in &top.stale {
+        let dir = out.join(name);
+        let mut ours = crate::output::listed_files(&dir)?;
+        ours.extend([LOG_NAME.to_string(), crate::output::MANIFEST.to_string()]);
+        for f in ours {
+            let p = dir.join(&f);
+            if std::fs::symlink_metadata(&p).is_ok_and(|m| m.is_file()) {
+                std::fs::remove_file(&p).map_err(|e| format!("cannot remove {}: {e}", p.display()))?;
+            }
+        }
+        if std::fs::remove_dir(&dir).is_ok() { removed.push(name.clone()) } else { kept.push(name.clone()) }
+    }
+    for f in top.listed.iter().filter(|f| !files.contains(f) && !is_design_name(f)) {
+        let p = out.join(f);
+        if std::fs::symlink_metadata(&p).is_ok_and(|m| m.is_file()) {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
+    let mut listed = files.to_vec();
+    listed.extend(kept.iter().cloned());
+    crate::output::write_manifest(out, "study --vary", &listed)?;
+    if !args.quiet && !args.json && (!removed.is_empty() || !kept.is_empty()) {
+        crate::errln!(
+            "{}: removed {} stale design folder(s) of an earlier design study with more designs ({}){}",
+            out.display(),
+            removed.len(),
+            removed.join(", "),
+            if kept.is_empty() {
+                String::new()
+            } else {
+                format!("; kept {} that hold other files (their study files removed)", kept.join(", "))
+            }
+        );
+    }
+    Ok(())
 }
 
 /// The scenario's `design` section (with the `--set`s applied), checked field by field; None
@@ -107,7 +237,19 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
         },
         (None, None) => RankBy::Narrowest,
     };
-    let points = design::grid(&mut varies, &args.sets, design_points, args.seed)?;
+    let points = design::grid(&mut varies, &args.sets, design_points, args.seed, config.vary_surface)?;
+    // Two designs that would run the same study (equal once units are read and ignored fields
+    // dropped) are refused before anything runs.
+    let base = stiction_scenario::Scenario::load_json(&args.scenario, &args.sets)?;
+    design::check_distinct(&base, &varies, &points, config.vary_surface)?;
+    drop(base);
+    // The --out folder's rule, checked before any work (as every command's): files no stiction
+    // run listed are refused unless --force.
+    if let Some(out) = &args.out {
+        let own: Vec<String> = (0..points.len()).map(design_name).collect();
+        let own: Vec<&str> = own.iter().map(String::as_str).collect();
+        crate::output::check_foreign(out, &own, args.force).map_err(|e| format!("--out: {e}"))?;
+    }
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
         if t == 0 || t > MAX_THREADS {
@@ -118,9 +260,7 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
     let pool = pool.build()?;
     // Every design is prepared (and so checked) before any runs: a value that makes one design
     // invalid stops the study at once, naming the design.
-    let name = |p: &[String]| -> String {
-        varies.iter().zip(p).map(|(v, x)| format!("{}={x}", v.path)).collect::<Vec<_>>().join(", ")
-    };
+    let name = |p: &[String]| design::label(&varies, p);
     let mut studies = Vec::with_capacity(points.len());
     for (d, p) in points.iter().enumerate() {
         let sets = design::sets_for(&args.sets, &varies, p);
@@ -128,6 +268,11 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
             .map_err(|e| format!("design {d} ({}): {e}", name(p)))?;
         studies.push(study);
     }
+    // The folder's and the design folders' rules (and the manifest of the run in progress).
+    let top = match &args.out {
+        Some(out) => Some(prepare_top(out, &varies, points.len(), &args)?),
+        None => None,
+    };
     let temporary = args.out.is_none();
     let root = match &args.out {
         Some(d) => d.clone(),
@@ -178,9 +323,11 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
     }
     result?;
     let ranking = rank_by.rank(&rows);
-    if let Some(out) = &args.out {
+    if let (Some(out), Some(top)) = (&args.out, &top) {
         let write = |name: &str, bytes: &[u8]| stiction_units::io::write_atomic(&out.join(name), bytes);
+        let mut files = Vec::new();
         write("designs.csv", &design::designs_csv(&varies, &rows)?)?;
+        files.push("designs.csv".to_string());
         let report = DesignReport {
             scenario: args.scenario.display().to_string(),
             varied: &varies,
@@ -189,11 +336,13 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
             designs: &rows,
         };
         write("designs.json", (serde_json::to_string_pretty(&report)? + "\n").as_bytes())?;
+        files.push("designs.json".to_string());
         for (k, v) in varies.iter().enumerate() {
-            let stem = format!("design_{}", v.path.replace(['.', '/'], "_"));
             let chart = args.fig.apply(design_chart(&varies, &rows, k, rank_by))?;
-            crate::output::write_chart_files(out, &stem, &chart)?;
+            files.extend(crate::output::write_chart_files(out, &chart_stem(v), &chart)?);
         }
+        files.extend((0..points.len()).map(design_name));
+        finish_top(out, top, &files, &args)?;
     }
     if args.json {
         return print_json(&DesignReport {

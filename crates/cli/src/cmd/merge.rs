@@ -35,6 +35,18 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
+    // A design study's folder holds one study folder per design, not a log: say how to merge it.
+    for d in &args.dirs {
+        if !d.join(log::LOG_NAME).exists() && is_design_study(d) {
+            return Err(format!(
+                "{} is a design study's folder (designs.json, design-NNN): merge each design's shard folders on \
+                 their own (stiction merge A/design-000 B/design-000 --out M/design-000, and so on), then run the \
+                 design study with --out M --resume for its table",
+                d.display()
+            )
+            .into());
+        }
+    }
     // The shards' logs are this command's inputs: no output may replace them.
     for d in &args.dirs {
         stiction_units::io::declare_input(&d.join(log::LOG_NAME));
@@ -50,4 +62,19 @@ pub fn run(args: Args) -> CliResult {
         crate::outln!("\nwrote {}/{}, {}", args.out.display(), files.join(", "), crate::output::MANIFEST);
     }
     Ok(())
+}
+
+/// Whether `dir` is a design study's --out: it holds designs.json or a `design-NNN` folder.
+fn is_design_study(dir: &std::path::Path) -> bool {
+    dir.join("designs.json").is_file()
+        || std::fs::read_dir(dir).is_ok_and(|mut e| {
+            e.any(|e| {
+                e.is_ok_and(|e| {
+                    let n = e.file_name().to_string_lossy().into_owned();
+                    e.path().is_dir()
+                        && n.strip_prefix("design-")
+                            .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
+                })
+            })
+        })
 }
