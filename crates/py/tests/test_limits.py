@@ -100,13 +100,15 @@ def test_bem_pressure_vector_past_the_sweep_limit_is_refused_before_it_is_read()
     assert str(limit) in m
     refused(lambda: stiction.bem(pressure=huge(limit + 1, 1e6), grid=32), "pressure")
     refused(lambda: stiction.bem(pressure=huge(10**7, 1e6), grid=32), "pressure")
+    as_list = [1e6] * 10**6  # 8 MB once converted: counted first
+    refused(lambda: stiction.bem(pressure=as_list, grid=32), "pressure")
     refused(lambda: stiction.bem(pressure=[], grid=32), "pressure")
 
 
 def test_bem_and_humidity_rh_past_the_limit_are_refused_before_they_are_read(in_root):
     limit = LIMITS["max_rh"]
     assert limit == 1000
-    for rh in ([0.5] * (limit + 1), huge(limit + 1, 0.5), huge(10**7, 0.5)):
+    for rh in ([0.5] * (limit + 1), [0.5] * 10**6, huge(limit + 1, 0.5), huge(10**7, 0.5)):
         refused(lambda: stiction.bem(grid=32, rh=rh), "rh")
         refused(lambda: stiction.humidity(TAS, rh=rh), "rh")
     refused(lambda: stiction.humidity(TAS, rh=np.zeros((2, 2))), "rh")
@@ -125,6 +127,8 @@ def test_gw_and_discrete_load_vectors_past_the_sweep_limit_are_refused():
     limit = LIMITS["max_sweep_steps"]
     refused(lambda: stiction.gw(2.0, huge(limit + 1, 0.5)), "load_star")
     refused(lambda: stiction.gw(2.0, huge(10**7, 0.5)), "load_star")
+    as_list = [0.5] * (limit + 1)
+    refused(lambda: stiction.gw(2.0, as_list), "load_star")
     args = ("0.5 um", "0.1 J/m^2", "9.1e-12 1/Pa", "1.4 GPa")
     refused(lambda: stiction.discrete(3, *args, load=huge(limit + 1, 1e-6)), "load")
     as_list = [1e-6] * (limit + 1)
