@@ -135,6 +135,15 @@ def test_gw_and_discrete_load_vectors_past_the_sweep_limit_are_refused():
     refused(lambda: stiction.asperity(*args, load=as_list), "load")
 
 
+def test_gw_theta_of_another_type_names_theta():
+    for bad in (True, "x", [1], {"a": 1}, "x" * 5000):
+        m = refused(lambda: stiction.gw(bad, 0.5), "theta", TypeError)
+        assert len(m) < 200, m
+    for bad in (-1.0, 0.0, float("nan")):
+        refused(lambda: stiction.gw(bad, 0.5), "theta")
+    assert stiction.gw("inf", 0.5)["theta"] is None and stiction.gw(2, [0.5])["theta"] == 2.0
+
+
 def test_fit_data_rows_past_the_limit_are_refused_before_the_csv_is_made(in_root):
     limit = LIMITS["fit_max_rows"]
     data = {"v_clamp_v": huge(limit + 1, 20.0), "v_pull_v": huge(limit + 1, 30.0)}

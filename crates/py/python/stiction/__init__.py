@@ -258,7 +258,24 @@ def gw(theta: Optional[float], load_star) -> Dict[str, Any]:
         loads = [float(load_star)]  # one load: no array round trip
     else:
         loads = load_star  # counted (at most max_sweep_steps loads), then read, by the engine
-    return _stiction.gw_arrays(None if theta is None else float(theta), loads)
+    return _stiction.gw_arrays(_theta(theta), loads)
+
+
+def _theta(theta) -> Optional[float]:
+    """The adhesion parameter as a float (None: plain GW); a bool or a non-number raises
+    TypeError naming theta (its range is the engine's check, which names it too)."""
+    if theta is None:
+        return None
+    if isinstance(theta, (bool, _np.bool_)):
+        raise TypeError(f"theta={theta!r}: expected an adhesion parameter > 0, inf or None, got a bool")
+    try:
+        return float(theta)
+    except (TypeError, ValueError):
+        text = repr(theta)
+        text = text if len(text) <= 60 else text[:40] + f"...({len(text)} characters)"
+        raise TypeError(
+            f"theta={text}: expected an adhesion parameter > 0, inf or None, got {type(theta).__name__}"
+        ) from None
 
 
 def discrete(
