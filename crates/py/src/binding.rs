@@ -33,6 +33,122 @@ fn err(e: impl std::fmt::Display) -> PyErr {
     StictionError::new_err(e.to_string())
 }
 
+/// `message` with each command-line flag that is a Python argument of the call written as that
+/// argument (`--e-star` -> `e_star`, clap's `'--grid <GRID>'` -> `'grid'`), so that an error names
+/// what the caller typed, never a flag it did not; every other word is kept as it is.
+fn python_names(message: &str, names: &[&str]) -> String {
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(at) = rest.find("--") {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + 2..];
+        let len = after.find(|c: char| !(c.is_ascii_alphanumeric() || c == '-')).unwrap_or(after.len());
+        let name = after[..len].replace('-', "_");
+        let preceded_by_word = out.chars().last().is_some_and(|c| c.is_ascii_alphanumeric() || c == '-');
+        if len > 0 && !preceded_by_word && names.contains(&name.as_str()) {
+            out.push_str(&name);
+            let mut tail = &after[len..];
+            // clap's value name: '--grid <GRID>' -> 'grid'.
+            if let Some(v) = tail.strip_prefix(" <")
+                && let Some(end) = v.find('>')
+                && v[..end].chars().all(|c| c.is_ascii_uppercase() || "_:|".contains(c))
+            {
+                tail = &v[end + 1..];
+            }
+            rest = tail;
+        } else {
+            out.push_str("--");
+            rest = after;
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// An error of the engine as a `StictionError` with the command line's message, its flags named
+/// as the Python arguments `names` ([`python_names`]).
+fn err_named(names: &'static [&'static str]) -> impl Fn(String) -> PyErr {
+    move |e| StictionError::new_err(python_names(&e, names))
+}
+
+/// A short text of a Python value for a message: its `repr`, at most 60 characters (a 300-digit
+/// integer or a long list is cut, with its length).
+fn short_repr(value: &Bound<'_, PyAny>) -> String {
+    let text = value.repr().and_then(|r| r.extract::<String>()).unwrap_or_else(|_| "<value>".into());
+    let chars = text.chars().count();
+    if chars <= 60 {
+        return text;
+    }
+    format!("{}...({chars} characters)", text.chars().take(40).collect::<String>())
+}
+
+/// An integer argument `name` of a call: a Python int or a NumPy integer (never a bool, a float or
+/// a string: TypeError naming it), in `lo..=hi` (else StictionError naming it, with its value and
+/// the domain `what`), checked before any work.
+fn count(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: u64, what: &str) -> PyResult<u64> {
+    let domain = if hi == u64::MAX { format!("an integer >= {lo}") } else { format!("an integer in {lo}..={hi}") };
+    let domain = if what.is_empty() { domain } else { format!("{domain} ({what})") };
+    let numpy_bool = value.hasattr("dtype")?
+        && value.getattr("dtype")?.getattr("kind").and_then(|k| k.extract::<String>()).is_ok_and(|k| k == "b");
+    if value.is_instance_of::<pyo3::types::PyBool>() || numpy_bool {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{name}={}: expected {domain}, got a bool",
+            short_repr(value)
+        )));
+    }
+    let index = value.call_method0("__index__").map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err(format!(
+            "{name}={}: expected {domain}, got {}",
+            short_repr(value),
+            value.get_type().name().map_or_else(|_| "?".to_string(), |n| n.to_string())
+        ))
+    })?;
+    match index.extract::<i128>() {
+        Ok(v) if v >= i128::from(lo) && v <= i128::from(hi) => Ok(v as u64),
+        _ => Err(err(format!("{name}={}: expected {domain}", short_repr(&index)))),
+    }
+}
+
+/// _count(name, value, lo, hi=None, what="") -> int: [`count`] for the Python wrappers (the
+/// integer arguments they turn into command-line flags).
+#[pyfunction]
+#[pyo3(signature = (name, value, lo, hi=None, what=""))]
+fn _count(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: Option<u64>, what: &str) -> PyResult<u64> {
+    count(name, value, lo, hi.unwrap_or(u64::MAX), what)
+}
+
+/// A vector argument `name` as f64s: a NumPy array or a sequence of numbers, its number of values
+/// checked by `check` BEFORE it is converted or copied (a list of ten million floats is refused
+/// at once), then read as float64 (flat, any shape, when `flat`; else at most one dimension).
+/// Values that are not numbers: StictionError naming the argument.
+fn vector(
+    name: &str,
+    obj: &Bound<'_, PyAny>,
+    flat: bool,
+    check: &dyn Fn(usize) -> Result<(), String>,
+) -> PyResult<Vec<f64>> {
+    let np = obj.py().import("numpy")?;
+    let ndarray = np.getattr("ndarray")?;
+    let known = if obj.is_instance(&ndarray)? { obj.getattr("size")?.extract::<usize>().ok() } else { obj.len().ok() };
+    if let Some(n) = known {
+        check(n).map_err(err)?;
+    }
+    let kwargs = PyDict::new(obj.py());
+    kwargs.set_item("dtype", np.getattr("float64")?)?;
+    let array = np.call_method("asarray", (obj,), Some(&kwargs)).map_err(|e| {
+        err(format!("{name}: expected numbers (a list or a NumPy array of floats), got {} ({e})", short_repr(obj)))
+    })?;
+    let ndim: usize = array.getattr("ndim")?.extract()?;
+    if !flat && ndim > 1 {
+        return Err(err(format!("{name}: expected a 1-D list of numbers, got {ndim} dimensions")));
+    }
+    let size: usize = array.getattr("size")?.extract()?;
+    check(size).map_err(err)?;
+    let flat_array = array.call_method0("ravel")?;
+    let values: numpy::PyReadonlyArray1<'_, f64> = flat_array.extract()?;
+    Ok(values.as_array().iter().copied().collect())
+}
+
 /// `json.loads(text)`: the Python value of a JSON text, as a script parsing `--json` gets it.
 fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (text,))
@@ -374,55 +490,125 @@ fn run_json<'py>(
     json_object(py, out.map_err(err)?)
 }
 
-/// contact_json(scenario, flags, loads=None) -> dict: what `stiction contact SCENARIO FLAGS --json`
-/// prints with the explicit solver; `loads` (N, in order) is a sweep of those loads. The GIL is
-/// released; Ctrl-C raises KeyboardInterrupt.
+/// contact_json(scenario, flags, loads=None, max_sweep_steps=None) -> dict: what `stiction
+/// contact SCENARIO FLAGS --json` prints with the explicit solver; `loads` (N, in order: a list or
+/// an array) is a sweep of those loads, at most `max_sweep_steps` of them (the command line's
+/// `--max-sweep-steps`, default 1,000,000), counted before they are read. Errors name the
+/// Python arguments (`load`, `mode`, `contacts`, ...), never the flags. The GIL is released;
+/// Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scenario, flags, loads=None))]
+#[pyo3(signature = (scenario, flags, loads=None, max_sweep_steps=None))]
 fn contact_json<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
     flags: Vec<String>,
-    loads: Option<Vec<f64>>,
+    loads: Option<&Bound<'py, PyAny>>,
+    max_sweep_steps: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    const NAMES: &[&str] = &["load", "mode", "contacts", "summits", "model", "max_sweep_steps"];
+    let named = err_named(NAMES);
+    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
+    let max = match max_sweep_steps.filter(|m| !m.is_none()) {
+        Some(m) => count("max_sweep_steps", m, 1, usize::MAX as u64, "loads of one sweep")? as usize,
+        None => DEFAULT_MAX_SWEEP_STEPS,
+    };
+    let loads = match loads.filter(|l| !l.is_none()) {
+        Some(l) => Some(vector("load", l, true, &|n| {
+            check_sweep_len("load", n, max, "raise it with max_sweep_steps=N if you mean it")
+        })?),
+        None => None,
+    };
     let source = PyScenario::source_of(scenario)?;
     let mut all = vec![source.name()];
     all.extend(flags);
+    all.push(format!("--max-sweep-steps={max}"));
     if let Some(loads) = &loads {
-        if loads.is_empty() {
-            return Err(err("loads: expected at least one load"));
-        }
         if let Some((i, l)) = loads.iter().enumerate().find(|(_, l)| !l.is_finite()) {
-            return Err(err(format!("loads[{i}] = {l}: expected a finite load in N")));
+            return Err(err(format!("load[{i}] = {l}: expected a finite load in N")));
         }
         all.extend(["--load".to_string(), format!("{:?}", loads[0])]);
     }
     all.push("--json".into());
-    let args: stiction_cli::api::ContactArgs = stiction_cli::api::parse_args("contact", &all).map_err(err)?;
+    let args: stiction_cli::api::ContactArgs = stiction_cli::api::parse_args("contact", &all).map_err(&named)?;
     let out = interruptible(py, move |_| {
         stiction_cli::api::contact_json(&args, &source, loads.as_deref()).map_err(|e| e.to_string())
     })?;
-    json_object(py, out.map_err(err)?)
+    json_object(py, out.map_err(named)?)
 }
+
+/// The Python arguments of `bem`, whose command-line flags its errors name by these names.
+const BEM_NAMES: &[&str] = &[
+    "heights",
+    "pressure",
+    "pixel_size",
+    "pixel_size_y",
+    "height_unit",
+    "level",
+    "cutoff",
+    "long_cutoff",
+    "e_star",
+    "sweep",
+    "gap_sweep",
+    "gap_back",
+    "work_of_adhesion",
+    "range",
+    "shear_strength",
+    "tolerance",
+    "compare_asperity",
+    "scenario",
+    "rh",
+    "temperature",
+    "contact_angle",
+    "rh_step",
+    "min_kelvin_radius",
+    "size",
+    "grid",
+    "hurst",
+    "roll_off",
+    "short",
+    "rms_height",
+    "seed",
+];
 
 /// bem_json(heights, flags, pressures=None, scenario=None, rh=None) -> dict: what `stiction bem
 /// --map FILE.npy FLAGS --json` prints for the height map `heights` (a 2-D array, read in place),
 /// its `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a
 /// path), what `stiction bem --scenario SCENARIO FLAGS --json` prints; or, with neither, what
 /// `stiction bem FLAGS --json` prints on the generated surface of the generator flags.
-/// `pressures` (Pa, in order) instead of --pressure/--sweep; `rh` (fractions) instead of the text
-/// of --rh. The GIL is released; Ctrl-C raises KeyboardInterrupt.
+/// `pressures` (Pa, in order; a list or an array of at most 10,000, the limit of --sweep) instead
+/// of --pressure/--sweep; `rh` (fractions, at most 1000) instead of the text of --rh. Every
+/// length and the map's grid are checked before anything is read or copied; errors name the
+/// Python arguments (`pressure`, `rh`, `grid`, `e_star`, ...), never the flags. The GIL is
+/// released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (heights, flags, pressures=None, scenario=None, rh=None))]
 fn bem_json<'py>(
     py: Python<'py>,
     heights: &Bound<'py, PyAny>,
     flags: Vec<String>,
-    pressures: Option<Vec<f64>>,
+    pressures: Option<&Bound<'py, PyAny>>,
     scenario: Option<&Bound<'py, PyAny>>,
-    rh: Option<Vec<f64>>,
+    rh: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     use stiction_cli::api::BemSurface;
+    use stiction_cli::api::limits::{MAX_RH, check_bem_grid, check_pressures_len};
+    let named = err_named(BEM_NAMES);
+    let pressures = match pressures.filter(|p| !p.is_none()) {
+        Some(p) => Some(vector("pressure", p, true, &|n| check_pressures_len("pressure", n))?),
+        None => None,
+    };
+    let rh = match rh.filter(|r| !r.is_none()) {
+        Some(r) => Some(vector("rh", r, false, &|n| {
+            if n > MAX_RH { Err(format!("rh: expected 1 to {MAX_RH} humidities, got {n}")) } else { Ok(()) }
+        })?),
+        None => None,
+    };
+    // A map larger than the solver's grid is refused before it is read (a copy of the array).
+    if !heights.is_none()
+        && let Ok((ny, nx)) = heights.getattr("shape").and_then(|s| s.extract::<(usize, usize)>())
+    {
+        check_bem_grid("heights", nx, ny).map_err(err)?;
+    }
     let mut flags = flags;
     if let Some(values) = &rh {
         // Checked and named here (rh[i]); then the --rh text of the same numbers, which the
@@ -430,12 +616,7 @@ fn bem_json<'py>(
         stiction_cli::api::check_rh_values(values).map_err(err)?;
         flags.push(format!("--rh={}", values.iter().map(|v| format!("{v:?}")).collect::<Vec<_>>().join(",")));
     }
-    let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(err)?;
-    if let Some(p) = &pressures
-        && p.is_empty()
-    {
-        return Err(err("pressures: expected at least one mean pressure"));
-    }
+    let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(&named)?;
     if let Some(scenario) = scenario.filter(|s| !s.is_none()) {
         if !heights.is_none() {
             return Err(err("bem: give a height map (heights) or a scenario, not both"));
@@ -445,20 +626,20 @@ fn bem_json<'py>(
             stiction_cli::api::bem_json(&args, BemSurface::Scenario(&source), pressures.as_deref())
                 .map_err(|e| e.to_string())
         })?;
-        return json_object(py, out.map_err(err)?);
+        return json_object(py, out.map_err(named)?);
     }
     if heights.is_none() {
         let out = interruptible(py, move |_| {
             stiction_cli::api::bem_json(&args, BemSurface::Generated, pressures.as_deref()).map_err(|e| e.to_string())
         })?;
-        return json_object(py, out.map_err(err)?);
+        return json_object(py, out.map_err(named)?);
     }
     let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
     let out = interruptible(py, move |_| {
         let surface = BemSurface::Map { file: "<array>", raw, info };
         stiction_cli::api::bem_json(&args, surface, pressures.as_deref()).map_err(|e| e.to_string())
     })?;
-    json_object(py, out.map_err(err)?)
+    json_object(py, out.map_err(named)?)
 }
 
 /// humidity_json(scenario, rh_text=None, rh=None, progress=None) -> dict: what `stiction plot
@@ -473,16 +654,25 @@ fn humidity_json<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
     rh_text: Option<String>,
-    rh: Option<Vec<f64>>,
+    rh: Option<&Bound<'py, PyAny>>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    use stiction_cli::api::limits::MAX_RH;
+    let named = err_named(&["rh"]);
+    let rh = match rh.filter(|r| !r.is_none()) {
+        // Counted before it is read: at most the --rh limit of humidities.
+        Some(r) => Some(vector("rh", r, false, &|n| {
+            if n > MAX_RH { Err(format!("rh: expected 1 to {MAX_RH} humidities, got {n}")) } else { Ok(()) }
+        })?),
+        None => None,
+    };
     let rhs = match (rh_text, rh) {
         (Some(_), Some(_)) => return Err(err("rh: give the humidities as text or as numbers, not both")),
         (Some(text), None) => stiction_cli::api::rh_grid(Some(&text)),
         (None, Some(values)) => stiction_cli::api::rh_grid_of(&values),
         (None, None) => stiction_cli::api::rh_grid(None),
     }
-    .map_err(err)?;
+    .map_err(named)?;
     let source = PyScenario::source_of(scenario)?;
     let progress = Progress::new(progress);
     let report = progress.clone();
@@ -510,17 +700,18 @@ fn fit_json<'py>(
     data_csv: Option<String>,
     data_name: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let named = err_named(&["models", "free", "surfaces", "draws", "seed", "data", "scenario"]);
     let source = PyScenario::source_of(scenario)?;
     let mut all = flags;
     all.extend(["--scenario".to_string(), source.name()]);
     all.push("--json".into());
-    let args: stiction_cli::api::FitArgs = stiction_cli::api::parse_args("fit", &all).map_err(err)?;
+    let args: stiction_cli::api::FitArgs = stiction_cli::api::parse_args("fit", &all).map_err(&named)?;
     let name = data_name.unwrap_or_else(|| "<data>".into());
     let out = interruptible(py, move |_| {
         stiction_cli::api::fit_json(&args, &source, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
             .map_err(|e| e.to_string())
     })?;
-    json_object(py, out.map_err(err)?)
+    json_object(py, out.map_err(named)?)
 }
 
 /// A length flag value: a unit string ("3.9 um") or an SI number, checked as the command line
@@ -720,17 +911,42 @@ impl Progress {
 /// samples as `stiction study --out` writes samples.csv. The scenario is a file or one built from
 /// a dict (its relative paths from its base_dir). The GIL is released; Ctrl-C stops the study.
 #[pyfunction]
-#[pyo3(signature = (scenario, samples=100, seed=1, threads=None, fixed_surface=false, progress=None))]
+#[pyo3(signature = (scenario, samples=None, seed=None, threads=None, fixed_surface=false, progress=None))]
 fn study_json<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
-    samples: usize,
-    seed: u64,
-    threads: Option<usize>,
+    samples: Option<&Bound<'py, PyAny>>,
+    seed: Option<&Bound<'py, PyAny>>,
+    threads: Option<&Bound<'py, PyAny>>,
     fixed_surface: bool,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
-    let source = PyScenario::source_of(scenario)?;
+    // The counts first, named as the arguments (the command line's checks follow, their flags
+    // named the same way): nothing is read or allocated for a refused call.
+    const NAMES: &[&str] = &["samples", "seed", "threads"];
+    let named = err_named(NAMES);
+    let max_samples = stiction_cli::api::limits::max_samples() as u64;
+    // None: the command line's defaults (100 samples, seed 1).
+    let samples = match samples.filter(|s| !s.is_none()) {
+        Some(s) => count(
+            "samples",
+            s,
+            1,
+            u64::MAX,
+            &format!("at most {max_samples} per study; STICTION_MAX_SAMPLES raises the limit"),
+        )?,
+        None => 100,
+    };
+    let samples = usize::try_from(samples).unwrap_or(usize::MAX);
+    let seed = match seed.filter(|s| !s.is_none()) {
+        Some(s) => count("seed", s, 0, u64::MAX, "")?,
+        None => 1,
+    };
+    let max_threads = stiction_cli::api::limits::MAX_THREADS as u64;
+    let threads = match threads.filter(|t| !t.is_none()) {
+        Some(t) => Some(count("threads", t, 1, max_threads, "worker threads; None: one per core")? as usize),
+        None => None,
+    };
     let config = StudyConfig {
         calibration: Calibration::Nominal,
         slip_path: stiction_meter::SlipPath::Light,
@@ -740,8 +956,9 @@ fn study_json<'py>(
         shard_index: 0,
         shard_count: 1,
     };
-    config.validate().map_err(err)?;
-    let pool = stiction_cli::api::study_pool(threads).map_err(err)?;
+    config.validate().map_err(|e| named(e.to_string()))?;
+    let pool = stiction_cli::api::study_pool(threads).map_err(|e| named(e.to_string()))?;
+    let source = PyScenario::source_of(scenario)?;
     let value = source.json(&[]).map_err(err)?;
     let study = Study::prepare_value(value, &source.origin, &source.base, &config)
         .and_then(stiction_cli::api::with_lab_intervals)
@@ -777,7 +994,16 @@ fn study_json<'py>(
 /// gw(theta, load_star) -> dict of arrays: the stable-branch Greenwood-Williamson + DMT state
 /// (eq. 5-9) at each normalized load L* (as `stiction gw --theta T --load-star L --json`).
 #[pyfunction]
-fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
+    // One CLI call per load: at most the loads of one sweep, counted before they are read.
+    let load_star = vector("load_star", load_star, true, &|n| {
+        if n == 0 {
+            Ok(())
+        } else {
+            check_sweep_len("load_star", n, DEFAULT_MAX_SWEEP_STEPS, "split the loads over several calls")
+        }
+    })?;
     let theta = theta.filter(|t| !t.is_infinite());
     let model = stiction_contact::gw::GwModel::new(theta).map_err(err)?;
     let solve = || {
@@ -824,17 +1050,32 @@ fn quantity(name: &str, value: &Bound<'_, PyAny>, dim: Dimension, constraint: Co
 #[allow(clippy::too_many_arguments)]
 fn discrete_json<'py>(
     py: Python<'py>,
-    contacts: u32,
+    contacts: &Bound<'_, PyAny>,
     radius: &Bound<'_, PyAny>,
     work_of_adhesion: &Bound<'_, PyAny>,
     compliance: &Bound<'_, PyAny>,
     shear_strength: &Bound<'_, PyAny>,
-    loads: Vec<Bound<'_, PyAny>>,
+    loads: &Bound<'_, PyAny>,
     adhesion: &str,
     equilibrium_spacing: Option<&Bound<'_, PyAny>>,
     target_slope: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
     use stiction_cli::api::{DiscreteArgs, Law};
+    // The counts first: contacts as the command line's --contacts (u32), the loads (one CLI
+    // call each) at most those of one sweep, counted before they are read.
+    let contacts = count("contacts", contacts, 0, u64::from(u32::MAX), "summits in contact")? as u32;
+    // A NumPy array counted by its size (any shape, read flat), a list by its length.
+    let is_array = loads.is_instance(&py.import("numpy")?.getattr("ndarray")?)?;
+    let n = if is_array { loads.getattr("size")?.extract()? } else { loads.len().unwrap_or(usize::MAX) };
+    if n == usize::MAX {
+        return Err(err(format!("load: expected a force or a list of forces, got {}", short_repr(loads))));
+    }
+    if n > 0 {
+        check_sweep_len("load", n, DEFAULT_MAX_SWEEP_STEPS, "split the loads over several calls").map_err(err)?;
+    }
+    let flat = if is_array { loads.call_method0("ravel")? } else { loads.clone() };
+    let loads: Vec<Bound<'_, PyAny>> = flat.try_iter()?.collect::<PyResult<_>>()?;
     let law = match adhesion.to_ascii_lowercase().as_str() {
         "dmt" => Law::Dmt,
         "jkr" => Law::Jkr,
@@ -879,6 +1120,25 @@ fn discrete_json<'py>(
     to_py(py, &out.map_err(err)?)
 }
 
+/// _limits() -> dict: the command line's limits that the functions apply to their array and
+/// count arguments (the same constants the commands check; `max_samples` as
+/// STICTION_MAX_SAMPLES sets it now).
+#[pyfunction]
+fn _limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    use stiction_cli::api::limits::*;
+    let d = PyDict::new(py);
+    d.set_item("max_sweep_steps", DEFAULT_MAX_SWEEP_STEPS)?;
+    d.set_item("bem_max_path_steps", BEM_MAX_PATH_STEPS)?;
+    d.set_item("bem_max_grid_side", BEM_MAX_GRID_SIDE)?;
+    d.set_item("max_rh", MAX_RH)?;
+    d.set_item("max_samples", max_samples())?;
+    d.set_item("max_threads", MAX_THREADS)?;
+    d.set_item("fit_max_surfaces", MAX_SURFACES)?;
+    d.set_item("fit_max_draws", MAX_DRAWS)?;
+    d.set_item("fit_max_rows", MAX_FIT_ROWS)?;
+    Ok(d)
+}
+
 /// The extension module `stiction._stiction`.
 #[pymodule]
 fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -895,6 +1155,8 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(humidity_json, m)?)?;
     m.add_function(wrap_pyfunction!(fit_json, m)?)?;
     m.add_function(wrap_pyfunction!(_heap, m)?)?;
+    m.add_function(wrap_pyfunction!(_count, m)?)?;
+    m.add_function(wrap_pyfunction!(_limits, m)?)?;
     m.add_function(wrap_pyfunction!(_last_engine_seconds, m)?)?;
     m.add_function(wrap_pyfunction!(_reset_heap_peak, m)?)?;
     m.add_function(wrap_pyfunction!(_read_heights, m)?)?;

@@ -50,3 +50,16 @@ def in_root(monkeypatch):
     """Run the test in the repository root, so that relative scenario paths name the same files."""
     monkeypatch.chdir(ROOT)
     return ROOT
+
+
+def python_names(message: str, names) -> str:
+    """A command-line message with each flag that is one of the Python arguments `names` written
+    as that argument (`--e-star` -> `e_star`, clap's `'--grid <GRID>'` -> `'grid'`): the binding's
+    rule for the messages of arguments it turns into flags (errors name what the caller typed)."""
+    import re
+
+    def name(m):
+        arg = m[1].replace("-", "_")
+        return arg if arg in names else m[0]
+
+    return re.sub(r"(?<![\w-])--([a-z][a-z0-9-]*)(?: <[A-Z_:|]+>)?", name, message)

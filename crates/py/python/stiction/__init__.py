@@ -196,7 +196,9 @@ def study(
     surface (unless fixed_surface); the spread of mu_e,a (dimensionless) and F_a0 (N) of eq. 10.
 
     Equals ``stiction study SCENARIO --samples N --seed S --threads T --json``: same seed, same
-    numbers whatever ``threads`` (default: one worker per core).
+    numbers whatever ``threads`` (default: one worker per core). The command line's limits:
+    samples 1 to 10^7 (``STICTION_MAX_SAMPLES`` raises it), threads 1 to 1024, seed 0 to 2^64 - 1;
+    a bad count raises before any work, naming the argument (TypeError for a bool or a float).
 
     progress: optional ``progress(done, total)`` called as samples finish (from a worker thread).
     as_pandas: ``samples`` as a pandas DataFrame (default: when pandas is installed) or a dict of
@@ -206,7 +208,7 @@ def study(
     sample, the columns of ``stiction study --out``'s samples.csv (sample, mu_apparent,
     apparent_adhesion_force_n in N, mean_contacts, each drawn parameter in SI, reason, detail;
     a value a sample could not compute is NaN with its reason). Releases the GIL; Ctrl-C stops
-    the study (KeyboardInterrupt within a second).
+    the study (KeyboardInterrupt; the samples in flight finish in the background).
     """
     data, csv_text = _stiction.study_json(scenario, samples, seed, threads, fixed_surface, progress)
     return Result(data, {"samples": _samples(csv_text, as_pandas)})
@@ -255,8 +257,25 @@ def gw(theta: Optional[float], load_star) -> Dict[str, Any]:
     if isinstance(load_star, (int, float)) and not isinstance(load_star, bool):
         loads = [float(load_star)]  # one load: no array round trip
     else:
-        loads = _np.atleast_1d(_np.asarray(load_star, dtype=float)).ravel().tolist()
-    return _stiction.gw_arrays(None if theta is None else float(theta), loads)
+        loads = load_star  # counted (at most max_sweep_steps loads), then read, by the engine
+    return _stiction.gw_arrays(_theta(theta), loads)
+
+
+def _theta(theta) -> Optional[float]:
+    """The adhesion parameter as a float (None: plain GW); a bool or a non-number raises
+    TypeError naming theta (its range is the engine's check, which names it too)."""
+    if theta is None:
+        return None
+    if isinstance(theta, (bool, _np.bool_)):
+        raise TypeError(f"theta={theta!r}: expected an adhesion parameter > 0, inf or None, got a bool")
+    try:
+        return float(theta)
+    except (TypeError, ValueError):
+        text = repr(theta)
+        text = text if len(text) <= 60 else text[:40] + f"...({len(text)} characters)"
+        raise TypeError(
+            f"theta={text}: expected an adhesion parameter > 0, inf or None, got {type(theta).__name__}"
+        ) from None
 
 
 def discrete(
@@ -283,9 +302,13 @@ def discrete(
     as float64 arrays over the loads (null as NaN: friction_slope is null where the contact radius
     is 0), and ``points``, the list of the CLI's objects, equal to its JSON.
     """
-    loads = load if isinstance(load, str) else _np.atleast_1d(_np.asarray(load, dtype=float)).ravel().tolist()
-    if isinstance(loads, str):
-        loads = [loads]
+    # A vector is handed over as it is (an array flat, a view), counted before it is read.
+    if isinstance(load, _np.ndarray) and load.ndim >= 1:
+        loads = load  # counted by its size, then read flat, by the engine (no copy before)
+    elif _is_vector(load):
+        loads = load
+    else:
+        loads = [load]
     points = _stiction.discrete_json(
         contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion,
         equilibrium_spacing, target_slope,
@@ -311,6 +334,10 @@ def asperity(
 
 
 def _is_vector(x) -> bool:
+    # A list or a tuple without converting it (np.ndim would copy a list of a million floats
+    # before the engine counts it); anything else by its dimensions.
+    if isinstance(x, (list, tuple)):
+        return True
     return not isinstance(x, (str, bytes, int, float)) and x is not None and _np.ndim(x) >= 1
 
 
@@ -351,6 +378,7 @@ def contact(
     contacts: Optional[int] = None,
     summits: bool = False,
     model: Optional[str] = None,
+    max_sweep_steps: Optional[int] = None,
 ) -> Result:
     """The explicit asperity-by-asperity solver on the scenario's surface (rigid shoe, summits
     from the scenario, its contact law), as ``stiction contact SCENARIO --json``; with
@@ -364,7 +392,8 @@ def contact(
     load: the normal load, compressive positive, a force ("3 uN") or N, for one equilibrium; or a
     vector of loads (N, in order, each from the previous equilibrium) for a sweep, whose result
     has ``points`` (one equilibrium per load, also as NumPy ``columns``) and ``events`` (jump_in,
-    release, pull_off).
+    release, pull_off). At most ``max_sweep_steps`` loads (default 1,000,000, the command line's
+    ``--max-sweep-steps``), counted before any is read.
     mode: "tilt", "flat" or "fixed" (default: the scenario's). contacts: N for mode "fixed".
     summits: list every summit in contact. model: "explicit" (default) or "bem"; mode, contacts
     and summits belong to the explicit solver.
@@ -376,11 +405,13 @@ def contact(
     """
     if load is None:
         raise StictionError("contact: give a load (a force) or a vector of loads")
+    if contacts is not None:
+        contacts = _stiction._count("contacts", contacts, 1, None, "summits carrying the shoe in mode 'fixed'")
     flags = _flag("model", model) + _flag("mode", mode) + _flag("contacts", contacts) + _flag("summits", summits)
     if _is_vector(load):
-        loads = _np.asarray(load, dtype=float).ravel().tolist()
-        return Result(_stiction.contact_json(scenario, flags, loads))
-    return Result(_stiction.contact_json(scenario, flags + _flag("load", load), None))
+        # The vector as it is: counted against max_sweep_steps, then read, by the engine.
+        return Result(_stiction.contact_json(scenario, flags, load, max_sweep_steps))
+    return Result(_stiction.contact_json(scenario, flags + _flag("load", load), None, max_sweep_steps))
 
 
 def bem(
@@ -421,7 +452,7 @@ def bem(
     the same flags (its ``surface.file`` is "<array>").
 
     pressure: mean (nominal) pressure, compressive, a pressure ("20 MPa") or Pa; or a vector of
-    them (Pa, in order, each from the previous state). Or sweep "FROM:TO:STEPS" of pressures, or
+    them (Pa, in order, each from the previous state; at most 10,000, the steps of a sweep). Or sweep "FROM:TO:STEPS" of pressures, or
     gap_sweep "FROM:TO:STEPS" of mean gaps (with gap_back, back again), needed with adhesion.
     pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff: as for ``topography``.
     e_star: composite modulus E* (Pa; default 85 GPa). work_of_adhesion (J/m^2), range (m): the
@@ -481,6 +512,14 @@ def bem(
         + _flag("temperature", temperature) + _flag("contact_angle", contact_angle) + _flag("rh_step", rh_step)
         + _flag("min_kelvin_radius", min_kelvin_radius)
     )
+    limits = _stiction._limits()
+    if grid is not None:
+        # Its type and sign here; its range (2 to 4096) by the command line's own check.
+        grid = _stiction._count("grid", grid, 0, None, f"points per side, 2 to {limits['bem_max_grid_side']}")
+        generator["grid"] = grid
+    if seed is not None:
+        seed = _stiction._count("seed", seed, 0, 2**64 - 1, "the generator's seed")
+        generator["seed"] = seed
     given_generator = [k for k, v in generator.items() if v is not None]
     if (scenario is not None or heights is not None) and given_generator:
         raise StictionError(
@@ -509,8 +548,8 @@ def bem(
     else:
         heights_arg = _heights(heights)
     if _is_vector(pressure):
-        pressures = _np.asarray(pressure, dtype=float).ravel().tolist()
-        return Result(_stiction.bem_json(heights_arg, flags, pressures, scenario, rh_values))
+        # The vector as it is: counted (at most the 10,000 steps of a sweep), then read, by the engine.
+        return Result(_stiction.bem_json(heights_arg, flags, pressure, scenario, rh_values))
     return Result(_stiction.bem_json(heights_arg, flags + _flag("pressure", pressure), None, scenario, rh_values))
 
 
@@ -520,16 +559,11 @@ def _rh(rh) -> tuple:
     if isinstance(rh, str):
         return rh, None
     if isinstance(rh, (bool, _np.bool_)) or rh is None:
-        raise StictionError(f"rh: expected fractions in [0, 1) (a list or array) or a --rh text, got {rh!r}")
-    try:
-        values = _np.asarray(rh, dtype=float)
-    except (TypeError, ValueError) as e:
-        raise StictionError(
-            f"rh: expected fractions in [0, 1) (a list or array) or a --rh text, got {type(rh).__name__} ({e})"
-        ) from None
-    if values.ndim > 1:
-        raise StictionError(f"rh: expected a 1-D list of fractions, got {values.ndim} dimensions")
-    return None, _np.atleast_1d(values).tolist()
+        raise StictionError(f"rh: expected fractions in [0, 1) (a list or array) or a text ('0.1,35 %', '0:0.9:10'), got {rh!r}")
+    if isinstance(rh, dict):
+        raise StictionError("rh: expected fractions in [0, 1) (a list or array) or a text ('0.1,35 %', '0:0.9:10'), got dict")
+    # The numbers as they are: counted (at most 1000), then read as a 1-D float64 array, by the engine.
+    return None, rh
 
 
 def humidity(
@@ -585,6 +619,13 @@ def fit(
     Monte Carlo draws; seed: its seed (the CLI's defaults when None).
     Releases the GIL; Ctrl-C raises KeyboardInterrupt.
     """
+    limits = _stiction._limits()
+    if surfaces is not None:
+        surfaces = _stiction._count("surfaces", surfaces, 1, limits["fit_max_surfaces"], "realisations of the explicit ensemble")
+    if draws is not None:
+        draws = _stiction._count("draws", draws, 1, limits["fit_max_draws"], "calibration Monte Carlo draws")
+    if seed is not None:
+        seed = _stiction._count("seed", seed, 0, 2**64 - 1, "the calibration Monte Carlo's seed")
     flags = (
         _flag("models", models) + _flag("free", free) + _flag("surfaces", surfaces) + _flag("draws", draws)
         + _flag("seed", seed)
@@ -606,6 +647,16 @@ def _voltage_csv(data) -> str:
     for k in ("v_clamp_v", "v_pull_v"):
         if k not in names:
             raise StictionError(f"data: no column {k!r} (expected v_clamp_v, v_pull_v [, v_pull_sd_v, device])")
+    # The rows counted before any is converted (the CSV text is some 40 bytes a row): at most the
+    # command line's limit of rows.
+    max_rows = _stiction._limits()["fit_max_rows"]
+    for k in names:
+        column = data[k]
+        n = column.size if isinstance(column, _np.ndarray) else len(column) if hasattr(column, "__len__") else 0
+        if n > max_rows:
+            raise StictionError(
+                f"data[{k!r}]: {n} rows; `stiction fit` takes at most {max_rows} rows (split the data, e.g. by device)"
+            )
     columns = []
     for k in names:
         values = _np.asarray(data[k])

@@ -107,8 +107,10 @@ def contact(
     contacts: Optional[int] = None,
     summits: bool = False,
     model: Optional[str] = None,
+    max_sweep_steps: Optional[int] = None,
 ) -> Result:
-    """The explicit solver (or model="bem", the boundary-element model) at a load (N) or over a vector of loads."""
+    """The explicit solver (or model="bem", the boundary-element model) at a load (N) or over a vector of loads
+    (at most max_sweep_steps, default 1,000,000)."""
 
 def bem(
     heights: Optional[Heights] = None,
