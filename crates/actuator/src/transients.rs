@@ -641,6 +641,9 @@ pub struct TransientErrors {
     pub mean_rel_error: Option<f64>,
     /// Root mean square of `predicted - measured_mean` (s; `null` when none was predicted).
     pub rmse_s: Option<f64>,
+    /// Why a value is null: the group of all finger lengths, or no point of it predicted.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 fn errors(points: &[&TransientComparison], event: TransientEvent, length: Option<f64>) -> TransientErrors {
@@ -661,6 +664,14 @@ fn errors(points: &[&TransientComparison], event: TransientEvent, length: Option
         mean_abs_rel_error: mean(&|e| e.0.abs()),
         mean_rel_error: mean(&|e| e.0),
         rmse_s: mean(&|e| e.1 * e.1).map(f64::sqrt),
+        note: match (length.is_none(), ok.is_empty()) {
+            (false, false) => None,
+            (true, false) => Some("finger_length_m is null: the group of all finger lengths together".into()),
+            (false, true) => Some("no point of this group was predicted (the model never switches there)".into()),
+            (true, true) => {
+                Some("finger_length_m is null: all finger lengths together; no point of the group was predicted".into())
+            }
+        },
     }
 }
 

@@ -506,6 +506,16 @@ impl Meter {
                     }
                 }
             }
+            if point.v_pull.is_some()
+                && (point.slip_time_to_stop_s.is_none() || point.slip_impact_velocity_m_per_s.is_none())
+                && point.slip_note.is_none()
+            {
+                point.slip_note = Some(
+                    "no slip dynamics in the scenario (meter.slip_dynamics): only the quasi-static runaway test, no \
+                     time to the stop and no impact speed"
+                        .into(),
+                );
+            }
             previous_in_contact = in_contact;
             points.push(point);
             progress(k + 1, voltages.len());

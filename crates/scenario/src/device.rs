@@ -581,7 +581,19 @@ impl Scenario {
     /// default the parse filled in, in SI.
     pub fn to_input_json(&self) -> Value {
         let typed = serde_json::to_value(self).unwrap_or(Value::Null);
-        overlay(typed, &self.source_json)
+        without_nulls(overlay(typed, &self.source_json))
+    }
+}
+
+/// `v` without its null object members: in a scenario a null field is an absent one (`--set
+/// PATH=null` removes it), so the printed form leaves it out.
+fn without_nulls(v: Value) -> Value {
+    match v {
+        Value::Object(o) => {
+            Value::Object(o.into_iter().filter(|(_, x)| !x.is_null()).map(|(k, x)| (k, without_nulls(x))).collect())
+        }
+        Value::Array(a) => Value::Array(a.into_iter().map(without_nulls).collect()),
+        other => other,
     }
 }
 

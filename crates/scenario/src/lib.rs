@@ -219,11 +219,12 @@ impl Scenario {
             let p = e.path().to_string();
             field(if p == "." { "(top level)".into() } else { p }, truncate(&e.into_inner().to_string(), 300))
         })?;
-        scenario.validate().map_err(|(p, m)| field(p, m))?;
-        // Every number against its physical domain (crate::domain), by its key path: refused
-        // outside it, a note outside its usual range.
+        // Every number against its physical domain (crate::domain), by its key path, before the
+        // cross-field checks (so that the field itself is named): refused outside it, a note
+        // outside its usual range.
         let typed = serde_json::to_value(&scenario).map_err(|e| field("(top level)".into(), e.to_string()))?;
         let unusual = domain::check_tree(&typed).map_err(|e| field(e.field, e.message))?;
+        scenario.validate().map_err(|(p, m)| field(p, m))?;
         scenario.check_physics().map_err(|(p, m)| field(p, m))?;
         scenario.source_json = source_json;
         scenario.notes.extend(unusual);

@@ -749,6 +749,10 @@ pub struct DesignRow {
     pub mu_bias: Option<f64>,
     /// Its standard error (from the median's order-statistic interval).
     pub mu_bias_se: Option<f64>,
+    /// Why a value of the row is null: too few experiments with a fit (or with a bound on a
+    /// percentile) to give it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<&'static str>,
 }
 
 /// Half-width / 1.96 of a 95 % interval: a standard error.
@@ -782,7 +786,24 @@ impl DesignRow {
             apparent_adhesion_force_n: summary.apparent_adhesion_force_n.clone(),
             mu_interval_width: width,
             mu_interval_width_se: width_se,
+            note: None,
         }
+        .with_note()
+    }
+
+    fn with_note(mut self) -> DesignRow {
+        let nulls = [self.mu_interval_width, self.mu_interval_width_se, self.mu_bias, self.mu_bias_se]
+            .iter()
+            .any(Option::is_none)
+            || self.mu_apparent.is_none()
+            || self.apparent_adhesion_force_n.is_none()
+            || self.interface_mu.is_none()
+            || self.mu_bias_spread.is_none();
+        self.note = nulls.then_some(
+            "null where the design's study has too few experiments with a fit to give the value (or to bound \
+             a percentile of it)",
+        );
+        self
     }
 }
 

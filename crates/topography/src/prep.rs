@@ -90,6 +90,9 @@ pub struct PreparationReport {
     pub short_cutoff_m: Option<f64>,
     /// Long-wavelength cut-off lambda_c \[m\] (Gaussian, 50 % transmission), null if none.
     pub long_cutoff_m: Option<f64>,
+    /// Why a cut-off is null: none of that kind was applied.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cutoff_note: Option<&'static str>,
 }
 
 /// Levels and filters a map (see the module documentation).
@@ -154,6 +157,8 @@ pub fn prepare(map: &HeightMap, prep: &Preparation) -> Result<(HeightMap, Prepar
             levelling_removed_rms_m: removed,
             short_cutoff_m: prep.short_cutoff_m,
             long_cutoff_m: prep.long_cutoff_m,
+            cutoff_note: (prep.short_cutoff_m.is_none() || prep.long_cutoff_m.is_none())
+                .then_some("a null cut-off was not applied (none given)"),
         },
     ))
 }

@@ -156,6 +156,10 @@ struct Point {
     residual: f64,
     asperity_contact_fraction: Option<f64>,
     area_ratio_bem_over_asperity: Option<f64>,
+    /// Why a value of the point is null: no --shear-strength (no friction), no
+    /// --compare-asperity (no asperity model beside it), or no asperity contact to divide by.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    note: Option<&'static str>,
 }
 
 /// Where the heights came from.
@@ -196,6 +200,9 @@ struct Output {
     points: Vec<Point>,
     /// Most tensile load on the path, N (the pull-off under load control), when adhesive.
     pull_off_n: Option<f64>,
+    /// Why the seed, the Dugdale law or the pull-off is null.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    note: Option<&'static str>,
 }
 
 fn parse_path(text: &str, dim: Dimension, flag: &str) -> Result<Vec<f64>, String> {
@@ -407,6 +414,7 @@ fn solve(
             residual: s.residual,
             asperity_contact_fraction: None,
             area_ratio_bem_over_asperity: None,
+            note: None,
         })
         .collect();
     if args.compare_asperity {
@@ -417,8 +425,20 @@ fn solve(
             p.area_ratio_bem_over_asperity = Some(p.contact_fraction / frac);
         }
     }
+    for p in points.iter_mut() {
+        let nulls =
+            p.friction_n.is_none() || p.asperity_contact_fraction.is_none() || p.area_ratio_bem_over_asperity.is_none();
+        p.note = nulls.then_some(
+            "null without --shear-strength (friction), without --compare-asperity or at a load <= 0 (the asperity \
+             model beside it)",
+        );
+    }
     let pull_off_n = law.map(|_| points.iter().map(|p| p.load_n).fold(0.0, f64::min));
     let out = Output {
+        note: (seed.is_none() || law.is_none()).then_some(
+            "seed is null for a map or a scenario's patch (not generated); dugdale and pull_off_n are null without \
+             adhesion (no --work-of-adhesion and --range)",
+        ),
         surface: source,
         grid,
         e_star_pa,
@@ -794,6 +814,9 @@ mod humidity {
         capillary_limit_j_per_m2: f64,
         /// The van der Waals Dugdale law (null without --work-of-adhesion/--range).
         van_der_waals: Option<Dugdale>,
+        /// Why `van_der_waals` is null.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        van_der_waals_note: Option<&'static str>,
         /// Mean pressure of the compressed state the retractions start from, Pa.
         start_pressure_pa: f64,
         tolerance: f64,
@@ -879,6 +902,7 @@ mod humidity {
                 0.0
             },
             van_der_waals: vdw,
+            van_der_waals_note: vdw.is_none().then_some("no --work-of-adhesion and --range: no van der Waals law"),
             start_pressure_pa,
             tolerance: args.tolerance,
             min_kelvin_radius_m: h.min_kelvin_radius,

@@ -36,6 +36,10 @@ struct Output {
     requested_summit_density_per_m2: Option<f64>,
     requested_summit_sd_m: Option<f64>,
     requested_summit_radius_m: Option<f64>,
+    /// Why a requested value is null: the surface is read (summit list, height map), not generated
+    /// from these fields.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    requested_note: Option<&'static str>,
     content_hash: String,
 }
 
@@ -71,6 +75,8 @@ pub fn run(args: Args) -> CliResult {
         requested_summit_density_per_m2: spec.summit_density,
         requested_summit_sd_m: spec.summit_sd,
         requested_summit_radius_m: spec.summit_radius,
+        requested_note: (spec.summit_density.is_none() || spec.summit_sd.is_none() || spec.summit_radius.is_none())
+            .then_some("not given: the surface is read (a summit list or a height map), not generated from it"),
         content_hash: format!("{:016x}", surface.content_hash()),
     };
     if args.json {
