@@ -21,6 +21,7 @@
 //! All quantities are SI (metres, m^-2).
 
 mod blockwise_xoshiro;
+mod build;
 mod csv_io;
 mod error;
 mod face;
