@@ -6,8 +6,11 @@ src/main.rs: the crate root; src/a.rs and src/a/mod.rs: `a`; src/a/b.rs: `a::b`;
 blocks count as part of their file). An edge A -> B is a path from A's code to an item of module
 B: a `use crate::...`, `use super::...`, `use self::...` or `use child::...` declaration (also
 nested groups `use crate::{a::X, b::Y}`), or the same kind of path written inline in the code
-(`crate::b::f(...)`). A path is resolved to the deepest module it names; a path to the item of an
-ancestor module (`use super::Thing` from a child) is an edge to that ancestor. A module's own
+(`crate::b::f(...)`, `crate::m!(...)`: a `#[macro_export]` macro belongs to the module that
+defines it). A path is resolved to the deepest module it names, and a name that module only
+imports or re-exports (a crate root's `pub use a::X`) to the module that defines it; a path to an
+item an ancestor defines (`use super::Thing` from a child) is an edge to that ancestor; a
+`#[path = "f.rs"] mod m;` file is the declaring module's `m`. A module's own
 declarations `mod x;` are not edges. Comments and string literals are skipped; `#[cfg(test)]`
 modules count like any other code except a test module's `use super::*` of its own file.
 
@@ -140,11 +143,14 @@ class Crate:
             if m:
                 self.children.setdefault(m[:-1], set()).add(m[-1])
         self.text, self.defined, self.imports, self.globs = {}, {}, {}, {}
+        self.exported_macros = {}  # `#[macro_export]` macros live at the crate root's path
         for m, f in self.files.items():
             with open(f, encoding="utf-8") as fh:
                 text = strip_comments_and_strings(fh.read())
             self.text[m] = text
             self.defined[m] = {a or b for a, b in ITEM.findall(text)}
+            for name in re.findall(r"#\[macro_export\]\s*macro_rules!\s*(" + IDENT + r")", text):
+                self.exported_macros[name] = m
             self.imports[m], self.globs[m] = {}, []
             for mu in re.finditer(r"\buse\s+([^;]+);", text):
                 for path, alias in expand_use_tree(mu.group(1)):
@@ -174,6 +180,8 @@ class Crate:
             return None  # an external crate, std, or a local name
         while segs and mod + (segs[0],) in self.modules:
             mod, segs = mod + (segs[0],), segs[1:]
+        if segs and mod == () and segs[0] in self.exported_macros:
+            return self.exported_macros[segs[0]]
         if segs and mod in self.modules and segs[0] not in self.defined[mod]:
             name = segs[0]
             if name in self.imports[mod]:
