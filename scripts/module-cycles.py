@@ -2,17 +2,18 @@
 """Module-level import cycles inside each crate of the workspace (python3 standard library only).
 
 For every crate under crates/, each source file of its src/ folder is one module (src/lib.rs and
-src/main.rs: the crate root; src/a.rs and src/a/mod.rs: `a`; src/a/b.rs: `a::b`; inline `mod x {`
-blocks count as part of their file). An edge A -> B is a path from A's code to an item of module
-B: a `use crate::...`, `use super::...`, `use self::...` or `use child::...` declaration (also
-nested groups `use crate::{a::X, b::Y}`), or the same kind of path written inline in the code
-(`crate::b::f(...)`, `crate::m!(...)`: a `#[macro_export]` macro belongs to the module that
-defines it). A path is resolved to the deepest module it names, and a name that module only
-imports or re-exports (a crate root's `pub use a::X`) to the module that defines it; a path to an
-item an ancestor defines (`use super::Thing` from a child) is an edge to that ancestor; a
-`#[path = "f.rs"] mod m;` file is the declaring module's `m`. A module's own
-declarations `mod x;` are not edges. Comments and string literals are skipped; `#[cfg(test)]`
-modules count like any other code except a test module's `use super::*` of its own file.
+src/main.rs: the crate root, the library's when a crate has both; src/bin/ is left out; src/a.rs and
+src/a/mod.rs: `a`; src/a/b.rs: `a::b`; inline `mod x {` blocks count as part of their file). An edge
+A -> B is a path from A's code to an item of module B: a `use crate::...`, `use super::...`, `use
+self::...` or `use child::...` declaration (also nested groups `use crate::{a::X, b::Y}`), or the
+same kind of path written inline in the code (`crate::b::f(...)`, `crate::m!(...)`: a
+`#[macro_export]` macro belongs to the module that defines it). A path is resolved to the deepest
+module it names, and a name that module only imports or re-exports (a crate root's `pub use a::X`)
+to the module that defines it; a path to an item an ancestor defines (`use super::Thing` from a
+child) is an edge to that ancestor; a `#[path = "f.rs"] mod m;` file is the declaring module's `m`.
+A module's own declarations `mod x;` are not edges. Comments and string literals are skipped;
+`#[cfg(test)]` modules count like any other code except a test module's `use super::*` of its own
+file.
 
 Prints each crate's cycles (strongly connected components of more than one module, with one
 cycle through them and the file and line of each edge on it) and exits 1 if there is any.
@@ -126,7 +127,11 @@ class Crate:
     def __init__(self, src):
         files = []
         for root, _, names in os.walk(src):
+            if os.path.relpath(root, src).split(os.sep)[0] == "bin":
+                continue  # src/bin/*: separate binary crates
             files += [os.path.join(root, f) for f in names if f.endswith(".rs")]
+        if os.path.join(src, "lib.rs") in files and os.path.join(src, "main.rs") in files:
+            files.remove(os.path.join(src, "main.rs"))  # the binary is its own crate over the library
         by_file = {f: file_module(src, f) for f in files}
         # `#[path = "x.rs"] mod name;` puts x.rs at the declaring module's `name`.
         for f in files:
