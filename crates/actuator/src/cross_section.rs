@@ -34,6 +34,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{ActuatorError, nonnegative, positive};
 
+/// Vacuum permittivity eps0 (F/m), CODATA 2018.
+pub const VACUUM_PERMITTIVITY: f64 = 8.854_187_812_8e-12;
+
 /// Potential of the substrate (handle wafer) under the device layer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
@@ -315,7 +318,7 @@ pub fn capacitance_per_length(p: &CellProblem) -> Result<f64, ActuatorError> {
         return Err(ActuatorError::Solver("cross-section Laplace solve did not converge".into()));
     }
     let energy2: f64 = edges.iter().map(|&(a, b, g)| g * (phi[a] - phi[b]).powi(2)).sum();
-    Ok(crate::plates::VACUUM_PERMITTIVITY * energy2)
+    Ok(VACUUM_PERMITTIVITY * energy2)
 }
 
 /// Fringing excess of one cell over its parallel plates, tabulated against the travel.
@@ -363,7 +366,7 @@ impl CrossSectionTable {
                 refinement: 1.0,
                 grid_reference_gaps_m: Some((front_gap_m, back_gap_m)),
             })?;
-            let pp = crate::plates::VACUUM_PERMITTIVITY * thickness_m * (1.0 / g + back.map_or(0.0, |b| 1.0 / b));
+            let pp = VACUUM_PERMITTIVITY * thickness_m * (1.0 / g + back.map_or(0.0, |b| 1.0 / b));
             y.push(c - pp);
         }
         let m = natural_spline(&s, &y);

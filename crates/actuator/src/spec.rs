@@ -22,9 +22,9 @@ use serde::{Deserialize, Serialize};
 use crate::actuator::GapClosingActuator;
 use crate::bending::FingerBending;
 use crate::cross_section::{CombGeometry, Substrate, SubstratePotential};
+use crate::dynamics::{AIR_MEAN_FREE_PATH_M, AIR_VISCOSITY_PA_S, SILICON_DENSITY_KG_PER_M3};
 use crate::error::{ActuatorError, nonnegative, positive};
 use crate::plates::{BackElectrode, BackPotential, Fringing, PlateArray};
-use crate::protocol::{PullInProtocol, ShuttleSpec};
 use crate::spring::{BeamKind, BeamSuspension, Suspension};
 
 fn default_fringing() -> Fringing {
@@ -40,11 +40,87 @@ fn default_beam_kind() -> BeamKind {
     BeamKind::ClampedGuided
 }
 
+/// How the pull-in voltage is applied (and so which threshold is observed).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PullInProtocol {
+    /// Slow ramp: the saddle-node of the static equilibrium, `max_x V_eq(x)` (default).
+    #[default]
+    QuasiStatic,
+    /// Voltage step from rest: the lowest step that brings the shuttle to the stop to stay
+    /// (needs `shuttle`); see the module docs.
+    Step,
+}
+
+fn default_density() -> f64 {
+    SILICON_DENSITY_KG_PER_M3
+}
+fn default_viscosity() -> f64 {
+    AIR_VISCOSITY_PA_S
+}
+fn default_mean_free_path() -> f64 {
+    AIR_MEAN_FREE_PATH_M
+}
+
+/// The moving part of the actuator and its surrounding gas, for the step protocol (drawn
+/// dimensions; the array's undercut `u` is applied: widths `-2u`, spine length `-2u`, holes
+/// `+2u`; the finger length is the as-built overlap plus `finger_root_length`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub struct ShuttleSpec {
+    /// Drawn in-plane width of a movable finger (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub finger_width: f64,
+    /// Finger length at the root that does not overlap an electrode (m), default 0.
+    #[serde(default, deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub finger_root_length: f64,
+    /// Drawn spine width (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub spine_width: f64,
+    /// Drawn spine length (m).
+    #[serde(deserialize_with = "stiction_units::de::length_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub spine_length: f64,
+    /// Drawn side of the square etch (release) holes in the spine (m), default 0.
+    #[serde(default, deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub spine_hole_size: f64,
+    /// Number of etch holes in the spine, default 0.
+    #[serde(default)]
+    pub spine_hole_count: u32,
+    /// Other moving planform area, taken as built (m^2), default 0 (e.g. gap-stop bumpers).
+    #[serde(default, deserialize_with = "stiction_units::de::area_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub extra_area: f64,
+    /// Density of the structural layer (kg/m^3, a plain number), default 2329 (silicon).
+    #[serde(default = "default_density")]
+    pub density: f64,
+    /// Dynamic viscosity of the gas (Pa s, a plain number), default 1.81e-5 (air, 20 degC).
+    #[serde(default = "default_viscosity")]
+    pub viscosity: f64,
+    /// Mean free path of the gas molecules (m), default 68 nm (air, 1 atm); 0 for continuum.
+    #[serde(default = "default_mean_free_path", deserialize_with = "stiction_units::de::length_nonnegative")]
+    #[schemars(with = "stiction_units::QuantityInput")]
+    pub mean_free_path: f64,
+    /// Gap between the moving structure and the substrate below (m), for Couette shear damping;
+    /// absent: no Couette term.
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_length_positive",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<stiction_units::QuantityInput>")]
+    pub substrate_gap: Option<f64>,
+}
+
 /// A gap-closing plate array with its suspension, as written in a scenario file.
 ///
 /// Either `front_gap` (geometry) or `conversion_factor` (the paper's `a = F/V^2`, section 5, at
 /// `operating_travel`) defines the electrostatics; from a conversion factor the front gap that the
-/// plate geometry implies is inferred ([`crate::conversion::infer_front_gap_m`]).
+/// plate geometry implies is inferred ([`crate::plates::infer_front_gap_m`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, rename_all = "snake_case")]
 pub struct ArraySpec {
@@ -370,11 +446,7 @@ impl ArraySpec {
                         )));
                     }
                 }
-                crate::conversion::infer_front_gap_m(
-                    &calibrated,
-                    self.operating_travel,
-                    positive("conversion_factor", a)?,
-                )?
+                crate::plates::infer_front_gap_m(&calibrated, self.operating_travel, positive("conversion_factor", a)?)?
             }
             (Some(_), Some(_)) => {
                 return Err(ActuatorError::Inconsistent(

@@ -8,8 +8,9 @@
 //! at height `d`, summit `i` carries `P_i = (4/3) E* R_i^(1/2) delta_i^(3/2)` on the area
 //! `pi R_i delta_i`, `delta_i = h_i - d > 0` (Hertz, Johnson 1985 eq. 4.22-4.23).
 
+use crate::BemError;
 use crate::error::check_positive;
-use crate::{BemError, Grid};
+use crate::grid::Grid;
 
 /// One summit of the grid.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -19,7 +19,8 @@
 //! Validated on a Dugdale sphere against the Maugis-Dugdale curve (tests/validation.rs: radius
 //! within 0.12 pixels).
 
-use crate::{BemError, BemSolver, ContactSolution, Dugdale, SolverOptions};
+use crate::BemError;
+use crate::solver::{BemSolver, ContactSolution, Dugdale, SolverOptions};
 
 /// Relative tolerance on the load of the state returned by
 /// [`BemSolver::adhesive_loading_at_pressure`].

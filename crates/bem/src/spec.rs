@@ -12,7 +12,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::error::BemError;
-use crate::{BYTES_PER_POINT, MAX_POINTS};
+use crate::grid::{BYTES_PER_POINT, MAX_POINTS};
 
 /// Default of `max_points`: 2^22 points (about 370 MB of solver state at [`BYTES_PER_POINT`], a
 /// few seconds per solve at the tolerance 1e-6).

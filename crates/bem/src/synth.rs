@@ -8,7 +8,7 @@ use realfft::num_complex::Complex;
 
 use crate::error::{BemError, check_positive};
 use crate::fft::Fft2;
-use crate::{Grid, block_sum};
+use crate::grid::{Grid, block_sum};
 
 /// A Gaussian, isotropic, self-affine random surface on `grid` (m, row-major, zero mean): white
 /// noise drawn from `ChaCha8Rng::seed_from_u64(seed)` in row-major order, filtered in Fourier

@@ -165,7 +165,7 @@ pub fn svg(prims: &[Prim], w: f64, h: f64, physical: Option<(String, String)>) -
             }
             Prim::Image { x0, y0, x1, y1, nx, ny, rgb } => {
                 let mut png = Vec::new();
-                if crate::encode_png(rgb, *nx as u32, *ny as u32, &mut png).is_ok() {
+                if crate::png::encode_png(rgb, *nx as u32, *ny as u32, &mut png).is_ok() {
                     s.push_str(&format!(
                         "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" \
                          style=\"image-rendering:pixelated\" href=\"data:image/png;base64,{}\"/>\n",

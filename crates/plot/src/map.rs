@@ -4,10 +4,12 @@
 
 use std::path::Path;
 
+use crate::axes::{Axis, draw_axes, draw_caption, draw_title, frame};
 use crate::canvas::{Anchor, Prim, Rgb};
-use crate::render::{Axis, Rect, draw_axes, draw_caption, draw_title, frame};
+use crate::layout::Rect;
+use crate::scales::{Scale, tick_label, ticks};
 use crate::text::{text_extent, text_width};
-use crate::{Format, PlotError, Scale};
+use crate::{Format, PlotError};
 
 /// A grid of values drawn as an image, with optional markers.
 #[derive(Clone, Debug, Default)]
@@ -152,7 +154,7 @@ impl ImageMap {
     }
 
     fn font(&self) -> f64 {
-        self.font_px.unwrap_or(crate::render::default_font_px(self.size_mm.is_some(), self.size_px))
+        self.font_px.unwrap_or(crate::layout::default_font_px(self.size_mm.is_some(), self.size_px))
     }
 
     fn png_scale(&self) -> f64 {
@@ -189,10 +191,10 @@ impl ImageMap {
         // The colour bar's axis, its labels and its upright label take the right margin.
         let bar = Axis { scale: Scale::Linear, lo, hi: lo + span, named: None, min_font: f };
         let (tl, g) = (0.35 * f, 0.3 * f);
-        let bar_ticks_guess = crate::ticks(Scale::Linear, lo, lo + span, 6.0).0;
+        let bar_ticks_guess = ticks(Scale::Linear, lo, lo + span, 6.0).0;
         let bar_label_w = bar_ticks_guess
             .iter()
-            .map(|v| text_width(&crate::tick_label(*v, Scale::Linear, lo, lo + span), f))
+            .map(|v| text_width(&tick_label(*v, Scale::Linear, lo, lo + span), f))
             .fold(0.0, f64::max);
         let bar_lines = crate::text::wrap(&bar_label, h * 0.6, f);
         let reserve = 0.8 * f + 1.0 * f + tl + g + bar_label_w + g + bar_lines.len() as f64 * 1.2 * f;
@@ -280,9 +282,9 @@ impl ImageMap {
             ny: steps,
             rgb: bar_rgb,
         });
-        let bar_fr = crate::render::Frame {
+        let bar_fr = crate::axes::Frame {
             plot: bar_rect,
-            xt: crate::render::Ticks { bold: Vec::new(), light: Vec::new(), vertical: false, size: f },
+            xt: crate::axes::Ticks { bold: Vec::new(), light: Vec::new(), vertical: false, size: f },
             yt: bar.ticks_public(bar_rect.height(), f),
             x_lines: Vec::new(),
             y_lines: Vec::new(),
@@ -383,7 +385,8 @@ impl ImageMap {
     /// Writes the map as SVG (the image embedded as PNG data, one pixel per cell), atomically.
     pub fn write_svg(&self, path: &Path) -> Result<(), PlotError> {
         let (prims, l) = self.render()?;
-        let physical = self.size_mm.map(|(w, h)| (format!("{}mm", crate::mm(w)), format!("{}mm", crate::mm(h))));
+        let physical =
+            self.size_mm.map(|(w, h)| (format!("{}mm", crate::output::mm(w)), format!("{}mm", crate::output::mm(h))));
         stiction_units::io::write_atomic(path, crate::canvas::svg(&prims, l.width, l.height, physical).as_bytes())?;
         Ok(())
     }
@@ -393,7 +396,7 @@ impl ImageMap {
         let (prims, l) = self.render()?;
         let s = self.png_scale();
         let (w, h) = ((l.width * s).round().max(1.0) as u32, (l.height * s).round().max(1.0) as u32);
-        crate::write_raster(path, &prims, w, h, s, s * 96.0)
+        crate::output::write_raster(path, &prims, w, h, s, s * 96.0)
     }
 }
 

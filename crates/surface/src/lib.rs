@@ -20,26 +20,28 @@
 //!
 //! All quantities are SI (metres, m^-2).
 
+mod blockwise_xoshiro;
+mod build;
 mod csv_io;
 mod error;
-mod generate;
-mod generate_v2;
+mod face;
 mod height_map;
 mod npy_io;
+mod sequential_chacha;
 mod spec;
 mod surface;
 
+pub use blockwise_xoshiro::{Xoshiro256pp, generate_composite_v2, generate_v2};
 pub use csv_io::CSV_HEADER;
 pub use error::SurfaceError;
-pub use generate::{
-    FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution, generate, generate_composite,
-    generate_two_face, generate_two_face_limited, uniform_positions,
-};
-pub use generate_v2::{Xoshiro256pp, generate_composite_v2, generate_v2};
+pub use face::{FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution};
 pub use height_map::{MapSummitStatistics, height_map_patch, height_map_tiling, map_summit_statistics};
 pub use npy_io::{
     NPY_MAX_BYTES_PER_SUMMIT, NPY_MAX_HEADER_BYTES, NpySummits, npy_header, npy_surface, read_npy_summits,
     read_npy_summits_file,
+};
+pub use sequential_chacha::{
+    generate, generate_composite, generate_two_face, generate_two_face_limited, uniform_positions,
 };
 pub use spec::{
     DEFAULT_MAX_SUMMITS, ESTIMATED_BYTES_PER_SUMMIT, FaceSpec, MAX_LENGTH_M, SurfaceSource, SurfaceSpec, TwoFaceMode,

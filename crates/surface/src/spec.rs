@@ -11,15 +11,12 @@
 //! Quantities accept a JSON number (SI), a string with a unit ("0.5 um") or an uncertain-parameter
 //! object (its nominal value is used). Unknown fields are rejected.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use crate::{
-    FaceParams, HeightDistribution, Layout, Placement, RadiusDistribution, Surface, SurfaceError, generate,
-    generate_composite, generate_two_face_limited,
-};
+use crate::{FaceParams, HeightDistribution, Layout, Placement, RadiusDistribution, SurfaceError};
 
 /// Where the summits come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
@@ -211,30 +208,6 @@ impl SurfaceSpec {
         })
     }
 
-    /// The parameters the statistical models (GW, discrete) use, with a sentence saying where they
-    /// come from when it is not the section's own fields: for `source` = "height_map", the summit
-    /// density, height SD and mean radius counted on the map(s)
-    /// ([`crate::map_summit_statistics`], the numbers `stiction topography` prints; a
-    /// `summit_radius` given with `--set` overrides the counted radius); otherwise
-    /// [`SurfaceSpec::face_params`].
-    pub fn face_params_in(&self, base_dir: &Path) -> Result<(FaceParams, Option<String>), SurfaceError> {
-        if self.source != SurfaceSource::HeightMap {
-            return Ok((self.face_params()?, None));
-        }
-        let st = crate::map_summit_statistics(self, base_dir)?;
-        Ok((
-            FaceParams {
-                summit_density_per_m2: st.summit_density_per_m2,
-                summit_sd_m: st.summit_sd_m,
-                height_distribution: HeightDistribution::Gaussian,
-                summit_radius_m: self.summit_radius.unwrap_or(st.summit_radius_m),
-                radius_sd_m: 0.0,
-                radius_distribution: RadiusDistribution::Fixed,
-            },
-            Some(st.source),
-        ))
-    }
-
     /// The summit budget: `max_summits` or [`DEFAULT_MAX_SUMMITS`].
     pub fn summit_budget(&self) -> u64 {
         self.max_summits.unwrap_or(DEFAULT_MAX_SUMMITS)
@@ -346,154 +319,6 @@ impl SurfaceSpec {
             apparent_width_m: self.apparent_width,
             placement: self.placement,
             seed: self.seed,
-        }
-    }
-
-    /// Reads the summits of `source` = "npy" (see [`SurfaceSource::Npy`]). The file may hold at
-    /// most `max_summits` summits of 32 bytes (checked on its size before it is read).
-    fn build_npy(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
-        let path = self
-            .npy_path
-            .as_ref()
-            .ok_or_else(|| SurfaceError::Spec("`npy_path` is required when `source` is \"npy\"".into()))?;
-        for (name, present) in [
-            ("csv_path", self.csv_path.is_some()),
-            ("summit_density", self.summit_density.is_some()),
-            ("summit_sd", self.summit_sd.is_some()),
-            ("counter_face", self.counter_face.is_some()),
-            ("radius_sd", self.radius_sd != 0.0),
-            ("radius_distribution", self.radius_distribution != RadiusDistribution::Fixed),
-            ("height_distribution", self.height_distribution != HeightDistribution::Gaussian),
-            ("placement", self.placement != Placement::Poisson),
-            ("pair_reach", self.pair_reach.is_some()),
-        ] {
-            if present {
-                return Err(SurfaceError::Spec(format!(
-                    "`{name}` must be absent when `source` is \"npy\" (the file gives the summits; only                      `summit_radius` and `seed` complete a file without radii or positions)"
-                )));
-            }
-        }
-        let full = if path.is_absolute() { path.clone() } else { base_dir.join(path) };
-        let limit = self.summit_budget().saturating_mul(crate::NPY_MAX_BYTES_PER_SUMMIT).saturating_add(1 << 20);
-        let summits = crate::read_npy_summits_file(&full, limit)?;
-        if summits.len() as u64 > self.summit_budget() {
-            return Err(SurfaceError::Npy {
-                path: full.display().to_string(),
-                message: format!(
-                    "{} summits, more than the limit of {} (`surface.max_summits`, default {DEFAULT_MAX_SUMMITS})",
-                    summits.len(),
-                    self.summit_budget()
-                ),
-            });
-        }
-        let layout = self.layout();
-        crate::npy_surface(
-            summits,
-            &full.display().to_string(),
-            self.apparent_length,
-            self.apparent_width,
-            self.summit_radius,
-            |n| crate::uniform_positions(&layout, n),
-        )
-    }
-
-    /// Builds the surface: generates it or reads the CSV file (relative `csv_path` resolved
-    /// against `base_dir`, normally the scenario file's folder).
-    pub fn build(&self, base_dir: &Path) -> Result<Surface, SurfaceError> {
-        self.check().map_err(|(field, message)| SurfaceError::Spec(format!("`{field}`: {message}")))?;
-        if self.source != SurfaceSource::HeightMap && (self.height_map.is_some() || self.counter_height_map.is_some()) {
-            return Err(SurfaceError::Spec(
-                "`height_map` and `counter_height_map` are only allowed when `source` is \"height_map\"".into(),
-            ));
-        }
-        if self.source != SurfaceSource::Generated && self.generator.is_some() {
-            return Err(SurfaceError::Spec(
-                "`generator` is only allowed when `source` is \"generated\" (it versions the random stream)".into(),
-            ));
-        }
-        if self.source != SurfaceSource::Npy && self.npy_path.is_some() {
-            return Err(SurfaceError::Spec("`npy_path` is only allowed when `source` is \"npy\"".into()));
-        }
-        match self.source {
-            SurfaceSource::HeightMap => crate::height_map::build(self, base_dir),
-            SurfaceSource::Npy => self.build_npy(base_dir),
-            SurfaceSource::Csv => {
-                let path = self
-                    .csv_path
-                    .as_ref()
-                    .ok_or_else(|| SurfaceError::Spec("`csv_path` is required when `source` is \"csv\"".into()))?;
-                for (name, present) in [
-                    ("summit_density", self.summit_density.is_some()),
-                    ("summit_sd", self.summit_sd.is_some()),
-                    ("summit_radius", self.summit_radius.is_some()),
-                    ("counter_face", self.counter_face.is_some()),
-                ] {
-                    if present {
-                        return Err(SurfaceError::Spec(format!(
-                            "`{name}` must be absent when `source` is \"csv\" (the file gives the summits)"
-                        )));
-                    }
-                }
-                let full = if path.is_absolute() { path.clone() } else { base_dir.join(path) };
-                Surface::read_csv_file(&full, self.apparent_length, self.apparent_width)
-            }
-            SurfaceSource::Generated => {
-                if self.csv_path.is_some() {
-                    return Err(SurfaceError::Spec("`csv_path` is only allowed when `source` is \"csv\"".into()));
-                }
-                let wall = self.face_params()?;
-                let layout = self.layout();
-                match (&self.counter_face, self.two_face) {
-                    (None, TwoFaceMode::Explicit) => {
-                        Err(SurfaceError::Spec("`two_face` = \"explicit\" needs a `counter_face`".into()))
-                    }
-                    (None, TwoFaceMode::Composite) => {
-                        if self.pair_reach.is_some() {
-                            return Err(SurfaceError::Spec("`pair_reach` needs `two_face` = \"explicit\"".into()));
-                        }
-                        if self.generator == Some(2) {
-                            crate::generate_v2(&layout, &wall)
-                        } else {
-                            generate(&layout, &wall)
-                        }
-                    }
-                    (Some(shoe), TwoFaceMode::Composite) => {
-                        if self.pair_reach.is_some() {
-                            return Err(SurfaceError::Spec("`pair_reach` needs `two_face` = \"explicit\"".into()));
-                        }
-                        if self.generator == Some(2) {
-                            crate::generate_composite_v2(&layout, &wall, &shoe.params())
-                        } else {
-                            generate_composite(&layout, &wall, &shoe.params())
-                        }
-                    }
-                    (Some(shoe), TwoFaceMode::Explicit) => {
-                        let shoe = shoe.params();
-                        let reach = match self.pair_reach {
-                            Some(r) => r,
-                            None => {
-                                let r = 4.0 * wall.summit_sd_m.hypot(shoe.summit_sd_m);
-                                if r.is_nan() || r <= 0.0 {
-                                    return Err(SurfaceError::InvalidParameter {
-                                        field: "summit_sd".into(),
-                                        value: format!(
-                                            "{} m (and counter_face.summit_sd = {} m)",
-                                            wall.summit_sd_m, shoe.summit_sd_m
-                                        ),
-                                        expected: "a summit_sd > 0 on at least one face: the default `pair_reach` \
-                                                   is 4 sqrt(summit_sd^2 + counter_face.summit_sd^2); or give \
-                                                   `pair_reach`"
-                                            .into(),
-                                    });
-                                }
-                                r
-                            }
-                        };
-                        let budget = usize::try_from(self.summit_budget()).unwrap_or(usize::MAX);
-                        generate_two_face_limited(&layout, &wall, &shoe, reach, budget)
-                    }
-                }
-            }
         }
     }
 }

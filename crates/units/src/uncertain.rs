@@ -1,5 +1,7 @@
 //! Parameters with an uncertainty: `{"value": "0.5 um", "sd": "0.3 um", "distribution": "lognormal"}`.
 
+use std::fmt;
+
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -139,6 +141,29 @@ pub fn nominal_from_json(v: &Value, dim: Dimension, constraint: Constraint) -> R
         }
         other => {
             Err(QuantityError::new(other.to_string(), "neither a number nor a string with a unit", dim, constraint))
+        }
+    }
+}
+
+/// The JSON Schema of a quantity field: a number (SI), a string with a unit, or an uncertain
+/// parameter object. Use it with `#[schemars(with = "stiction_units::QuantityInput")]`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum QuantityInput {
+    /// A number in SI units.
+    Number(f64),
+    /// A number with a unit, such as "0.5 um" or "1.4 GPa".
+    Text(String),
+    /// A value with an uncertainty and a distribution.
+    Uncertain(UncertainInput),
+}
+
+impl fmt::Display for QuantityInput {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            QuantityInput::Number(x) => write!(f, "{x}"),
+            QuantityInput::Text(t) => write!(f, "{t}"),
+            QuantityInput::Uncertain(u) => write!(f, "{u}"),
         }
     }
 }

@@ -1,5 +1,5 @@
 //! Fast evaluation pass for Hertz/DMT summits of one radius on a tilt-free or flat shoe (the hot
-//! path of large surfaces): the same quantities as the generic pass in `solver.rs`, computed
+//! path of large surfaces): the same quantities as the generic pass in `pass.rs`, computed
 //! branch-free over blocks of 64 summits (one word of the contact bit set).
 //!
 //! Per summit i (u, v = (x - x0)/l, (y - y0)/l; q the pose; c = 2 pi dgamma R, 0 for Hertz):
@@ -29,7 +29,8 @@
 //! `a * b + c` into a fused multiply-add and the square root, f32 -> f64 conversion, comparisons
 //! and selections are exact in IEEE 754, so both versions give the same bits (tested).
 
-use super::{Eval, Geom, Linear, State};
+use super::eval::{Eval, Linear};
+use super::geometry::{Geom, State};
 
 /// Lanes of the partial sums.
 const W: usize = 4;
@@ -52,7 +53,7 @@ pub(crate) struct Kernel {
     pub a_hard: f64,
     /// The interference of that contact radius, `a_hard^2 / R` \[m\] (infinite without one).
     pub z_hard: f64,
-    /// Also collect what a Newton step without a pass needs ([`super::Linear`]).
+    /// Also collect what a Newton step without a pass needs ([`super::pass::Linear`]).
     pub lin: bool,
     /// Meniscus pull of a summit in contact f R (already part of `c0`), 0 when dry \[N\].
     pub cap_f: f64,

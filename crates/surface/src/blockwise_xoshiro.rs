@@ -1,4 +1,5 @@
-//! Version 2 of the summit generator (`surface.generator: 2`): the same random field as version 1
+//! Version 2 of the summit generator (`surface.generator: 2`): block-parallel xoshiro256++ streams
+//! drawing the heights already in descending order. The same random field as version 1
 //! (Poisson or jittered-grid positions, Gaussian or exponential heights, fixed or lognormal radii),
 //! drawn from another random stream, about twice as fast, and block-wise so that blocks can be
 //! drawn on several threads with the same bytes as on one.
@@ -40,7 +41,7 @@ use rand::{Rng, RngCore};
 use rand_distr::{Binomial, Distribution, Exp1, LogNormal, Poisson, StandardNormal};
 use rayon::prelude::*;
 
-use crate::generate::{FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution};
+use crate::face::{FaceParams, HeightDistribution, Layout, MAX_SUMMITS, Placement, RadiusDistribution};
 use crate::{Radii, Surface, SurfaceError};
 
 /// The xoshiro256++ generator of Blackman and Vigna (2019): 256 bits of state, period 2^256 - 1,
@@ -487,8 +488,8 @@ fn positions(layout: &Layout, density: f64, field: &str) -> Result<(Vec<f32>, Ve
             let (sx, sy) = (l / 4_294_967_296.0, w / 4_294_967_296.0);
             blockwise2(&mut xs, &mut ys, layout.seed, STREAM_POSITIONS, |r, _, x, y| {
                 let bits = r.next_u64();
-                *x = crate::generate::clamp_f32((bits >> 32) as f64 * sx, l);
-                *y = crate::generate::clamp_f32((bits & 0xFFFF_FFFF) as f64 * sy, w);
+                *x = crate::face::clamp_f32((bits >> 32) as f64 * sx, l);
+                *y = crate::face::clamp_f32((bits & 0xFFFF_FFFF) as f64 * sy, w);
             });
             Ok((xs, ys))
         }
@@ -499,8 +500,8 @@ fn positions(layout: &Layout, density: f64, field: &str) -> Result<(Vec<f32>, Ve
             let (cx, cy) = (l / nx as f64, w / ny as f64);
             let (mut xs, mut ys) = (vec![0.0f32; nx * ny], vec![0.0f32; nx * ny]);
             blockwise2(&mut xs, &mut ys, layout.seed, STREAM_POSITIONS, |r, k, x, y| {
-                *x = crate::generate::clamp_f32(((k % nx) as f64 + unit(r)) * cx, l);
-                *y = crate::generate::clamp_f32(((k / nx) as f64 + unit(r)) * cy, w);
+                *x = crate::face::clamp_f32(((k % nx) as f64 + unit(r)) * cx, l);
+                *y = crate::face::clamp_f32(((k / nx) as f64 + unit(r)) * cy, w);
             });
             // Fisher-Yates shuffle so that the summit order carries no spatial information.
             let mut r = Xoshiro256pp::for_block(layout.seed, STREAM_COUNT, 0);
@@ -568,7 +569,7 @@ pub fn generate_composite_v2(layout: &Layout, wall: &FaceParams, shoe: &FacePara
         blockwise(&mut a, seed, STREAM_HEIGHTS, |r, h| *h = to_height(lw, wall.summit_sd_m, lw.draw(r)));
         let mut b = vec![0.0; n];
         blockwise(&mut b, seed, STREAM_SECOND_HEIGHTS, |r, h| *h = to_height(ls, shoe.summit_sd_m, ls.draw(r)));
-        crate::generate::sort_desc(a.iter().zip(&b).map(|(x, y)| x + y).collect())
+        crate::sequential_chacha::sort_desc(a.iter().zip(&b).map(|(x, y)| x + y).collect())
     };
     let rw = radii(seed, STREAM_RADII, n, wall);
     let rs = radii(seed, STREAM_SECOND_RADII, n, shoe);
