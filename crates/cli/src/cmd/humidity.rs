@@ -90,8 +90,8 @@ pub struct HumidityPoint {
     pub meniscus_height_m: Option<f64>,
     /// Why mu_e,a and F_a0 are null (no usable eq. 10 line, or the meter failed at this humidity).
     pub reason: Option<String>,
-    /// Why the Kelvin radius, the meniscus height or the capillary share is null.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Why the Kelvin radius, the meniscus height or the capillary share is null (null when
+    /// none is; always written, so that every CSV row has the same columns).
     pub meniscus_note: Option<&'static str>,
 }
 
