@@ -1,0 +1,125 @@
+//! Synthetic instrument files written from the formats' documented layouts, for the fuzz harness
+//! and the benchmark (the readers are checked against real files in tests/formats.rs).
+#![allow(dead_code)]
+
+/// A NanoScope file of one int16 (or int32) image, `nx x ny`, scan size `size_nm` square, Z scale
+/// chain `zscale_v` V x `sens_nm_per_v` nm/V; samples row by row as the file stores them.
+pub fn nanoscope(
+    nx: usize,
+    ny: usize,
+    size_nm: f64,
+    zscale_v: f64,
+    sens_nm_per_v: f64,
+    bpp: usize,
+    samples: &[i32],
+) -> Vec<u8> {
+    let header_len = 8192usize;
+    let mut h = String::new();
+    h.push_str("\\*File list\r\n\\Version: 0x09200000\r\n");
+    h.push_str(&format!("\\Data length: {header_len}\r\n"));
+    h.push_str("\\*Scanner list\r\n\\Scanner type: Dimension\r\n");
+    h.push_str(&format!("\\@Sens. Zsens: V {sens_nm_per_v} nm/V\r\n"));
+    h.push_str("\\*Ciao scan list\r\n\\Scan Size: 1 nm\r\n");
+    h.push_str("\\*Ciao image list\r\n");
+    h.push_str(&format!("\\Data offset: {header_len}\r\n\\Data length: {}\r\n", nx * ny * bpp));
+    h.push_str(&format!("\\Bytes/pixel: {bpp}\r\n\\Samps/line: {nx}\r\n\\Number of lines: {ny}\r\n"));
+    h.push_str(&format!("\\Scan Size: {size_nm} {size_nm} nm\r\n"));
+    h.push_str("\\@2:Image Data: S [Height] \"Height\"\r\n");
+    h.push_str(&format!("\\@2:Z scale: V [Sens. Zsens] (0.0003 V/LSB) {zscale_v} V\r\n"));
+    h.push_str("\\*File list end\r\n");
+    let mut b = h.into_bytes();
+    assert!(b.len() <= header_len);
+    b.resize(header_len, 0x1a);
+    for &s in samples {
+        if bpp == 2 {
+            b.extend_from_slice(&(s as i16).to_le_bytes());
+        } else {
+            b.extend_from_slice(&s.to_le_bytes());
+        }
+    }
+    b
+}
+
+/// An Igor binary wave v5 of float32 `layers` layers of `nx x ny` (dimension 0 fastest), pixel
+/// step `step` in `xy_unit`, data unit `z_unit`, layer labels `names`.
+pub fn ibw(
+    nx: usize,
+    ny: usize,
+    layers: usize,
+    step: f64,
+    xy_unit: &str,
+    z_unit: &str,
+    names: &[&str],
+    values: &[f32],
+) -> Vec<u8> {
+    let n = nx * ny * layers;
+    assert_eq!(values.len(), n);
+    let mut b = vec![0u8; 384];
+    let wfm = 320 + 4 * n;
+    let labels = if names.is_empty() { 0 } else { (layers + 1) * 32 };
+    b[0..2].copy_from_slice(&5i16.to_le_bytes());
+    b[4..8].copy_from_slice(&(wfm as i32).to_le_bytes());
+    b[44..48].copy_from_slice(&(labels as i32).to_le_bytes());
+    b[76..80].copy_from_slice(&(n as i32).to_le_bytes());
+    b[80..82].copy_from_slice(&2i16.to_le_bytes());
+    for (d, v) in [nx, ny, if layers > 1 || !names.is_empty() { layers } else { 0 }, 0].iter().enumerate() {
+        b[132 + 4 * d..136 + 4 * d].copy_from_slice(&(*v as i32).to_le_bytes());
+    }
+    for d in 0..2 {
+        b[148 + 8 * d..156 + 8 * d].copy_from_slice(&step.to_le_bytes());
+    }
+    let put = |b: &mut Vec<u8>, at: usize, s: &str| {
+        for (k, c) in s.bytes().take(3).enumerate() {
+            b[at + k] = c;
+        }
+    };
+    put(&mut b, 212, z_unit);
+    put(&mut b, 216, xy_unit);
+    put(&mut b, 220, xy_unit);
+    let sum = b.chunks_exact(2).fold(0u16, |s, c| s.wrapping_add(u16::from_le_bytes([c[0], c[1]])));
+    b[2..4].copy_from_slice(&(0u16.wrapping_sub(sum)).to_le_bytes());
+    for v in values {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    if !names.is_empty() {
+        b.extend(std::iter::repeat_n(0u8, 32));
+        for k in 0..layers {
+            let mut l = [0u8; 32];
+            for (i, c) in names.get(k).copied().unwrap_or("").bytes().take(31).enumerate() {
+                l[i] = c;
+            }
+            b.extend_from_slice(&l);
+        }
+    }
+    b
+}
+
+/// An ASCII SDF of `nx x ny` doubles (`None` = BAD), steps in metres, Zscale in metres.
+pub fn sdf_ascii(nx: usize, ny: usize, xs: f64, ys: f64, zs: f64, values: &[Option<f64>]) -> Vec<u8> {
+    let mut s = format!(
+        "aISO-1.0\nManufacID = stiction\nCreateDate = 010120260000\nModDate = 010120260000\nNumPoints = {nx}\nNumProfiles = {ny}\nXscale = {xs:e}\nYscale = {ys:e}\nZscale = {zs:e}\nZresolution = -1\nCompression = 0\nDataType = 7\nCheckType = 0\n*\n"
+    );
+    for row in values.chunks(nx) {
+        let cells: Vec<String> = row.iter().map(|v| v.map_or("BAD".into(), |v| format!("{v}"))).collect();
+        s.push_str(&cells.join(" "));
+        s.push('\n');
+    }
+    s.push_str("*\n*\n");
+    s.into_bytes()
+}
+
+/// A binary SDF of `nx x ny` int16 (`i16::MIN` = missing).
+pub fn sdf_binary(nx: usize, ny: usize, xs: f64, ys: f64, zs: f64, values: &[i16]) -> Vec<u8> {
+    let mut b = b"bISO-1.0".to_vec();
+    b.extend_from_slice(&[b' '; 34]);
+    b.extend_from_slice(&(nx as u16).to_le_bytes());
+    b.extend_from_slice(&(ny as u16).to_le_bytes());
+    for v in [xs, ys, zs, zs] {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    b.extend_from_slice(&[0, 5, 0]);
+    for v in values {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    b
+}
