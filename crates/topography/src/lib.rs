@@ -29,7 +29,7 @@ mod summits;
 
 pub use error::TopographyError;
 pub use formats::nanoscope::NANOSCOPE_MAX_HEADER_BYTES;
-pub use formats::{ChannelChoice, ChannelInfo, ChannelSelector, detect};
+pub use formats::{ChannelChoice, ChannelInfo, ChannelSelector, MAX_NAME_CHARS, detect};
 pub use generate::{GeneratorSpec, Spectrum, generate};
 pub use map::{HeightMap, MAX_PIXELS, check_grid_size};
 pub use prep::{Levelling, Preparation, PreparationReport, prepare};

@@ -213,7 +213,24 @@ fn finish(
     file_dy: Option<f64>,
     file_unit: Option<f64>,
     meta: &MapMetadata,
+    heights: Vec<f64>,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
+    finish_scaled(origin, format, nx, ny, file_dx, file_dy, file_unit, meta, heights, false)
+}
+
+/// [`finish`], for heights already in metres when `in_metres` (scaled while decoded).
+#[allow(clippy::too_many_arguments)]
+fn finish_scaled(
+    origin: &str,
+    format: MapFormat,
+    nx: usize,
+    ny: usize,
+    file_dx: Option<f64>,
+    file_dy: Option<f64>,
+    file_unit: Option<f64>,
+    meta: &MapMetadata,
     mut heights: Vec<f64>,
+    in_metres: bool,
 ) -> Result<(HeightMap, MapInfo), TopographyError> {
     let (dx, src_x) = resolve(origin, file_dx, meta.pixel_size_x_m, "pixel size", PIXEL_HOW)?;
     let given_dy = meta.pixel_size_y_m.or(meta.pixel_size_x_m);
@@ -236,26 +253,29 @@ fn finish(
         ));
     }
     let mut missing = 0;
-    if unit != 1.0 {
+    if unit != 1.0 && !in_metres {
         for h in &mut heights {
             *h *= unit;
         }
     }
-    for h in &heights {
-        if h.is_nan() {
-            missing += 1;
-        } else if h.abs() > MAX_HEIGHT_M {
-            return Err(TopographyError::format(
-                origin,
-                0,
-                format!("a height of {h:e} m (in SI units) is beyond the limit of {MAX_HEIGHT_M} m for a height map"),
-            ));
-        }
+    // One branch-free pass (it vectorises): the count of NaN and the largest |h| (NaN ignored).
+    let (nan, largest) =
+        heights.iter().fold((0usize, 0.0f64), |(n, m), h| (n + usize::from(h.is_nan()), m.max(h.abs())));
+    missing += nan;
+    if largest > MAX_HEIGHT_M {
+        let h = heights.iter().find(|h| h.abs() > MAX_HEIGHT_M).copied().unwrap_or(largest);
+        return Err(TopographyError::format(
+            origin,
+            0,
+            format!("a height of {h:e} m (in SI units) is beyond the limit of {MAX_HEIGHT_M} m for a height map"),
+        ));
     }
     if missing == heights.len() {
         return Err(TopographyError::format(origin, 0, "every pixel is missing (NaN)"));
     }
-    let map = HeightMap::new(nx, ny, dx, dy, heights).map_err(|e| TopographyError::format(origin, 0, e.to_string()))?;
+    // Every height was checked above (finite and within MAX_HEIGHT_M, or NaN).
+    let map = HeightMap::from_checked_heights(nx, ny, dx, dy, heights)
+        .map_err(|e| TopographyError::format(origin, 0, e.to_string()))?;
     Ok((
         map,
         MapInfo {
@@ -380,13 +400,20 @@ pub fn read_instrument(
 ) -> Result<(HeightMap, MapInfo), TopographyError> {
     let list = crate::formats::channels(format, bytes, origin)?;
     let (ch, choice) = crate::formats::choose(&list, channel, origin)?;
-    let values = crate::formats::decode(ch, bytes, origin)?;
     let i = &ch.info;
+    // A unit the file states is the unit (a given one must agree): the values are scaled to metres
+    // while they are decoded, in one pass.
+    let file_unit = i.height_unit_m;
+    if let (Some(f), Some(_)) = (file_unit, meta.height_unit_m) {
+        resolve(origin, Some(f), meta.height_unit_m, "height unit", UNIT_HOW)?;
+    }
+    let values = crate::formats::decode(ch, bytes, origin, file_unit.unwrap_or(1.0))?;
     let (dx, dy) = match i.size_m {
         Some((a, b)) => (Some(a / i.nx as f64), Some(b / i.ny as f64)),
         None => (None, None),
     };
-    let (map, mut info) = finish(origin, format, i.nx, i.ny, dx, dy, i.height_unit_m, meta, values)?;
+    let (map, mut info) =
+        finish_scaled(origin, format, i.nx, i.ny, dx, dy, file_unit, meta, values, file_unit.is_some())?;
     info.channel = Some(choice);
     Ok((map, info))
 }

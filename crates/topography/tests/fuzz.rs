@@ -526,6 +526,9 @@ fn sdf_case(rng: &mut Rng) -> Vec<u8> {
     let text = String::from_utf8(synth::sdf_ascii(map.nx(), map.ny(), 1e-8, 1e-8, 1e-9, &v)).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
     for _ in 0..1 + rng.below(3) {
+        if lines.is_empty() {
+            break;
+        }
         let r = rng.below(lines.len());
         match rng.below(7) {
             0 | 1 => {

@@ -220,8 +220,9 @@ pub(crate) fn choose<'a>(
     Ok((ch, choice))
 }
 
-/// The channel's values in its unit, row-major (`iy * nx + ix`), NaN where missing.
-pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str) -> Result<Vec<f64>, TopographyError> {
+/// The channel's values in its unit times `unit` (1, or the metres per unit to have metres in one
+/// pass), row-major (`iy * nx + ix`), NaN where missing.
+pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Result<Vec<f64>, TopographyError> {
     let (nx, ny) = (ch.info.nx, ch.info.ny);
     let n = nx.checked_mul(ny).filter(|&n| n as u64 <= MAX_PIXELS).ok_or_else(|| TopographyError::TooLarge {
         origin: origin.into(),
@@ -232,7 +233,7 @@ pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str) -> Result<Vec<f64
     let r = match &ch.values {
         Values::Parsed(v) => {
             return if v.len() == n {
-                Ok(v.clone())
+                Ok(v.iter().map(|x| x * unit).collect())
             } else {
                 Err(TopographyError::format(origin, 0, format!("{} values, expected {nx} x {ny}", v.len())))
             };
@@ -260,39 +261,45 @@ pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str) -> Result<Vec<f64
     for iy in 0..ny {
         let row = if r.flip_y { ny - 1 - iy } else { iy };
         let line = &data[row * nx * size..(row + 1) * nx * size];
-        convert_row(line, r, &mut out);
+        convert_row(line, r, r.scale * unit, &mut out);
     }
     Ok(out)
 }
 
-macro_rules! ints {
-    ($line:expr, $r:expr, $out:expr, $t:ty, $n:expr) => {{
-        let inv = $r.invalid;
-        let s = $r.scale;
-        $out.extend($line.chunks_exact($n).map(|c| {
-            let a: [u8; $n] = c.try_into().unwrap_or([0; $n]);
-            let v = if $r.big_endian { <$t>::from_be_bytes(a) } else { <$t>::from_le_bytes(a) };
-            if inv == Some(v as i64) { f64::NAN } else { f64::from(v) * s }
-        }))
-    }};
+/// Appends one row of samples as values: a tight loop per sample type and byte order (the
+/// branch on the missing-value marker only where the format has one).
+fn convert<const N: usize, T: Into<f64>>(
+    line: &[u8],
+    out: &mut Vec<f64>,
+    from: fn([u8; N]) -> T,
+    scale: f64,
+    invalid: Option<f64>,
+) {
+    let it = line.chunks_exact(N).map(|c| from(c.try_into().unwrap_or([0; N])).into());
+    match invalid {
+        Some(inv) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale })),
+        None => out.extend(it.map(|v: f64| v * scale)),
+    }
 }
 
-fn convert_row(line: &[u8], r: &Raster, out: &mut Vec<f64>) {
+fn convert_row(line: &[u8], r: &Raster, scale: f64, out: &mut Vec<f64>) {
+    let inv = r.invalid.map(|v| v as f64);
+    let be = r.big_endian;
     match r.sample {
-        Sample::I8 => ints!(line, r, out, i8, 1),
-        Sample::U8 => ints!(line, r, out, u8, 1),
-        Sample::I16 => ints!(line, r, out, i16, 2),
-        Sample::U16 => ints!(line, r, out, u16, 2),
-        Sample::I32 => ints!(line, r, out, i32, 4),
-        Sample::U32 => ints!(line, r, out, u32, 4),
-        Sample::F32 => out.extend(line.chunks_exact(4).map(|c| {
-            let a: [u8; 4] = c.try_into().unwrap_or([0; 4]);
-            f64::from(if r.big_endian { f32::from_be_bytes(a) } else { f32::from_le_bytes(a) }) * r.scale
-        })),
-        Sample::F64 => out.extend(line.chunks_exact(8).map(|c| {
-            let a: [u8; 8] = c.try_into().unwrap_or([0; 8]);
-            (if r.big_endian { f64::from_be_bytes(a) } else { f64::from_le_bytes(a) }) * r.scale
-        })),
+        Sample::I8 => convert(line, out, i8::from_le_bytes, scale, inv),
+        Sample::U8 => convert(line, out, u8::from_le_bytes, scale, inv),
+        Sample::I16 if be => convert(line, out, i16::from_be_bytes, scale, inv),
+        Sample::I16 => convert(line, out, i16::from_le_bytes, scale, inv),
+        Sample::U16 if be => convert(line, out, u16::from_be_bytes, scale, inv),
+        Sample::U16 => convert(line, out, u16::from_le_bytes, scale, inv),
+        Sample::I32 if be => convert(line, out, i32::from_be_bytes, scale, inv),
+        Sample::I32 => convert(line, out, i32::from_le_bytes, scale, inv),
+        Sample::U32 if be => convert(line, out, u32::from_be_bytes, scale, inv),
+        Sample::U32 => convert(line, out, u32::from_le_bytes, scale, inv),
+        Sample::F32 if be => convert(line, out, f32::from_be_bytes, scale, None),
+        Sample::F32 => convert(line, out, f32::from_le_bytes, scale, None),
+        Sample::F64 if be => convert(line, out, f64::from_be_bytes, scale, None),
+        Sample::F64 => convert(line, out, f64::from_le_bytes, scale, None),
     }
 }
 

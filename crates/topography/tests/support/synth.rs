@@ -42,6 +42,7 @@ pub fn nanoscope(
 
 /// An Igor binary wave v5 of float32 `layers` layers of `nx x ny` (dimension 0 fastest), pixel
 /// step `step` in `xy_unit`, data unit `z_unit`, layer labels `names`.
+#[allow(clippy::too_many_arguments)] // the layout's fields, named at the call
 pub fn ibw(
     nx: usize,
     ny: usize,
