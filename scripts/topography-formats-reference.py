@@ -31,6 +31,7 @@ FILES = {
     "spot_1-1000nm.ibw": [0, 1],
     "10x10-one_channel_without_name.ibw": [0],
     "sdf-1.sdf": [0],
+    "x3p-2.x3p": [0],
 }
 
 

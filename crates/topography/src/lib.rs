@@ -29,6 +29,7 @@ mod summits;
 
 pub use error::TopographyError;
 pub use formats::nanoscope::NANOSCOPE_MAX_HEADER_BYTES;
+pub use formats::x3p::X3P_MAX_XML_BYTES;
 pub use formats::{ChannelChoice, ChannelInfo, ChannelSelector, MAX_NAME_CHARS, detect};
 pub use generate::{GeneratorSpec, Spectrum, generate};
 pub use map::{HeightMap, MAX_PIXELS, check_grid_size};

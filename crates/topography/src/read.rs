@@ -47,6 +47,8 @@ pub enum MapFormat {
     Ibw,
     /// ISO 25178-71 surface data file (`.sdf`), ASCII or binary.
     Sdf,
+    /// ISO 25178-72 XML surface profile (`.x3p`): a zip of `main.xml` and the binary points.
+    X3p,
 }
 
 impl MapFormat {
@@ -58,7 +60,7 @@ impl MapFormat {
 
     /// The format a file's extension names, if it names one: `.npy`, `.gsf`, `.xyz`, `.txt`,
     /// `.csv`, `.asc` (text), `.spm`, `.di` and three-digit extensions `.001`... (NanoScope),
-    /// `.ibw`, `.sdf`.
+    /// `.ibw`, `.sdf`, `.x3p`.
     pub fn from_extension(path: &Path) -> Option<MapFormat> {
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)?;
         Some(match ext.as_str() {
@@ -70,6 +72,7 @@ impl MapFormat {
             e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => MapFormat::Nanoscope,
             "ibw" => MapFormat::Ibw,
             "sdf" => MapFormat::Sdf,
+            "x3p" => MapFormat::X3p,
             _ => return None,
         })
     }
@@ -89,6 +92,7 @@ impl MapFormat {
             MapFormat::Nanoscope => "nanoscope",
             MapFormat::Ibw => "ibw",
             MapFormat::Sdf => "sdf",
+            MapFormat::X3p => "x3p",
         }
     }
 }
@@ -110,7 +114,10 @@ impl FromStr for MapFormat {
             "nanoscope" => Ok(MapFormat::Nanoscope),
             "ibw" => Ok(MapFormat::Ibw),
             "sdf" => Ok(MapFormat::Sdf),
-            _ => Err(format!("unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw or sdf")),
+            "x3p" => Ok(MapFormat::X3p),
+            _ => Err(format!(
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf or x3p"
+            )),
         }
     }
 }

@@ -213,3 +213,68 @@ fn channels_that_do_not_exist_are_named() {
         read_file_channel(&data("sdf-1.sdf"), None, Some(&"Topo".parse().unwrap()), &none()).unwrap_err().to_string();
     assert!(e.contains("no channel named") && e.contains("Default"), "{e}");
 }
+
+#[test]
+fn x3p_matches_the_reference() {
+    let path = data("x3p-2.x3p");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list.len(), list[0].unit.as_str()), (MapFormat::X3p, 1, "m"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    check_against_reference("x3p-2.x3p", 0, &map, &info, 1.0);
+}
+
+#[path = "support/synth.rs"]
+mod synth;
+
+fn write_temp(name: &str, bytes: &[u8]) -> (PathBuf, PathBuf) {
+    let dir = std::env::temp_dir().join(format!("stiction-x3p-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, bytes).unwrap();
+    (dir, p)
+}
+
+#[test]
+fn x3p_integers_scale_by_the_z_increment_and_nan_points_are_missing() {
+    let (nx, ny) = (4, 3);
+    let ints: Vec<u8> = (0..12i16).flat_map(|k| (k * 100 - 300).to_le_bytes()).collect();
+    let xml = synth::x3p_xml(nx, ny, 1e-6, 2e-6, "I", Some(1e-10));
+    let z = synth::zip(&[synth::stored("main.xml", xml.as_bytes()), synth::stored("bindata/data.bin", &ints)]);
+    let (dir, p) = write_temp("ints.x3p", &z);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!((map.nx(), map.ny(), map.dx_m(), map.dy_m(), info.missing_pixels), (4, 3, 1e-6, 2e-6, 0));
+    assert!(close(map.at(1, 2), (9.0 * 100.0 - 300.0) * 1e-10, 1e-12));
+    let doubles: Vec<u8> =
+        (0..12).flat_map(|k| if k == 5 { f64::NAN } else { k as f64 * 1e-9 }.to_le_bytes()).collect();
+    let xml = synth::x3p_xml(nx, ny, 1e-6, 1e-6, "D", None);
+    let z = synth::zip(&[synth::stored("main.xml", xml.as_bytes()), synth::stored("bindata/data.bin", &doubles)]);
+    std::fs::write(&p, &z).unwrap();
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!(info.missing_pixels, 1);
+    assert!(map.at(1, 1).is_nan());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_x3p_zip_bomb_is_refused_before_it_inflates() {
+    use std::io::Write;
+    // main.xml declared (and truly) 3 MiB of spaces, deflated to a few kB: over the 1 MiB limit.
+    let big = vec![b' '; 3 << 20];
+    let mut enc = flate2::write::DeflateEncoder::new(Vec::new(), flate2::Compression::best());
+    enc.write_all(&big).unwrap();
+    let deflated = enc.finish().unwrap();
+    let entry = ("main.xml", 8u16, deflated.clone(), big.len() as u32, 0);
+    let (dir, p) = write_temp("bomb.x3p", &synth::zip(&[entry]));
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("bomb.x3p") && e.contains("main.xml") && e.contains("limit"), "{e}");
+    // The same entry declaring 100 bytes: the inflation stops at the limit all the same.
+    let entry = ("main.xml", 8u16, deflated, 100, 0);
+    std::fs::write(&p, synth::zip(&[entry])).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("bomb.x3p") && e.len() < 400, "{e}");
+    // A zip without main.xml is not an X3P file.
+    std::fs::write(&p, synth::zip(&[synth::stored("readme.txt", b"hello")])).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("no main.xml") || e.contains("no `main.xml`"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

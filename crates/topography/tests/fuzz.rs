@@ -3,8 +3,8 @@
 //! keys and padding; text grids (cells, headers, delimiters, rows, long lines); x-y-z lists;
 //! NanoScope headers (offsets, lengths, sizes, scale chains set huge or nonsense, the end marker
 //! removed), Igor binary wave headers (section sizes, dimensions, number type, pixel steps, units,
-//! with the checksum fixed four times in five) and SDF (ASCII keys and values, binary header
-//! fields), each also truncated and byte-flipped. Each
+//! with the checksum fixed four times in five), SDF (ASCII keys and values, binary header
+//! fields) and X3P (main.xml values, nesting, inline data, truncated points, declared sizes), each also truncated and byte-flipped. Each
 //! case starts from a valid file written by this crate's writers, applies one to three mutations
 //! and goes through the library code the binary calls (`read_npy`, `read_gsf`, `read_text_grid`,
 //! `read_xyz`, then `prepare` with hostile cut-offs, `find_summits` and `statistics`). The contract:
@@ -553,6 +553,65 @@ fn sdf_case(rng: &mut Rng) -> Vec<u8> {
     b
 }
 
+fn x3p_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    let mut xml = synth::x3p_xml(nx, ny, 1e-8, 1e-8, "D", None);
+    let mut data: Vec<u8> = map.heights_m().iter().flat_map(|h| h.to_le_bytes()).collect();
+    for _ in 0..1 + rng.below(3) {
+        match rng.below(8) {
+            0 | 1 => {
+                let tag = *rng.pick(&[
+                    "SizeX",
+                    "SizeY",
+                    "SizeZ",
+                    "Increment",
+                    "DataType",
+                    "AxisType",
+                    "FeatureType",
+                    "PointDataLink",
+                ]);
+                let v = *rng.pick(&[
+                    "0",
+                    "1",
+                    "4294967296",
+                    "18446744073709551616",
+                    "-1",
+                    "NaN",
+                    "1e300",
+                    "L",
+                    "X",
+                    "",
+                    SECRET,
+                ]);
+                if let (Some(a), Some(b)) = (xml.find(&format!("<{tag}>")), xml.find(&format!("</{tag}>")))
+                    && a < b
+                {
+                    xml.replace_range(a + tag.len() + 2..b, v);
+                }
+            }
+            2 => xml = xml.replacen("</Record3>", &"<a>".repeat(1 + rng.below(100)), 1),
+            3 => xml.insert_str(xml.len() / 2, SECRET),
+            4 => data.truncate(rng.below(data.len() + 1)),
+            5 => xml = xml.replacen("<Record3>", "<Record3><DataList><Datum>1</Datum></DataList>", 1),
+            _ => {}
+        }
+    }
+    let mut z = synth::zip(&[synth::stored("main.xml", xml.as_bytes()), synth::stored("bindata/data.bin", &data)]);
+    if rng.chance(4) {
+        byte_noise(rng, &mut z);
+    }
+    if rng.chance(6) {
+        // A declared size set huge.
+        let at = 22usize;
+        let v = *rng.pick(&[u32::MAX, 1 << 30, 0]);
+        if z.len() > at + 4 {
+            z[at..at + 4].copy_from_slice(&v.to_le_bytes());
+        }
+    }
+    z
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -606,7 +665,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" => {
+                "nanoscope" | "ibw" | "sdf" | "x3p" => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -695,6 +754,12 @@ fn nanoscope_files_keep_the_contract() {
 #[test]
 fn igor_binary_waves_keep_the_contract() {
     let c = run_format("ibw", ibw_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn x3p_files_keep_the_contract() {
+    let c = run_format("x3p", x3p_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }
 

@@ -1,5 +1,6 @@
 //! Instrument file formats: Bruker/Veeco NanoScope (`.spm`, `.di`, `.001`), Igor binary wave
-//! (`.ibw`, Asylum Research AFMs) and ISO 25178-71 SDF (`.sdf`, ASCII and binary), detected by
+//! (`.ibw`, Asylum Research AFMs), ISO 25178-71 SDF (`.sdf`, ASCII and binary) and ISO 25178-72
+//! X3P (`.x3p`), detected by
 //! their content ([`detect`]), read channel by channel.
 //!
 //! A reader parses the file's header into [`Channel`]s: the listing ([`ChannelInfo`]) and where and
@@ -10,6 +11,7 @@
 pub(crate) mod ibw;
 pub mod nanoscope;
 pub(crate) mod sdf;
+pub mod x3p;
 
 use serde::Serialize;
 use stiction_units::text::excerpt;
@@ -108,6 +110,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Sdf)
     } else if ibw::is_ibw(bytes) {
         Some(MapFormat::Ibw)
+    } else if x3p::is_zip(bytes) {
+        Some(MapFormat::X3p)
     } else {
         None
     }
@@ -119,6 +123,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Nanoscope => nanoscope::channels(bytes, origin),
         MapFormat::Ibw => ibw::channels(bytes, origin),
         MapFormat::Sdf => sdf::channels(bytes, origin),
+        MapFormat::X3p => x3p::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }

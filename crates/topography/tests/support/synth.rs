@@ -124,3 +124,72 @@ pub fn sdf_binary(nx: usize, ny: usize, xs: f64, ys: f64, zs: f64, values: &[i16
     }
     b
 }
+
+fn crc32(data: &[u8]) -> u32 {
+    let mut c = 0xffff_ffffu32;
+    for &b in data {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 == 1 { (c >> 1) ^ 0xedb8_8320 } else { c >> 1 };
+        }
+    }
+    !c
+}
+
+/// A zip archive of `entries` (name, method 0 = stored or 8 = deflate, stored bytes, uncompressed
+/// size and CRC as declared), written from the zip file format (PKWARE APPNOTE 4.3.7, 4.3.12,
+/// 4.3.16).
+pub fn zip(entries: &[(&str, u16, Vec<u8>, u32, u32)]) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut central = Vec::new();
+    for (name, method, data, size, crc) in entries {
+        let offset = out.len() as u32;
+        let mut h = Vec::new();
+        h.extend_from_slice(&[20, 0, 0, 0]);
+        h.extend_from_slice(&method.to_le_bytes());
+        h.extend_from_slice(&[0, 0, 0x21, 0]);
+        h.extend_from_slice(&crc.to_le_bytes());
+        h.extend_from_slice(&(data.len() as u32).to_le_bytes());
+        h.extend_from_slice(&size.to_le_bytes());
+        h.extend_from_slice(&(name.len() as u16).to_le_bytes());
+        h.extend_from_slice(&[0, 0]);
+        out.extend_from_slice(b"PK\x03\x04");
+        out.extend_from_slice(&h);
+        out.extend_from_slice(name.as_bytes());
+        out.extend_from_slice(data);
+        central.extend_from_slice(b"PK\x01\x02");
+        central.extend_from_slice(&[20, 0]);
+        central.extend_from_slice(&h);
+        central.extend_from_slice(&[0; 10]);
+        central.extend_from_slice(&offset.to_le_bytes());
+        central.extend_from_slice(name.as_bytes());
+    }
+    let cd_offset = out.len() as u32;
+    out.extend_from_slice(&central);
+    out.extend_from_slice(b"PK\x05\x06\0\0\0\0");
+    out.extend_from_slice(&(entries.len() as u16).to_le_bytes());
+    out.extend_from_slice(&(entries.len() as u16).to_le_bytes());
+    out.extend_from_slice(&(central.len() as u32).to_le_bytes());
+    out.extend_from_slice(&cd_offset.to_le_bytes());
+    out.extend_from_slice(&[0, 0]);
+    out
+}
+
+/// A stored zip entry (its true size and CRC).
+pub fn stored<'a>(name: &'a str, data: &[u8]) -> (&'a str, u16, Vec<u8>, u32, u32) {
+    (name, 0, data.to_vec(), data.len() as u32, crc32(data))
+}
+
+/// An X3P main.xml for an `nx x ny` grid of `data_type` (I, L, F, D) with steps in metres.
+pub fn x3p_xml(nx: usize, ny: usize, dx: f64, dy: f64, data_type: &str, z_increment: Option<f64>) -> String {
+    let inc = z_increment.map_or(String::new(), |z| format!("<Increment>{z:e}</Increment>"));
+    format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">\
+<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>\
+<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>{dx:e}</Increment><Offset>0</Offset></CX>\
+<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>{dy:e}</Increment><Offset>0</Offset></CY>\
+<CZ><AxisType>A</AxisType><DataType>{data_type}</DataType>{inc}</CZ></Axes></Record1>\
+<Record3><MatrixDimension><SizeX>{nx}</SizeX><SizeY>{ny}</SizeY><SizeZ>1</SizeZ></MatrixDimension>\
+<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3></p:ISO5436_2>\n"
+    )
+}
