@@ -32,6 +32,7 @@ FILES = {
     "10x10-one_channel_without_name.ibw": [0],
     "sdf-1.sdf": [0],
     "x3p-2.x3p": [0],
+    "sur-3.sur": [0],
 }
 
 

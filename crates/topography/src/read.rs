@@ -49,6 +49,8 @@ pub enum MapFormat {
     Sdf,
     /// ISO 25178-72 XML surface profile (`.x3p`): a zip of `main.xml` and the binary points.
     X3p,
+    /// Digital Surf / MountainsMap `.sur` (uncompressed): int16/int32 with non-measured points.
+    Sur,
 }
 
 impl MapFormat {
@@ -60,7 +62,7 @@ impl MapFormat {
 
     /// The format a file's extension names, if it names one: `.npy`, `.gsf`, `.xyz`, `.txt`,
     /// `.csv`, `.asc` (text), `.spm`, `.di` and three-digit extensions `.001`... (NanoScope),
-    /// `.ibw`, `.sdf`, `.x3p`.
+    /// `.ibw`, `.sdf`, `.x3p`, `.sur`.
     pub fn from_extension(path: &Path) -> Option<MapFormat> {
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)?;
         Some(match ext.as_str() {
@@ -73,6 +75,7 @@ impl MapFormat {
             "ibw" => MapFormat::Ibw,
             "sdf" => MapFormat::Sdf,
             "x3p" => MapFormat::X3p,
+            "sur" => MapFormat::Sur,
             _ => return None,
         })
     }
@@ -93,6 +96,7 @@ impl MapFormat {
             MapFormat::Ibw => "ibw",
             MapFormat::Sdf => "sdf",
             MapFormat::X3p => "x3p",
+            MapFormat::Sur => "sur",
         }
     }
 }
@@ -115,8 +119,9 @@ impl FromStr for MapFormat {
             "ibw" => Ok(MapFormat::Ibw),
             "sdf" => Ok(MapFormat::Sdf),
             "x3p" => Ok(MapFormat::X3p),
+            "sur" => Ok(MapFormat::Sur),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf or x3p"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p or sur"
             )),
         }
     }

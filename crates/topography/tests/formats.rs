@@ -278,3 +278,13 @@ fn an_x3p_zip_bomb_is_refused_before_it_inflates() {
     assert!(e.contains("no main.xml") || e.contains("no `main.xml`"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn digital_surf_matches_the_reference_with_its_non_measured_points_missing() {
+    // 233 009 of the 262 144 points of sur-3.sur are non-measured (zmin - 2 with the flag set):
+    // missing, never zeros; the count is exact against SurfaceTopography's.
+    let path = data("sur-3.sur");
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!((info.format, info.missing_pixels), (MapFormat::Sur, 233_009));
+    check_against_reference("sur-3.sur", 0, &map, &info, 1.0);
+}

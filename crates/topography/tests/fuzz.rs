@@ -4,7 +4,8 @@
 //! NanoScope headers (offsets, lengths, sizes, scale chains set huge or nonsense, the end marker
 //! removed), Igor binary wave headers (section sizes, dimensions, number type, pixel steps, units,
 //! with the checksum fixed four times in five), SDF (ASCII keys and values, binary header
-//! fields) and X3P (main.xml values, nesting, inline data, truncated points, declared sizes), each also truncated and byte-flipped. Each
+//! fields) X3P (main.xml values, nesting, inline data, truncated points, declared sizes) and Digital Surf
+//! (header fields, steps, units, the compressed magic), each also truncated and byte-flipped. Each
 //! case starts from a valid file written by this crate's writers, applies one to three mutations
 //! and goes through the library code the binary calls (`read_npy`, `read_gsf`, `read_text_grid`,
 //! `read_xyz`, then `prepare` with hostile cut-offs, `find_summits` and `statistics`). The contract:
@@ -612,6 +613,40 @@ fn x3p_case(rng: &mut Rng) -> Vec<u8> {
     z
 }
 
+fn sur_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let ints: Vec<i32> = samples(&map).iter().map(|&v| if v == -32768 { -2 } else { v }).collect();
+    let mut b = synth::sur(map.nx(), map.ny(), 0.01, 1e-11, &ints);
+    for _ in 0..1 + rng.below(3) {
+        if b.len() < 512 {
+            break;
+        }
+        match rng.below(7) {
+            0 => {
+                let at = *rng.pick(&[12usize, 14, 18, 86, 98, 290, 334, 336]);
+                poke(rng, &mut b, at, 2)
+            }
+            1 => {
+                let at = *rng.pick(&[100usize, 108, 112, 116]);
+                poke(rng, &mut b, at, 4)
+            }
+            2 => {
+                let at = *rng.pick(&[120usize, 124, 128]);
+                let v = *rng.pick(&[0.0f32, -1.0, f32::NAN, f32::INFINITY, 1e30, 1e-45]);
+                b[at..at + 4].copy_from_slice(&v.to_le_bytes());
+            }
+            3 => {
+                let at = *rng.pick(&[180usize, 196, 212]);
+                let n = SECRET.len().min(16);
+                b[at..at + n].copy_from_slice(&SECRET.as_bytes()[..n]);
+            }
+            4 => b[..12].copy_from_slice(b"DSCOMPRESSED"),
+            _ => byte_noise(rng, &mut b),
+        }
+    }
+    b
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -665,7 +700,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" => {
+                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -760,6 +795,12 @@ fn igor_binary_waves_keep_the_contract() {
 #[test]
 fn x3p_files_keep_the_contract() {
     let c = run_format("x3p", x3p_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn sur_files_keep_the_contract() {
+    let c = run_format("sur", sur_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }
 

@@ -10,7 +10,7 @@ use crate::output::quantity;
 /// Metadata and preparation of a height-map file.
 #[derive(clap::Args, Debug, Clone)]
 pub struct MapArgs {
-    /// File format: npy, text, gsf, xyz, nanoscope, ibw, sdf or x3p (default: from the content,
+    /// File format: npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p or sur (default: from the content,
     /// else the extension).
     #[arg(long, value_parser = |s: &str| s.parse::<MapFormat>())]
     pub format: Option<MapFormat>,

@@ -1,6 +1,6 @@
 //! Instrument file formats: Bruker/Veeco NanoScope (`.spm`, `.di`, `.001`), Igor binary wave
 //! (`.ibw`, Asylum Research AFMs), ISO 25178-71 SDF (`.sdf`, ASCII and binary) and ISO 25178-72
-//! X3P (`.x3p`), detected by
+//! X3P (`.x3p`), Digital Surf (`.sur`), detected by
 //! their content ([`detect`]), read channel by channel.
 //!
 //! A reader parses the file's header into [`Channel`]s: the listing ([`ChannelInfo`]) and where and
@@ -11,6 +11,7 @@
 pub(crate) mod ibw;
 pub mod nanoscope;
 pub(crate) mod sdf;
+pub(crate) mod sur;
 pub mod x3p;
 
 use serde::Serialize;
@@ -110,6 +111,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Sdf)
     } else if ibw::is_ibw(bytes) {
         Some(MapFormat::Ibw)
+    } else if sur::is_sur(bytes) {
+        Some(MapFormat::Sur)
     } else if x3p::is_zip(bytes) {
         Some(MapFormat::X3p)
     } else {
@@ -124,6 +127,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Ibw => ibw::channels(bytes, origin),
         MapFormat::Sdf => sdf::channels(bytes, origin),
         MapFormat::X3p => x3p::channels(bytes, origin),
+        MapFormat::Sur => sur::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }

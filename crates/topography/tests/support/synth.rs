@@ -193,3 +193,28 @@ pub fn x3p_xml(nx: usize, ny: usize, dx: f64, dy: f64, data_type: &str, z_increm
 <DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3></p:ISO5436_2>\n"
     )
 }
+
+/// A Digital Surf `.sur` of `nx x ny` int32 samples (steps in µm, height step in m), with the
+/// non-measured flag set and `zmin` 0 (so -2 is a missing point).
+pub fn sur(nx: usize, ny: usize, step_um: f32, dz_m: f32, samples: &[i32]) -> Vec<u8> {
+    let mut b = vec![0u8; 512];
+    b[..12].copy_from_slice(b"DIGITAL SURF");
+    b[14..16].copy_from_slice(&1u16.to_le_bytes());
+    b[16..18].copy_from_slice(&1u16.to_le_bytes());
+    b[18..20].copy_from_slice(&2u16.to_le_bytes());
+    b[86..88].copy_from_slice(&1u16.to_le_bytes());
+    b[98..100].copy_from_slice(&32u16.to_le_bytes());
+    b[108..112].copy_from_slice(&(nx as i32).to_le_bytes());
+    b[112..116].copy_from_slice(&(ny as i32).to_le_bytes());
+    b[116..120].copy_from_slice(&((nx * ny) as u32).to_le_bytes());
+    b[120..124].copy_from_slice(&step_um.to_le_bytes());
+    b[124..128].copy_from_slice(&step_um.to_le_bytes());
+    b[128..132].copy_from_slice(&dz_m.to_le_bytes());
+    for (at, u) in [(180, "um"), (196, "um"), (212, "m")] {
+        b[at..at + u.len()].copy_from_slice(u.as_bytes());
+    }
+    for s in samples {
+        b.extend_from_slice(&s.to_le_bytes());
+    }
+    b
+}
