@@ -33,6 +33,7 @@ FILES = {
     "sdf-1.sdf": [0],
     "x3p-2.x3p": [0],
     "sur-3.sur": [0],
+    "opd-1.opd": [0],
 }
 
 

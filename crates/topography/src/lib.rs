@@ -6,7 +6,7 @@
 //! * [`HeightMap`]: a regular grid of heights in metres (NaN = missing pixel), the hand-over type;
 //! * readers ([`read_file`]): NumPy `.npy`, text/CSV grids with Gwyddion's ASCII export header,
 //!   Gwyddion `.gsf`, x-y-z point lists, and instrument files (Bruker NanoScope, Igor binary wave,
-//!   ISO 25178-71 SDF, ISO 25178-72 X3P, Digital Surf) by content, channel by channel; metadata from the file, else from
+//!   ISO 25178-71 SDF, ISO 25178-72 X3P, Digital Surf, Wyko OPD) by content, channel by channel; metadata from the file, else from
 //!   [`MapMetadata`];
 //! * preparation ([`prepare`]): levelling, Gaussian short- and long-wavelength cut-offs;
 //! * summits ([`find_summits`]): 8-neighbour maxima with their curvature;

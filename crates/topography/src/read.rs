@@ -51,6 +51,8 @@ pub enum MapFormat {
     X3p,
     /// Digital Surf / MountainsMap `.sur` (uncompressed): int16/int32 with non-measured points.
     Sur,
+    /// Wyko / Bruker Vision `.opd` (white-light interferometers), undefined points missing.
+    Opd,
 }
 
 impl MapFormat {
@@ -62,7 +64,7 @@ impl MapFormat {
 
     /// The format a file's extension names, if it names one: `.npy`, `.gsf`, `.xyz`, `.txt`,
     /// `.csv`, `.asc` (text), `.spm`, `.di` and three-digit extensions `.001`... (NanoScope),
-    /// `.ibw`, `.sdf`, `.x3p`, `.sur`.
+    /// `.ibw`, `.sdf`, `.x3p`, `.sur`, `.opd`.
     pub fn from_extension(path: &Path) -> Option<MapFormat> {
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)?;
         Some(match ext.as_str() {
@@ -76,6 +78,7 @@ impl MapFormat {
             "sdf" => MapFormat::Sdf,
             "x3p" => MapFormat::X3p,
             "sur" => MapFormat::Sur,
+            "opd" => MapFormat::Opd,
             _ => return None,
         })
     }
@@ -97,6 +100,7 @@ impl MapFormat {
             MapFormat::Sdf => "sdf",
             MapFormat::X3p => "x3p",
             MapFormat::Sur => "sur",
+            MapFormat::Opd => "opd",
         }
     }
 }
@@ -120,8 +124,9 @@ impl FromStr for MapFormat {
             "sdf" => Ok(MapFormat::Sdf),
             "x3p" => Ok(MapFormat::X3p),
             "sur" => Ok(MapFormat::Sur),
+            "opd" => Ok(MapFormat::Opd),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p or sur"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur or opd"
             )),
         }
     }

@@ -288,3 +288,13 @@ fn digital_surf_matches_the_reference_with_its_non_measured_points_missing() {
     assert_eq!((info.format, info.missing_pixels), (MapFormat::Sur, 233_009));
     check_against_reference("sur-3.sur", 0, &map, &info, 1.0);
 }
+
+#[test]
+fn wyko_opd_matches_the_reference_with_its_undefined_points_missing() {
+    // 116 points of opd-1.opd are undefined (int16 >= 32766): missing, never zeros.
+    let path = data("opd-1.opd");
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!((info.format, info.missing_pixels), (MapFormat::Opd, 116));
+    assert_eq!(info.channel.as_ref().unwrap().name, "Raw");
+    check_against_reference("opd-1.opd", 0, &map, &info, 1.0);
+}

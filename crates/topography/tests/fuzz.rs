@@ -4,8 +4,9 @@
 //! NanoScope headers (offsets, lengths, sizes, scale chains set huge or nonsense, the end marker
 //! removed), Igor binary wave headers (section sizes, dimensions, number type, pixel steps, units,
 //! with the checksum fixed four times in five), SDF (ASCII keys and values, binary header
-//! fields) X3P (main.xml values, nesting, inline data, truncated points, declared sizes) and Digital Surf
-//! (header fields, steps, units, the compressed magic), each also truncated and byte-flipped. Each
+//! fields) X3P (main.xml values, nesting, inline data, truncated points, declared sizes) , Digital Surf
+//! (header fields, steps, units, the compressed magic) and Wyko OPD (block lengths, types, names,
+//! array sizes), each also truncated and byte-flipped. Each
 //! case starts from a valid file written by this crate's writers, applies one to three mutations
 //! and goes through the library code the binary calls (`read_npy`, `read_gsf`, `read_text_grid`,
 //! `read_xyz`, then `prepare` with hostile cut-offs, `find_summits` and `statistics`). The contract:
@@ -647,6 +648,47 @@ fn sur_case(rng: &mut Rng) -> Vec<u8> {
     b
 }
 
+fn opd_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    let ints: Vec<i16> = (0..nx * ny)
+        .map(|k| {
+            let (ix, jy) = (k / ny, k % ny);
+            let h = map.at(ix, ny - 1 - jy);
+            if h.is_nan() { 32767 } else { (h * 1e9 * 10.0).clamp(-32000.0, 32000.0) as i16 }
+        })
+        .collect();
+    let mut b = synth::opd(nx, ny, 632.8, 2, 0.001, &ints);
+    for _ in 0..1 + rng.below(3) {
+        if b.len() < 2 + 24 * 6 {
+            break;
+        }
+        match rng.below(6) {
+            0 => {
+                // A block length set huge, zero or negative.
+                let at = 2 + 24 * rng.below(6) + 18;
+                poke(rng, &mut b, at, 4)
+            }
+            1 => {
+                let at = 2 + 24 * rng.below(6) + 16;
+                poke(rng, &mut b, at, 2)
+            }
+            2 => {
+                let at = 2 + 24 * (1 + rng.below(5));
+                let n = SECRET.len().min(16);
+                b[at..at + n].copy_from_slice(&SECRET.as_bytes()[..n]);
+            }
+            3 => {
+                // The Raw array's nx, ny or sample size.
+                let at = 2 + 24 * 6 + 2 * rng.below(3);
+                poke(rng, &mut b, at, 2)
+            }
+            _ => byte_noise(rng, &mut b),
+        }
+    }
+    b
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -700,7 +742,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" => {
+                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -801,6 +843,12 @@ fn x3p_files_keep_the_contract() {
 #[test]
 fn sur_files_keep_the_contract() {
     let c = run_format("sur", sur_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn opd_files_keep_the_contract() {
+    let c = run_format("opd", opd_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }
 

@@ -22,7 +22,7 @@ use crate::output::{CliResult, OutputSet, print_json, print_table};
 ///
 /// Formats, recognised by their content (the extension only where the content has no magic):
 /// .npy (float32/64), .gsf (Gwyddion simple field), Bruker NanoScope (.spm, .di, .001), Igor
-/// binary wave (.ibw), ISO 25178-71 SDF (.sdf), ISO 25178-72 X3P (.x3p), Digital Surf (.sur); .xyz (x y z points on a grid); any other text a
+/// binary wave (.ibw), ISO 25178-71 SDF (.sdf), ISO 25178-72 X3P (.x3p), Digital Surf (.sur), Wyko (.opd); .xyz (x y z points on a grid); any other text a
 /// grid (Gwyddion's ASCII export header gives the pixel size and unit). An instrument file's first
 /// height channel is read unless --channel names another; --channels lists them.
 #[derive(clap::Args, Debug)]

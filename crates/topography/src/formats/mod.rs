@@ -1,6 +1,6 @@
 //! Instrument file formats: Bruker/Veeco NanoScope (`.spm`, `.di`, `.001`), Igor binary wave
 //! (`.ibw`, Asylum Research AFMs), ISO 25178-71 SDF (`.sdf`, ASCII and binary) and ISO 25178-72
-//! X3P (`.x3p`), Digital Surf (`.sur`), detected by
+//! X3P (`.x3p`), Digital Surf (`.sur`) and Wyko (`.opd`), detected by
 //! their content ([`detect`]), read channel by channel.
 //!
 //! A reader parses the file's header into [`Channel`]s: the listing ([`ChannelInfo`]) and where and
@@ -10,6 +10,7 @@
 
 pub(crate) mod ibw;
 pub mod nanoscope;
+pub(crate) mod opd;
 pub(crate) mod sdf;
 pub(crate) mod sur;
 pub mod x3p;
@@ -111,6 +112,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Sdf)
     } else if ibw::is_ibw(bytes) {
         Some(MapFormat::Ibw)
+    } else if opd::is_opd(bytes) {
+        Some(MapFormat::Opd)
     } else if sur::is_sur(bytes) {
         Some(MapFormat::Sur)
     } else if x3p::is_zip(bytes) {
@@ -128,6 +131,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Sdf => sdf::channels(bytes, origin),
         MapFormat::X3p => x3p::channels(bytes, origin),
         MapFormat::Sur => sur::channels(bytes, origin),
+        MapFormat::Opd => opd::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }

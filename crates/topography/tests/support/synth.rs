@@ -218,3 +218,38 @@ pub fn sur(nx: usize, ny: usize, step_um: f32, dz_m: f32, samples: &[i32]) -> Ve
     }
     b
 }
+
+/// A Wyko `.opd` of one int16 `Raw` array (`nx x ny`, y fastest, last y first), wavelength in nm,
+/// `Mult`, pixel size in mm.
+pub fn opd(nx: usize, ny: usize, wavelength_nm: f32, mult: i16, pixel_mm: f32, samples: &[i16]) -> Vec<u8> {
+    let mut raw = Vec::new();
+    raw.extend_from_slice(&(nx as u16).to_le_bytes());
+    raw.extend_from_slice(&(ny as u16).to_le_bytes());
+    raw.extend_from_slice(&2u16.to_le_bytes());
+    for s in samples {
+        raw.extend_from_slice(&s.to_le_bytes());
+    }
+    let blocks: Vec<(&str, i16, Vec<u8>)> = vec![
+        ("Raw", 3, raw),
+        ("Wavelength", 7, wavelength_nm.to_le_bytes().to_vec()),
+        ("Mult", 6, mult.to_le_bytes().to_vec()),
+        ("Pixel_size", 7, pixel_mm.to_le_bytes().to_vec()),
+        ("Aspect", 7, 1.0f32.to_le_bytes().to_vec()),
+    ];
+    let entry = |name: &str, kind: i16, len: usize| {
+        let mut e = vec![0u8; 24];
+        e[..name.len()].copy_from_slice(name.as_bytes());
+        e[16..18].copy_from_slice(&kind.to_le_bytes());
+        e[18..22].copy_from_slice(&(len as i32).to_le_bytes());
+        e
+    };
+    let mut b = vec![1u8, 0];
+    b.extend(entry("Directory", 3, 24 * (blocks.len() + 1)));
+    for (name, kind, data) in &blocks {
+        b.extend(entry(name, *kind, data.len()));
+    }
+    for (_, _, data) in &blocks {
+        b.extend_from_slice(data);
+    }
+    b
+}
