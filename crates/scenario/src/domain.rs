@@ -698,10 +698,10 @@ fn walk(v: &Value, path: &mut String, pattern: &mut String, warnings: &mut Vec<W
             }
         }
         Value::Number(n) => {
-            if let (Some(x), Some(dom)) = (n.as_f64(), lookup(pattern)) {
-                if let Some(w) = dom.check(path, x)? {
-                    warnings.push(w);
-                }
+            if let (Some(x), Some(dom)) = (n.as_f64(), lookup(pattern))
+                && let Some(w) = dom.check(path, x)?
+            {
+                warnings.push(w);
             }
         }
         _ => {}
