@@ -12,8 +12,8 @@ use stiction_topography::{HeightMap, MapInfo, Patch, PreparationReport, prepare,
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use super::map_args::MapArgs;
-use crate::api::ScenarioSource;
 use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q, quantity};
+use crate::scenario_source::ScenarioSource;
 
 /// Largest grid side of the command (the solver's own limit is 4096 x 4096 points).
 const MAX_SIDE: usize = 4096;
@@ -472,11 +472,11 @@ pub fn bem_json(
         }
         check_path_args(args)?;
         let out = humidity::output(args, || surface.build(args))?;
-        return Ok(crate::api::finite_value(&out)?);
+        return Ok(crate::json_value::finite_value(&out)?);
     }
     check_front_end_path(args, pressures)?;
     let (out, _, _) = solve(args, surface.build(args)?, pressures)?;
-    Ok(crate::api::finite_value(&out)?)
+    Ok(crate::json_value::finite_value(&out)?)
 }
 
 /// The checks of [`bem_json`]'s load path before any work: a tolerance in (0, 1), and a load

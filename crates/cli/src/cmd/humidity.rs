@@ -10,8 +10,8 @@ use stiction_plot::{Chart, LegendPosition, Series};
 use stiction_scenario::{Scenario, Warning};
 use stiction_units::Dimension;
 
-use crate::api::ScenarioSource;
 use crate::figargs::reference;
+use crate::scenario_source::ScenarioSource;
 
 /// The default grid of `--rh`: 0 to 90 % in ten steps.
 pub const DEFAULT_RH: &str = "0:0.9:10";
@@ -141,7 +141,7 @@ pub struct HumiditySweep {
 }
 
 /// Runs the friction meter of the scenario `source` (a file or a tree built in memory, with its
-/// `--set` overrides; [`crate::api::ScenarioSource`]) at each relative humidity of `rhs` (from
+/// `--set` overrides; [`crate::scenario_source::ScenarioSource`]) at each relative humidity of `rhs` (from
 /// [`rh_grid`]): `environment.relative_humidity` is set to each value, every other field as the
 /// scenario gives it. An error of the dry point (RH = 0) is the scenario's and is returned; at a
 /// humid point the meter's error becomes that point's `reason` with null values. `progress(done,
