@@ -12,9 +12,10 @@ pub use crate::cmd::topography::topography_json;
 pub use crate::json_value::finite_value;
 pub use crate::scenario_source::ScenarioSource;
 
-pub use crate::cmd::bem::{Args as BemArgs, BemSurface, bem_json, check_rh_values};
+pub use crate::cmd::bem::{Args as BemArgs, BemSurface, bem_json};
 pub use crate::cmd::fit::{Args as FitArgs, fit_json};
 pub use crate::cmd::humidity::{DEFAULT_RH, rh_grid, rh_grid_of};
+pub use crate::rh::check_rh_values;
 
 /// A subcommand's arguments parsed from flags as the command line parses them (`["--pressure",
 /// "20 MPa"]`), so that a front end's keyword arguments meet the same checks and the same messages

@@ -27,4 +27,7 @@ pub mod json_value;
 pub mod output;
 #[allow(missing_docs)]
 #[doc(hidden)]
+pub mod rh;
+#[allow(missing_docs)]
+#[doc(hidden)]
 pub mod scenario_source;

@@ -21,14 +21,14 @@ pub const DEFAULT_RH: &str = "0:0.9:10";
 /// increasing, with the dry point RH = 0 put first when the list does not start there.
 pub fn rh_grid(text: Option<&str>) -> Result<Vec<f64>, String> {
     let text = text.unwrap_or(DEFAULT_RH);
-    dry_first(crate::cmd::bem::parse_rh(text)?, &format!("--rh {text:?}"))
+    dry_first(crate::rh::parse_rh(text)?, &format!("--rh {text:?}"))
 }
 
 /// The relative humidities given as numbers (a front end's list, named `rh`): each finite and in
 /// [0, 1), 1 to 1000 of them, strictly increasing, with the dry point RH = 0 put first when the
 /// list does not start there; the same grid as [`rh_grid`] of the same numbers written as text.
 pub fn rh_grid_of(values: &[f64]) -> Result<Vec<f64>, String> {
-    crate::cmd::bem::check_rh_values(values)?;
+    crate::rh::check_rh_values(values)?;
     dry_first(values.to_vec(), "rh")
 }
 
