@@ -85,7 +85,7 @@ fn flags_that_were_ignored_or_defeated_are_errors() {
         ),
         (
             &["plot", "humidity", "--scenario", "scenarios/tas2000.json", "--set", "environment.temperature=900 K"],
-            &["environment.temperature", "647 K"],
+            &["environment.temperature", "647.096 K"],
         ),
         (
             &["actuator", "scenarios/tas2000.json", "--array", "clamp", "--sweep", "--sweep-steps", "0"],

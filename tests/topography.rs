@@ -153,3 +153,62 @@ fn a_height_map_needs_exactly_one_of_file_and_generated() {
         assert!(err.contains(expect), "{set}: {err}");
     }
 }
+
+#[test]
+fn an_instrument_file_lists_its_channels_and_states_the_one_read() {
+    // --channels: index, name, grid, size, unit; exit 0.
+    let out = stiction(&["topography", "data/topography-formats/di-1.di", "--channels"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    for s in ["nanoscope", "0 Height (default)", "2 Phase", "3 AmplitudeError", "512 x 512 pixels", "0.500000 um", "nm"]
+    {
+        assert!(text.contains(s), "`{s}` not in:\n{text}");
+    }
+    let v = stiction_json(&["topography", "data/topography-formats/spot_1-1000nm.ibw", "--channels", "--json"]);
+    assert_eq!(v["format"], "ibw");
+    assert_eq!(v["default_channel"], 0);
+    assert_eq!(v["channels"].as_array().unwrap().len(), 8);
+    assert_eq!(v["channels"][1]["name"], "HeightRetrace");
+    // The default channel, stated in the JSON and the table; --channel picks another.
+    let v = stiction_json(&["topography", "data/topography-formats/di-1.di", "--json"]);
+    assert_eq!(v["format"], "nanoscope");
+    assert_eq!(v["read"]["channel"]["name"], "Height");
+    assert_eq!(v["read"]["channel"]["chosen"], "default");
+    let v = stiction_json(&["topography", "data/topography-formats/spot_1-1000nm.ibw", "--channel", "1", "--json"]);
+    assert_eq!(v["read"]["channel"]["name"], "HeightRetrace");
+    assert_eq!(v["read"]["channel"]["chosen"], "given");
+    let out = stiction(&["topography", "data/topography-formats/sdf-1.sdf"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("0 `Default` of 1") && text.contains("from the file, from the file"), "{text}");
+}
+
+#[test]
+fn instrument_files_refuse_what_they_cannot_give() {
+    // A phase channel is not a height map; a wave without units asks for them; a contradicting flag
+    // is refused naming the file's value. Each exits 2 naming the file.
+    for (args, needle) in [
+        (vec!["data/topography-formats/di-1.di", "--channel", "Phase"], "not heights"),
+        (vec!["data/topography-formats/di-1.di", "--channel", "7"], "no channel 7"),
+        (vec!["data/topography-formats/10x10-one_channel_without_name.ibw"], "--pixel-size"),
+        (vec!["data/topography-formats/10x10-one_channel_without_name.ibw", "--pixel-size", "1 um"], "--height-unit"),
+        (vec!["data/topography-formats/di-1.di", "--pixel-size", "2 nm"], "the value in"),
+        (vec!["data/topography-formats/sdf-1.sdf", "--format", "ibw"], "--format says ibw"),
+    ] {
+        let mut a = vec!["topography"];
+        a.extend(&args);
+        let out = stiction(&a);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle) && err.contains("data/topography-formats/"), "{args:?}: {err}");
+    }
+    let out = stiction(&[
+        "topography",
+        "data/topography-formats/10x10-one_channel_without_name.ibw",
+        "--pixel-size",
+        "1 um",
+        "--height-unit",
+        "nm",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -688,6 +688,9 @@ pub struct TransientReport {
     pub pull_in_time_rmse_s: Option<f64>,
     /// RMSE of the release times (s).
     pub release_time_rmse_s: Option<f64>,
+    /// Why an overall error is null: no point of that event was predicted.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
     /// Per event over all lengths, then per event and length.
     pub errors: Vec<TransientErrors>,
     /// Every point.
@@ -765,6 +768,10 @@ pub fn compare_transients(
         release_time_mean_abs_rel_error: overall(TransientEvent::Release).and_then(|e| e.mean_abs_rel_error),
         pull_in_time_rmse_s: overall(TransientEvent::PullIn).and_then(|e| e.rmse_s),
         release_time_rmse_s: overall(TransientEvent::Release).and_then(|e| e.rmse_s),
+        note: [TransientEvent::PullIn, TransientEvent::Release]
+            .iter()
+            .any(|ev| overall(*ev).and_then(|e| e.rmse_s).is_none())
+            .then(|| "an overall error is null where no point of that event was predicted (or measured)".to_string()),
         errors: all,
         points,
     })

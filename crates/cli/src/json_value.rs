@@ -24,7 +24,10 @@ mod tests {
         assert_eq!(serde_json::to_value(&points).unwrap()[1]["friction_n"], serde_json::Value::Null);
         let e = super::finite_value(&points).unwrap_err().to_string();
         assert!(e.contains("[1].friction_n"), "{e}");
-        let ok = vec![Point { load_n: 1.0, friction_n: None }];
-        assert_eq!(super::finite_value(&ok).unwrap(), serde_json::json!([{"load_n": 1.0, "friction_n": null}]));
+        // A null needs its reason beside it.
+        let bare = vec![Point { load_n: 1.0, friction_n: None }];
+        assert!(super::finite_value(&bare).unwrap_err().to_string().contains("without a reason"));
+        let ok = serde_json::json!([{"load_n": 1.0, "friction_n": null, "reason": "no slip"}]);
+        assert_eq!(super::finite_value(&ok).unwrap(), ok);
     }
 }

@@ -79,11 +79,12 @@ pub fn quantity(
 /// warning on standard error naming `flag`.
 pub fn domain_quantity(
     dim: Dimension,
+    constraint: Constraint,
     path: &'static str,
     flag: &'static str,
 ) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
     move |s: &str| {
-        let v = parse_quantity_checked(s, dim, Constraint::Finite).map_err(|e| e.to_string())?;
+        let v = parse_quantity_checked(s, dim, constraint).map_err(|e| e.to_string())?;
         match stiction_scenario::domain::check_value(path, flag, v) {
             Ok(Some(w)) => {
                 crate::errln!("warning [{}]: {}", w.code, w.message);

@@ -198,6 +198,10 @@ pub struct ModelFit {
     pub rows_fitted: usize,
     /// Rows where the model had no contact state, with the reason.
     pub rows_without_state: Vec<Rejected>,
+    /// Why a value is null: p_value without a known sigma, delta_aic and akaike_weight for a model
+    /// not comparable with the others, sigma_v when the noise is the data's own column.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<&'static str>,
     /// For the ensemble: the spread over surfaces.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub roughness: Option<Roughness>,
@@ -649,6 +653,10 @@ pub fn fit_model(
         },
         rows_fitted: n,
         rows_without_state,
+        note: Some(
+            "null p_value: sigma is estimated from the residuals; null delta_aic, akaike_weight: not comparable \
+             (rows without a contact state) or a single model; null sigma_v: the noise is the data's v_pull_sd_v",
+        ),
         roughness: None,
         curve,
         residuals,

@@ -214,7 +214,8 @@ pub fn eq10(points: &[(f64, f64)]) -> Eq10Fit {
         ));
     }
     let t = t_one_sided_95(line.points.saturating_sub(2));
-    if !(line.slope > t * line.slope_se) {
+    // Not above zero at the confidence (a NaN slope is not above either).
+    if line.slope.is_nan() || line.slope <= t * line.slope_se {
         return none(format!(
             "the slope {:.4e} +/- {:.2e} (standard error) is not above zero at {:.0} % confidence (t = {:.3} for \
              {} degrees of freedom): the data do not determine mu_e,a",

@@ -116,7 +116,8 @@ mod tests {
     fn each_invariant_is_enforced() {
         let a_a = 20e-6 * 5e-6;
         assert!(check_state(&state(), a_a, 108.0, 20.0).is_ok());
-        let cases: [(&str, fn(&mut ContactState)); 6] = [
+        type Break = fn(&mut ContactState);
+        let cases: [(&str, Break); 6] = [
             ("times the apparent area", |s| s.real_area_m2 = 9.5e-6),
             ("summits in contact", |s| s.contacts = 109.0),
             ("contacts only push", |s| s.adhesive_load_n = -1e-6),

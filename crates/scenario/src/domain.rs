@@ -263,7 +263,7 @@ pub static DOMAINS: &[Domain] = &[
         true,
         std::f64::consts::PI,
         (0.0, std::f64::consts::PI),
-        "a contact angle lies in [0, 180] deg",
+        "a contact angle lies between 0 and 180 deg",
     ),
     // --- environment ---
     Domain {
@@ -580,7 +580,11 @@ pub fn short(v: f64) -> String {
 }
 
 fn with_unit(v: f64, unit: &str) -> String {
-    if unit.is_empty() { short(v) } else { format!("{} {unit}", short(v)) }
+    match unit {
+        "" => short(v),
+        "rad" => format!("{} rad ({} deg)", short(v), short(v.to_degrees())),
+        _ => format!("{} {unit}", short(v)),
+    }
 }
 
 impl Domain {
@@ -634,6 +638,25 @@ impl Domain {
     }
 }
 
+/// The table as Markdown (`stiction scenario --domains`; docs/reliability.md holds the same text,
+/// checked by a test): one row per domain, its fields, range, usual range and reason.
+pub fn markdown_table() -> String {
+    let mut out = String::from("| fields | domain | usual range | why |\n|---|---|---|---|\n");
+    for d in DOMAINS {
+        let fields: Vec<String> = d.paths.iter().map(|p| format!("`{p}`")).collect();
+        let unit = if d.unit.is_empty() { String::new() } else { format!(" {}", d.unit) };
+        out.push_str(&format!(
+            "| {} | {} | [{}, {}]{unit} | {} |\n",
+            fields.join(", "),
+            d.range_text(),
+            short(d.usual.0),
+            short(d.usual.1),
+            d.reason
+        ));
+    }
+    out
+}
+
 /// Checks the value of a flag or argument `field` against the domain of the scenario quantity
 /// `path` (e.g. `gw --work-of-adhesion` against `material.work_of_adhesion`); a `path` without a
 /// domain is accepted.
@@ -680,10 +703,10 @@ fn walk(v: &Value, path: &mut String, pattern: &mut String, warnings: &mut Vec<W
             }
         }
         Value::Number(n) => {
-            if let (Some(x), Some(dom)) = (n.as_f64(), lookup(pattern)) {
-                if let Some(w) = dom.check(path, x)? {
-                    warnings.push(w);
-                }
+            if let (Some(x), Some(dom)) = (n.as_f64(), lookup(pattern))
+                && let Some(w) = dom.check(path, x)?
+            {
+                warnings.push(w);
             }
         }
         _ => {}

@@ -215,7 +215,7 @@ pub fn parse_temperature_k(v: &Value) -> Result<f64, String> {
     if domain.contains(k) {
         return Ok(k);
     }
-    let hint = if bare && k.is_finite() && (-50.0..=200.0).contains(&k) {
+    let hint = if bare && k.is_finite() && domain.contains(k + 273.15) {
         format!(" (a bare number is kelvin: for {k} degrees Celsius write \"{k} C\")")
     } else {
         String::new()

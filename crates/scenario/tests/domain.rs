@@ -92,6 +92,16 @@ fn every_quantity_of_the_schema_has_a_domain() {
     assert!(missing.is_empty(), "quantities without a domain: {missing:?}");
 }
 
+/// docs/reliability.md lists every domain: its table is exactly `stiction scenario --domains`
+/// (the table in the code), between the `domains` markers.
+#[test]
+fn the_documented_domains_are_the_table() {
+    let doc = std::fs::read_to_string(root().join("docs/reliability.md")).unwrap();
+    let start = doc.find("<!-- domains: begin -->").expect("begin marker") + "<!-- domains: begin -->\n".len();
+    let end = doc.find("<!-- domains: end -->").expect("end marker");
+    assert_eq!(&doc[start..end], domain::markdown_table(), "regenerate with `stiction scenario --domains`");
+}
+
 /// The bundled scenarios lie inside every domain and inside the usual ranges (no
 /// `unusual_value` note): the table's bounds are not tighter than the devices they describe.
 #[test]

@@ -1019,6 +1019,7 @@ mod tests {
                 interface_mu: None,
                 mu_bias: bias.and_then(|b| Spread::of(&[b - 0.1, b, b + 0.1])),
                 sensitivity: crate::sensitivity::table(&[], &[], &[], &[], true),
+                note: None,
                 reference: None,
             }
         };

@@ -210,6 +210,9 @@ pub struct StudySummary {
     pub mu_bias: Option<Spread>,
     /// Which input explains how much of the spread.
     pub sensitivity: Sensitivity,
+    /// Why a spread is null: no sample gave the quantity (see `reasons`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<&'static str>,
     /// The scenario's measured reference values (its `reference` section), if it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<stiction_scenario::ReferenceSpec>,
@@ -340,8 +343,20 @@ pub fn summarize(path: &Path, mut csv: Option<&mut Vec<u8>>) -> Result<(StudySum
         interface_mu: Spread::of(&iface),
         mu_bias: Spread::of(&bias),
         sensitivity: sens,
+        note: None,
         reference: header.reference.clone(),
     };
+    let mut summary = summary;
+    if summary.mu_apparent.is_none()
+        || summary.apparent_adhesion_force_n.is_none()
+        || summary.interface_mu.is_none()
+        || summary.mu_bias.is_none()
+    {
+        summary.note = Some(
+            "a null spread: no sample gave that quantity (no eq. 10 fit, or no interface coefficient); `reasons` \
+             counts why",
+        );
+    }
     Ok((summary, FigureData { mu_sorted: mus, scatter }))
 }
 

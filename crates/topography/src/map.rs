@@ -66,6 +66,29 @@ impl HeightMap {
         Ok(HeightMap { nx, ny, dx_m, dy_m, heights_m })
     }
 
+    /// [`HeightMap::new`] for heights the caller has checked to be finite or NaN (the readers'
+    /// one pass over them does): the same checks of the grid and pixel sizes, no second pass.
+    pub(crate) fn from_checked_heights(
+        nx: usize,
+        ny: usize,
+        dx_m: f64,
+        dy_m: f64,
+        heights_m: Vec<f64>,
+    ) -> Result<Self, TopographyError> {
+        check_grid_size("height map", nx as u64, ny as u64)?;
+        check_positive("pixel_size_x", dx_m, "m")?;
+        check_positive("pixel_size_y", dy_m, "m")?;
+        if heights_m.len() != nx * ny {
+            return Err(TopographyError::invalid(
+                "heights",
+                format!("{} values", heights_m.len()),
+                format!("{nx} x {ny} = {} values", nx * ny),
+            ));
+        }
+        debug_assert!(!heights_m.iter().any(|h| h.is_infinite()));
+        Ok(HeightMap { nx, ny, dx_m, dy_m, heights_m })
+    }
+
     /// Columns (pixels along x).
     pub fn nx(&self) -> usize {
         self.nx

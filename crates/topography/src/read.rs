@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use stiction_units::text::{MAX_CELL_BYTES, MAX_LINE_BYTES, check_line_bytes, check_lines, excerpt};
 use stiction_units::{Dimension, parse_quantity};
 
+use crate::formats::{ChannelChoice, ChannelInfo, ChannelSelector};
 use crate::map::check_grid_size;
 use crate::{HeightMap, MAX_PIXELS, TopographyError};
 
@@ -40,18 +41,51 @@ pub enum MapFormat {
     Gsf,
     /// x y z points (one per line) on a regular grid, in any order; absent points are missing.
     Xyz,
+    /// Bruker / Veeco NanoScope (`.spm`, `.di`, `.001`, ...): int16/int32 images with a text header.
+    Nanoscope,
+    /// Igor binary wave version 5 (`.ibw`, Asylum Research AFMs): channels as layers.
+    Ibw,
+    /// ISO 25178-71 surface data file (`.sdf`), ASCII or binary.
+    Sdf,
+    /// ISO 25178-72 XML surface profile (`.x3p`): a zip of `main.xml` and the binary points.
+    X3p,
+    /// Digital Surf / MountainsMap `.sur` (uncompressed): int16/int32 with non-measured points.
+    Sur,
+    /// Wyko / Bruker Vision `.opd` (white-light interferometers), undefined points missing.
+    Opd,
 }
 
 impl MapFormat {
     /// The format a file name suggests: `.npy`, `.gsf`, `.xyz`, else a text grid (`.csv`, `.txt`,
     /// `.asc`, `.dat`, ...).
     pub fn from_path(path: &Path) -> MapFormat {
-        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-            Some("npy") => MapFormat::Npy,
-            Some("gsf") => MapFormat::Gsf,
-            Some("xyz") => MapFormat::Xyz,
-            _ => MapFormat::Text,
-        }
+        MapFormat::from_extension(path).unwrap_or(MapFormat::Text)
+    }
+
+    /// The format a file's extension names, if it names one: `.npy`, `.gsf`, `.xyz`, `.txt`,
+    /// `.csv`, `.asc` (text), `.spm`, `.di` and three-digit extensions `.001`... (NanoScope),
+    /// `.ibw`, `.sdf`, `.x3p`, `.sur`, `.opd`.
+    pub fn from_extension(path: &Path) -> Option<MapFormat> {
+        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)?;
+        Some(match ext.as_str() {
+            "npy" => MapFormat::Npy,
+            "gsf" => MapFormat::Gsf,
+            "xyz" => MapFormat::Xyz,
+            "txt" | "csv" | "asc" | "tsv" => MapFormat::Text,
+            "spm" | "di" => MapFormat::Nanoscope,
+            e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => MapFormat::Nanoscope,
+            "ibw" => MapFormat::Ibw,
+            "sdf" => MapFormat::Sdf,
+            "x3p" => MapFormat::X3p,
+            "sur" => MapFormat::Sur,
+            "opd" => MapFormat::Opd,
+            _ => return None,
+        })
+    }
+
+    /// Whether the format is recognised by its first bytes ([`crate::detect`]).
+    pub fn has_magic(self) -> bool {
+        !matches!(self, MapFormat::Text | MapFormat::Xyz)
     }
 
     /// The format's name as in scenario files and flags.
@@ -61,6 +95,12 @@ impl MapFormat {
             MapFormat::Text => "text",
             MapFormat::Gsf => "gsf",
             MapFormat::Xyz => "xyz",
+            MapFormat::Nanoscope => "nanoscope",
+            MapFormat::Ibw => "ibw",
+            MapFormat::Sdf => "sdf",
+            MapFormat::X3p => "x3p",
+            MapFormat::Sur => "sur",
+            MapFormat::Opd => "opd",
         }
     }
 }
@@ -79,7 +119,15 @@ impl FromStr for MapFormat {
             "text" | "csv" => Ok(MapFormat::Text),
             "gsf" => Ok(MapFormat::Gsf),
             "xyz" => Ok(MapFormat::Xyz),
-            _ => Err(format!("unknown height-map format `{s}`: expected npy, text, gsf or xyz")),
+            "nanoscope" => Ok(MapFormat::Nanoscope),
+            "ibw" => Ok(MapFormat::Ibw),
+            "sdf" => Ok(MapFormat::Sdf),
+            "x3p" => Ok(MapFormat::X3p),
+            "sur" => Ok(MapFormat::Sur),
+            "opd" => Ok(MapFormat::Opd),
+            _ => Err(format!(
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur or opd"
+            )),
         }
     }
 }
@@ -110,7 +158,7 @@ pub enum MetaSource {
 }
 
 /// What a reader found besides the heights.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MapInfo {
     /// The format read.
     pub format: MapFormat,
@@ -120,8 +168,12 @@ pub struct MapInfo {
     pub height_unit_from: MetaSource,
     /// Metres per height unit of the file.
     pub height_unit_m: f64,
-    /// Pixels without a height (NaN in the file, or absent from a point list).
+    /// Pixels without a height (NaN in the file, masked in an instrument file, or absent from a
+    /// point list).
     pub missing_pixels: usize,
+    /// The channel read from a multi-channel instrument file, and whether by default or as asked.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<ChannelChoice>,
 }
 
 /// Parses a length unit such as `"nm"`, `"um"`, `"µm"`, `"m"` or a scale such as `"10 nm"` into
@@ -178,7 +230,24 @@ fn finish(
     file_dy: Option<f64>,
     file_unit: Option<f64>,
     meta: &MapMetadata,
+    heights: Vec<f64>,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
+    finish_scaled(origin, format, nx, ny, file_dx, file_dy, file_unit, meta, heights, false)
+}
+
+/// [`finish`], for heights already in metres when `in_metres` (scaled while decoded).
+#[allow(clippy::too_many_arguments)]
+fn finish_scaled(
+    origin: &str,
+    format: MapFormat,
+    nx: usize,
+    ny: usize,
+    file_dx: Option<f64>,
+    file_dy: Option<f64>,
+    file_unit: Option<f64>,
+    meta: &MapMetadata,
     mut heights: Vec<f64>,
+    in_metres: bool,
 ) -> Result<(HeightMap, MapInfo), TopographyError> {
     let (dx, src_x) = resolve(origin, file_dx, meta.pixel_size_x_m, "pixel size", PIXEL_HOW)?;
     let given_dy = meta.pixel_size_y_m.or(meta.pixel_size_x_m);
@@ -201,26 +270,29 @@ fn finish(
         ));
     }
     let mut missing = 0;
-    if unit != 1.0 {
+    if unit != 1.0 && !in_metres {
         for h in &mut heights {
             *h *= unit;
         }
     }
-    for h in &heights {
-        if h.is_nan() {
-            missing += 1;
-        } else if h.abs() > MAX_HEIGHT_M {
-            return Err(TopographyError::format(
-                origin,
-                0,
-                format!("a height of {h:e} m (in SI units) is beyond the limit of {MAX_HEIGHT_M} m for a height map"),
-            ));
-        }
+    // One branch-free pass (it vectorises): the count of NaN and the largest |h| (NaN ignored).
+    let (nan, largest) =
+        heights.iter().fold((0usize, 0.0f64), |(n, m), h| (n + usize::from(h.is_nan()), m.max(h.abs())));
+    missing += nan;
+    if largest > MAX_HEIGHT_M {
+        let h = heights.iter().find(|h| h.abs() > MAX_HEIGHT_M).copied().unwrap_or(largest);
+        return Err(TopographyError::format(
+            origin,
+            0,
+            format!("a height of {h:e} m (in SI units) is beyond the limit of {MAX_HEIGHT_M} m for a height map"),
+        ));
     }
     if missing == heights.len() {
         return Err(TopographyError::format(origin, 0, "every pixel is missing (NaN)"));
     }
-    let map = HeightMap::new(nx, ny, dx, dy, heights).map_err(|e| TopographyError::format(origin, 0, e.to_string()))?;
+    // Every height was checked above (finite and within MAX_HEIGHT_M, or NaN).
+    let map = HeightMap::from_checked_heights(nx, ny, dx, dy, heights)
+        .map_err(|e| TopographyError::format(origin, 0, e.to_string()))?;
     Ok((
         map,
         MapInfo {
@@ -229,28 +301,170 @@ fn finish(
             height_unit_from: src_u,
             height_unit_m: unit,
             missing_pixels: missing,
+            channel: None,
         },
     ))
 }
 
-/// Reads a height-map file: `format` or, if `None`, the format its extension suggests
-/// ([`MapFormat::from_path`]); the file goes through [`stiction_units::io::read_input`] (regular
-/// files only, size limit checked before reading).
+/// Reads a height-map file: its first channel that holds heights. See [`read_file_channel`].
 pub fn read_file(
     path: &Path,
     format: Option<MapFormat>,
     meta: &MapMetadata,
 ) -> Result<(HeightMap, MapInfo), TopographyError> {
-    let format = format.unwrap_or_else(|| MapFormat::from_path(path));
+    read_file_channel(path, format, None, meta)
+}
+
+/// The format of `bytes`: their content decides ([`crate::detect`]); the claim (`format` given,
+/// else the extension of `path`) only where the content has no magic (text grids, x-y-z lists).
+/// A claim the content contradicts is an error naming both.
+pub fn resolve_format(path: &Path, format: Option<MapFormat>, bytes: &[u8]) -> Result<MapFormat, TopographyError> {
     let origin = path.display().to_string();
-    match format {
-        MapFormat::Npy => read_npy(&stiction_units::io::read_input(path, BINARY_INPUT_LIMIT_BYTES)?, &origin, meta),
-        MapFormat::Gsf => read_gsf(&stiction_units::io::read_input(path, BINARY_INPUT_LIMIT_BYTES)?, &origin, meta),
-        MapFormat::Text => {
-            read_text_grid(&stiction_units::io::read_input_text(path, TEXT_INPUT_LIMIT_BYTES)?, &origin, meta)
-        }
-        MapFormat::Xyz => read_xyz(&stiction_units::io::read_input_text(path, TEXT_INPUT_LIMIT_BYTES)?, &origin, meta),
+    let (claim, by) = match format {
+        Some(f) => (Some(f), "--format"),
+        None => (MapFormat::from_extension(path), "its extension"),
+    };
+    match (claim, crate::formats::detect(bytes)) {
+        (Some(c), Some(d)) if c != d => Err(TopographyError::format(
+            &origin,
+            0,
+            format!(
+                "{by} says {c}, but the content is a {d} file (by its first bytes): rename the file or give --format {d}"
+            ),
+        )),
+        (_, Some(d)) => Ok(d),
+        (Some(c), None) => Ok(c),
+        (None, None) => Ok(MapFormat::Text),
     }
+}
+
+/// Reads a height-map file through [`stiction_units::io::read_input`] (regular files only, size
+/// limit checked before reading): the format by content ([`resolve_format`]); for a file with
+/// channels, the channel `channel` selects, else its first height channel (the choice is in
+/// [`MapInfo::channel`]).
+pub fn read_file_channel(
+    path: &Path,
+    format: Option<MapFormat>,
+    channel: Option<&ChannelSelector>,
+    meta: &MapMetadata,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let origin = path.display().to_string();
+    let claim = format.or_else(|| MapFormat::from_extension(path)).unwrap_or(MapFormat::Text);
+    let limit = if claim.has_magic() { BINARY_INPUT_LIMIT_BYTES } else { TEXT_INPUT_LIMIT_BYTES };
+    let bytes = stiction_units::io::read_input(path, limit)?;
+    let format = resolve_format(path, format, &bytes)?;
+    if format.has_magic() && bytes.len() as u64 > BINARY_INPUT_LIMIT_BYTES {
+        return Err(stiction_units::io::FileError::TooLarge {
+            path: path.to_path_buf(),
+            size_bytes: bytes.len() as u64,
+            limit_bytes: BINARY_INPUT_LIMIT_BYTES,
+        }
+        .into());
+    }
+    let single = |format: MapFormat| -> Result<(), TopographyError> {
+        match channel {
+            None | Some(ChannelSelector::Index(0)) => Ok(()),
+            Some(_) => Err(TopographyError::format(
+                &origin,
+                0,
+                format!("a {format} file has one channel (0): --channel selects among an instrument file's channels"),
+            )),
+        }
+    };
+    match format {
+        MapFormat::Npy => {
+            single(format)?;
+            read_npy(&bytes, &origin, meta)
+        }
+        MapFormat::Gsf => {
+            single(format)?;
+            read_gsf(&bytes, &origin, meta)
+        }
+        MapFormat::Text | MapFormat::Xyz => {
+            single(format)?;
+            let text = text_of(path, bytes)?;
+            if format == MapFormat::Text {
+                read_text_grid(&text, &origin, meta)
+            } else {
+                read_xyz(&text, &origin, meta)
+            }
+        }
+        _ => read_instrument(&bytes, format, &origin, channel, meta),
+    }
+}
+
+fn text_of(path: &Path, bytes: Vec<u8>) -> Result<String, TopographyError> {
+    let mut text = String::from_utf8(bytes).map_err(|e| stiction_units::io::FileError::Io {
+        path: path.to_path_buf(),
+        action: "read (not UTF-8 text)",
+        source: std::io::Error::new(std::io::ErrorKind::InvalidData, e.utf8_error()),
+    })?;
+    if text.starts_with('\u{feff}') {
+        text.drain(..'\u{feff}'.len_utf8());
+    }
+    Ok(text)
+}
+
+/// Reads one channel of an instrument file's bytes (NanoScope, Igor binary wave, SDF): `channel`,
+/// else the first height channel. Units, pixel sizes and the height scale come from the file; a
+/// value it lacks comes from `meta` (else an error asks for it); a value in both must agree.
+pub fn read_instrument(
+    bytes: &[u8],
+    format: MapFormat,
+    origin: &str,
+    channel: Option<&ChannelSelector>,
+    meta: &MapMetadata,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let list = crate::formats::channels(format, bytes, origin)?;
+    let (ch, choice) = crate::formats::choose(&list, channel, origin)?;
+    let i = &ch.info;
+    // A unit the file states is the unit (a given one must agree): the values are scaled to metres
+    // while they are decoded, in one pass.
+    let file_unit = i.height_unit_m;
+    if let (Some(f), Some(_)) = (file_unit, meta.height_unit_m) {
+        resolve(origin, Some(f), meta.height_unit_m, "height unit", UNIT_HOW)?;
+    }
+    let values = crate::formats::decode(ch, bytes, origin, file_unit.unwrap_or(1.0))?;
+    let (dx, dy) = match i.size_m {
+        Some((a, b)) => (Some(a / i.nx as f64), Some(b / i.ny as f64)),
+        None => (None, None),
+    };
+    let (map, mut info) =
+        finish_scaled(origin, format, i.nx, i.ny, dx, dy, file_unit, meta, values, file_unit.is_some())?;
+    info.channel = Some(choice);
+    Ok((map, info))
+}
+
+/// The channels of a height-map file (format as [`read_file_channel`] finds it). A file without
+/// channels (npy, gsf, text, xyz) lists its one map, read with `meta`.
+pub fn list_channels(
+    path: &Path,
+    format: Option<MapFormat>,
+    meta: &MapMetadata,
+) -> Result<(MapFormat, Vec<ChannelInfo>), TopographyError> {
+    let claim = format.or_else(|| MapFormat::from_extension(path)).unwrap_or(MapFormat::Text);
+    if !claim.has_magic() || matches!(claim, MapFormat::Npy | MapFormat::Gsf) {
+        let (map, info) = read_file(path, format, meta)?;
+        let one = ChannelInfo {
+            index: 0,
+            name: "height".into(),
+            nx: map.nx(),
+            ny: map.ny(),
+            size_m: Some((map.length_x_m(), map.length_y_m())),
+            unit: "m".into(),
+            height_unit_m: Some(info.height_unit_m),
+            is_height: true,
+        };
+        return Ok((info.format, vec![one]));
+    }
+    let origin = path.display().to_string();
+    let bytes = stiction_units::io::read_input(path, BINARY_INPUT_LIMIT_BYTES)?;
+    let format = resolve_format(path, format, &bytes)?;
+    if !format.has_magic() || matches!(format, MapFormat::Npy | MapFormat::Gsf) {
+        return list_channels(path, Some(format), meta);
+    }
+    let list = crate::formats::channels(format, &bytes, &origin)?;
+    Ok((format, list.into_iter().map(|c| c.info).collect()))
 }
 
 // ---------------------------------------------------------------------------------------------

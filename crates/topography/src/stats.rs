@@ -46,6 +46,9 @@ pub struct SummitStats {
     pub radius_min_m: Option<f64>,
     /// Largest summit radius \[m\].
     pub radius_max_m: Option<f64>,
+    /// Why a statistic is null: too few summits for it (none for means, one for an SD).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<&'static str>,
 }
 
 /// Nayak's predictions from the spectral moments.
@@ -197,6 +200,10 @@ pub fn summit_stats(map: &HeightMap, summits: &Summits) -> SummitStats {
         radius_median_m: median,
         radius_min_m: rmin,
         radius_max_m: rmax,
+        note: [hm, hsd, cm, rm, rsd, median, rmin, rmax]
+            .iter()
+            .any(Option::is_none)
+            .then_some("too few summits for this statistic (none for a mean or an extreme, one for an SD)"),
     }
 }
 

@@ -1,6 +1,12 @@
 //! A seeded structured-mutation fuzzer over the height-map formats (stable Rust, no extra tool),
 //! in the style of `crates/meter/tests/fuzz.rs`: `.npy` headers, dtypes, shapes and data; `.gsf`
-//! keys and padding; text grids (cells, headers, delimiters, rows, long lines); x-y-z lists. Each
+//! keys and padding; text grids (cells, headers, delimiters, rows, long lines); x-y-z lists;
+//! NanoScope headers (offsets, lengths, sizes, scale chains set huge or nonsense, the end marker
+//! removed), Igor binary wave headers (section sizes, dimensions, number type, pixel steps, units,
+//! with the checksum fixed four times in five), SDF (ASCII keys and values, binary header
+//! fields) X3P (main.xml values, nesting, inline data, truncated points, declared sizes) , Digital Surf
+//! (header fields, steps, units, the compressed magic) and Wyko OPD (block lengths, types, names,
+//! array sizes), each also truncated and byte-flipped. Each
 //! case starts from a valid file written by this crate's writers, applies one to three mutations
 //! and goes through the library code the binary calls (`read_npy`, `read_gsf`, `read_text_grid`,
 //! `read_xyz`, then `prepare` with hostile cut-offs, `find_summits` and `statistics`). The contract:
@@ -19,9 +25,12 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::{Duration, Instant};
 
 use stiction_topography::{
-    HeightMap, Levelling, MapMetadata, NpyDtype, Preparation, TopographyError, find_summits, prepare, read_gsf,
-    read_npy, read_text_grid, read_xyz, statistics,
+    ChannelSelector, HeightMap, Levelling, MapFormat, MapMetadata, NpyDtype, Preparation, TopographyError, detect,
+    find_summits, prepare, read_gsf, read_instrument, read_npy, read_text_grid, read_xyz, statistics,
 };
+
+#[path = "support/synth.rs"]
+mod synth;
 
 /// Longest a single case may take.
 const CASE_TIME_LIMIT: Duration = Duration::from_secs(10);
@@ -380,6 +389,306 @@ fn xyz_case(rng: &mut Rng) -> Vec<u8> {
     lines.join("\n").into_bytes()
 }
 
+/// Sets a little-endian integer field of `n` bytes at `at` (if in range) to a hostile value.
+fn poke(rng: &mut Rng, b: &mut [u8], at: usize, n: usize) {
+    let v: u64 = *rng.pick(&[0, 1, 2, 3, 5, 0x7fff, 0xffff, 0x7fff_ffff, 0xffff_ffff, u64::MAX, 1 << 20, 100_000]);
+    if at + n <= b.len() {
+        b[at..at + n].copy_from_slice(&v.to_le_bytes()[..n]);
+    }
+}
+
+/// Integer samples of a base map (nm, clamped to int16).
+fn samples(map: &HeightMap) -> Vec<i32> {
+    map.heights_m()
+        .iter()
+        .map(|h| if h.is_nan() { -32768 } else { (h * 1e9 * 100.0).clamp(-32767.0, 32767.0) as i32 })
+        .collect()
+}
+
+fn nanoscope_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let bpp = if rng.chance(3) { 4 } else { 2 };
+    let b = synth::nanoscope(map.nx(), map.ny(), 100.0, 20.0, 10.0, bpp, &samples(&map));
+    let header_end = 8192;
+    let mut header = String::from_utf8_lossy(&b[..header_end]).trim_end_matches('\u{1a}').to_string();
+    let data = b[header_end..].to_vec();
+    for _ in 0..1 + rng.below(3) {
+        let key = *rng.pick(&[
+            "Data offset",
+            "Data length",
+            "Bytes/pixel",
+            "Samps/line",
+            "Number of lines",
+            "Scan Size",
+            "@2:Z scale",
+            "@Sens. Zsens",
+            "@2:Image Data",
+        ]);
+        match rng.below(7) {
+            0 | 1 => {
+                let v = rng.pick(NASTY);
+                let lines: Vec<String> = header
+                    .split("\r\n")
+                    .map(|l| if l.starts_with(&format!("\\{key}:")) { format!("\\{key}: {v}") } else { l.to_string() })
+                    .collect();
+                header = lines.join("\r\n");
+            }
+            2 => {
+                let lines: Vec<&str> = header.split("\r\n").filter(|l| !l.starts_with(&format!("\\{key}:"))).collect();
+                header = lines.join("\r\n");
+            }
+            3 => {
+                let n = *rng.pick(&["100000", "0", "1", "65536", "4294967296", "8192", "-1", "99999999999"]);
+                header = header.replacen(&format!("\\{key}: "), &format!("\\{key}: {n} "), 1);
+            }
+            4 => header = header.replacen("\\*Ciao image list", &format!("\\*Ciao image list\r\n\\{SECRET}"), 1),
+            5 => header = header.replacen("\\*File list end", &format!("{SECRET}\r\n\\*File list end"), 1),
+            _ => header = header.replacen("\\*File list end", "", 1),
+        }
+    }
+    let mut out = header.into_bytes();
+    out.resize(out.len().max(header_end), 0x1a);
+    out.truncate(header_end.max(out.len()));
+    out.extend_from_slice(&data);
+    if rng.chance(4) {
+        byte_noise(rng, &mut out);
+    }
+    out
+}
+
+fn ibw_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let layers = 1 + rng.below(3);
+    let mut values: Vec<f32> = Vec::new();
+    for _ in 0..layers {
+        values.extend(map.heights_m().iter().map(|&h| h as f32));
+    }
+    let names: Vec<&str> =
+        (0..layers).map(|k| if k == 0 { "HeightTrace" } else { *rng.pick(&["Phase", SECRET, ""]) }).collect();
+    let units = *rng.pick(&["m", "nm", "", "deg"]);
+    let mut b =
+        synth::ibw(map.nx(), map.ny(), layers, 1e-8, units, units, if rng.chance(4) { &[] } else { &names }, &values);
+    for _ in 0..1 + rng.below(3) {
+        match rng.below(8) {
+            0 => {
+                let at = *rng.pick(&[4usize, 8, 12, 16, 20, 36, 40, 44]);
+                poke(rng, &mut b, at, 4)
+            }
+            1 => {
+                let at = *rng.pick(&[76usize, 132, 136, 140, 144]);
+                poke(rng, &mut b, at, 4)
+            }
+            2 => poke(rng, &mut b, 80, 2),
+            3 => {
+                let at = 148 + 8 * rng.below(2);
+                let v = *rng.pick(&[0.0f64, -1.0, f64::NAN, f64::INFINITY, 1e300, 5e-324]);
+                b[at..at + 8].copy_from_slice(&v.to_le_bytes());
+            }
+            4 => b.extend_from_slice(SECRET.as_bytes()),
+            5 => b[212..216].copy_from_slice(&[0xff, b'\n', 0x1b, b'm']),
+            _ => {}
+        }
+    }
+    // Fix the checksum most of the time, so the mutations reach past it.
+    if !rng.chance(5) && b.len() >= 384 {
+        b[2..4].copy_from_slice(&[0, 0]);
+        let sum = b[..384].chunks_exact(2).fold(0u16, |s, c| s.wrapping_add(u16::from_le_bytes([c[0], c[1]])));
+        b[2..4].copy_from_slice(&0u16.wrapping_sub(sum).to_le_bytes());
+    }
+    if rng.chance(4) {
+        byte_noise(rng, &mut b);
+    }
+    b
+}
+
+fn sdf_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    if rng.chance(2) {
+        let ints: Vec<i16> = samples(&map).iter().map(|&v| v as i16).collect();
+        let mut b = synth::sdf_binary(map.nx(), map.ny(), 1e-8, 1e-8, 1e-11, &ints);
+        for _ in 0..1 + rng.below(3) {
+            match rng.below(6) {
+                0 => {
+                    let at = 42 + 2 * rng.below(2);
+                    poke(rng, &mut b, at, 2)
+                }
+                1 if b.len() > 70 => {
+                    let at = 46 + 8 * rng.below(3);
+                    let v = *rng.pick(&[0.0f64, -1.0, f64::NAN, f64::INFINITY, 1e300, 5e-324]);
+                    b[at..at + 8].copy_from_slice(&v.to_le_bytes());
+                }
+                2 if b.len() > 80 => b[78 + rng.below(2)] = *rng.pick(&[0u8, 1, 4, 5, 6, 7, 8, 255]),
+                3 => b.extend_from_slice(SECRET.as_bytes()),
+                _ => byte_noise(rng, &mut b),
+            }
+        }
+        return b;
+    }
+    let v: Vec<Option<f64>> = map.heights_m().iter().map(|h| if h.is_nan() { None } else { Some(h * 1e9) }).collect();
+    let text = String::from_utf8(synth::sdf_ascii(map.nx(), map.ny(), 1e-8, 1e-8, 1e-9, &v)).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    for _ in 0..1 + rng.below(3) {
+        if lines.is_empty() {
+            break;
+        }
+        let r = rng.below(lines.len());
+        match rng.below(7) {
+            0 | 1 => {
+                let key =
+                    *rng.pick(&["NumPoints", "NumProfiles", "Xscale", "Yscale", "Zscale", "DataType", "Compression"]);
+                let val = rng.pick(NASTY);
+                for l in lines.iter_mut().filter(|l| l.starts_with(key)) {
+                    *l = format!("{key} = {val}");
+                }
+            }
+            2 => lines[r] = format!("{} {}", lines[r], rng.pick(NASTY)),
+            3 => lines.insert(r, SECRET.to_string()),
+            4 => lines.retain(|l| l != "*"),
+            5 => lines.truncate(r),
+            _ => lines[r] = "7".repeat(1 + rng.below(3000)),
+        }
+    }
+    let mut b = lines.join("\n").into_bytes();
+    if rng.chance(6) {
+        byte_noise(rng, &mut b);
+    }
+    b
+}
+
+fn x3p_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    let mut xml = synth::x3p_xml(nx, ny, 1e-8, 1e-8, "D", None);
+    let mut data: Vec<u8> = map.heights_m().iter().flat_map(|h| h.to_le_bytes()).collect();
+    for _ in 0..1 + rng.below(3) {
+        match rng.below(8) {
+            0 | 1 => {
+                let tag = *rng.pick(&[
+                    "SizeX",
+                    "SizeY",
+                    "SizeZ",
+                    "Increment",
+                    "DataType",
+                    "AxisType",
+                    "FeatureType",
+                    "PointDataLink",
+                ]);
+                let v = *rng.pick(&[
+                    "0",
+                    "1",
+                    "4294967296",
+                    "18446744073709551616",
+                    "-1",
+                    "NaN",
+                    "1e300",
+                    "L",
+                    "X",
+                    "",
+                    SECRET,
+                ]);
+                if let (Some(a), Some(b)) = (xml.find(&format!("<{tag}>")), xml.find(&format!("</{tag}>")))
+                    && a < b
+                {
+                    xml.replace_range(a + tag.len() + 2..b, v);
+                }
+            }
+            2 => xml = xml.replacen("</Record3>", &"<a>".repeat(1 + rng.below(100)), 1),
+            3 => xml.insert_str(xml.len() / 2, SECRET),
+            4 => data.truncate(rng.below(data.len() + 1)),
+            5 => xml = xml.replacen("<Record3>", "<Record3><DataList><Datum>1</Datum></DataList>", 1),
+            _ => {}
+        }
+    }
+    let mut z = synth::zip(&[synth::stored("main.xml", xml.as_bytes()), synth::stored("bindata/data.bin", &data)]);
+    if rng.chance(4) {
+        byte_noise(rng, &mut z);
+    }
+    if rng.chance(6) {
+        // A declared size set huge.
+        let at = 22usize;
+        let v = *rng.pick(&[u32::MAX, 1 << 30, 0]);
+        if z.len() > at + 4 {
+            z[at..at + 4].copy_from_slice(&v.to_le_bytes());
+        }
+    }
+    z
+}
+
+fn sur_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let ints: Vec<i32> = samples(&map).iter().map(|&v| if v == -32768 { -2 } else { v }).collect();
+    let mut b = synth::sur(map.nx(), map.ny(), 0.01, 1e-11, &ints);
+    for _ in 0..1 + rng.below(3) {
+        if b.len() < 512 {
+            break;
+        }
+        match rng.below(7) {
+            0 => {
+                let at = *rng.pick(&[12usize, 14, 18, 86, 98, 290, 334, 336]);
+                poke(rng, &mut b, at, 2)
+            }
+            1 => {
+                let at = *rng.pick(&[100usize, 108, 112, 116]);
+                poke(rng, &mut b, at, 4)
+            }
+            2 => {
+                let at = *rng.pick(&[120usize, 124, 128]);
+                let v = *rng.pick(&[0.0f32, -1.0, f32::NAN, f32::INFINITY, 1e30, 1e-45]);
+                b[at..at + 4].copy_from_slice(&v.to_le_bytes());
+            }
+            3 => {
+                let at = *rng.pick(&[180usize, 196, 212]);
+                let n = SECRET.len().min(16);
+                b[at..at + n].copy_from_slice(&SECRET.as_bytes()[..n]);
+            }
+            4 => b[..12].copy_from_slice(b"DSCOMPRESSED"),
+            _ => byte_noise(rng, &mut b),
+        }
+    }
+    b
+}
+
+fn opd_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    let ints: Vec<i16> = (0..nx * ny)
+        .map(|k| {
+            let (ix, jy) = (k / ny, k % ny);
+            let h = map.at(ix, ny - 1 - jy);
+            if h.is_nan() { 32767 } else { (h * 1e9 * 10.0).clamp(-32000.0, 32000.0) as i16 }
+        })
+        .collect();
+    let mut b = synth::opd(nx, ny, 632.8, 2, 0.001, &ints);
+    for _ in 0..1 + rng.below(3) {
+        if b.len() < 2 + 24 * 6 {
+            break;
+        }
+        match rng.below(6) {
+            0 => {
+                // A block length set huge, zero or negative.
+                let at = 2 + 24 * rng.below(6) + 18;
+                poke(rng, &mut b, at, 4)
+            }
+            1 => {
+                let at = 2 + 24 * rng.below(6) + 16;
+                poke(rng, &mut b, at, 2)
+            }
+            2 => {
+                let at = 2 + 24 * (1 + rng.below(5));
+                let n = SECRET.len().min(16);
+                b[at..at + n].copy_from_slice(&SECRET.as_bytes()[..n]);
+            }
+            3 => {
+                // The Raw array's nx, ny or sample size.
+                let at = 2 + 24 * 6 + 2 * rng.below(3);
+                poke(rng, &mut b, at, 2)
+            }
+            _ => byte_noise(rng, &mut b),
+        }
+    }
+    b
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -433,6 +742,17 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
+                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" => {
+                    let format: MapFormat = name.parse().unwrap();
+                    // Detection never panics and, on an unmutated magic, names the format.
+                    let _ = detect(&bytes);
+                    let sel = match case % 8 {
+                        0 => Some(ChannelSelector::Index(case % 3)),
+                        4 => Some(ChannelSelector::Name(if case % 8 == 1 { SECRET.into() } else { "Phase".into() })),
+                        _ => None,
+                    };
+                    read_instrument(&bytes, format, ORIGIN, sel.as_ref(), &m)
+                }
                 _ => {
                     // The text readers take what `read_input_text` gives: UTF-8 without a BOM.
                     let text = match std::str::from_utf8(&bytes) {
@@ -499,6 +819,42 @@ fn gsf_files_keep_the_contract() {
 #[test]
 fn text_grids_keep_the_contract() {
     let c = run_format("text", text_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn nanoscope_files_keep_the_contract() {
+    let c = run_format("nanoscope", nanoscope_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn igor_binary_waves_keep_the_contract() {
+    let c = run_format("ibw", ibw_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn x3p_files_keep_the_contract() {
+    let c = run_format("x3p", x3p_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn sur_files_keep_the_contract() {
+    let c = run_format("sur", sur_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn opd_files_keep_the_contract() {
+    let c = run_format("opd", opd_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn sdf_files_keep_the_contract() {
+    let c = run_format("sdf", sdf_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }
 

@@ -37,10 +37,10 @@ pub fn check_finite<T: serde::Serialize + ?Sized>(value: &T) -> Result<(), NonFi
 }
 
 /// Whether a key names the reason for the nulls of its object: `reason`, `note`, `notes`,
-/// `reasons`, or a name ending in `_reason`, `_note`, `_reasons` or `_notes`
+/// `reasons`, `why`, `no_prediction`, or a name ending in `_reason`, `_note`, `_reasons` or `_notes`
 /// (`friction_slope_null_reason`, `fit_note`, `autocorrelation_length_note`).
 pub fn is_reason_key(key: &str) -> bool {
-    ["reason", "note", "reasons", "notes"].contains(&key)
+    ["reason", "note", "reasons", "notes", "no_prediction", "why"].contains(&key)
         || ["_reason", "_note", "_reasons", "_notes"].iter().any(|end| key.ends_with(end))
 }
 

@@ -744,8 +744,7 @@ mod humidity {
         pull_off_pressure_pa: f64,
         /// Mean-gap steps of the retraction.
         steps: usize,
-        /// Why the Kelvin radius or the meniscus height is null.
-        #[serde(skip_serializing_if = "Option::is_none")]
+        /// Why the Kelvin radius or the meniscus height is null (always written: one CSV shape).
         meniscus_note: Option<&'static str>,
     }
 

@@ -42,7 +42,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "explicit")]
     pub model: Model,
     /// Normal load, compressive positive ("3 uN"; negative = adhesive pull, down to pull-off).
-    #[arg(long, allow_hyphen_values = true, value_parser = domain_quantity(Dimension::Force, "load", "--load"), required_unless_present = "sweep")]
+    #[arg(long, allow_hyphen_values = true, value_parser = domain_quantity(Dimension::Force, Constraint::Finite, "load", "--load"), required_unless_present = "sweep")]
     pub load: Option<f64>,
     /// Shoe degrees of freedom (default: the scenario's, else tilt).
     #[arg(long, value_enum)]
@@ -319,6 +319,9 @@ struct BemRun {
     coarsening: (usize, usize),
     e_star_pa: f64,
     dugdale: Option<stiction_bem::Dugdale>,
+    /// Why `dugdale` is null: no adhesion (law "hertz" or no work of adhesion).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    dugdale_note: Option<&'static str>,
     shear_strength_pa: f64,
     points: Vec<BemPoint>,
 }
@@ -381,6 +384,7 @@ fn bem_run(
         coarsening: bem.coarsening,
         e_star_pa: 0.75 / material.compliance_per_pa(),
         dugdale: bem.law(),
+        dugdale_note: bem.law().is_none().then_some("no adhesion: law \"hertz\" or no work of adhesion"),
         shear_strength_pa: material.shear_strength,
         points,
     })

@@ -44,25 +44,25 @@ pub struct Args {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_CONTACTS as i64))]
     pub contacts: u32,
     /// Summit radius R ("0.5 um").
-    #[arg(long, value_parser = domain_quantity(Dimension::Length, "surface.summit_radius", "--radius"))]
+    #[arg(long, value_parser = domain_quantity(Dimension::Length, Constraint::Positive, "surface.summit_radius", "--radius"))]
     pub radius: f64,
     /// Work of adhesion dgamma ("0.1 J/m^2").
-    #[arg(long, value_parser = domain_quantity(Dimension::SurfaceEnergy, "material.work_of_adhesion", "--work-of-adhesion"))]
+    #[arg(long, value_parser = domain_quantity(Dimension::SurfaceEnergy, Constraint::NonNegative, "material.work_of_adhesion", "--work-of-adhesion"))]
     pub work_of_adhesion: f64,
     /// Composite compliance D = 3/4 ((1-nu1^2)/E1 + (1-nu2^2)/E2) ("9.1e-12 1/Pa").
-    #[arg(long, value_parser = domain_quantity(Dimension::Compliance, "material.compliance", "--compliance"))]
+    #[arg(long, value_parser = domain_quantity(Dimension::Compliance, Constraint::Positive, "material.compliance", "--compliance"))]
     pub compliance: f64,
     /// Interfacial shear strength s ("1.4 GPa").
     #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::NonNegative))]
     pub shear_strength: f64,
     /// Applied load L ("3 uN"; negative down to the pull-off load).
-    #[arg(long, allow_hyphen_values = true, value_parser = domain_quantity(Dimension::Force, "load", "--load"))]
+    #[arg(long, allow_hyphen_values = true, value_parser = domain_quantity(Dimension::Force, Constraint::Finite, "load", "--load"))]
     pub load: f64,
     /// Single-asperity law.
     #[arg(long, value_enum, default_value = "dmt")]
     pub adhesion: Law,
     /// Equilibrium spacing z0 of the surface forces, for the Tabor and Maugis parameters ("0.3 nm").
-    #[arg(long, default_value = "0.3 nm", value_parser = domain_quantity(Dimension::Length, "material.equilibrium_spacing", "--equilibrium-spacing"))]
+    #[arg(long, default_value = "0.3 nm", value_parser = domain_quantity(Dimension::Length, Constraint::Positive, "material.equilibrium_spacing", "--equilibrium-spacing"))]
     pub equilibrium_spacing: f64,
     /// Also give the shear strength for which the slope at --load equals this value (the paper: 0.7).
     #[arg(long)]

@@ -90,8 +90,8 @@ pub struct HumidityPoint {
     pub meniscus_height_m: Option<f64>,
     /// Why mu_e,a and F_a0 are null (no usable eq. 10 line, or the meter failed at this humidity).
     pub reason: Option<String>,
-    /// Why the Kelvin radius, the meniscus height or the capillary share is null.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Why the Kelvin radius, the meniscus height or the capillary share is null (null when
+    /// none is; always written, so that every CSV row has the same columns).
     pub meniscus_note: Option<&'static str>,
 }
 
@@ -115,6 +115,10 @@ pub struct HumidityReference {
     pub apparent_adhesion_force_uncertainty_n: Option<f64>,
     /// What the +/- is.
     pub uncertainty_meaning: String,
+    /// Why a value is null: the scenario states no humidity (or no sd) of the experiment, or the
+    /// reference gives no such value.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<&'static str>,
 }
 
 /// The friction meter of a scenario over a grid of relative humidities.
@@ -171,6 +175,10 @@ pub fn sweep(
         apparent_adhesion_force_n: r.apparent_adhesion_force,
         apparent_adhesion_force_uncertainty_n: r.apparent_adhesion_force_uncertainty,
         uncertainty_meaning: r.uncertainty_meaning.clone(),
+        note: Some(
+            "a null humidity or sd: the scenario states none for the experiment (the reference is then a band \
+             over the grid); a null value or +/-: the reference gives none",
+        ),
     });
     let mut contact_model = String::new();
     let mut points = Vec::with_capacity(rhs.len());

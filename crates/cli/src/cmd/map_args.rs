@@ -10,7 +10,8 @@ use crate::output::quantity;
 /// Metadata and preparation of a height-map file.
 #[derive(clap::Args, Debug, Clone)]
 pub struct MapArgs {
-    /// File format: npy, text, gsf or xyz (default: from the extension).
+    /// File format: npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur or opd (default: from the
+    /// content, else the extension).
     #[arg(long, value_parser = |s: &str| s.parse::<MapFormat>())]
     pub format: Option<MapFormat>,
     /// Pixel size, when the file does not state it: "10 nm".

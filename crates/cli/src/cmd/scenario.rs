@@ -14,7 +14,7 @@ use crate::scenario_source::ScenarioSource;
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The scenario JSON file (omit with --schema).
-    #[arg(required_unless_present = "schema")]
+    #[arg(required_unless_present_any = ["schema", "domains"])]
     pub scenario: Option<PathBuf>,
     /// Override a field: --set surface.summit_sd="40 nm" (repeatable; PATH=null removes a field).
     #[arg(long = "set", value_name = "PATH=VALUE")]
@@ -29,6 +29,10 @@ pub struct Args {
     /// Print the JSON Schema of the scenario format instead.
     #[arg(long)]
     pub schema: bool,
+    /// Print the physical domain of every quantity (the range outside which an input is refused,
+    /// the usual range outside which it runs with a warning, and why) as a Markdown table.
+    #[arg(long, conflicts_with_all = ["schema", "explain"])]
+    pub domains: bool,
 }
 
 /// The checks of `stiction scenario`: the scenario `source` parsed and validated, and a height-map
@@ -49,6 +53,10 @@ pub fn check(source: &ScenarioSource) -> Result<Scenario, Box<dyn std::error::Er
 pub fn run(args: Args) -> CliResult {
     if args.schema {
         return print_json(&Scenario::json_schema());
+    }
+    if args.domains {
+        crate::outln!("{}", stiction_scenario::domain::markdown_table().trim_end());
+        return Ok(());
     }
     let path = args.scenario.ok_or("a scenario file is needed")?;
     let source = ScenarioSource::file(&path, &args.sets)?;

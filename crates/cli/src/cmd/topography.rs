@@ -6,8 +6,8 @@ use serde::Serialize;
 use stiction_plot::{Chart, ImageMap, Series};
 use stiction_surface::{Radii, Surface};
 use stiction_topography::{
-    HeightMap, MapFormat, MapInfo, Nayak, Preparation, PreparationReport, PsdWindow, Statistics, Summits, find_summits,
-    prepare, radial_psd, read_file, statistics,
+    ChannelInfo, ChannelSelector, HeightMap, MapFormat, MapInfo, Nayak, Preparation, PreparationReport, PsdWindow,
+    Statistics, Summits, find_summits, list_channels, prepare, radial_psd, read_file_channel, statistics,
 };
 use stiction_units::io::write_atomic;
 
@@ -20,12 +20,22 @@ use crate::scenario_source::ScenarioSource;
 /// random-process predictions; with --scenario, the GW parameters and the adhesion parameter theta
 /// for the scenario's material.
 ///
-/// Formats: .npy (float32/64), .gsf (Gwyddion simple field), .xyz (x y z points on a grid), any
-/// other extension a text/CSV grid (Gwyddion's ASCII export header gives the pixel size and unit).
+/// Formats, recognised by their content (the extension only where the content has no magic):
+/// .npy (float32/64), .gsf (Gwyddion simple field), Bruker NanoScope (.spm, .di, .001), Igor
+/// binary wave (.ibw), ISO 25178-71 SDF (.sdf), ISO 25178-72 X3P (.x3p), Digital Surf (.sur), Wyko (.opd); .xyz (x y z points on a grid); any other text a
+/// grid (Gwyddion's ASCII export header gives the pixel size and unit). An instrument file's first
+/// height channel is read unless --channel names another; --channels lists them.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The height-map file.
     pub file: PathBuf,
+    /// List the file's channels (index, name, grid, size, unit; `*` marks the default) and exit.
+    #[arg(long)]
+    pub channels: bool,
+    /// The channel to read from an instrument file: its name or index (default: the first
+    /// height channel).
+    #[arg(long, value_name = "NAME|INDEX", value_parser = |s: &str| s.parse::<ChannelSelector>())]
+    pub channel: Option<ChannelSelector>,
     /// Metadata and preparation of the map.
     #[command(flatten)]
     pub map: MapArgs,
@@ -100,7 +110,10 @@ pub fn run(args: Args) -> CliResult {
         Some(dir) => Some(OutputSet::begin(dir, "topography", args.force)?),
         None => None,
     };
-    let (raw, info) = read_file(&args.file, args.map.format, &args.map.metadata())?;
+    if args.channels {
+        return print_channels(&args);
+    }
+    let (raw, info) = read_file_channel(&args.file, args.map.format, args.channel.as_ref(), &args.map.metadata())?;
     if let Some(path) = &args.summits {
         crate::output::check_output_flag("--summits", path)?;
     }
@@ -127,6 +140,46 @@ pub fn run(args: Args) -> CliResult {
         return print_json(&out);
     }
     print_table_of(&out);
+    Ok(())
+}
+
+#[derive(Serialize)]
+struct ChannelList<'a> {
+    file: String,
+    format: MapFormat,
+    /// Index of the channel read by default (the first height channel), if any.
+    default_channel: Option<usize>,
+    channels: &'a [ChannelInfo],
+}
+
+/// `--channels`: the file's channels, as a table or JSON.
+fn print_channels(args: &Args) -> CliResult {
+    let (format, list) = list_channels(&args.file, args.map.format, &args.map.metadata())?;
+    let default = list.iter().find(|c| c.is_height).map(|c| c.index);
+    if args.json {
+        return print_json(&ChannelList {
+            file: args.file.display().to_string(),
+            format,
+            default_channel: default,
+            channels: &list,
+        });
+    }
+    let rows: Vec<(String, String)> = list
+        .iter()
+        .map(|c| {
+            let size = c
+                .size_m
+                .map_or("size not in the file".into(), |(a, b)| format!("{:.6} um x {:.6} um", a * 1e6, b * 1e6));
+            let unit = if c.unit.is_empty() { "no unit".to_string() } else { c.unit.clone() };
+            let mark = if Some(c.index) == default { " (default)" } else { "" };
+            (
+                format!("{} {}{mark}", c.index, c.name),
+                format!("{} x {} pixels, {size}, {unit}{}", c.nx, c.ny, if c.is_height { ", height" } else { "" }),
+            )
+        })
+        .collect();
+    let rows: Vec<(&str, String)> = rows.iter().map(|(a, b)| (a.as_str(), b.clone())).collect();
+    print_table(&format!("Channels of {} ({})", args.file.display(), format.name()), &rows);
     Ok(())
 }
 
@@ -212,6 +265,24 @@ fn gw_of(st: &Statistics, scenario: Option<&ScenarioSource>) -> Result<Gw, Box<d
     })
 }
 
+fn channel_text(info: &MapInfo) -> String {
+    match &info.channel {
+        None => "the file's only map".into(),
+        Some(c) if c.chosen == "default" => {
+            format!("{} `{}` of {} (the first height channel; --channel picks another)", c.index, c.name, c.of)
+        }
+        Some(c) => format!("{} `{}` of {} (--channel)", c.index, c.name, c.of),
+    }
+}
+
+fn source_text(s: stiction_topography::MetaSource) -> &'static str {
+    match s {
+        stiction_topography::MetaSource::File => "the file",
+        stiction_topography::MetaSource::Given => "the flags",
+        stiction_topography::MetaSource::FileAndGiven => "the file (the flag agrees)",
+    }
+}
+
 fn opt(v: Option<f64>, scale: f64, unit: &str) -> String {
     v.map_or("n/a".into(), |v| format!("{:.4} {unit}", v * scale))
 }
@@ -236,6 +307,11 @@ fn print_table_of(o: &Output) {
                     st.dy_m * 1e9,
                     st.missing_pixels
                 ),
+            ),
+            ("channel", channel_text(&o.read)),
+            (
+                "pixel size, height unit",
+                format!("from {}, from {}", source_text(o.read.pixel_size_from), source_text(o.read.height_unit_from)),
             ),
             ("levelling", o.preparation.levelling.to_string()),
             (

@@ -58,7 +58,8 @@ impl ExplicitSolver {
                 Err(SolveError::NoEquilibrium { .. }) if direction == Branch::Unloading => {
                     let last = points.last().map(|p| p.load_n);
                     let note = last.is_none().then(|| {
-                        "the first load of the sweep has no equilibrium: the shoe is off at every load of it".to_string()
+                        "the first load of the sweep has no equilibrium: the shoe is off at every load of it"
+                            .to_string()
                     });
                     events.push(SweepEvent::PullOff { load_n: l, last_stable_load_n: last, note });
                     break;

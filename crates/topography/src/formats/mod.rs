@@ -1,0 +1,352 @@
+//! Instrument file formats: Bruker/Veeco NanoScope (`.spm`, `.di`, `.001`), Igor binary wave
+//! (`.ibw`, Asylum Research AFMs), ISO 25178-71 SDF (`.sdf`, ASCII and binary) and ISO 25178-72
+//! X3P (`.x3p`), Digital Surf (`.sur`) and Wyko (`.opd`), detected by
+//! their content ([`detect`]), read channel by channel.
+//!
+//! A reader parses the file's header into [`Channel`]s: the listing ([`ChannelInfo`]) and where and
+//! how its values lie ([`Raster`]); only the chosen channel's values are decoded. Units, pixel sizes
+//! and the height scale come from the file; what a file lacks is asked for by name (the crate's
+//! `MapMetadata`), never guessed.
+
+pub(crate) mod ibw;
+pub mod nanoscope;
+pub(crate) mod opd;
+pub(crate) mod sdf;
+pub(crate) mod sur;
+pub mod x3p;
+
+use serde::Serialize;
+use stiction_units::text::excerpt;
+
+use crate::read::MapFormat;
+use crate::{MAX_PIXELS, TopographyError};
+
+/// One channel of a file as listed by `stiction topography FILE --channels`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ChannelInfo {
+    /// Position in the file, from 0.
+    pub index: usize,
+    /// The channel's name as the file gives it.
+    pub name: String,
+    /// Columns (pixels along x).
+    pub nx: usize,
+    /// Rows (pixels along y).
+    pub ny: usize,
+    /// Physical size along x and y \[m\]; `None` when the file states no length unit.
+    pub size_m: Option<(f64, f64)>,
+    /// The unit of the values as the file writes it (`nm`, `deg`, `V`; empty if none).
+    pub unit: String,
+    /// Metres per value (after the file's scale) when the unit is a length, else `None`.
+    pub height_unit_m: Option<f64>,
+    /// Whether the channel holds heights (a length unit, or no unit at all, and a height-like name
+    /// where the file names its channels).
+    pub is_height: bool,
+}
+
+/// Type of the stored samples of a raster.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Sample {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Sample {
+    pub(crate) fn bytes(self) -> usize {
+        match self {
+            Sample::I8 | Sample::U8 => 1,
+            Sample::I16 | Sample::U16 => 2,
+            Sample::I32 | Sample::U32 | Sample::F32 => 4,
+            Sample::F64 => 8,
+        }
+    }
+}
+
+/// Where a channel's `nx x ny` samples lie in the file: from `offset`, x fastest, rows in file
+/// order (row 0 of the map is the file's last row when `flip_y`); value = sample x `scale`, in
+/// the channel's unit; a sample equal to `invalid` (integer types) or NaN (float types) is missing.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Raster {
+    pub offset: usize,
+    pub sample: Sample,
+    pub big_endian: bool,
+    pub flip_y: bool,
+    pub scale: f64,
+    pub invalid: Option<i64>,
+}
+
+/// How a channel's values are had.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Values {
+    /// Binary samples in the file.
+    Raster(Raster),
+    /// Values parsed with the header (text formats), row 0 first, NaN for missing.
+    Parsed(Vec<f64>),
+}
+
+/// A channel: its listing and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Channel {
+    pub info: ChannelInfo,
+    pub values: Values,
+    /// Why the channel cannot be read as heights, if it cannot (e.g. no scale in the header).
+    pub unreadable: Option<String>,
+}
+
+/// The format whose magic bytes the content starts with, if any (NumPy, Gwyddion simple field,
+/// NanoScope, Igor binary wave version 5 with a valid header checksum, SDF). Text grids and x-y-z
+/// lists have no magic.
+pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
+    if bytes.starts_with(b"\x93NUMPY") {
+        Some(MapFormat::Npy)
+    } else if bytes.starts_with(b"Gwyddion Simple Field") {
+        Some(MapFormat::Gsf)
+    } else if nanoscope::is_nanoscope(bytes) {
+        Some(MapFormat::Nanoscope)
+    } else if sdf::is_sdf(bytes) {
+        Some(MapFormat::Sdf)
+    } else if ibw::is_ibw(bytes) {
+        Some(MapFormat::Ibw)
+    } else if opd::is_opd(bytes) {
+        Some(MapFormat::Opd)
+    } else if sur::is_sur(bytes) {
+        Some(MapFormat::Sur)
+    } else if x3p::is_zip(bytes) {
+        Some(MapFormat::X3p)
+    } else {
+        None
+    }
+}
+
+/// The channels of an instrument file.
+pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<Vec<Channel>, TopographyError> {
+    match format {
+        MapFormat::Nanoscope => nanoscope::channels(bytes, origin),
+        MapFormat::Ibw => ibw::channels(bytes, origin),
+        MapFormat::Sdf => sdf::channels(bytes, origin),
+        MapFormat::X3p => x3p::channels(bytes, origin),
+        MapFormat::Sur => sur::channels(bytes, origin),
+        MapFormat::Opd => opd::channels(bytes, origin),
+        other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
+    }
+}
+
+/// Which channel to read: by index or by name.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ChannelSelector {
+    /// The channel at this index (from 0).
+    Index(usize),
+    /// The first channel with this name (case-insensitive).
+    Name(String),
+}
+
+impl std::str::FromStr for ChannelSelector {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let t = s.trim();
+        if t.is_empty() {
+            return Err("a channel name or index is needed".into());
+        }
+        Ok(match t.parse::<usize>() {
+            Ok(k) => ChannelSelector::Index(k),
+            Err(_) => ChannelSelector::Name(t.to_string()),
+        })
+    }
+}
+
+/// The channel read and why it was chosen.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ChannelChoice {
+    /// Its index.
+    pub index: usize,
+    /// Its name.
+    pub name: String,
+    /// Channels in the file.
+    pub of: usize,
+    /// `default`: the first height channel; `given`: `--channel` (or the scenario field).
+    pub chosen: &'static str,
+}
+
+/// Picks the channel: `selector`, else the first height channel, else an error naming the channels.
+pub(crate) fn choose<'a>(
+    list: &'a [Channel],
+    selector: Option<&ChannelSelector>,
+    origin: &str,
+) -> Result<(&'a Channel, ChannelChoice), TopographyError> {
+    let names = || {
+        let mut s: Vec<String> =
+            list.iter().take(12).map(|c| format!("{} {}", c.info.index, excerpt(&c.info.name))).collect();
+        if list.len() > 12 {
+            s.push(format!("... ({} in all)", list.len()));
+        }
+        s.join(", ")
+    };
+    let (ch, chosen) = match selector {
+        Some(ChannelSelector::Index(k)) => (
+            list.get(*k).ok_or_else(|| {
+                TopographyError::format(origin, 0, format!("no channel {k}: the file has {} ({})", list.len(), names()))
+            })?,
+            "given",
+        ),
+        Some(ChannelSelector::Name(n)) => (
+            list.iter().find(|c| c.info.name.eq_ignore_ascii_case(n)).ok_or_else(|| {
+                TopographyError::format(origin, 0, format!("no channel named {}: the file has {}", excerpt(n), names()))
+            })?,
+            "given",
+        ),
+        None => (
+            list.iter().find(|c| c.info.is_height).ok_or_else(|| {
+                TopographyError::format(
+                    origin,
+                    0,
+                    format!("no height channel; choose one with --channel NAME|INDEX ({})", names()),
+                )
+            })?,
+            "default",
+        ),
+    };
+    if let Some(why) = &ch.unreadable {
+        return Err(TopographyError::format(
+            origin,
+            0,
+            format!("channel {} {}: {why}", ch.info.index, excerpt(&ch.info.name)),
+        ));
+    }
+    if !ch.info.is_height && ch.info.height_unit_m.is_none() && !ch.info.unit.is_empty() {
+        return Err(TopographyError::format(
+            origin,
+            0,
+            format!(
+                "channel {} {} holds {}, not heights (a length): choose a height channel (--channels lists them)",
+                ch.info.index,
+                excerpt(&ch.info.name),
+                excerpt(&ch.info.unit)
+            ),
+        ));
+    }
+    let choice = ChannelChoice { index: ch.info.index, name: ch.info.name.clone(), of: list.len(), chosen };
+    Ok((ch, choice))
+}
+
+/// The channel's values in its unit times `unit` (1, or the metres per unit to have metres in one
+/// pass), row-major (`iy * nx + ix`), NaN where missing.
+pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Result<Vec<f64>, TopographyError> {
+    let (nx, ny) = (ch.info.nx, ch.info.ny);
+    let n = nx.checked_mul(ny).filter(|&n| n as u64 <= MAX_PIXELS).ok_or_else(|| TopographyError::TooLarge {
+        origin: origin.into(),
+        nx: nx as u64,
+        ny: ny as u64,
+        limit: MAX_PIXELS,
+    })?;
+    let r = match &ch.values {
+        Values::Parsed(v) => {
+            return if v.len() == n {
+                Ok(v.iter().map(|x| x * unit).collect())
+            } else {
+                Err(TopographyError::format(origin, 0, format!("{} values, expected {nx} x {ny}", v.len())))
+            };
+        }
+        Values::Raster(r) => r,
+    };
+    let size = r.sample.bytes();
+    let end = n.checked_mul(size).and_then(|b| b.checked_add(r.offset));
+    let data = match end {
+        Some(e) if e <= bytes.len() => &bytes[r.offset..e],
+        _ => {
+            return Err(TopographyError::format(
+                origin,
+                0,
+                format!(
+                    "channel {} needs {nx} x {ny} x {size} bytes from byte {}, but the file has {} bytes",
+                    ch.info.index,
+                    r.offset,
+                    bytes.len()
+                ),
+            ));
+        }
+    };
+    let mut out = Vec::with_capacity(n);
+    for iy in 0..ny {
+        let row = if r.flip_y { ny - 1 - iy } else { iy };
+        let line = &data[row * nx * size..(row + 1) * nx * size];
+        convert_row(line, r, r.scale * unit, &mut out);
+    }
+    Ok(out)
+}
+
+/// Appends one row of samples as values: a tight loop per sample type and byte order (the
+/// branch on the missing-value marker only where the format has one).
+fn convert<const N: usize, T: Into<f64>>(
+    line: &[u8],
+    out: &mut Vec<f64>,
+    from: fn([u8; N]) -> T,
+    scale: f64,
+    invalid: Option<f64>,
+) {
+    let it = line.chunks_exact(N).map(|c| from(c.try_into().unwrap_or([0; N])).into());
+    match invalid {
+        Some(inv) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale })),
+        None => out.extend(it.map(|v: f64| v * scale)),
+    }
+}
+
+fn convert_row(line: &[u8], r: &Raster, scale: f64, out: &mut Vec<f64>) {
+    let inv = r.invalid.map(|v| v as f64);
+    let be = r.big_endian;
+    match r.sample {
+        Sample::I8 => convert(line, out, i8::from_le_bytes, scale, inv),
+        Sample::U8 => convert(line, out, u8::from_le_bytes, scale, inv),
+        Sample::I16 if be => convert(line, out, i16::from_be_bytes, scale, inv),
+        Sample::I16 => convert(line, out, i16::from_le_bytes, scale, inv),
+        Sample::U16 if be => convert(line, out, u16::from_be_bytes, scale, inv),
+        Sample::U16 => convert(line, out, u16::from_le_bytes, scale, inv),
+        Sample::I32 if be => convert(line, out, i32::from_be_bytes, scale, inv),
+        Sample::I32 => convert(line, out, i32::from_le_bytes, scale, inv),
+        Sample::U32 if be => convert(line, out, u32::from_be_bytes, scale, inv),
+        Sample::U32 => convert(line, out, u32::from_le_bytes, scale, inv),
+        Sample::F32 if be => convert(line, out, f32::from_be_bytes, scale, None),
+        Sample::F32 => convert(line, out, f32::from_le_bytes, scale, None),
+        Sample::F64 if be => convert(line, out, f64::from_be_bytes, scale, None),
+        Sample::F64 => convert(line, out, f64::from_le_bytes, scale, None),
+    }
+}
+
+/// Whether a channel name reads as a height channel.
+pub(crate) fn height_like(name: &str) -> bool {
+    let n = name.to_ascii_lowercase();
+    n.contains("height") || n.contains("topograph") || n == "z" || n.starts_with("z ") || n.contains("z-axis")
+}
+
+/// Text of a latin-1 byte string (every byte one char), up to the first NUL.
+pub(crate) fn latin1(bytes: &[u8]) -> String {
+    bytes.iter().take_while(|&&b| b != 0).map(|&b| char::from(b)).collect()
+}
+
+/// A length unit's metres, if `unit` is a length unit (`nm`, `um`, `µm`, `m`, ...).
+pub(crate) fn length_unit(unit: &str) -> Option<f64> {
+    let u = unit.trim();
+    if u.is_empty() || !u.starts_with(|c: char| c.is_alphabetic()) {
+        return None;
+    }
+    crate::read::parse_length_unit(u).ok()
+}
+
+/// Longest channel name or unit kept from a file, characters.
+pub const MAX_NAME_CHARS: usize = 64;
+
+/// A name or unit from a file as listed: control and format characters dropped, at most
+/// [`MAX_NAME_CHARS`] characters.
+pub(crate) fn clean(s: &str) -> String {
+    s.trim()
+        .chars()
+        .filter(|c| {
+            !c.is_control() && !matches!(c, '\u{200b}'..='\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+        })
+        .take(MAX_NAME_CHARS)
+        .collect()
+}

@@ -1,0 +1,255 @@
+//! Synthetic instrument files written from the formats' documented layouts, for the fuzz harness
+//! and the benchmark (the readers are checked against real files in tests/formats.rs).
+#![allow(dead_code)]
+
+/// A NanoScope file of one int16 (or int32) image, `nx x ny`, scan size `size_nm` square, Z scale
+/// chain `zscale_v` V x `sens_nm_per_v` nm/V; samples row by row as the file stores them.
+pub fn nanoscope(
+    nx: usize,
+    ny: usize,
+    size_nm: f64,
+    zscale_v: f64,
+    sens_nm_per_v: f64,
+    bpp: usize,
+    samples: &[i32],
+) -> Vec<u8> {
+    let header_len = 8192usize;
+    let mut h = String::new();
+    h.push_str("\\*File list\r\n\\Version: 0x09200000\r\n");
+    h.push_str(&format!("\\Data length: {header_len}\r\n"));
+    h.push_str("\\*Scanner list\r\n\\Scanner type: Dimension\r\n");
+    h.push_str(&format!("\\@Sens. Zsens: V {sens_nm_per_v} nm/V\r\n"));
+    h.push_str("\\*Ciao scan list\r\n\\Scan Size: 1 nm\r\n");
+    h.push_str("\\*Ciao image list\r\n");
+    h.push_str(&format!("\\Data offset: {header_len}\r\n\\Data length: {}\r\n", nx * ny * bpp));
+    h.push_str(&format!("\\Bytes/pixel: {bpp}\r\n\\Samps/line: {nx}\r\n\\Number of lines: {ny}\r\n"));
+    h.push_str(&format!("\\Scan Size: {size_nm} {size_nm} nm\r\n"));
+    h.push_str("\\@2:Image Data: S [Height] \"Height\"\r\n");
+    h.push_str(&format!("\\@2:Z scale: V [Sens. Zsens] (0.0003 V/LSB) {zscale_v} V\r\n"));
+    h.push_str("\\*File list end\r\n");
+    let mut b = h.into_bytes();
+    assert!(b.len() <= header_len);
+    b.resize(header_len, 0x1a);
+    for &s in samples {
+        if bpp == 2 {
+            b.extend_from_slice(&(s as i16).to_le_bytes());
+        } else {
+            b.extend_from_slice(&s.to_le_bytes());
+        }
+    }
+    b
+}
+
+/// An Igor binary wave v5 of float32 `layers` layers of `nx x ny` (dimension 0 fastest), pixel
+/// step `step` in `xy_unit`, data unit `z_unit`, layer labels `names`.
+#[allow(clippy::too_many_arguments)] // the layout's fields, named at the call
+pub fn ibw(
+    nx: usize,
+    ny: usize,
+    layers: usize,
+    step: f64,
+    xy_unit: &str,
+    z_unit: &str,
+    names: &[&str],
+    values: &[f32],
+) -> Vec<u8> {
+    let n = nx * ny * layers;
+    assert_eq!(values.len(), n);
+    let mut b = vec![0u8; 384];
+    let wfm = 320 + 4 * n;
+    let labels = if names.is_empty() { 0 } else { (layers + 1) * 32 };
+    b[0..2].copy_from_slice(&5i16.to_le_bytes());
+    b[4..8].copy_from_slice(&(wfm as i32).to_le_bytes());
+    b[44..48].copy_from_slice(&(labels as i32).to_le_bytes());
+    b[76..80].copy_from_slice(&(n as i32).to_le_bytes());
+    b[80..82].copy_from_slice(&2i16.to_le_bytes());
+    for (d, v) in [nx, ny, if layers > 1 || !names.is_empty() { layers } else { 0 }, 0].iter().enumerate() {
+        b[132 + 4 * d..136 + 4 * d].copy_from_slice(&(*v as i32).to_le_bytes());
+    }
+    for d in 0..2 {
+        b[148 + 8 * d..156 + 8 * d].copy_from_slice(&step.to_le_bytes());
+    }
+    let put = |b: &mut Vec<u8>, at: usize, s: &str| {
+        for (k, c) in s.bytes().take(3).enumerate() {
+            b[at + k] = c;
+        }
+    };
+    put(&mut b, 212, z_unit);
+    put(&mut b, 216, xy_unit);
+    put(&mut b, 220, xy_unit);
+    let sum = b.chunks_exact(2).fold(0u16, |s, c| s.wrapping_add(u16::from_le_bytes([c[0], c[1]])));
+    b[2..4].copy_from_slice(&(0u16.wrapping_sub(sum)).to_le_bytes());
+    for v in values {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    if !names.is_empty() {
+        b.extend(std::iter::repeat_n(0u8, 32));
+        for k in 0..layers {
+            let mut l = [0u8; 32];
+            for (i, c) in names.get(k).copied().unwrap_or("").bytes().take(31).enumerate() {
+                l[i] = c;
+            }
+            b.extend_from_slice(&l);
+        }
+    }
+    b
+}
+
+/// An ASCII SDF of `nx x ny` doubles (`None` = BAD), steps in metres, Zscale in metres.
+pub fn sdf_ascii(nx: usize, ny: usize, xs: f64, ys: f64, zs: f64, values: &[Option<f64>]) -> Vec<u8> {
+    let mut s = format!(
+        "aISO-1.0\nManufacID = stiction\nCreateDate = 010120260000\nModDate = 010120260000\nNumPoints = {nx}\nNumProfiles = {ny}\nXscale = {xs:e}\nYscale = {ys:e}\nZscale = {zs:e}\nZresolution = -1\nCompression = 0\nDataType = 7\nCheckType = 0\n*\n"
+    );
+    for row in values.chunks(nx) {
+        let cells: Vec<String> = row.iter().map(|v| v.map_or("BAD".into(), |v| format!("{v}"))).collect();
+        s.push_str(&cells.join(" "));
+        s.push('\n');
+    }
+    s.push_str("*\n*\n");
+    s.into_bytes()
+}
+
+/// A binary SDF of `nx x ny` int16 (`i16::MIN` = missing).
+pub fn sdf_binary(nx: usize, ny: usize, xs: f64, ys: f64, zs: f64, values: &[i16]) -> Vec<u8> {
+    let mut b = b"bISO-1.0".to_vec();
+    b.extend_from_slice(&[b' '; 34]);
+    b.extend_from_slice(&(nx as u16).to_le_bytes());
+    b.extend_from_slice(&(ny as u16).to_le_bytes());
+    for v in [xs, ys, zs, zs] {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    b.extend_from_slice(&[0, 5, 0]);
+    for v in values {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    b
+}
+
+fn crc32(data: &[u8]) -> u32 {
+    let mut c = 0xffff_ffffu32;
+    for &b in data {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 == 1 { (c >> 1) ^ 0xedb8_8320 } else { c >> 1 };
+        }
+    }
+    !c
+}
+
+/// A zip archive of `entries` (name, method 0 = stored or 8 = deflate, stored bytes, uncompressed
+/// size and CRC as declared), written from the zip file format (PKWARE APPNOTE 4.3.7, 4.3.12,
+/// 4.3.16).
+pub fn zip(entries: &[(&str, u16, Vec<u8>, u32, u32)]) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut central = Vec::new();
+    for (name, method, data, size, crc) in entries {
+        let offset = out.len() as u32;
+        let mut h = Vec::new();
+        h.extend_from_slice(&[20, 0, 0, 0]);
+        h.extend_from_slice(&method.to_le_bytes());
+        h.extend_from_slice(&[0, 0, 0x21, 0]);
+        h.extend_from_slice(&crc.to_le_bytes());
+        h.extend_from_slice(&(data.len() as u32).to_le_bytes());
+        h.extend_from_slice(&size.to_le_bytes());
+        h.extend_from_slice(&(name.len() as u16).to_le_bytes());
+        h.extend_from_slice(&[0, 0]);
+        out.extend_from_slice(b"PK\x03\x04");
+        out.extend_from_slice(&h);
+        out.extend_from_slice(name.as_bytes());
+        out.extend_from_slice(data);
+        central.extend_from_slice(b"PK\x01\x02");
+        central.extend_from_slice(&[20, 0]);
+        central.extend_from_slice(&h);
+        central.extend_from_slice(&[0; 10]);
+        central.extend_from_slice(&offset.to_le_bytes());
+        central.extend_from_slice(name.as_bytes());
+    }
+    let cd_offset = out.len() as u32;
+    out.extend_from_slice(&central);
+    out.extend_from_slice(b"PK\x05\x06\0\0\0\0");
+    out.extend_from_slice(&(entries.len() as u16).to_le_bytes());
+    out.extend_from_slice(&(entries.len() as u16).to_le_bytes());
+    out.extend_from_slice(&(central.len() as u32).to_le_bytes());
+    out.extend_from_slice(&cd_offset.to_le_bytes());
+    out.extend_from_slice(&[0, 0]);
+    out
+}
+
+/// A stored zip entry (its true size and CRC).
+pub fn stored<'a>(name: &'a str, data: &[u8]) -> (&'a str, u16, Vec<u8>, u32, u32) {
+    (name, 0, data.to_vec(), data.len() as u32, crc32(data))
+}
+
+/// An X3P main.xml for an `nx x ny` grid of `data_type` (I, L, F, D) with steps in metres.
+pub fn x3p_xml(nx: usize, ny: usize, dx: f64, dy: f64, data_type: &str, z_increment: Option<f64>) -> String {
+    let inc = z_increment.map_or(String::new(), |z| format!("<Increment>{z:e}</Increment>"));
+    format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">\
+<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>\
+<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>{dx:e}</Increment><Offset>0</Offset></CX>\
+<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>{dy:e}</Increment><Offset>0</Offset></CY>\
+<CZ><AxisType>A</AxisType><DataType>{data_type}</DataType>{inc}</CZ></Axes></Record1>\
+<Record3><MatrixDimension><SizeX>{nx}</SizeX><SizeY>{ny}</SizeY><SizeZ>1</SizeZ></MatrixDimension>\
+<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3></p:ISO5436_2>\n"
+    )
+}
+
+/// A Digital Surf `.sur` of `nx x ny` int32 samples (steps in µm, height step in m), with the
+/// non-measured flag set and `zmin` 0 (so -2 is a missing point).
+pub fn sur(nx: usize, ny: usize, step_um: f32, dz_m: f32, samples: &[i32]) -> Vec<u8> {
+    let mut b = vec![0u8; 512];
+    b[..12].copy_from_slice(b"DIGITAL SURF");
+    b[14..16].copy_from_slice(&1u16.to_le_bytes());
+    b[16..18].copy_from_slice(&1u16.to_le_bytes());
+    b[18..20].copy_from_slice(&2u16.to_le_bytes());
+    b[86..88].copy_from_slice(&1u16.to_le_bytes());
+    b[98..100].copy_from_slice(&32u16.to_le_bytes());
+    b[108..112].copy_from_slice(&(nx as i32).to_le_bytes());
+    b[112..116].copy_from_slice(&(ny as i32).to_le_bytes());
+    b[116..120].copy_from_slice(&((nx * ny) as u32).to_le_bytes());
+    b[120..124].copy_from_slice(&step_um.to_le_bytes());
+    b[124..128].copy_from_slice(&step_um.to_le_bytes());
+    b[128..132].copy_from_slice(&dz_m.to_le_bytes());
+    for (at, u) in [(180, "um"), (196, "um"), (212, "m")] {
+        b[at..at + u.len()].copy_from_slice(u.as_bytes());
+    }
+    for s in samples {
+        b.extend_from_slice(&s.to_le_bytes());
+    }
+    b
+}
+
+/// A Wyko `.opd` of one int16 `Raw` array (`nx x ny`, y fastest, last y first), wavelength in nm,
+/// `Mult`, pixel size in mm.
+pub fn opd(nx: usize, ny: usize, wavelength_nm: f32, mult: i16, pixel_mm: f32, samples: &[i16]) -> Vec<u8> {
+    let mut raw = Vec::new();
+    raw.extend_from_slice(&(nx as u16).to_le_bytes());
+    raw.extend_from_slice(&(ny as u16).to_le_bytes());
+    raw.extend_from_slice(&2u16.to_le_bytes());
+    for s in samples {
+        raw.extend_from_slice(&s.to_le_bytes());
+    }
+    let blocks: Vec<(&str, i16, Vec<u8>)> = vec![
+        ("Raw", 3, raw),
+        ("Wavelength", 7, wavelength_nm.to_le_bytes().to_vec()),
+        ("Mult", 6, mult.to_le_bytes().to_vec()),
+        ("Pixel_size", 7, pixel_mm.to_le_bytes().to_vec()),
+        ("Aspect", 7, 1.0f32.to_le_bytes().to_vec()),
+    ];
+    let entry = |name: &str, kind: i16, len: usize| {
+        let mut e = vec![0u8; 24];
+        e[..name.len()].copy_from_slice(name.as_bytes());
+        e[16..18].copy_from_slice(&kind.to_le_bytes());
+        e[18..22].copy_from_slice(&(len as i32).to_le_bytes());
+        e
+    };
+    let mut b = vec![1u8, 0];
+    b.extend(entry("Directory", 3, 24 * (blocks.len() + 1)));
+    for (name, kind, data) in &blocks {
+        b.extend(entry(name, *kind, data.len()));
+    }
+    for (_, _, data) in &blocks {
+        b.extend_from_slice(data);
+    }
+    b
+}
