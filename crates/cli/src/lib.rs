@@ -9,10 +9,25 @@ pub mod api;
 // that the binary (src/main.rs) and `api` reach them; not a stable interface.
 #[allow(missing_docs)]
 #[doc(hidden)]
+pub mod charts;
+#[allow(missing_docs)]
+#[doc(hidden)]
 pub mod cmd;
 #[allow(missing_docs)]
 #[doc(hidden)]
 pub mod figargs;
 #[allow(missing_docs)]
 #[doc(hidden)]
+pub mod format;
+#[allow(missing_docs)]
+#[doc(hidden)]
+pub mod json_value;
+#[allow(missing_docs)]
+#[doc(hidden)]
 pub mod output;
+#[allow(missing_docs)]
+#[doc(hidden)]
+pub mod rh;
+#[allow(missing_docs)]
+#[doc(hidden)]
+pub mod scenario_source;

@@ -14,6 +14,7 @@ use std::fmt;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use stiction_plot::Chart;
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 /// The result of a subcommand.
@@ -354,6 +355,27 @@ pub fn record_layout(
     Ok(())
 }
 
+/// The image format of an output path: "svg" or "png" by its extension; any other is an error.
+pub fn chart_format(path: &Path) -> Result<&'static str, String> {
+    match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).as_deref() {
+        Some("svg") => Ok("svg"),
+        Some("png") => Ok("png"),
+        other => Err(format!(
+            "{}: unknown image extension {}; expected .svg or .png",
+            path.display(),
+            other.map_or("(none)".to_string(), |e| format!(".{e}"))
+        )),
+    }
+}
+
+/// Renders a chart to `path` (SVG or PNG by extension; any other is an error naming it). The plot
+/// crate writes it atomically and never through a symbolic link.
+pub fn render_chart(chart: &Chart, path: &Path) -> CliResult {
+    chart_format(path)?;
+    chart.write(path)?;
+    crate::output::record_layout(path, || chart.layout())
+}
+
 /// Writes a chart straight into `dir` as `{stem}.svg`, `{stem}.png` and its data `{stem}.csv` (the
 /// files [`OutputSet::add_chart`] writes, in the same CSV shape), for a folder that is not an
 /// [`OutputSet`] (a study's resumable log folder). Returns the names written.
@@ -363,7 +385,7 @@ pub fn write_chart_files(
     chart: &stiction_plot::Chart,
 ) -> Result<Vec<String>, Box<dyn std::error::Error>> {
     for ext in ["svg", "png"] {
-        crate::cmd::plot::render_chart(chart, &dir.join(format!("{stem}.{ext}")))?;
+        render_chart(chart, &dir.join(format!("{stem}.{ext}")))?;
     }
     stiction_units::io::write_atomic(&dir.join(format!("{stem}.csv")), chart.data_csv().as_bytes())?;
     Ok(["svg", "png", "csv"].map(|e| format!("{stem}.{e}")).to_vec())
@@ -507,7 +529,7 @@ impl OutputSet {
     /// beside it (`fig7.svg` -> `fig7.csv`, units in the column names).
     pub fn add_chart(&mut self, name: &str, chart: &stiction_plot::Chart) -> CliResult {
         let path = self.claim(name)?;
-        crate::cmd::plot::render_chart(chart, &path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
+        render_chart(chart, &path).map_err(|e| format!("{}: {e}", self.dir.join(name).display()))?;
         let data_name = stiction_plot::data_path(Path::new(name)).display().to_string();
         if data_name != name && !self.files.contains(&data_name) {
             self.add_bytes(&data_name, chart.data_csv().as_bytes())?;

@@ -40,7 +40,7 @@ use serde::Serialize;
 use stiction_meter::Reduction;
 use stiction_units::UncertainInput;
 
-use crate::FitError;
+use crate::error::FitError;
 use crate::stats::{Line, fieller, percentile, robust_sd, t975, weighted_line};
 
 /// One uncertain quantity of the reduction.

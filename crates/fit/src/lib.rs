@@ -26,6 +26,7 @@ use stiction_scenario::Scenario;
 use stiction_units::UncertainInput;
 
 pub mod eq10;
+mod error;
 pub mod mle;
 pub mod models;
 pub mod scal;
@@ -33,40 +34,12 @@ pub mod stats;
 pub mod synth;
 
 pub use eq10::{CalibrationSource, Eq10Fit, Eq10Point, Estimate, VarianceShares};
+pub use error::FitError;
 pub use mle::{Free, ModelFit, Noise, ShearStrength};
 pub use models::{ModelContext, ModelKind};
 pub use stiction_meter::measured::{
     Dataset, Rejected, Row, VoltageCsvError, parse_measured_voltages, read_measured_voltages, select_rows,
 };
-
-/// Why a fit cannot be made.
-#[derive(Debug, thiserror::Error)]
-pub enum FitError {
-    /// The data file cannot be read.
-    #[error(transparent)]
-    File(#[from] stiction_units::io::FileError),
-    /// The data file cannot be read or is wrong at a line (and column): the reader of
-    /// `stiction_meter::measured`, shared with `stiction run`.
-    #[error(transparent)]
-    Data(#[from] VoltageCsvError),
-    /// Too few usable rows.
-    #[error("{0}")]
-    TooFewRows(String),
-    /// A setting or the scenario is wrong.
-    #[error("{0}")]
-    Setting(String),
-    /// The meter or contact model could not be built.
-    #[error(transparent)]
-    Meter(#[from] stiction_meter::MeterError),
-    /// A model could not be fitted.
-    #[error("model `{model}`: {message}")]
-    Model {
-        /// Model name.
-        model: String,
-        /// What went wrong.
-        message: String,
-    },
-}
 
 /// Settings of a fit.
 #[derive(Debug, Clone)]

@@ -21,9 +21,10 @@
 
 use serde::Serialize;
 
+use crate::error::FitError;
 use crate::models::{ModelContext, ModelKind, Parts};
 use crate::stats::{chi2_sf, percentile, t975};
-use crate::{FitError, Rejected};
+use stiction_meter::measured::Rejected;
 
 /// The rows a model is fitted to.
 #[derive(Debug, Clone)]

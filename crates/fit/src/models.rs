@@ -18,7 +18,7 @@ use serde::Serialize;
 use stiction_meter::{ContactModel, Reduction, build_contact_model};
 use stiction_scenario::{ContactModel as Kind, MaterialSpec, Scenario, SlipCriterion};
 
-use crate::FitError;
+use crate::error::FitError;
 
 /// Largest number of surfaces in an ensemble band.
 pub const MAX_SURFACES: usize = 10_000;

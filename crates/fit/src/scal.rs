@@ -28,10 +28,11 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StudentT};
 
 use crate::eq10::{CalibrationSource, draw};
+use crate::error::FitError;
+use crate::mle::Free;
 use crate::mle::{Ensemble, FitData, ModelFit, Noise};
 use crate::models::{ModelContext, ModelKind, Parts};
 use crate::stats::{percentile, robust_sd, t975};
-use crate::{FitError, Free};
 
 /// Loads in the interpolation grid of the threshold parts.
 pub const LOAD_GRID: usize = 64;

@@ -9,8 +9,9 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use stiction_scenario::Scenario;
 
+use crate::error::FitError;
 use crate::models::{ModelContext, ModelKind};
-use crate::{FitError, Row};
+use stiction_meter::measured::Row;
 
 /// Largest number of rows synthesised.
 pub const MAX_SYNTH_ROWS: usize = 10_000_000;

@@ -7,7 +7,7 @@ use stiction_contact::explicit::{self, Equilibrium};
 use stiction_contact::gw::GwSurface;
 use stiction_contact::single::{AdhesionLaw, AsperityParams};
 
-use crate::MeterError;
+use crate::error::MeterError;
 
 /// The state of the contact under an external normal load.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]

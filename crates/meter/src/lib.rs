@@ -18,44 +18,17 @@ use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, MeterSpec, Scen
 use stiction_surface::SurfaceSpec;
 
 mod contact_model;
+mod error;
 pub mod fit;
 pub mod invariants;
 pub mod measured;
 pub mod slip;
 pub use contact_model::{BemContact, ContactModel, ContactState};
+pub use error::MeterError;
 pub use slip::SlipPath;
 use stiction_contact::explicit;
 use stiction_contact::gw::GwSurface;
 use stiction_contact::single::AsperityParams;
-
-/// Why the meter cannot run.
-#[derive(Debug, thiserror::Error)]
-pub enum MeterError {
-    /// The scenario lacks something the meter needs.
-    #[error("scenario: {0}")]
-    Scenario(String),
-    /// An actuator could not be built or solved.
-    #[error("actuator `{array}`: {message}")]
-    Actuator {
-        /// `clamp` or `pull`.
-        array: String,
-        /// The actuator crate's message.
-        message: String,
-    },
-    /// The surface could not be built.
-    #[error("surface: {0}")]
-    Surface(String),
-    /// The contact model failed.
-    #[error("contact: {0}")]
-    Contact(String),
-    /// A measured-data file is wrong.
-    #[error("measured data: {0}")]
-    Measured(String),
-    /// A result broke a physical invariant (a real area above the apparent one, more contacts
-    /// than summits): the inputs lie outside what the model describes; never printed as a number.
-    #[error("{0}")]
-    Invariant(String),
-}
 
 /// How the lab turns voltages into forces (section 5): `F_elec = a_clamp V_clamp^2`,
 /// `L = F_elec - F_spring`, `F_f = a_pull V_pull^2`, with the *nominal* conversion factors and

@@ -17,23 +17,9 @@ use serde::Serialize;
 use serde_json::Value;
 use stiction_units::{Constraint, Dimension, format_quantity, nominal_from_json};
 
-use crate::{MaterialSpec, Scenario};
-
-/// A note about a scenario or a result that the user must see: a stable `code` and a sentence.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
-pub struct Warning {
-    /// Stable identifier, such as `few_points` or `reference_dropped`.
-    pub code: String,
-    /// What happened, why it matters and what to do.
-    pub message: String,
-}
-
-impl Warning {
-    /// A warning with this code and message.
-    pub fn new(code: &str, message: impl Into<String>) -> Warning {
-        Warning { code: code.to_string(), message: message.into() }
-    }
-}
+use crate::scenario::Scenario;
+use crate::spec::MaterialSpec;
+use crate::warning::Warning;
 
 /// Relative tolerance between a given `meter.spring_force` without an `sd` and k x_c (1 %).
 pub const SPRING_FORCE_RELATIVE_TOLERANCE: f64 = 0.01;

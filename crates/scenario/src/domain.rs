@@ -13,7 +13,12 @@
 
 use serde_json::Value;
 
-use crate::Warning;
+use crate::warning::Warning;
+
+/// Highest voltage a scenario may apply (clamp voltages, `pull_voltage_max`), V: far above the
+/// breakdown of any micrometre air gap (a few hundred volts), and low enough that V^2 and the
+/// forces stay finite in f64. A limit of the physics, not raisable.
+pub const MAX_VOLTAGE_V: f64 = 1e4;
 
 /// The physical domain of one quantity (SI units).
 #[derive(Debug, Clone, Copy)]
@@ -460,7 +465,7 @@ pub static DOMAINS: &[Domain] = &[
         "V",
         0.0,
         true,
-        crate::MAX_VOLTAGE_V,
+        MAX_VOLTAGE_V,
         (0.0, 500.0),
         "a voltage across a micrometre gap: above a few hundred volts the gap breaks down; 10 kV keeps V^2 finite",
     ),
@@ -469,7 +474,7 @@ pub static DOMAINS: &[Domain] = &[
         "V",
         0.0,
         false,
-        crate::MAX_VOLTAGE_V,
+        MAX_VOLTAGE_V,
         (1e-4, 10.0),
         "the step of the pull ramp, below pull_voltage_max",
     ),

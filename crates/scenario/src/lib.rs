@@ -14,131 +14,31 @@
 //! [`stiction_units`]. Unknown fields are rejected with the list of known ones. Every error names
 //! the JSON path, the value and what was expected.
 
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 pub mod design;
 mod device;
 pub mod domain;
+mod error;
 mod overrides;
+mod scenario;
 mod spec;
-pub use device::{Explanation, Quantity, SPRING_FORCE_RELATIVE_TOLERANCE, Warning};
+mod text;
+mod warning;
+pub use device::{Explanation, Quantity, SPRING_FORCE_RELATIVE_TOLERANCE};
+pub use domain::MAX_VOLTAGE_V;
+pub use error::{RELATIVE_HUMIDITY_MESSAGE, ScenarioError};
+pub use scenario::{FORMAT_VERSION, Scenario};
 pub mod strict_json;
 pub use overrides::{absolutize_file_paths, apply_set, parse_set};
 pub use spec::*;
+pub use text::truncate;
+pub use warning::Warning;
 
 /// Largest scenario file read, bytes (16 MiB: the bundled ones are a few kB).
 pub const MAX_SCENARIO_BYTES: u64 = 16 << 20;
-
-/// `text` cut to at most `max` characters, with "..." when cut: errors quote at most a short piece
-/// of a user's file.
-pub fn truncate(text: &str, max: usize) -> String {
-    match text.char_indices().nth(max) {
-        Some((i, _)) => format!("{}...", &text[..i]),
-        None => text.to_string(),
-    }
-}
-
-/// Why `material.relative_humidity` is refused (in a file and with `--set` alike).
-pub const RELATIVE_HUMIDITY_MESSAGE: &str = "the humidity belongs to the air, not the material: give it as \
-     `environment.relative_humidity` (like 0.35 or \"35 %\"; with `--set environment.relative_humidity=0.35`), and \
-     the water contact angle as `material.contact_angle` (default 0 deg)";
-
-/// The format version this build reads.
-pub const FORMAT_VERSION: u32 = 1;
-
-/// A whole experiment, as written in a scenario file (SI units after parsing).
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct Scenario {
-    /// Version of the scenario format; this build reads 1.
-    pub format_version: u32,
-    /// What the scenario is for; printed in reports.
-    #[serde(default)]
-    pub description: String,
-    /// The rough sidewall and shoe face.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub surface: Option<stiction_surface::SurfaceSpec>,
-    /// Material properties of the contact.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<MaterialSpec>,
-    /// The air around the device (relative humidity, temperature): capillary adhesion. Absent: dry.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub environment: Option<EnvironmentSpec>,
-    /// Contact law and solver model.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub contact: Option<ContactSpec>,
-    /// Electrostatic actuator arrays by name; the friction meter uses `clamp` and `pull`.
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
-    pub actuators: BTreeMap<String, stiction_actuator::ArraySpec>,
-    /// The meter: spring force, voltage protocol, slip criterion.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub meter: Option<MeterSpec>,
-    /// Measured data to compare with, if any.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub measured: Option<MeasuredSpec>,
-    /// Measured values of this device to compare with (printed and drawn only when given).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub reference: Option<ReferenceSpec>,
-    /// The design study this file offers (`stiction study`; command-line `--vary` overrides it).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub design: Option<design::DesignSpec>,
-    /// The scenario as read, after `--set` (units and uncertain-parameter objects as written):
-    /// the source of the uncertainties (`sd`) and of [`Scenario::to_input_json`].
-    #[serde(skip)]
-    pub source_json: Value,
-    /// Notes made while loading: a `reference` of another device dropped, a reference whose
-    /// device cannot be checked.
-    #[serde(skip)]
-    pub notes: Vec<Warning>,
-}
-
-/// A scenario loading error: where (file and JSON path), what was given and what was expected.
-#[derive(Debug, thiserror::Error)]
-pub enum ScenarioError {
-    /// The file could not be read (missing, not a regular file, too large, not UTF-8).
-    #[error("cannot read scenario {path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// What went wrong.
-        source: stiction_units::io::FileError,
-    },
-    /// The file is not JSON.
-    #[error("{path}: not valid JSON at line {line}, column {column}: {message}")]
-    Syntax {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// Parser message.
-        message: String,
-    },
-    /// A field has a wrong value, type or name.
-    #[error("{path}: at `{json_path}`: {message}")]
-    Field {
-        /// The file.
-        path: PathBuf,
-        /// The JSON path of the offending field, such as `surface.summit_sd`.
-        json_path: String,
-        /// What is wrong and what was expected.
-        message: String,
-    },
-    /// A `--set PATH=VALUE` override is malformed or names no field.
-    #[error("--set {set}: {message}")]
-    Set {
-        /// The override as given.
-        set: String,
-        /// What is wrong, with the near names where the path is wrong.
-        message: String,
-    },
-}
 
 impl Scenario {
     /// Reads, overrides (`--set`), parses and validates a scenario file.
@@ -372,17 +272,6 @@ impl Scenario {
     /// The contact section, or the paper's default (explicit solver, DMT, tilt free).
     pub fn contact_or_default(&self) -> ContactSpec {
         self.contact.clone().unwrap_or_default()
-    }
-
-    /// The JSON Schema of the format (draft 2020-12), as shipped in docs/scenario.schema.json.
-    pub fn json_schema() -> Value {
-        Self::schema().clone()
-    }
-
-    /// The JSON Schema, generated once per process (every `--set` walks it).
-    pub(crate) fn schema() -> &'static Value {
-        static SCHEMA: std::sync::OnceLock<Value> = std::sync::OnceLock::new();
-        SCHEMA.get_or_init(|| serde_json::to_value(schemars::schema_for!(Scenario)).unwrap_or(Value::Null))
     }
 
     /// Whether the field at `path` (dotted, as `--set` names it) takes only whole numbers (a

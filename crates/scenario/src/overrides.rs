@@ -12,7 +12,8 @@
 
 use serde_json::{Map, Value};
 
-use crate::{Scenario, ScenarioError};
+use crate::error::ScenarioError;
+use crate::scenario::Scenario;
 
 /// Splits `PATH=VALUE` into the path segments and the JSON value.
 pub fn parse_set(set: &str) -> Result<(Vec<String>, Value), ScenarioError> {
@@ -41,7 +42,7 @@ pub fn apply_set(root: &mut Value, set: &str) -> Result<(), ScenarioError> {
     let (segments, mut value) = parse_set(set)?;
     let err = |message: String| ScenarioError::Set { set: set.to_string(), message };
     if segments == ["material", "relative_humidity"] {
-        return Err(err(format!("at `material.relative_humidity`: {}", crate::RELATIVE_HUMIDITY_MESSAGE)));
+        return Err(err(format!("at `material.relative_humidity`: {}", crate::error::RELATIVE_HUMIDITY_MESSAGE)));
     }
     let target = check_path(&segments).map_err(err)?;
     // `PATH=null` removes the field (its default, or the quantity derived instead, applies).

@@ -8,6 +8,8 @@ use serde_json::Value;
 use stiction_contact::single::AdhesionLaw;
 use stiction_units::{Constraint, Dimension, QuantityInput, nominal_from_json};
 
+use crate::domain::MAX_VOLTAGE_V;
+
 /// Material properties of the contacting pair (the paper's Table 1 and section 5).
 ///
 /// Give either the composite `compliance` D (eq. 3) or `youngs_modulus` and `poisson_ratio` of two
@@ -191,8 +193,9 @@ pub fn parse_temperature_k(v: &Value) -> Result<f64, String> {
                 Some(i) => (t[..i].trim(), t[i..].trim()),
                 None => (t, ""),
             };
-            let x: f64 =
-                num.parse().map_err(|_| format!("{:?}: not a temperature; {EXPECTED}", crate::truncate(s, 40)))?;
+            let x: f64 = num
+                .parse()
+                .map_err(|_| format!("{:?}: not a temperature; {EXPECTED}", crate::text::truncate(s, 40)))?;
             match unit {
                 "C" | "degC" | "\u{b0}C" => (x + 273.15, false),
                 "K" => (x, false),
@@ -200,13 +203,13 @@ pub fn parse_temperature_k(v: &Value) -> Result<f64, String> {
                 _ => {
                     return Err(format!(
                         "{:?}: unknown temperature unit `{}`; {EXPECTED}",
-                        crate::truncate(s, 40),
-                        crate::truncate(unit, 20)
+                        crate::text::truncate(s, 40),
+                        crate::text::truncate(unit, 20)
                     ));
                 }
             }
         }
-        other => return Err(format!("{}: {EXPECTED}", crate::truncate(&other.to_string(), 40))),
+        other => return Err(format!("{}: {EXPECTED}", crate::text::truncate(&other.to_string(), 40))),
     };
     let domain = crate::domain::lookup("environment.temperature").expect("the temperature has a domain");
     if domain.contains(k) {
@@ -519,11 +522,6 @@ impl MeterSpec {
         Ok(())
     }
 }
-
-/// Highest voltage a scenario may apply (clamp voltages, `pull_voltage_max`), V: far above the
-/// breakdown of any micrometre air gap (a few hundred volts), and low enough that V^2 and the
-/// forces stay finite in f64. A limit of the physics, not raisable.
-pub const MAX_VOLTAGE_V: f64 = 1e4;
 
 /// Largest number of pull-ramp steps `pull_voltage_max / pull_voltage_step`: 2^53, the largest
 /// count that f64 holds exactly (the ramp's step index is an f64). A numerical limit, not raisable.

@@ -66,7 +66,7 @@ impl<'de> Visitor<'de> for StrictVisitor {
             if out.contains_key(&key) {
                 return Err(de::Error::custom(format_args!(
                     "duplicate key `{}`: each field may appear once in an object",
-                    crate::truncate(&key, 60)
+                    crate::text::truncate(&key, 60)
                 )));
             }
             let StrictValue(v) = map.next_value()?;

@@ -26,17 +26,23 @@ use std::path::{Path, PathBuf};
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use serde_json::Value;
 use stiction_meter::{Meter, Reduction, SlipPath};
 use stiction_scenario::Scenario;
 
+mod calibration;
 pub mod design;
+mod error;
 pub mod log;
 mod sample;
+mod sample_result;
 pub mod sensitivity;
 pub mod summary;
+pub use calibration::Calibration;
+pub use error::StudyError;
 pub use sample::{Draw, Sampler, draw, sample_tree, uncertain_parameters};
+pub use sample_result::{FitIntervals, SampleResult};
 pub use summary::{Spread, StudySummary};
 
 /// Largest number of samples in one study. The summary keeps about 100 bytes per sample in
@@ -48,42 +54,6 @@ pub const MAX_SAMPLES: usize = 10_000_000;
 /// Largest thread count: more threads than cores only add overhead; this bounds the start-up
 /// (each thread has its stack) far above any machine's core count.
 pub const MAX_THREADS: usize = 1024;
-
-/// Why a study failed.
-#[derive(Debug, thiserror::Error)]
-pub enum StudyError {
-    /// An uncertain parameter could not be drawn.
-    #[error("at `{path}`: {message}")]
-    Sample {
-        /// JSON path of the parameter.
-        path: String,
-        /// What is wrong.
-        message: String,
-    },
-    /// The scenario file could not be read or parsed.
-    #[error(transparent)]
-    Scenario(#[from] stiction_scenario::ScenarioError),
-    /// A study setting is wrong.
-    #[error("{0}")]
-    Setting(String),
-    /// The sample log or an output file.
-    #[error("{0}")]
-    Log(String),
-}
-
-/// How the virtual lab turns each sample's voltages into forces.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum Calibration {
-    /// The nominal conversion factors and spring force of the file, as the paper did (default).
-    #[default]
-    Nominal,
-    /// Each device's clamp and pull arrays are calibrated from their own pull-in voltages
-    /// ([`stiction_actuator::calibrate_from_pull_in`]: the gap is inferred, the rest of the array
-    /// model is the nominal one); the spring force stays nominal.
-    PullIn,
-}
-stiction_units::display_serde_name!(Calibration);
 
 /// Settings of a Monte Carlo study.
 #[derive(Debug, Clone, Serialize)]
@@ -150,45 +120,6 @@ impl StudyConfig {
     pub fn shard_index_at(&self, j: usize) -> usize {
         self.shard_index + j * self.shard_count
     }
-}
-
-/// The outcome of one sample.
-#[derive(Debug, Clone, Serialize)]
-pub struct SampleResult {
-    /// Sample index.
-    pub index: usize,
-    /// The drawn parameters, SI (in the order of the study's columns).
-    pub draws: Vec<f64>,
-    /// mu_e,a of eq. 10.
-    pub mu_apparent: Option<f64>,
-    /// F_a0 of eq. 10, N.
-    pub apparent_adhesion_force_n: Option<f64>,
-    /// Mean number of contacts over the clamp voltages in contact.
-    pub mean_contacts: Option<f64>,
-    /// The interface's own friction coefficient of this sample's device ([`interface_mu`]):
-    /// the mean of `s A_r / (L + F_adh)` over its clamp voltages in contact with L > 0.
-    pub interface_mu: Option<f64>,
-    /// The widths of the 95 % intervals the lab would quote for this experiment's eq. 10 fit.
-    pub intervals: FitIntervals,
-    /// Why there is no fit (a short code; see [`summary::REASONS`]), None when there is one.
-    pub reason: Option<String>,
-    /// The reason in words (the error message, or what the fit lacked).
-    pub detail: Option<String>,
-}
-
-/// The widths (upper minus lower end) of the 95 % intervals a lab would quote for one virtual
-/// experiment's eq. 10 fit: from the regression alone, and from the regression with the
-/// calibration's stated uncertainty (a_clamp, a_pull, F_spring); None where the fit gives none.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
-pub struct FitIntervals {
-    /// Width of the 95 % interval of mu_e,a, regression alone.
-    pub mu_ci95_width: Option<f64>,
-    /// Width of the 95 % interval of mu_e,a with the calibration uncertainty.
-    pub mu_ci95_width_with_calibration: Option<f64>,
-    /// Width of the 95 % interval of F_a0, regression alone, N.
-    pub fa0_ci95_width_n: Option<f64>,
-    /// Width of the 95 % interval of F_a0 with the calibration uncertainty, N.
-    pub fa0_ci95_width_with_calibration_n: Option<f64>,
 }
 
 /// The lab's eq. 10 intervals of one experiment: given the slips `(V_clamp, V_pull)` (V) of the

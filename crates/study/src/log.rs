@@ -17,7 +17,9 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use stiction_meter::SlipPath;
 
-use crate::{Calibration, SampleResult, StudyError};
+use crate::calibration::Calibration;
+use crate::error::StudyError;
+use crate::sample_result::SampleResult;
 
 /// Version of the log format (2: checksums on every line, input-file fingerprints and the program
 /// version in the header; 3: each sample's interface coefficient and the widths of its eq. 10

@@ -7,7 +7,7 @@ use rand_distr::{Distribution as _, StandardNormal};
 use serde_json::{Map, Value};
 use stiction_units::{Distribution, ScalarInput, UncertainInput, parse_any};
 
-use crate::StudyError;
+use crate::error::StudyError;
 
 /// One drawn parameter: its JSON path and SI value.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]

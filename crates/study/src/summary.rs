@@ -7,7 +7,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::StudyError;
+use crate::error::StudyError;
 use crate::log::{self, Header};
 use crate::sensitivity::{self, Sensitivity};
 

@@ -12,8 +12,8 @@ use stiction_topography::{HeightMap, MapInfo, Patch, PreparationReport, prepare,
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use super::map_args::MapArgs;
-use crate::api::ScenarioSource;
 use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q, quantity};
+use crate::scenario_source::ScenarioSource;
 
 /// Largest grid side of the command (the solver's own limit is 4096 x 4096 points).
 const MAX_SIDE: usize = 4096;
@@ -472,11 +472,11 @@ pub fn bem_json(
         }
         check_path_args(args)?;
         let out = humidity::output(args, || surface.build(args))?;
-        return Ok(crate::api::finite_value(&out)?);
+        return Ok(crate::json_value::finite_value(&out)?);
     }
     check_front_end_path(args, pressures)?;
     let (out, _, _) = solve(args, surface.build(args)?, pressures)?;
-    Ok(crate::api::finite_value(&out)?)
+    Ok(crate::json_value::finite_value(&out)?)
 }
 
 /// The checks of [`bem_json`]'s load path before any work: a tolerance in (0, 1), and a load
@@ -708,68 +708,16 @@ fn heat_map(maps: &MapArgs, field: &[f64], g: Grid, title: &str, value_label: &s
     }
 }
 
-pub use humidity::check_rh_values;
-pub(crate) use humidity::parse_rh;
-
 /// `stiction bem --rh`: adhesion energy against relative humidity.
 mod humidity {
     use serde::Serialize;
     use stiction_bem::{BemSolver, Dugdale, Grid, SolverOptions};
     use stiction_contact::capillary::{Capillarity, Liquid};
-    use stiction_units::{Constraint, Dimension, parse_quantity_checked};
+    use stiction_units::Dimension;
 
     use super::{Args, SurfaceSource, build_surface, csv_bytes};
     use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q};
-
-    /// Most humidities of one run.
-    const MAX_RH: usize = 1000;
-
-    /// The relative humidities of `--rh`: a comma-separated list or FROM:TO:STEPS, each a fraction
-    /// in [0, 1) ("0.35" or "35 %").
-    pub(crate) fn parse_rh(text: &str) -> Result<Vec<f64>, String> {
-        let one = |s: &str| -> Result<f64, String> {
-            let v = parse_quantity_checked(s.trim(), Dimension::Dimensionless, Constraint::NonNegative)
-                .map_err(|e| format!("--rh {s:?}: {e}"))?;
-            if v < 1.0 {
-                Ok(v)
-            } else {
-                Err(format!("--rh {s:?}: expected a relative humidity in [0, 1) (0 to 99.9 %)"))
-            }
-        };
-        let parts: Vec<&str> = text.split(':').collect();
-        let values = match parts.len() {
-            1 => text.split(',').map(one).collect::<Result<Vec<f64>, String>>()?,
-            3 => {
-                let (a, b) = (one(parts[0])?, one(parts[1])?);
-                let steps: usize =
-                    parts[2].trim().parse().ok().filter(|&s| (1..=MAX_RH).contains(&s)).ok_or_else(|| {
-                        format!("--rh {text:?}: STEPS {:?} must be an integer in 1..={MAX_RH}", parts[2])
-                    })?;
-                if steps == 1 {
-                    vec![a]
-                } else {
-                    (0..steps).map(|k| a + (b - a) * k as f64 / (steps - 1) as f64).collect()
-                }
-            }
-            _ => return Err(format!("--rh {text:?}: expected a list (0.1,0.35) or FROM:TO:STEPS")),
-        };
-        if values.is_empty() || values.len() > MAX_RH {
-            return Err(format!("--rh {text:?}: expected 1 to {MAX_RH} humidities"));
-        }
-        Ok(values)
-    }
-
-    /// Relative humidities given as numbers (a front end's list, named `rh`): 1 to 1000 of them,
-    /// each finite and in [0, 1), as [`parse_rh`] takes them as text.
-    pub fn check_rh_values(values: &[f64]) -> Result<(), String> {
-        if values.is_empty() || values.len() > MAX_RH {
-            return Err(format!("rh: expected 1 to {MAX_RH} humidities, got {}", values.len()));
-        }
-        if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !(v.is_finite() && (0.0..1.0).contains(*v))) {
-            return Err(format!("rh[{i}] = {v}: expected a relative humidity in [0, 1) (0 to 99.9 %)"));
-        }
-        Ok(())
-    }
+    use crate::rh::parse_rh;
 
     /// `--temperature`: "25 C", "298.15 K" or a bare number in kelvin, in the domain of the water
     /// correlations: the one rule of the scenario's `environment.temperature`

@@ -9,8 +9,8 @@ use stiction_meter::{ContactModel, build_contact_model};
 use stiction_scenario::{ContactModel as ModelKind, MaterialSpec};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
-use crate::api::ScenarioSource;
 use crate::output::{CliResult, TextTable, domain_quantity, print_json, print_table, q};
+use crate::scenario_source::ScenarioSource;
 
 /// Shoe degrees of freedom.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -231,7 +231,7 @@ pub fn contact_json(
     sweep_loads: Option<&[f64]>,
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     if args.model == Model::Bem {
-        return Ok(crate::api::finite_value(&bem_run(args, source, sweep_loads)?)?);
+        return Ok(crate::json_value::finite_value(&bem_run(args, source, sweep_loads)?)?);
     }
     let (mut solver, _, _) = explicit_solver(args, source)?;
     solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });
@@ -247,10 +247,10 @@ pub fn contact_json(
     if let Some(loads) = loads {
         let increasing = loads.last() >= loads.first();
         let result = solver.sweep(loads, if increasing { Branch::Loading } else { Branch::Unloading })?;
-        return Ok(crate::api::finite_value(&result)?);
+        return Ok(crate::json_value::finite_value(&result)?);
     }
     let load = args.load.ok_or("give --load or --sweep")?;
-    Ok(crate::api::finite_value(&solver.solve(load)?)?)
+    Ok(crate::json_value::finite_value(&solver.solve(load)?)?)
 }
 
 /// A sweep event as a sentence, named as in the JSON (`jump_in`, `release`, `pull_off`), with the

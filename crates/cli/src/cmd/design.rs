@@ -8,30 +8,8 @@ use stiction_study::design::{self, DesignRow, RankBy, Vary};
 use stiction_study::summary::digits;
 use stiction_study::{MAX_THREADS, StudyConfig};
 
-use crate::cmd::study::{Args, Folder, Outcome, Progress, run_study};
+use crate::cmd::study_common::{Args, Folder, Outcome, Progress, run_study};
 use crate::output::{CliResult, ensure_dir, print_json};
-
-/// The --rank-by choices.
-#[derive(clap::ValueEnum, Clone, Copy, Debug, Default)]
-pub enum RankByArg {
-    /// Narrowest 5-95 % interval of mu_e,a first.
-    #[default]
-    Narrowest,
-    /// Smallest |median mu_e,a - the interface's own coefficient s / p_mean| first.
-    LeastBias,
-    /// Largest fraction of experiments with a usable eq. 10 line first.
-    MostUsable,
-}
-
-impl From<RankByArg> for RankBy {
-    fn from(r: RankByArg) -> RankBy {
-        match r {
-            RankByArg::Narrowest => RankBy::Narrowest,
-            RankByArg::LeastBias => RankBy::LeastBias,
-            RankByArg::MostUsable => RankBy::MostUsable,
-        }
-    }
-}
 
 /// The --json output of a design study.
 #[derive(serde::Serialize)]
@@ -264,7 +242,7 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
     let mut studies = Vec::with_capacity(points.len());
     for (d, p) in points.iter().enumerate() {
         let sets = design::sets_for(&args.sets, &varies, p);
-        let study = crate::cmd::study::prepare_study(&args.scenario, &sets, &config)
+        let study = crate::cmd::study_common::prepare_study(&args.scenario, &sets, &config)
             .map_err(|e| format!("design {d} ({}): {e}", name(p)))?;
         studies.push(study);
     }
@@ -305,7 +283,7 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
             let summary = match ran {
                 Outcome::Finished { summary, .. } => *summary,
                 Outcome::Interrupted { logged } => {
-                    return Err(Box::new(crate::cmd::study::interrupted(
+                    return Err(Box::new(crate::cmd::study_common::interrupted(
                         offset + logged,
                         per * points.len(),
                         &dir,

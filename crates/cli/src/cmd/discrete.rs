@@ -100,7 +100,7 @@ struct Output {
 
 /// The JSON object `stiction discrete ... --json` prints for `args`.
 pub fn discrete_json(args: &Args) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    Ok(crate::api::finite_value(&compose(args)?)?)
+    Ok(crate::json_value::finite_value(&compose(args)?)?)
 }
 
 fn compose(args: &Args) -> Result<Output, Box<dyn std::error::Error>> {
@@ -249,8 +249,8 @@ pub fn law_name(law: AdhesionLaw) -> &'static str {
 /// s = 1.4 GPa, DMT: Table 1), with the eq. 10 line of slope mu = dF_f/dL at 3 µN through F_f(0)
 /// and the measured F_a0 as a band at L = -F_a0 (where eq. 10's line meets F_f = 0).
 pub fn fig7_chart(setup: &Fig7Setup) -> Result<Chart, Box<dyn std::error::Error>> {
-    use crate::cmd::plot::sig3;
     use crate::figargs::reference;
+    use crate::format::sig3;
     let model = &setup.model;
     let pull_off = model.pull_off_load_n()?;
     let curve: Vec<(f64, f64)> =

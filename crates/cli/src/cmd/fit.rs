@@ -10,9 +10,9 @@ use stiction_scenario::Scenario;
 use stiction_units::io::write_atomic;
 use stiction_units::{Constraint, Dimension};
 
-use crate::api::ScenarioSource;
 use crate::figargs::FigureArgs;
 use crate::output::{CliResult, OutputSet, print_json, quantity};
+use crate::scenario_source::ScenarioSource;
 
 /// Fit measured (V_clamp, V_pull) data: eq. 10 with regression and calibration intervals, and the
 /// shear strength s of each contact model by maximum likelihood, ranked by AIC.
@@ -152,7 +152,7 @@ pub fn fit_json(
         None => read_measured_voltages(&data_path(args, &scenario, base)?)?,
     };
     let report = stiction_fit::analyse(&data, &scenario, &json, base, &options(args)?)?;
-    Ok(crate::api::finite_value(&report)?)
+    Ok(crate::json_value::finite_value(&report)?)
 }
 
 fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliResult {
@@ -322,10 +322,10 @@ fn write_figures(set: &mut OutputSet, data: &Dataset, r: &FitReport, fig: &Figur
 
 /// The fit's figures: V_pull² against V_clamp² (`fit-vpull2`), friction against load
 /// (`fit-friction-load`) and the residuals (`fit-residuals`). Each model has its colour
-/// ([`crate::cmd::plot::model_color`]) in all three; the models are drawn from the worst to the
+/// ([`crate::charts::model_color`]) in all three; the models are drawn from the worst to the
 /// best (AIC), and the measured points last, on top.
 fn fit_charts(data: &Dataset, r: &FitReport) -> Vec<(&'static str, Chart)> {
-    use crate::cmd::plot::model_color;
+    use crate::charts::model_color;
     let red = r.reduction;
     let file = Path::new(&r.data).file_name().map_or_else(|| r.data.clone(), |n| n.to_string_lossy().into_owned());
     // Data grouped by (device, V_clamp): mean V_pull^2 and its error bar (SD of the repeats, or

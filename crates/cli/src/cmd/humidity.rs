@@ -10,8 +10,8 @@ use stiction_plot::{Chart, LegendPosition, Series};
 use stiction_scenario::{Scenario, Warning};
 use stiction_units::Dimension;
 
-use crate::api::ScenarioSource;
 use crate::figargs::reference;
+use crate::scenario_source::ScenarioSource;
 
 /// The default grid of `--rh`: 0 to 90 % in ten steps.
 pub const DEFAULT_RH: &str = "0:0.9:10";
@@ -21,14 +21,14 @@ pub const DEFAULT_RH: &str = "0:0.9:10";
 /// increasing, with the dry point RH = 0 put first when the list does not start there.
 pub fn rh_grid(text: Option<&str>) -> Result<Vec<f64>, String> {
     let text = text.unwrap_or(DEFAULT_RH);
-    dry_first(crate::cmd::bem::parse_rh(text)?, &format!("--rh {text:?}"))
+    dry_first(crate::rh::parse_rh(text)?, &format!("--rh {text:?}"))
 }
 
 /// The relative humidities given as numbers (a front end's list, named `rh`): each finite and in
 /// [0, 1), 1 to 1000 of them, strictly increasing, with the dry point RH = 0 put first when the
 /// list does not start there; the same grid as [`rh_grid`] of the same numbers written as text.
 pub fn rh_grid_of(values: &[f64]) -> Result<Vec<f64>, String> {
-    crate::cmd::bem::check_rh_values(values)?;
+    crate::rh::check_rh_values(values)?;
     dry_first(values.to_vec(), "rh")
 }
 
@@ -145,7 +145,7 @@ pub struct HumiditySweep {
 }
 
 /// Runs the friction meter of the scenario `source` (a file or a tree built in memory, with its
-/// `--set` overrides; [`crate::api::ScenarioSource`]) at each relative humidity of `rhs` (from
+/// `--set` overrides; [`crate::scenario_source::ScenarioSource`]) at each relative humidity of `rhs` (from
 /// [`rh_grid`]): `environment.relative_humidity` is set to each value, every other field as the
 /// scenario gives it. An error of the dry point (RH = 0) is the scenario's and is returned; at a
 /// humid point the meter's error becomes that point's `reason` with null values. `progress(done,

@@ -53,11 +53,11 @@ pub fn run(args: Args) -> CliResult {
     }
     let mut set = OutputSet::begin(&args.out, "merge", args.force)?;
     let header = log::merge(&args.dirs, set.staging_dir())?;
-    let (summary, _) = crate::cmd::study::finish_folder(set.staging_dir(), &args.fig)?;
+    let (summary, _) = crate::cmd::study_common::finish_folder(set.staging_dir(), &args.fig)?;
     set.adopt_staged()?;
     let files = set.file_names();
     set.commit()?;
-    crate::cmd::study::report(&summary, args.json, std::path::Path::new(&header.scenario))?;
+    crate::cmd::study_common::report(&summary, args.json, std::path::Path::new(&header.scenario))?;
     if !args.json {
         crate::outln!("\nwrote {}/{}, {}", args.out.display(), files.join(", "), crate::output::MANIFEST);
     }

@@ -14,5 +14,6 @@ pub mod plot;
 pub mod run;
 pub mod scenario;
 pub mod study;
+pub mod study_common;
 pub mod surface;
 pub mod topography;

@@ -7,7 +7,8 @@ use stiction_plot::{Chart, LegendPosition, Series};
 use stiction_scenario::Scenario;
 
 use crate::figargs::FigureArgs;
-use crate::output::CliResult;
+use crate::format::sig3;
+use crate::output::{CliResult, chart_format};
 
 /// Which figure.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -78,27 +79,6 @@ pub struct Args {
     /// Figure size and font.
     #[command(flatten)]
     pub fig: FigureArgs,
-}
-
-/// The image format of an output path: "svg" or "png" by its extension; any other is an error.
-pub fn chart_format(path: &Path) -> Result<&'static str, String> {
-    match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).as_deref() {
-        Some("svg") => Ok("svg"),
-        Some("png") => Ok("png"),
-        other => Err(format!(
-            "{}: unknown image extension {}; expected .svg or .png",
-            path.display(),
-            other.map_or("(none)".to_string(), |e| format!(".{e}"))
-        )),
-    }
-}
-
-/// Renders a chart to `path` (SVG or PNG by extension; any other is an error naming it). The plot
-/// crate writes it atomically and never through a symbolic link.
-pub fn render_chart(chart: &Chart, path: &Path) -> CliResult {
-    chart_format(path)?;
-    chart.write(path)?;
-    crate::output::record_layout(path, || chart.layout())
 }
 
 /// Writes a chart to `path` as SVG, or PNG by extension, with the plotted numbers as CSV beside it
@@ -178,7 +158,7 @@ fn humidity(args: &Args) -> CliResult {
         indicatif::ProgressStyle::with_template("{spinner} humidities {pos}/{len} [{bar:30}] {elapsed_precise}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let source = crate::api::ScenarioSource::file(path, &args.sets)?;
+    let source = crate::scenario_source::ScenarioSource::file(path, &args.sets)?;
     let sweep = h::sweep(&source, &rhs, &mut |done, _| bar.set_position(done as u64))?;
     bar.finish_and_clear();
     if let Some(mut set) = outputs {
@@ -392,64 +372,4 @@ fn symlog_series(
         out.push((l, model.solve(l)?.a_star));
     }
     Ok(out)
-}
-
-/// Palette colour of a fit model, the same in every figure: the measured data 0, `gw-dmt` 1,
-/// `explicit` 2, `explicit-ensemble` 3, `discrete-nN` 4, 5, 6 for N = 1, 2, 3 (then repeating).
-pub fn model_color(model: &str) -> usize {
-    match model {
-        "gw-dmt" => 1,
-        "explicit" => 2,
-        "explicit-ensemble" => 3,
-        m => match m.strip_prefix("discrete-n").and_then(|n| n.parse::<usize>().ok()) {
-            Some(n) => 4 + (n + 2) % 3,
-            None => 0,
-        },
-    }
-}
-
-/// Three significant digits without trailing zeros, plain or a·10ⁿ: 0.5, 1.4, 12400, 9.1·10⁻¹².
-pub fn sig3(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let trim = |t: String| if t.contains('.') { t.trim_end_matches('0').trim_end_matches('.').to_string() } else { t };
-    let a = v.abs();
-    if !(1e-3..1e5).contains(&a) {
-        let e = a.log10().floor();
-        format!("{}·10{}", trim(format!("{:.2}", v / 10f64.powf(e))), stiction_plot::superscript(e as i64))
-    } else {
-        let d = a.log10().floor() as i32;
-        let decimals = (2 - d).clamp(0, 6) as usize;
-        // Round to 3 significant digits also above 1000 (12433 -> 12400).
-        let v = if d > 2 { (v / 10f64.powi(d - 2)).round() * 10f64.powi(d - 2) } else { v };
-        trim(format!("{:.*}", decimals, v))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{model_color, sig3};
-
-    #[test]
-    fn each_model_has_its_own_colour() {
-        let names = ["gw-dmt", "explicit", "explicit-ensemble", "discrete-n1", "discrete-n2", "discrete-n3"];
-        let c: Vec<usize> = names.iter().map(|n| model_color(n)).collect();
-        for (i, a) in c.iter().enumerate() {
-            assert_ne!(*a, 0, "{} shares the data's colour", names[i]);
-            for b in &c[i + 1..] {
-                assert_ne!(a, b, "{c:?}");
-            }
-        }
-    }
-
-    #[test]
-    fn three_significant_digits_without_trailing_zeros() {
-        assert_eq!(sig3(2.8), "2.8");
-        assert_eq!(sig3(0.5), "0.5");
-        assert_eq!(sig3(1.4), "1.4");
-        assert_eq!(sig3(12433.0), "12400");
-        assert_eq!(sig3(0.12345), "0.123");
-        assert_eq!(sig3(9.1e-12), "9.1·10⁻¹²");
-    }
 }

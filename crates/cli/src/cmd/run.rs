@@ -164,7 +164,7 @@ pub fn run_json(
         result: &e.result,
         measured: e.measured,
     };
-    Ok(crate::api::finite_value(&output)?)
+    Ok(crate::json_value::finite_value(&output)?)
 }
 
 fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>, calibration_rel_sd: Option<f64>) {
@@ -453,9 +453,9 @@ fn fig5_chart(
     .keys("v_clamp_squared_v2", "v_pull_squared_v2")
     .with_note(format!(
         "L = a_clamp V_clamp² − F_spring, F_f = a_pull V_pull² (nominal a_clamp = {} N/V², a_pull = {} N/V², F_spring = {} µN)",
-        crate::cmd::plot::sig3(red.a_clamp_n_per_v2),
-        crate::cmd::plot::sig3(red.a_pull_n_per_v2),
-        crate::cmd::plot::sig3(red.spring_force_n * 1e6)
+        crate::format::sig3(red.a_clamp_n_per_v2),
+        crate::format::sig3(red.a_pull_n_per_v2),
+        crate::format::sig3(red.spring_force_n * 1e6)
     ))
     .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete).with_color(1));
     // eq. 10 in voltages: V_pull^2 = (intercept + slope (a_clamp V_clamp^2 - F_spring)) / a_pull,

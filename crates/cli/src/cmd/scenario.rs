@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use stiction_scenario::Scenario;
 
-use crate::api::ScenarioSource;
 use crate::output::{CliResult, TextTable, print_json};
+use crate::scenario_source::ScenarioSource;
 
 /// Check a scenario (with overrides) and print it as it is run (readable as input: the file's
 /// units and uncertainties, and every default filled in), explain its quantities, or print the

@@ -12,8 +12,8 @@ use stiction_topography::{
 use stiction_units::io::write_atomic;
 
 use super::map_args::MapArgs;
-use crate::api::ScenarioSource;
 use crate::output::{CliResult, OutputSet, print_json, print_table};
+use crate::scenario_source::ScenarioSource;
 
 /// Read a measured height map (AFM, optical profiler): level it, filter it, find its summits
 /// (8-neighbour maxima, curvature -(z_xx + z_yy)/2) and print the statistics beside Nayak's
@@ -234,7 +234,7 @@ pub fn topography_json(
     scenario: Option<&ScenarioSource>,
 ) -> Result<(serde_json::Value, HeightMap, Summits), Box<dyn std::error::Error>> {
     let (out, map, summits) = compose(file.to_string(), raw, info, prep, scenario)?;
-    Ok((crate::api::finite_value(&out)?, map, summits))
+    Ok((crate::json_value::finite_value(&out)?, map, summits))
 }
 
 fn gw_of(st: &Statistics, scenario: Option<&ScenarioSource>) -> Result<Gw, Box<dyn std::error::Error>> {
@@ -503,9 +503,9 @@ fn figures(
                 Series::line(
                     format!(
                         "Nayak (α = {}, large-α normal): mean {} nm, SD {} nm",
-                        crate::cmd::plot::sig3(n.bandwidth_alpha),
-                        crate::cmd::plot::sig3(mean * 1e9),
-                        crate::cmd::plot::sig3(sd * 1e9)
+                        crate::format::sig3(n.bandwidth_alpha),
+                        crate::format::sig3(mean * 1e9),
+                        crate::format::sig3(sd * 1e9)
                     ),
                     curve,
                 )
@@ -535,7 +535,7 @@ fn figures(
             let r_um = n.summit_radius_m * 1e6;
             radii_chart.series.push(
                 Series::line(
-                    format!("Nayak: 1/(mean curvature) = {} µm", crate::cmd::plot::sig3(r_um)),
+                    format!("Nayak: 1/(mean curvature) = {} µm", crate::format::sig3(r_um)),
                     vec![(r_um, 0.0), (r_um, top)],
                 )
                 .with_color(1),
@@ -546,7 +546,7 @@ fn figures(
             let mean_k = curvatures.iter().sum::<f64>() / curvatures.len() as f64;
             radii_chart.series.push(
                 Series::dashed(
-                    format!("map: 1/(mean curvature) = {} µm", crate::cmd::plot::sig3(1e6 / mean_k)),
+                    format!("map: 1/(mean curvature) = {} µm", crate::format::sig3(1e6 / mean_k)),
                     vec![(1e6 / mean_k, 0.0), (1e6 / mean_k, top)],
                 )
                 .with_color(0),
