@@ -16,6 +16,10 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 log=$tmp/test.log
 
+# No module of any crate imports, through others, a module that imports it (issue: no import
+# circles): the script lists each cycle and fails when there is one.
+python3 scripts/module-cycles.py
+
 cargo test --workspace --release 2>&1 | tee "$log"
 
 venv=$tmp/venv

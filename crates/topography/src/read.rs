@@ -13,9 +13,8 @@
 use std::path::Path;
 use std::str::FromStr;
 
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
-use stiction_units::text::{MAX_CELL_BYTES, MAX_LINE_BYTES, check_line_bytes, check_lines, excerpt};
+use serde::Serialize;
+use stiction_units::text::{MAX_LINE_BYTES, check_line_bytes, check_lines, excerpt};
 use stiction_units::{Dimension, parse_quantity};
 
 use crate::formats::{ChannelChoice, ChannelInfo, ChannelSelector};
@@ -27,83 +26,7 @@ pub const TEXT_INPUT_LIMIT_BYTES: u64 = 1 << 30;
 /// Size limit of a binary input file: [`MAX_PIXELS`] float64 values and 1 MiB of header.
 pub const BINARY_INPUT_LIMIT_BYTES: u64 = MAX_PIXELS * 8 + (1 << 20);
 
-/// A height-map file format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum MapFormat {
-    /// NumPy `.npy`: a 2-D float32 or float64 array, C or Fortran order; rows are y.
-    Npy,
-    /// A text grid: one row of heights per line, separated by commas, semicolons, tabs or spaces;
-    /// `#` lines may carry Gwyddion's ASCII export header (`Width`, `Height`, `Value units`).
-    Text,
-    /// Gwyddion simple field `.gsf` (float32 heights with `XRes`, `YRes`, `XReal`, `YReal`,
-    /// `XYUnits`, `ZUnits`).
-    Gsf,
-    /// x y z points (one per line) on a regular grid, in any order; absent points are missing.
-    Xyz,
-    /// Bruker / Veeco NanoScope (`.spm`, `.di`, `.001`, ...): int16/int32 images with a text header.
-    Nanoscope,
-    /// Igor binary wave version 5 (`.ibw`, Asylum Research AFMs): channels as layers.
-    Ibw,
-    /// ISO 25178-71 surface data file (`.sdf`), ASCII or binary.
-    Sdf,
-    /// ISO 25178-72 XML surface profile (`.x3p`): a zip of `main.xml` and the binary points.
-    X3p,
-    /// Digital Surf / MountainsMap `.sur` (uncompressed): int16/int32 with non-measured points.
-    Sur,
-    /// Wyko / Bruker Vision `.opd` (white-light interferometers), undefined points missing.
-    Opd,
-}
-
-impl MapFormat {
-    /// The format a file name suggests: `.npy`, `.gsf`, `.xyz`, else a text grid (`.csv`, `.txt`,
-    /// `.asc`, `.dat`, ...).
-    pub fn from_path(path: &Path) -> MapFormat {
-        MapFormat::from_extension(path).unwrap_or(MapFormat::Text)
-    }
-
-    /// The format a file's extension names, if it names one: `.npy`, `.gsf`, `.xyz`, `.txt`,
-    /// `.csv`, `.asc` (text), `.spm`, `.di` and three-digit extensions `.001`... (NanoScope),
-    /// `.ibw`, `.sdf`, `.x3p`, `.sur`, `.opd`.
-    pub fn from_extension(path: &Path) -> Option<MapFormat> {
-        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)?;
-        Some(match ext.as_str() {
-            "npy" => MapFormat::Npy,
-            "gsf" => MapFormat::Gsf,
-            "xyz" => MapFormat::Xyz,
-            "txt" | "csv" | "asc" | "tsv" => MapFormat::Text,
-            "spm" | "di" => MapFormat::Nanoscope,
-            e if e.len() == 3 && e.bytes().all(|b| b.is_ascii_digit()) => MapFormat::Nanoscope,
-            "ibw" => MapFormat::Ibw,
-            "sdf" => MapFormat::Sdf,
-            "x3p" => MapFormat::X3p,
-            "sur" => MapFormat::Sur,
-            "opd" => MapFormat::Opd,
-            _ => return None,
-        })
-    }
-
-    /// Whether the format is recognised by its first bytes ([`crate::detect`]).
-    pub fn has_magic(self) -> bool {
-        !matches!(self, MapFormat::Text | MapFormat::Xyz)
-    }
-
-    /// The format's name as in scenario files and flags.
-    pub fn name(self) -> &'static str {
-        match self {
-            MapFormat::Npy => "npy",
-            MapFormat::Text => "text",
-            MapFormat::Gsf => "gsf",
-            MapFormat::Xyz => "xyz",
-            MapFormat::Nanoscope => "nanoscope",
-            MapFormat::Ibw => "ibw",
-            MapFormat::Sdf => "sdf",
-            MapFormat::X3p => "x3p",
-            MapFormat::Sur => "sur",
-            MapFormat::Opd => "opd",
-        }
-    }
-}
+pub use crate::map_format::MapFormat;
 
 impl std::fmt::Display for MapFormat {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -176,17 +99,7 @@ pub struct MapInfo {
     pub channel: Option<ChannelChoice>,
 }
 
-/// Parses a length unit such as `"nm"`, `"um"`, `"µm"`, `"m"` or a scale such as `"10 nm"` into
-/// metres per unit.
-pub fn parse_length_unit(text: &str) -> Result<f64, String> {
-    let t = text.trim();
-    let q = if t.starts_with(|c: char| c.is_alphabetic()) { format!("1 {t}") } else { t.to_string() };
-    if t.len() > MAX_CELL_BYTES {
-        return Err(format!("unit {}: longer than {MAX_CELL_BYTES} bytes", excerpt(t)));
-    }
-    let v = parse_quantity(&q, Dimension::Length).map_err(|e| format!("unit {}", e.brief()))?;
-    if v > 0.0 { Ok(v) } else { Err(format!("unit {} must be a positive length", excerpt(t))) }
-}
+pub use crate::length_unit::parse_length_unit;
 
 fn resolve(
     origin: &str,

@@ -18,7 +18,7 @@ pub mod x3p;
 use serde::Serialize;
 use stiction_units::text::excerpt;
 
-use crate::read::MapFormat;
+use crate::map_format::MapFormat;
 use crate::{MAX_PIXELS, TopographyError};
 
 /// One channel of a file as listed by `stiction topography FILE --channels`.
@@ -333,7 +333,7 @@ pub(crate) fn length_unit(unit: &str) -> Option<f64> {
     if u.is_empty() || !u.starts_with(|c: char| c.is_alphabetic()) {
         return None;
     }
-    crate::read::parse_length_unit(u).ok()
+    crate::length_unit::parse_length_unit(u).ok()
 }
 
 /// Longest channel name or unit kept from a file, characters.
