@@ -192,8 +192,8 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
             col[which] = Some(k);
         } else if is_voltage_name_without_unit(name) {
             return Err(header_err(format!(
-                "column `{}` gives no unit (read with the separator {}); accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
-                crate::short(name),
+                "column {} gives no unit (read with the separator {}); accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}",
+                stiction_units::text::excerpt(name),
                 separator_name(separator)
             )));
         }
@@ -203,7 +203,7 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
             [(col[0], "v_clamp_v"), (col[1], "v_pull_v")].iter().filter(|c| c.0.is_none()).map(|c| c.1).collect();
         return Err(header_err(format!(
             "missing column(s) {missing:?} in the header {} (read with the separator {}); accepted names (unit in the name, volts): {ACCEPTED_COLUMNS:?}; accepted separators: comma, semicolon, tab",
-            crate::short(&format!("{names:?}")),
+            header_excerpt(&names),
             separator_name(separator)
         )));
     };
@@ -417,6 +417,14 @@ impl Meter {
     }
 }
 
+/// The header's names as an error quotes them: at most four, each a short sanitised excerpt, never
+/// a whole line of a file that is not a voltage CSV (`/etc/passwd`'s first line).
+fn header_excerpt(names: &[String]) -> String {
+    let shown: Vec<String> = names.iter().take(4).map(|n| stiction_units::text::excerpt(n)).collect();
+    let more = names.len().saturating_sub(4);
+    if more > 0 { format!("[{}, and {more} more]", shown.join(", ")) } else { format!("[{}]", shown.join(", ")) }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -455,6 +463,11 @@ mod tests {
         assert!(e.contains("missing column") && e.contains("v_pull_v"), "{e}");
         let e = msg("v_clamp,v_pull\n1,2\n");
         assert!(e.contains("gives no unit") && e.contains("v_clamp_v"), "{e}");
+        // A file that is not a voltage CSV is never echoed: each header name is quoted through a
+        // 20-character excerpt, at most four of them.
+        let secret = "root:x:0:0:root:/root:/bin/bash,daemon:x:1:1:daemon,bin:x:2:2,sys:x:3:3,sync:x:4:65534";
+        let e = msg(&format!("{secret}\n1,2\n"));
+        assert!(!e.contains("/bin/bash") && e.contains("(31 bytes)") && e.contains("and 1 more"), "{e}");
         let e = msg("v_clamp_v,v_pull_v\n25\n");
         assert!(e.contains("line 2") && e.contains("v_pull_v") && e.contains("missing"), "{e}");
         let e = msg("v_clamp_v,v_pull_v,v_pull_sd_v\n25,30,0\n");
