@@ -22,29 +22,11 @@ use serde_json::Value;
 use stiction_meter::Meter;
 use stiction_scenario::{Scenario, domain};
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+mod common;
+use common::{Rng, root};
 
 fn cases() -> usize {
-    std::env::var("STICTION_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(400)
+    common::cases(400)
 }
 
 /// The bundled scenarios with a meter, kept small: six clamp voltages (18 to 30 V), a summit budget of
@@ -151,8 +133,7 @@ fn check_result(r: &stiction_meter::MeterResult, apparent_area_m2: f64) -> Resul
 fn extreme_values_of_every_field_are_refused_or_give_results_that_hold_their_invariants() {
     let all = scenarios();
     assert!(all.len() >= 8, "{}", all.len());
-    let seed = std::env::var("STICTION_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(33);
-    let mut rng = Rng(seed);
+    let mut rng = Rng(common::seed(33));
     let mut counts = Counts::default();
     let base = root().join("scenarios");
     let prepared: Vec<(String, String, Vec<String>)> = all
