@@ -148,6 +148,9 @@ pub struct MeterResult {
     pub warnings: Vec<stiction_scenario::Warning>,
 }
 
+/// Why a Kelvin radius or meniscus height is null (the meter's humidity, `bem --rh`).
+pub const NO_MENISCUS_NOTE: &str = "no meniscus: dry (RH 0), faces that do not condense water (cos theta_1 + cos theta_2 <= 0), or a Kelvin radius below the smallest one (min_kelvin_radius)";
+
 /// The humid air of a run and the meniscus it condenses in the contact.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Humidity {
@@ -187,9 +190,7 @@ impl Humidity {
             kelvin_radius_m: air.map(|c| c.kelvin_radius_m),
             meniscus_height_m: cap.map(|c| c.meniscus_height_m()),
             min_kelvin_radius_m: env.min_kelvin_radius,
-            meniscus_note: cap.is_none().then_some(
-                "no meniscus: dry (RH 0), faces that do not condense water (cos theta_1 + cos theta_2 <= 0), or a Kelvin radius below the smallest one (min_kelvin_radius)",
-            ),
+            meniscus_note: cap.is_none().then_some(NO_MENISCUS_NOTE),
         }))
     }
 }

@@ -828,9 +828,7 @@ mod humidity {
                 adhesion_energy_mj_per_m2: energy * 1e3,
                 pull_off_pressure_pa: pull_off,
                 steps,
-                meniscus_note: cap.is_none().then_some(
-                    "no meniscus: dry (RH 0), faces that do not condense water (cos theta_1 + cos theta_2 <= 0), or a Kelvin radius below the smallest one (min_kelvin_radius)",
-                ),
+                meniscus_note: cap.is_none().then_some(stiction_meter::NO_MENISCUS_NOTE),
             });
         }
         let out = Output {

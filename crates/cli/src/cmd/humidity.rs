@@ -240,6 +240,7 @@ pub fn sweep(
 /// One humidity's point from the meter's result.
 fn point_of(rh: f64, r: &MeterResult) -> HumidityPoint {
     let (adh, cap) = summed_loads(r);
+    let share = capillary_share(r);
     let (mu, fa0) = (r.mu_apparent, r.apparent_adhesion_force_n);
     let reason = match (mu, fa0) {
         (Some(_), Some(_)) => None,
@@ -257,12 +258,11 @@ fn point_of(rh: f64, r: &MeterResult) -> HumidityPoint {
         r_squared: r.fit.as_ref().filter(|_| mu.is_some()).map(|f| f.r_squared),
         adhesive_load_summed_n: Some(adh),
         capillary_load_summed_n: Some(cap),
-        capillary_share: capillary_share(r),
+        capillary_share: share,
         kelvin_radius_m: r.environment.as_ref().and_then(|h| h.kelvin_radius_m),
         meniscus_height_m: r.environment.as_ref().and_then(|h| h.meniscus_height_m),
         reason,
-        meniscus_note: (r.environment.as_ref().and_then(|h| h.meniscus_height_m).is_none()
-            || capillary_share(r).is_none())
+        meniscus_note: (r.environment.as_ref().and_then(|h| h.meniscus_height_m).is_none() || share.is_none())
         .then_some("no meniscus: dry (RH 0), faces that do not condense water (cos theta_1 + cos theta_2 <= 0), or a Kelvin radius below the smallest one (min_kelvin_radius), or no adhesive load to share"),
     }
 }
