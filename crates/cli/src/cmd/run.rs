@@ -454,6 +454,8 @@ fn fig5_chart(
         .map(|(l_un, f_un)| {
             ((l_un * 1e-6 + red.spring_force_n) / red.a_clamp_n_per_v2, f_un * 1e-6 / red.a_pull_n_per_v2)
         })
+        // A released spring (a `structure`) has no pull voltage: no curve in pull voltages.
+        .filter(|_| red.a_pull_n_per_v2 > 0.0)
         .collect();
     let mut chart = Chart::new(
         format!("Fig. 5: pull voltage at slip, {}", what(r, measured)),
