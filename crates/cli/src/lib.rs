@@ -21,13 +21,4 @@ pub mod figargs;
 pub mod format;
 #[allow(missing_docs)]
 #[doc(hidden)]
-pub mod json_value;
-#[allow(missing_docs)]
-#[doc(hidden)]
 pub mod output;
-#[allow(missing_docs)]
-#[doc(hidden)]
-pub mod rh;
-#[allow(missing_docs)]
-#[doc(hidden)]
-pub mod scenario_source;

@@ -13,7 +13,7 @@ use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use super::map_args::MapArgs;
 use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q, quantity};
-use crate::scenario_source::ScenarioSource;
+use stiction_engine::ScenarioSource;
 
 /// Largest grid side of the command (the solver's own limit is 4096 x 4096 points).
 const MAX_SIDE: usize = 4096;
@@ -472,11 +472,11 @@ pub fn bem_json(
         }
         check_path_args(args)?;
         let out = humidity::output(args, || surface.build(args))?;
-        return Ok(crate::json_value::finite_value(&out)?);
+        return Ok(stiction_engine::json::finite_value(&out)?);
     }
     check_front_end_path(args, pressures)?;
     let (out, _, _) = solve(args, surface.build(args)?, pressures)?;
-    Ok(crate::json_value::finite_value(&out)?)
+    Ok(stiction_engine::json::finite_value(&out)?)
 }
 
 /// The checks of [`bem_json`]'s load path before any work: a tolerance in (0, 1), and a load
@@ -717,7 +717,7 @@ mod humidity {
 
     use super::{Args, SurfaceSource, build_surface, csv_bytes};
     use crate::output::{CliResult, OutputSet, TextTable, print_json, print_table, q};
-    use crate::rh::parse_rh;
+    use stiction_engine::rh::parse_rh;
 
     /// `--temperature`: "25 C", "298.15 K" or a bare number in kelvin, in the domain of the water
     /// correlations: the one rule of the scenario's `environment.temperature`

@@ -12,7 +12,7 @@ use stiction_units::{Constraint, Dimension};
 
 use crate::figargs::FigureArgs;
 use crate::output::{CliResult, OutputSet, print_json, quantity};
-use crate::scenario_source::ScenarioSource;
+use stiction_engine::ScenarioSource;
 
 /// Fit measured (V_clamp, V_pull) data: eq. 10 with regression and calibration intervals, and the
 /// shear strength s of each contact model by maximum likelihood, ranked by AIC.
@@ -152,7 +152,7 @@ pub fn fit_json(
         None => read_measured_voltages(&data_path(args, &scenario, base)?)?,
     };
     let report = stiction_fit::analyse(&data, &scenario, &json, base, &options(args)?)?;
-    Ok(crate::json_value::finite_value(&report)?)
+    Ok(stiction_engine::json::finite_value(&report)?)
 }
 
 fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliResult {

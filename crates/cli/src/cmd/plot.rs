@@ -139,7 +139,7 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
-/// `plot humidity`: the sweep of [`crate::cmd::humidity::sweep`], printed as a table or JSON and
+/// `plot humidity`: the sweep of [`stiction_engine::humidity::sweep`], printed as a table or JSON and
 /// written with its figures to the --out folder.
 fn humidity(args: &Args) -> CliResult {
     use crate::cmd::humidity as h;
@@ -147,7 +147,7 @@ fn humidity(args: &Args) -> CliResult {
     if args.array.is_some() {
         return Err("--array is used only by `plot actuator`; `plot humidity` has no actuator array".into());
     }
-    let rhs = h::rh_grid(args.rh.as_deref())?;
+    let rhs = stiction_engine::humidity::rh_grid(args.rh.as_deref())?;
     let path = args.scenario.as_ref().ok_or("`plot humidity` needs --scenario FILE.json")?;
     let outputs = match &args.out {
         Some(dir) => Some(OutputSet::begin(dir, "plot humidity", args.force)?),
@@ -158,8 +158,8 @@ fn humidity(args: &Args) -> CliResult {
         indicatif::ProgressStyle::with_template("{spinner} humidities {pos}/{len} [{bar:30}] {elapsed_precise}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let source = crate::scenario_source::ScenarioSource::file(path, &args.sets)?;
-    let sweep = h::sweep(&source, &rhs, &mut |done, _| bar.set_position(done as u64))?;
+    let source = stiction_engine::ScenarioSource::file(path, &args.sets)?;
+    let sweep = stiction_engine::humidity::sweep(&source, &rhs, &mut |done, _| bar.set_position(done as u64))?;
     bar.finish_and_clear();
     if let Some(mut set) = outputs {
         let charts: Vec<(&str, Chart)> = h::charts(&sweep)

@@ -181,7 +181,7 @@ pub fn study_json_of(
     let ran = run_study(study, &dir, false, Folder::Temporary(samples_csv), pool, &|_, _| {}, progress, interrupt);
     let _ = std::fs::remove_dir_all(&dir);
     match ran? {
-        Outcome::Finished { summary, .. } => Ok(Some(crate::json_value::finite_value(&summary)?)),
+        Outcome::Finished { summary, .. } => Ok(Some(stiction_engine::json::finite_value(&summary)?)),
         Outcome::Interrupted { .. } => Ok(None),
     }
 }

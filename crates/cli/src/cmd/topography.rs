@@ -13,7 +13,7 @@ use stiction_units::io::write_atomic;
 
 use super::map_args::MapArgs;
 use crate::output::{CliResult, OutputSet, print_json, print_table};
-use crate::scenario_source::ScenarioSource;
+use stiction_engine::ScenarioSource;
 
 /// Read a measured height map (AFM, optical profiler): level it, filter it, find its summits
 /// (8-neighbour maxima, curvature -(z_xx + z_yy)/2) and print the statistics beside Nayak's
@@ -234,7 +234,7 @@ pub fn topography_json(
     scenario: Option<&ScenarioSource>,
 ) -> Result<(serde_json::Value, HeightMap, Summits), Box<dyn std::error::Error>> {
     let (out, map, summits) = compose(file.to_string(), raw, info, prep, scenario)?;
-    Ok((crate::json_value::finite_value(&out)?, map, summits))
+    Ok((stiction_engine::json::finite_value(&out)?, map, summits))
 }
 
 fn gw_of(st: &Statistics, scenario: Option<&ScenarioSource>) -> Result<Gw, Box<dyn std::error::Error>> {
