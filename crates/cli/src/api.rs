@@ -5,15 +5,15 @@
 pub use crate::cmd::contact::{Args as ContactArgs, Mode as ContactMode, Model as ContactModelKind};
 pub use crate::cmd::discrete::{Args as DiscreteArgs, Law};
 pub use crate::cmd::study::{study_json, study_json_of, study_pool, with_lab_intervals};
-pub use crate::cmd::topography::topography_json;
 pub use stiction_engine::run::{Experiment, experiment, run_json};
 pub use stiction_engine::scenario::check as check_scenario;
+pub use stiction_engine::topography::topography_json;
 
 pub use stiction_engine::ScenarioSource;
 pub use stiction_engine::json::finite_value;
 
 pub use crate::cmd::bem::{Args as BemArgs, BemSurface, bem_json};
-pub use crate::cmd::fit::{Args as FitArgs, fit_json};
+pub use crate::cmd::fit::Args as FitArgs;
 pub use stiction_engine::humidity::{DEFAULT_RH, humidity_json, rh_grid, rh_grid_of};
 pub use stiction_engine::rh::check_rh_values;
 

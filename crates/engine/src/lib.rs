@@ -18,6 +18,7 @@
 pub mod check;
 pub mod contact;
 pub mod discrete;
+pub mod fit;
 pub mod gw;
 pub mod humidity;
 pub mod json;
@@ -27,6 +28,7 @@ pub mod run;
 pub mod scenario;
 pub mod scenario_source;
 pub mod surface;
+pub mod topography;
 
 pub use scenario_source::ScenarioSource;
 
