@@ -4,9 +4,10 @@
 
 pub use crate::cmd::contact::{Args as ContactArgs, Mode as ContactMode, Model as ContactModelKind};
 pub use crate::cmd::discrete::{Args as DiscreteArgs, Law};
-pub use crate::cmd::study::{study_json, study_json_of, study_pool, with_lab_intervals};
+pub use crate::cmd::study::{study_pool, with_lab_intervals};
 pub use stiction_engine::run::{Experiment, experiment, run_json};
 pub use stiction_engine::scenario::check as check_scenario;
+pub use stiction_engine::study::study_json_of;
 pub use stiction_engine::topography::topography_json;
 
 pub use stiction_engine::ScenarioSource;

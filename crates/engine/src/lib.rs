@@ -27,6 +27,7 @@ pub mod rh;
 pub mod run;
 pub mod scenario;
 pub mod scenario_source;
+pub mod study;
 pub mod surface;
 pub mod topography;
 

@@ -4,9 +4,9 @@
 use std::path::{Path, PathBuf};
 
 use stiction_plot::{Chart, Marker, Series};
+use stiction_study::StudyConfig;
 use stiction_study::design::{self, DesignRow, RankBy, Vary};
 use stiction_study::summary::digits;
-use stiction_study::{MAX_THREADS, StudyConfig};
 
 use crate::cmd::study_common::{Args, Folder, Outcome, Progress, run_study};
 use crate::output::{CliResult, ensure_dir, print_json};
@@ -228,14 +228,7 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
         let own: Vec<&str> = own.iter().map(String::as_str).collect();
         crate::output::check_foreign(out, &own, args.force).map_err(|e| format!("--out: {e}"))?;
     }
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(t) = args.threads {
-        if t == 0 || t > MAX_THREADS {
-            return Err(format!("--threads {t}: expected 1 to {MAX_THREADS}").into());
-        }
-        pool = pool.num_threads(t);
-    }
-    let pool = pool.build()?;
+    let pool = design_pool(args.threads)?;
     // Every design is prepared (and so checked) before any runs: a value that makes one design
     // invalid stops the study at once, naming the design.
     let name = |p: &[String]| design::label(&varies, p);
@@ -543,4 +536,14 @@ fn unit_name(dim: stiction_units::DimensionVector) -> String {
         .iter()
         .find(|d| d.vector() == dim)
         .map_or(String::new(), |d| d.si_unit().to_string())
+}
+
+/// The worker pool of a design study's `--threads` (its own message: no core count).
+fn design_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Box<dyn std::error::Error>> {
+    if let Some(t) = threads
+        && (t == 0 || t > stiction_study::MAX_THREADS)
+    {
+        return Err(format!("--threads {t}: expected 1 to {}", stiction_study::MAX_THREADS).into());
+    }
+    stiction_engine::study::thread_pool(threads, &crate::cmd::study::flag)
 }
