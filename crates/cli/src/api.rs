@@ -13,8 +13,9 @@ pub use stiction_engine::topography::topography_json;
 pub use stiction_engine::ScenarioSource;
 pub use stiction_engine::json::finite_value;
 
-pub use crate::cmd::bem::{Args as BemArgs, BemSurface, bem_json};
+pub use crate::cmd::bem::Args as BemArgs;
 pub use crate::cmd::fit::Args as FitArgs;
+pub use stiction_engine::bem::{BemSurface, bem_json};
 pub use stiction_engine::humidity::{DEFAULT_RH, humidity_json, rh_grid, rh_grid_of};
 pub use stiction_engine::rh::check_rh_values;
 
@@ -49,7 +50,7 @@ mod tests {
         let bem = |flags: &[&str]| {
             let flags: Vec<String> = flags.iter().map(|s| s.to_string()).collect();
             let args: super::BemArgs = super::parse_args("bem", &flags).unwrap();
-            super::bem_json(&args, super::BemSurface::Generated, None).map(|_| ()).map_err(|e| e.to_string())
+            super::bem_json(&args.request(), super::BemSurface::Generated, None).map(|_| ()).map_err(|e| e.to_string())
         };
         let over = format!("--sweep=1MPa:2MPa:{}", BEM_MAX_PATH_STEPS + 1);
         let e = bem(&["--grid=32", &over]).unwrap_err();
