@@ -15,6 +15,7 @@
 //! checked against the physical domains of `stiction_scenario::domain`, naming each field as the
 //! front end calls it ([`check::Names`]).
 
+pub mod actuator;
 pub mod bem;
 pub mod check;
 pub mod contact;
