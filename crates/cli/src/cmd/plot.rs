@@ -228,15 +228,7 @@ fn humidity(args: &Args) -> CliResult {
     Ok(())
 }
 
-/// The adhesion parameter theta (eq. 9) of a scenario's surface and material, or an error saying
-/// what is missing. `None`: no adhesion (theta = infinity).
-fn scenario_theta(s: &Scenario, base: &Path) -> Result<Option<f64>, Box<dyn std::error::Error>> {
-    let surface = s.require_surface()?;
-    let material = s.require_material()?;
-    let sd = surface.summit_sd.ok_or("the scenario's surface has no `summit_sd` (needed for theta, eq. 9)")?;
-    let radius = stiction_meter::model_summit_radius_m(surface, base)?;
-    Ok(gw::adhesion_parameter(sd, radius, material.compliance_per_pa(), material.work_of_adhesion)?)
-}
+use stiction_engine::plot::scenario_theta;
 
 /// Fig. 2: N*(L* = 0) against theta, from 0.5 to 40 (the paper: 1 to 30), on log axes; with a
 /// scenario, its theta marked and the axis extended to it.
