@@ -61,6 +61,19 @@ pub struct ContactRequest {
     pub summits: bool,
 }
 
+impl ContactRequest {
+    /// Checks the load against the domain of `load` (a sweep's loads are checked as the solver
+    /// meets them), naming the field as `names` calls it; the warnings of a load outside its usual
+    /// range come back.
+    pub fn validate(&self, names: &Names) -> Result<Vec<stiction_scenario::Warning>, Error> {
+        let mut warnings = Vec::new();
+        if let Some(l) = self.load_n {
+            crate::check::domain(&mut warnings, names, "load_n", "load", l)?;
+        }
+        Ok(warnings)
+    }
+}
+
 /// Default of `--max-sweep-steps`: a million equilibria take minutes and their rows about 100 MB.
 pub const DEFAULT_MAX_SWEEP_STEPS: usize = 1_000_000;
 

@@ -11,7 +11,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
-use stiction_cli::api::ScenarioSource;
+use stiction_engine::ScenarioSource;
 use stiction_scenario::Scenario;
 use stiction_study::{Calibration, Study, StudyConfig};
 use stiction_topography::{
@@ -407,7 +407,7 @@ impl PyScenario {
     /// height-map sidewall's map read and prepared as `run` reads it); returns the notes (list of
     /// (code, message)) or raises StictionError with the command line's message.
     fn validate(&self) -> PyResult<Vec<(String, String)>> {
-        let s = stiction_cli::api::check_scenario(&self.source().map_err(err)?).map_err(err)?;
+        let s = stiction_engine::scenario::check(&self.source().map_err(err)?).map_err(err)?;
         Ok(s.notes.iter().map(|n| (n.code.to_string(), n.message.clone())).collect())
     }
 
@@ -482,7 +482,7 @@ fn run_json<'py>(
         let mut on_point = |done: usize, total: usize| {
             report.report(done, total);
         };
-        stiction_cli::api::run_json(&parsed, &name, &source.base, &mut on_point).map_err(|e| e.to_string())
+        stiction_engine::run::run_json(&parsed, &name, &source.base, &mut on_point).map_err(|e| e.to_string())
     })?;
     if let Some(e) = progress.take_error() {
         return Err(e);
@@ -490,24 +490,28 @@ fn run_json<'py>(
     json_object(py, out.map_err(err)?)
 }
 
-/// contact_json(scenario, flags, loads=None, max_sweep_steps=None) -> dict: what `stiction
-/// contact SCENARIO FLAGS --json` prints with the explicit solver; `loads` (N, in order: a list or
-/// an array) is a sweep of those loads, at most `max_sweep_steps` of them (the command line's
-/// `--max-sweep-steps`, default 1,000,000), counted before they are read. Errors name the
-/// Python arguments (`load`, `mode`, `contacts`, ...), never the flags. The GIL is released;
-/// Ctrl-C raises KeyboardInterrupt.
+/// contact_json(scenario, load=None, loads=None, mode=None, contacts=None, summits=False,
+/// model=None, max_sweep_steps=None) -> dict: what `stiction contact SCENARIO --json` prints, from
+/// the engine's request built of these arguments: `load` one force (a unit string or N), `loads`
+/// (N, in order: a list or an array) a sweep of those loads, at most `max_sweep_steps` of them
+/// (default 1,000,000), counted before they are read. Errors name the Python arguments. The GIL
+/// is released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scenario, flags, loads=None, max_sweep_steps=None))]
+#[pyo3(signature = (scenario, load=None, loads=None, mode=None, contacts=None, summits=false, model=None, max_sweep_steps=None))]
+#[allow(clippy::too_many_arguments)]
 fn contact_json<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
-    flags: Vec<String>,
+    load: Option<&Bound<'py, PyAny>>,
     loads: Option<&Bound<'py, PyAny>>,
+    mode: Option<&str>,
+    contacts: Option<&Bound<'py, PyAny>>,
+    summits: bool,
+    model: Option<&str>,
     max_sweep_steps: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    const NAMES: &[&str] = &["load", "mode", "contacts", "summits", "model", "max_sweep_steps"];
-    let named = err_named(NAMES);
-    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
+    use stiction_engine::contact::{ContactRequest, Mode, Model};
+    use stiction_engine::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
     let max = match max_sweep_steps.filter(|m| !m.is_none()) {
         Some(m) => count("max_sweep_steps", m, 1, usize::MAX as u64, "loads of one sweep")? as usize,
         None => DEFAULT_MAX_SWEEP_STEPS,
@@ -518,22 +522,56 @@ fn contact_json<'py>(
         })?),
         None => None,
     };
-    let source = PyScenario::source_of(scenario)?;
-    let mut all = vec![source.name()];
-    all.extend(flags);
-    all.push(format!("--max-sweep-steps={max}"));
-    if let Some(loads) = &loads {
-        if let Some((i, l)) = loads.iter().enumerate().find(|(_, l)| !l.is_finite()) {
-            return Err(err(format!("load[{i}] = {l}: expected a finite load in N")));
-        }
-        all.extend(["--load".to_string(), format!("{:?}", loads[0])]);
+    if let Some(loads) = &loads
+        && let Some((i, l)) = loads.iter().enumerate().find(|(_, l)| !l.is_finite())
+    {
+        return Err(err(format!("load[{i}] = {l}: expected a finite load in N")));
     }
-    all.push("--json".into());
-    let args: stiction_cli::api::ContactArgs = stiction_cli::api::parse_args("contact", &all).map_err(&named)?;
+    let load_n = match load.filter(|l| !l.is_none()) {
+        Some(l) => Some(quantity("load", l, Dimension::Force, Constraint::Finite)?),
+        None => None,
+    };
+    let req = ContactRequest {
+        model: match model.map(str::to_ascii_lowercase).as_deref() {
+            None | Some("explicit") => Model::Explicit,
+            Some("bem") => Model::Bem,
+            Some(other) => return Err(err(format!("model={other:?}: expected \"explicit\" or \"bem\""))),
+        },
+        load_n,
+        loads_n: loads,
+        mode: match mode.map(str::to_ascii_lowercase).as_deref() {
+            None => None,
+            Some("tilt") => Some(Mode::Tilt),
+            Some("flat") => Some(Mode::Flat),
+            Some("fixed") => Some(Mode::Fixed),
+            Some(other) => return Err(err(format!("mode={other:?}: expected \"tilt\", \"flat\" or \"fixed\""))),
+        },
+        contacts: match contacts.filter(|c| !c.is_none()) {
+            Some(c) => Some(count("contacts", c, 0, usize::MAX as u64, "summits carrying the shoe in mode 'fixed'")? as usize),
+            None => None,
+        },
+        summits,
+    };
+    req.validate(&python_field).map_err(err)?;
+    let source = PyScenario::source_of(scenario)?;
     let out = interruptible(py, move |_| {
-        stiction_cli::api::contact_json(&args, &source, loads.as_deref()).map_err(|e| e.to_string())
+        stiction_engine::contact::contact_json(&req, &source, &python_field).map_err(|e| e.to_string())
     })?;
-    json_object(py, out.map_err(named)?)
+    json_object(py, out.map_err(err)?)
+}
+
+/// The Python argument of an engine request's field (`load_n` -> `load`, `radius_m` -> `radius`).
+fn python_field(field: &str) -> String {
+    match field {
+        "load_n" | "loads_n" => "load",
+        "radius_m" => "radius",
+        "work_of_adhesion_j_per_m2" => "work_of_adhesion",
+        "compliance_per_pa" => "compliance",
+        "shear_strength_pa" => "shear_strength",
+        "equilibrium_spacing_m" => "equilibrium_spacing",
+        other => other,
+    }
+    .to_string()
 }
 
 /// The Python arguments of `bem`, whose command-line flags its errors name by these names.
@@ -570,28 +608,62 @@ const BEM_NAMES: &[&str] = &[
     "seed",
 ];
 
-/// bem_json(heights, flags, pressures=None, scenario=None, rh=None) -> dict: what `stiction bem
-/// --map FILE.npy FLAGS --json` prints for the height map `heights` (a 2-D array, read in place),
-/// its `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a
-/// path), what `stiction bem --scenario SCENARIO FLAGS --json` prints; or, with neither, what
-/// `stiction bem FLAGS --json` prints on the generated surface of the generator flags.
-/// `pressures` (Pa, in order; a list or an array of at most 10,000, the limit of --sweep) instead
-/// of --pressure/--sweep; `rh` (fractions, at most 1000) instead of the text of --rh. Every
-/// length and the map's grid are checked before anything is read or copied; errors name the
-/// Python arguments (`pressure`, `rh`, `grid`, `e_star`, ...), never the flags. The GIL is
+/// The keyword arguments of a call, read one by one into an engine request; each error names
+/// its argument.
+struct Kw<'a, 'py>(&'a Bound<'py, PyDict>);
+
+impl Kw<'_, '_> {
+    fn get(&self, name: &str) -> PyResult<Option<Bound<'_, PyAny>>> {
+        Ok(self.0.get_item(name)?.filter(|v| !v.is_none()))
+    }
+
+    fn quantity(&self, name: &str, dim: Dimension, constraint: Constraint) -> PyResult<Option<f64>> {
+        self.get(name)?.map(|v| quantity(name, &v, dim, constraint)).transpose()
+    }
+
+    fn text(&self, name: &str) -> PyResult<Option<String>> {
+        self.get(name)?.map(|v| flag_text(&v)).transpose()
+    }
+
+    fn flag(&self, name: &str) -> PyResult<bool> {
+        Ok(match self.get(name)? {
+            Some(v) => v.is_truthy()?,
+            None => false,
+        })
+    }
+
+    fn number(&self, name: &str) -> PyResult<Option<f64>> {
+        self.get(name)?
+            .map(|v| {
+                let text = flag_text(&v)?;
+                text.trim().parse::<f64>().map_err(|_| err(format!("{name}={text}: expected a number")))
+            })
+            .transpose()
+    }
+}
+
+/// bem_json(heights, kw, pressures=None, scenario=None, rh=None) -> dict: what `stiction bem
+/// --map FILE.npy --json` prints for the height map `heights` (a 2-D array, read in place), its
+/// `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a path),
+/// what `stiction bem --scenario SCENARIO --json` prints; or, with neither, what `stiction bem
+/// --json` prints on the generated surface. `kw` holds the keyword arguments given (pixel_size,
+/// level, e_star, pressure, sweep, ..., seed), read into the engine's request; `pressures` (Pa,
+/// in order; a list or an array of at most 10,000, the limit of a sweep) instead of one pressure;
+/// `rh` (fractions, at most 1000) instead of its text. Every length and the map's grid are
+/// checked before anything is read or copied; errors name the Python arguments. The GIL is
 /// released; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (heights, flags, pressures=None, scenario=None, rh=None))]
+#[pyo3(signature = (heights, kw, pressures=None, scenario=None, rh=None))]
 fn bem_json<'py>(
     py: Python<'py>,
     heights: &Bound<'py, PyAny>,
-    flags: Vec<String>,
+    kw: &Bound<'py, PyDict>,
     pressures: Option<&Bound<'py, PyAny>>,
     scenario: Option<&Bound<'py, PyAny>>,
     rh: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_cli::api::BemSurface;
-    use stiction_cli::api::limits::{MAX_RH, check_bem_grid, check_pressures_len};
+    use stiction_engine::bem::{BemHumidity, BemRequest, BemSurface};
+    use stiction_engine::limits::{MAX_RH, check_bem_grid, check_pressures_len};
     let named = err_named(BEM_NAMES);
     let pressures = match pressures.filter(|p| !p.is_none()) {
         Some(p) => Some(vector("pressure", p, true, &|n| check_pressures_len("pressure", n))?),
@@ -609,35 +681,106 @@ fn bem_json<'py>(
     {
         check_bem_grid("heights", nx, ny).map_err(err)?;
     }
-    let mut flags = flags;
+    let kw = Kw(kw);
+    let mut rh_text = kw.text("rh")?;
     if let Some(values) = &rh {
-        // Checked and named here (rh[i]); then the --rh text of the same numbers, which the
-        // command line reads back to the same f64s (Rust's `{:?}` is the shortest round trip).
-        stiction_cli::api::check_rh_values(values).map_err(err)?;
-        flags.push(format!("--rh={}", values.iter().map(|v| format!("{v:?}")).collect::<Vec<_>>().join(",")));
+        // Checked and named here (rh[i]); then the text of the same numbers, which the engine
+        // reads back to the same f64s (Rust's `{:?}` is the shortest round trip).
+        stiction_engine::rh::check_rh_values(values).map_err(err)?;
+        rh_text = Some(values.iter().map(|v| format!("{v:?}")).collect::<Vec<_>>().join(","));
     }
-    let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(&named)?;
+    // The argument rules of the command line's flags, named as the Python arguments.
+    let given = |n: &str| kw.get(n).map(|v| v.is_some());
+    for (a, b) in [("pressure", "sweep"), ("pressure", "gap_sweep"), ("sweep", "gap_sweep")] {
+        if given(a)? && given(b)? || (a == "pressure" && pressures.is_some() && given(b)?) {
+            return Err(err(format!("bem: {a} cannot be used with {b}")));
+        }
+    }
+    if rh_text.is_some() {
+        for b in ["sweep", "gap_sweep"] {
+            if given(b)? {
+                return Err(err(format!("bem: rh cannot be used with {b}")));
+            }
+        }
+        if kw.flag("compare_asperity")? {
+            return Err(err("bem: rh cannot be used with compare_asperity"));
+        }
+    }
+    match (given("work_of_adhesion")?, given("range")?) {
+        (true, false) => return Err(err("bem: work_of_adhesion needs range (the Dugdale law's range h0)")),
+        (false, true) => return Err(err("bem: range needs work_of_adhesion (the Dugdale law's work of adhesion)")),
+        _ => {}
+    }
+    let level = match kw.text("level")? {
+        Some(l) => l.parse::<Levelling>().map_err(|e| err(format!("level={l}: {e}")))?,
+        None => Levelling::Plane,
+    };
+    let length = |n: &str| kw.quantity(n, Dimension::Length, Constraint::Positive);
+    let grid = match kw.get("grid")? {
+        Some(g) => count("grid", &g, 0, u64::MAX, "points per side")? as usize,
+        None => 256,
+    };
+    let seed = match kw.get("seed")? {
+        Some(s) => count("seed", &s, 0, u64::MAX, "")?,
+        None => 1,
+    };
+    let req = BemRequest {
+        preparation: Preparation { levelling: level, short_cutoff_m: length("cutoff")?, long_cutoff_m: length("long_cutoff")? },
+        size_m: length("size")?.unwrap_or(100e-6),
+        grid,
+        hurst: kw.number("hurst")?.unwrap_or(0.8),
+        roll_off_m: length("roll_off")?,
+        short_m: length("short")?,
+        rms_height_m: length("rms_height")?.unwrap_or(0.5e-6),
+        seed,
+        e_star_pa: kw.quantity("e_star", Dimension::Pressure, Constraint::Positive)?,
+        pressure_pa: kw.quantity("pressure", Dimension::Pressure, Constraint::Positive)?,
+        sweep: kw.text("sweep")?,
+        gap_sweep: kw.text("gap_sweep")?,
+        gap_back: kw.flag("gap_back")?,
+        work_of_adhesion_j_per_m2: kw.quantity("work_of_adhesion", Dimension::SurfaceEnergy, Constraint::Positive)?,
+        range_m: length("range")?,
+        humidity: BemHumidity {
+            rh: rh_text,
+            temperature: kw.text("temperature")?.unwrap_or_else(|| "25 C".into()),
+            contact_angle_rad: kw.quantity("contact_angle", Dimension::Angle, Constraint::NonNegative)?.unwrap_or(0.0),
+            rh_step_m: length("rh_step")?,
+            min_kelvin_radius_m: length("min_kelvin_radius")?,
+        },
+        shear_strength_pa: kw.quantity("shear_strength", Dimension::Pressure, Constraint::NonNegative)?,
+        tolerance: kw.number("tolerance")?.unwrap_or(1e-6),
+        compare_asperity: kw.flag("compare_asperity")?,
+    };
     if let Some(scenario) = scenario.filter(|s| !s.is_none()) {
         if !heights.is_none() {
             return Err(err("bem: give a height map (heights) or a scenario, not both"));
         }
         let source = PyScenario::source_of(scenario)?;
         let out = interruptible(py, move |_| {
-            stiction_cli::api::bem_json(&args, BemSurface::Scenario(&source), pressures.as_deref())
+            stiction_engine::bem::bem_json(&req, BemSurface::Scenario(&source), pressures.as_deref())
                 .map_err(|e| e.to_string())
         })?;
         return json_object(py, out.map_err(named)?);
     }
     if heights.is_none() {
         let out = interruptible(py, move |_| {
-            stiction_cli::api::bem_json(&args, BemSurface::Generated, pressures.as_deref()).map_err(|e| e.to_string())
+            stiction_engine::bem::bem_json(&req, BemSurface::Generated, pressures.as_deref()).map_err(|e| e.to_string())
         })?;
         return json_object(py, out.map_err(named)?);
     }
-    let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
+    let meta = MapMetadata {
+        pixel_size_x_m: length("pixel_size")?,
+        pixel_size_y_m: length("pixel_size_y")?,
+        height_unit_m: match kw.text("height_unit")? {
+            Some(text) => Some(parse_length_unit(&text).map_err(|e| err(format!("height_unit={text}: {e}")))?),
+            None => None,
+        },
+        xy_unit_m: None,
+    };
+    let (raw, info) = read_heights(heights, &meta)?;
     let out = interruptible(py, move |_| {
         let surface = BemSurface::Map { file: "<array>", raw, info };
-        stiction_cli::api::bem_json(&args, surface, pressures.as_deref()).map_err(|e| e.to_string())
+        stiction_engine::bem::bem_json(&req, surface, pressures.as_deref()).map_err(|e| e.to_string())
     })?;
     json_object(py, out.map_err(named)?)
 }
@@ -657,7 +800,7 @@ fn humidity_json<'py>(
     rh: Option<&Bound<'py, PyAny>>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_cli::api::limits::MAX_RH;
+    use stiction_engine::limits::MAX_RH;
     let named = err_named(&["rh"]);
     let rh = match rh.filter(|r| !r.is_none()) {
         // Counted before it is read: at most the --rh limit of humidities.
@@ -668,9 +811,9 @@ fn humidity_json<'py>(
     };
     let rhs = match (rh_text, rh) {
         (Some(_), Some(_)) => return Err(err("rh: give the humidities as text or as numbers, not both")),
-        (Some(text), None) => stiction_cli::api::rh_grid(Some(&text)),
-        (None, Some(values)) => stiction_cli::api::rh_grid_of(&values),
-        (None, None) => stiction_cli::api::rh_grid(None),
+        (Some(text), None) => stiction_engine::humidity::rh_grid(Some(&text)),
+        (None, Some(values)) => stiction_engine::humidity::rh_grid_of(&values),
+        (None, None) => stiction_engine::humidity::rh_grid(None),
     }
     .map_err(named)?;
     let source = PyScenario::source_of(scenario)?;
@@ -680,7 +823,7 @@ fn humidity_json<'py>(
         let mut on_point = |done: usize, total: usize| {
             report.report(done, total);
         };
-        stiction_cli::api::humidity_json(&source, &rhs, &mut on_point).map_err(|e| e.to_string())
+        stiction_engine::humidity::humidity_json(&source, &rhs, &mut on_point).map_err(|e| e.to_string())
     })?;
     if let Some(e) = progress.take_error() {
         return Err(e);
@@ -688,30 +831,46 @@ fn humidity_json<'py>(
     json_object(py, out.map_err(err)?)
 }
 
-/// fit_json(scenario, flags, data_csv=None, data_name="<data>") -> dict: what `stiction fit [DATA]
-/// --scenario SCENARIO FLAGS --json` prints; `data_csv`, the CSV text of the measured voltages,
-/// instead of a file. The GIL is released; Ctrl-C raises KeyboardInterrupt.
+/// fit_json(scenario, data_path=None, data_csv=None, data_name=None, models=None, free=None,
+/// surfaces=None, draws=None, seed=None) -> dict: what `stiction fit [DATA] --scenario SCENARIO
+/// --json` prints, from the engine's request of these arguments; `data_csv`, the CSV text of the
+/// measured voltages, instead of a file; neither: the scenario's own. The GIL is released;
+/// Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (scenario, flags, data_csv=None, data_name=None))]
+#[pyo3(signature = (scenario, data_path=None, data_csv=None, data_name=None, models=None, free=None, surfaces=None, draws=None, seed=None))]
+#[allow(clippy::too_many_arguments)]
 fn fit_json<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
-    flags: Vec<String>,
+    data_path: Option<PathBuf>,
     data_csv: Option<String>,
     data_name: Option<String>,
+    models: Option<String>,
+    free: Option<String>,
+    surfaces: Option<usize>,
+    draws: Option<usize>,
+    seed: Option<u64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let named = err_named(&["models", "free", "surfaces", "draws", "seed", "data", "scenario"]);
+    use stiction_engine::fit::{DEFAULT_MODELS, FitData, FitRequest};
     let source = PyScenario::source_of(scenario)?;
-    let mut all = flags;
-    all.extend(["--scenario".to_string(), source.name()]);
-    all.push("--json".into());
-    let args: stiction_cli::api::FitArgs = stiction_cli::api::parse_args("fit", &all).map_err(&named)?;
-    let name = data_name.unwrap_or_else(|| "<data>".into());
-    let out = interruptible(py, move |_| {
-        stiction_cli::api::fit_json(&args, &source, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
-            .map_err(|e| e.to_string())
-    })?;
-    json_object(py, out.map_err(named)?)
+    let data = match (data_path, data_csv) {
+        (Some(p), _) => FitData::File(p),
+        (None, Some(text)) => {
+            FitData::Text { bytes: text.into_bytes(), name: data_name.unwrap_or_else(|| "<data>".into()) }
+        }
+        (None, None) => FitData::Scenario,
+    };
+    let req = FitRequest {
+        data,
+        models: models.unwrap_or_else(|| DEFAULT_MODELS.into()),
+        free: free.unwrap_or_else(|| "s".into()),
+        surfaces: surfaces.unwrap_or(100),
+        draws: draws.unwrap_or(4000),
+        seed: seed.unwrap_or(1),
+    };
+    let out =
+        interruptible(py, move |_| stiction_engine::fit::fit_json(&req, &source).map_err(|e| e.to_string()))?;
+    json_object(py, out.map_err(err_named(&["models", "free", "surfaces", "draws", "seed", "data", "scenario"]))?)
 }
 
 /// A length flag value: a unit string ("3.9 um") or an SI number, checked as the command line
@@ -801,7 +960,7 @@ fn topography_json<'py>(
     };
     let (raw, info) = read_heights(heights, &meta)?;
     let out = py.detach(|| -> Result<_, String> {
-        let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_ref())
+        let (json, map, summits) = stiction_engine::topography::topography_json("<array>", raw, info, &prep, scenario.as_ref())
             .map_err(|e| e.to_string())?;
         Ok((json, map, summits))
     });
@@ -925,7 +1084,7 @@ fn study_json<'py>(
     // named the same way): nothing is read or allocated for a refused call.
     const NAMES: &[&str] = &["samples", "seed", "threads"];
     let named = err_named(NAMES);
-    let max_samples = stiction_cli::api::limits::max_samples() as u64;
+    let max_samples = stiction_engine::limits::max_samples() as u64;
     // None: the command line's defaults (100 samples, seed 1).
     let samples = match samples.filter(|s| !s.is_none()) {
         Some(s) => count(
@@ -942,7 +1101,7 @@ fn study_json<'py>(
         Some(s) => count("seed", s, 0, u64::MAX, "")?,
         None => 1,
     };
-    let max_threads = stiction_cli::api::limits::MAX_THREADS as u64;
+    let max_threads = stiction_engine::limits::MAX_THREADS as u64;
     let threads = match threads.filter(|t| !t.is_none()) {
         Some(t) => Some(count("threads", t, 1, max_threads, "worker threads; None: one per core")? as usize),
         None => None,
@@ -957,11 +1116,11 @@ fn study_json<'py>(
         shard_count: 1,
     };
     config.validate().map_err(|e| named(e.to_string()))?;
-    let pool = stiction_cli::api::study_pool(threads).map_err(|e| named(e.to_string()))?;
+    let pool = stiction_engine::study::thread_pool(threads, &|f: &str| f.to_string()).map_err(|e| named(e.to_string()))?;
     let source = PyScenario::source_of(scenario)?;
     let value = source.json(&[]).map_err(err)?;
     let study = Study::prepare_value(value, &source.origin, &source.base, &config)
-        .and_then(stiction_cli::api::with_lab_intervals)
+        .and_then(stiction_fit::with_lab_intervals)
         .map_err(err)?;
     let progress = Progress::new(progress);
     let report = progress.clone();
@@ -974,7 +1133,7 @@ fn study_json<'py>(
             }
         };
         let mut csv = Vec::new();
-        let summary = stiction_cli::api::study_json_of(&study, &pool, &on_sample, interrupt, Some(&mut csv))
+        let summary = stiction_engine::study::study_json_of(&study, &pool, &on_sample, interrupt, Some(&mut csv))
             .map_err(|e| e.to_string())?;
         Ok::<_, String>((summary, String::from_utf8_lossy(&csv).into_owned()))
     })?;
@@ -995,7 +1154,7 @@ fn study_json<'py>(
 /// (eq. 5-9) at each normalized load L* (as `stiction gw --theta T --load-star L --json`).
 #[pyfunction]
 fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
-    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
+    use stiction_engine::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
     // One CLI call per load: at most the loads of one sweep, counted before they are read.
     let load_star = vector("load_star", load_star, true, &|n| {
         if n == 0 {
@@ -1060,8 +1219,9 @@ fn discrete_json<'py>(
     equilibrium_spacing: Option<&Bound<'_, PyAny>>,
     target_slope: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
-    use stiction_cli::api::{DiscreteArgs, Law};
+    use stiction_engine::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
+    use stiction_contact::single::AdhesionLaw;
+    use stiction_engine::discrete::{DEFAULT_EQUILIBRIUM_SPACING_M, DiscreteRequest};
     // The counts first: contacts as the command line's --contacts (u32), the loads (one CLI
     // call each) at most those of one sweep, counted before they are read.
     let contacts = count("contacts", contacts, 0, u64::from(u32::MAX), "summits in contact")? as u32;
@@ -1077,43 +1237,53 @@ fn discrete_json<'py>(
     let flat = if is_array { loads.call_method0("ravel")? } else { loads.clone() };
     let loads: Vec<Bound<'_, PyAny>> = flat.try_iter()?.collect::<PyResult<_>>()?;
     let law = match adhesion.to_ascii_lowercase().as_str() {
-        "dmt" => Law::Dmt,
-        "jkr" => Law::Jkr,
-        "maugis-dugdale" => Law::MaugisDugdale,
-        "hertz" => Law::Hertz,
+        "dmt" => AdhesionLaw::Dmt,
+        "jkr" => AdhesionLaw::Jkr,
+        "maugis-dugdale" => AdhesionLaw::MaugisDugdale,
+        "hertz" => AdhesionLaw::Hertz,
         other => return Err(err(format!("adhesion={other}: expected dmt, jkr, maugis-dugdale or hertz"))),
     };
-    let template = DiscreteArgs {
+    let template = DiscreteRequest {
         contacts,
-        radius: quantity("radius", radius, Dimension::Length, Constraint::Positive)?,
-        work_of_adhesion: quantity(
+        radius_m: quantity("radius", radius, Dimension::Length, Constraint::Positive)?,
+        work_of_adhesion_j_per_m2: quantity(
             "work_of_adhesion",
             work_of_adhesion,
             Dimension::SurfaceEnergy,
             Constraint::NonNegative,
         )?,
-        compliance: quantity("compliance", compliance, Dimension::Compliance, Constraint::Positive)?,
-        shear_strength: quantity("shear_strength", shear_strength, Dimension::Pressure, Constraint::NonNegative)?,
-        load: 0.0,
-        adhesion: law,
-        equilibrium_spacing: match equilibrium_spacing {
+        compliance_per_pa: quantity("compliance", compliance, Dimension::Compliance, Constraint::Positive)?,
+        shear_strength_pa: quantity("shear_strength", shear_strength, Dimension::Pressure, Constraint::NonNegative)?,
+        load_n: 0.0,
+        law,
+        equilibrium_spacing_m: match equilibrium_spacing {
             Some(v) if !v.is_none() => quantity("equilibrium_spacing", v, Dimension::Length, Constraint::Positive)?,
-            // The command line's default, parsed as it parses it.
+            // The command line's default, parsed as it parses it ("0.3 nm", the engine's
+            // DEFAULT_EQUILIBRIUM_SPACING_M).
             _ => parse_quantity_checked("0.3 nm", Dimension::Length, Constraint::Positive).map_err(err)?,
         },
         target_slope,
-        json: true,
     };
+    let _ = DEFAULT_EQUILIBRIUM_SPACING_M;
     let loads: Vec<f64> = loads
         .iter()
         .enumerate()
         .map(|(i, l)| quantity(&format!("load[{i}]"), l, Dimension::Force, Constraint::Finite))
         .collect::<PyResult<_>>()?;
+    // The domains of the command line's flags (radius, work of adhesion, compliance, spacing,
+    // each load), named as the Python arguments.
+    template.validate(&python_field).map_err(err)?;
+    for (i, &load) in loads.iter().enumerate() {
+        DiscreteRequest { load_n: load, ..template }
+            .validate(&|f: &str| if f == "load_n" { format!("load[{i}]") } else { python_field(f) })
+            .map_err(err)?;
+    }
     let out = py.detach(|| {
         let mut out = Vec::with_capacity(loads.len());
         for (i, &load) in loads.iter().enumerate() {
-            let args = DiscreteArgs { load, ..template };
-            out.push(stiction_cli::api::discrete_json(&args).map_err(|e| format!("load[{i}] = {load} N: {e}"))?);
+            let req = DiscreteRequest { load_n: load, ..template };
+            let o = stiction_engine::discrete::discrete(&req).map_err(|e| format!("load[{i}] = {load} N: {e}"))?;
+            out.push(stiction_engine::json::finite_value(&o).map_err(|e| format!("load[{i}] = {load} N: {e}"))?);
         }
         Ok::<_, String>(serde_json::Value::Array(out))
     });
@@ -1125,7 +1295,7 @@ fn discrete_json<'py>(
 /// STICTION_MAX_SAMPLES sets it now).
 #[pyfunction]
 fn _limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-    use stiction_cli::api::limits::*;
+    use stiction_engine::limits::*;
     let d = PyDict::new(py);
     d.set_item("max_sweep_steps", DEFAULT_MAX_SWEEP_STEPS)?;
     d.set_item("bem_max_path_steps", BEM_MAX_PATH_STEPS)?;
