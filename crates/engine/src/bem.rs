@@ -11,6 +11,12 @@ use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 use crate::Error;
 use crate::scenario_source::ScenarioSource;
 
+/// The default side of a generated surface's cell, as the command line writes it (parsed with
+/// `stiction_units`, so that every front end gets the same f64).
+pub const DEFAULT_SIZE: &str = "100 um";
+/// The default rms height of a generated surface, as the command line writes it.
+pub const DEFAULT_RMS_HEIGHT: &str = "0.5 um";
+
 /// Largest grid side of a generated surface (the solver's own limit is 4096 x 4096 points).
 pub const MAX_SIDE: usize = 4096;
 

@@ -61,3 +61,81 @@ pub fn check_pressures_len(name: &str, len: usize) -> Result<(), String> {
 pub fn check_bem_grid(name: &str, nx: usize, ny: usize) -> Result<(), String> {
     stiction_bem::Grid::new(nx, ny, 1.0, 1.0).map(|_| ()).map_err(|e| format!("{name}: {e} (the BEM grid limit)"))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bem::{BemHumidity, BemRequest, BemSurface, bem_json};
+
+    fn request(grid: usize) -> BemRequest {
+        BemRequest {
+            preparation: stiction_topography::Preparation {
+                levelling: stiction_topography::Levelling::Plane,
+                short_cutoff_m: None,
+                long_cutoff_m: None,
+            },
+            size_m: 100e-6,
+            grid,
+            hurst: 0.8,
+            roll_off_m: None,
+            short_m: None,
+            rms_height_m: 0.5e-6,
+            seed: 1,
+            e_star_pa: None,
+            pressure_pa: None,
+            sweep: None,
+            gap_sweep: None,
+            gap_back: false,
+            work_of_adhesion_j_per_m2: None,
+            range_m: None,
+            humidity: BemHumidity {
+                rh: None,
+                temperature: "25 C".into(),
+                contact_angle_rad: 0.0,
+                rh_step_m: None,
+                min_kelvin_radius_m: None,
+            },
+            shear_strength_pa: None,
+            tolerance: 1e-6,
+            compare_asperity: false,
+        }
+    }
+
+    /// The limits stated here are those the engine checks: one past each is refused by the
+    /// engine's own parser with a message that names it, the limit itself is taken.
+    #[test]
+    fn bem_limits_are_the_engines() {
+        let bem = |req: BemRequest| bem_json(&req, BemSurface::Generated, None).map(|_| ()).map_err(|e| e.to_string());
+        let over = format!("1MPa:2MPa:{}", BEM_MAX_PATH_STEPS + 1);
+        let e = bem(BemRequest { sweep: Some(over.clone()), ..request(32) }).unwrap_err();
+        assert!(e.contains(&format!("1..={BEM_MAX_PATH_STEPS}")), "{e}");
+        let e = bem(BemRequest { gap_sweep: Some(over.replace("MPa", "um")), ..request(32) }).unwrap_err();
+        assert!(e.contains(&format!("1..={BEM_MAX_PATH_STEPS}")), "{e}");
+        let e = bem(BemRequest { pressure_pa: Some(1e6), ..request(BEM_MAX_GRID_SIDE + 1) }).unwrap_err();
+        assert!(e.contains(&format!("2..={BEM_MAX_GRID_SIDE}")), "{e}");
+        let e = crate::rh::check_rh_values(&[0.5; MAX_RH + 1]).unwrap_err();
+        assert!(e.contains(&format!("1 to {MAX_RH}")), "{e}");
+        crate::rh::check_rh_values(&[0.5; MAX_RH]).unwrap();
+        let e = crate::humidity::rh_grid(Some(&format!("0:0.5:{}", MAX_RH + 1))).unwrap_err();
+        assert!(e.contains(&format!("1..={MAX_RH}")), "{e}");
+        assert!(check_bem_grid("heights", 4096, 4097).unwrap_err().starts_with("heights: "));
+        check_bem_grid("heights", 4096, 4096).unwrap();
+        check_pressures_len("pressure", BEM_MAX_PATH_STEPS).unwrap();
+        assert!(check_pressures_len("pressure", BEM_MAX_PATH_STEPS + 1).unwrap_err().starts_with("pressure: "));
+        assert_eq!(BEM_MAX_GRID_SIDE, crate::bem::MAX_SIDE);
+    }
+
+    /// The sweep limit of a front end's vector of loads is a sweep text's: the same count refused
+    /// by `parse_sweep` is refused here, one less taken.
+    #[test]
+    fn the_sweep_limit_of_a_vector_is_the_sweeps() {
+        let max = 10;
+        assert!(crate::contact::parse_sweep("0uN:1uN:11", max).is_err());
+        assert!(crate::contact::parse_sweep("0uN:1uN:10", max).is_ok());
+        let e = check_sweep_len("load", 11, max, "raise it with max_sweep_steps=N").unwrap_err();
+        assert!(e.starts_with("load: 11 loads") && e.contains("max_sweep_steps="), "{e}");
+        check_sweep_len("load", 10, max, "").unwrap();
+        assert!(check_sweep_len("load", 0, max, "").is_err());
+        assert_eq!(DEFAULT_MAX_SWEEP_STEPS, 1_000_000);
+    }
+}

@@ -547,7 +547,9 @@ fn contact_json<'py>(
             Some(other) => return Err(err(format!("mode={other:?}: expected \"tilt\", \"flat\" or \"fixed\""))),
         },
         contacts: match contacts.filter(|c| !c.is_none()) {
-            Some(c) => Some(count("contacts", c, 0, usize::MAX as u64, "summits carrying the shoe in mode 'fixed'")? as usize),
+            Some(c) => {
+                Some(count("contacts", c, 0, usize::MAX as u64, "summits carrying the shoe in mode 'fixed'")? as usize)
+            }
             None => None,
         },
         summits,
@@ -725,13 +727,29 @@ fn bem_json<'py>(
         None => 1,
     };
     let req = BemRequest {
-        preparation: Preparation { levelling: level, short_cutoff_m: length("cutoff")?, long_cutoff_m: length("long_cutoff")? },
-        size_m: length("size")?.unwrap_or(100e-6),
+        preparation: Preparation {
+            levelling: level,
+            short_cutoff_m: length("cutoff")?,
+            long_cutoff_m: length("long_cutoff")?,
+        },
+        size_m: match length("size")? {
+            Some(v) => v,
+            None => parse_quantity_checked(stiction_engine::bem::DEFAULT_SIZE, Dimension::Length, Constraint::Positive)
+                .map_err(err)?,
+        },
         grid,
         hurst: kw.number("hurst")?.unwrap_or(0.8),
         roll_off_m: length("roll_off")?,
         short_m: length("short")?,
-        rms_height_m: length("rms_height")?.unwrap_or(0.5e-6),
+        rms_height_m: match length("rms_height")? {
+            Some(v) => v,
+            None => parse_quantity_checked(
+                stiction_engine::bem::DEFAULT_RMS_HEIGHT,
+                Dimension::Length,
+                Constraint::Positive,
+            )
+            .map_err(err)?,
+        },
         seed,
         e_star_pa: kw.quantity("e_star", Dimension::Pressure, Constraint::Positive)?,
         pressure_pa: kw.quantity("pressure", Dimension::Pressure, Constraint::Positive)?,
@@ -868,8 +886,7 @@ fn fit_json<'py>(
         draws: draws.unwrap_or(4000),
         seed: seed.unwrap_or(1),
     };
-    let out =
-        interruptible(py, move |_| stiction_engine::fit::fit_json(&req, &source).map_err(|e| e.to_string()))?;
+    let out = interruptible(py, move |_| stiction_engine::fit::fit_json(&req, &source).map_err(|e| e.to_string()))?;
     json_object(py, out.map_err(err_named(&["models", "free", "surfaces", "draws", "seed", "data", "scenario"]))?)
 }
 
@@ -960,8 +977,9 @@ fn topography_json<'py>(
     };
     let (raw, info) = read_heights(heights, &meta)?;
     let out = py.detach(|| -> Result<_, String> {
-        let (json, map, summits) = stiction_engine::topography::topography_json("<array>", raw, info, &prep, scenario.as_ref())
-            .map_err(|e| e.to_string())?;
+        let (json, map, summits) =
+            stiction_engine::topography::topography_json("<array>", raw, info, &prep, scenario.as_ref())
+                .map_err(|e| e.to_string())?;
         Ok((json, map, summits))
     });
     let (json, map, s): (serde_json::Value, HeightMap, _) = out.map_err(err)?;
@@ -1116,7 +1134,8 @@ fn study_json<'py>(
         shard_count: 1,
     };
     config.validate().map_err(|e| named(e.to_string()))?;
-    let pool = stiction_engine::study::thread_pool(threads, &|f: &str| f.to_string()).map_err(|e| named(e.to_string()))?;
+    let pool =
+        stiction_engine::study::thread_pool(threads, &|f: &str| f.to_string()).map_err(|e| named(e.to_string()))?;
     let source = PyScenario::source_of(scenario)?;
     let value = source.json(&[]).map_err(err)?;
     let study = Study::prepare_value(value, &source.origin, &source.base, &config)
@@ -1219,9 +1238,9 @@ fn discrete_json<'py>(
     equilibrium_spacing: Option<&Bound<'_, PyAny>>,
     target_slope: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_engine::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
     use stiction_contact::single::AdhesionLaw;
     use stiction_engine::discrete::{DEFAULT_EQUILIBRIUM_SPACING_M, DiscreteRequest};
+    use stiction_engine::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
     // The counts first: contacts as the command line's --contacts (u32), the loads (one CLI
     // call each) at most those of one sweep, counted before they are read.
     let contacts = count("contacts", contacts, 0, u64::from(u32::MAX), "summits in contact")? as u32;

@@ -38,7 +38,7 @@ pub struct Args {
     #[arg(long = "set", value_name = "PATH=VALUE", requires = "scenario")]
     pub sets: Vec<String>,
     /// Generated surface: side of the square periodic cell ("100 um").
-    #[arg(long, default_value = "100 um", value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
+    #[arg(long, default_value = stiction_engine::bem::DEFAULT_SIZE, value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
     pub size: f64,
     /// Generated surface: grid points per side (2..=4096; powers of two are fastest).
     #[arg(long, default_value_t = 256, conflicts_with_all = ["map", "scenario"])]
@@ -53,7 +53,7 @@ pub struct Args {
     #[arg(long, value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
     pub short: Option<f64>,
     /// Generated surface: rms height of the composite surface ("0.5 um").
-    #[arg(long, default_value = "0.5 um", value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
+    #[arg(long, default_value = stiction_engine::bem::DEFAULT_RMS_HEIGHT, value_parser = quantity(Dimension::Length, Constraint::Positive), conflicts_with_all = ["map", "scenario"])]
     pub rms_height: f64,
     /// Generated surface: seed (ChaCha8).
     #[arg(long, default_value_t = 1, conflicts_with_all = ["map", "scenario"])]
