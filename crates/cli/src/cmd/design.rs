@@ -483,5 +483,5 @@ fn design_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Box<dyn std:
     {
         return Err(format!("--threads {t}: expected 1 to {}", stiction_study::MAX_THREADS).into());
     }
-    stiction_engine::study::thread_pool(threads, &crate::cmd::study::flag)
+    stiction_engine::study::thread_pool(threads, &crate::cmd::study_common::flag)
 }

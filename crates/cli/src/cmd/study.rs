@@ -9,7 +9,9 @@ use stiction_study::Calibration;
 use crate::output::{CliResult, ensure_dir};
 
 pub use crate::cmd::study_common::{Args, CalibrationArg, SlipPathArg};
-use crate::cmd::study_common::{Folder, Outcome, Progress, interrupted, parse_shard, prepare_study, report, run_study};
+use crate::cmd::study_common::{
+    Folder, Outcome, Progress, flag, interrupted, parse_shard, prepare_study, report, run_study,
+};
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
@@ -107,11 +109,6 @@ impl Args {
             threads: self.threads,
         }
     }
-}
-
-/// The command line's name of a request field.
-pub(crate) fn flag(field: &str) -> String {
-    format!("--{}", field.replace('_', "-"))
 }
 
 /// The --out rules of a study folder, which is written in place (the log grows sample by sample):

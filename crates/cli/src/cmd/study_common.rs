@@ -110,6 +110,11 @@ pub enum SlipPathArg {
 
 pub(crate) use stiction_engine::study::{parse_shard, prepare_study};
 
+/// The command line's name of a study request's field (`threads` -> `--threads`).
+pub(crate) fn flag(field: &str) -> String {
+    format!("--{}", field.replace('_', "-"))
+}
+
 /// Progress: a bar on a terminal, a plain line every 5 s elsewhere, nothing with --quiet.
 pub(crate) struct Progress {
     bar: Option<ProgressBar>,
