@@ -17,6 +17,7 @@ mod height_map_models;
 mod humidity;
 mod models;
 mod npy;
+mod null_reasons;
 mod outputs;
 mod own_device;
 mod scenarios;

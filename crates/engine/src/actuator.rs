@@ -53,6 +53,9 @@ pub struct ActuatorSummary {
     pub pull_in_limited_by_stop: bool,
     pub release_voltage_v: Option<f64>,
     pub hysteresis_v: Option<f64>,
+    /// Why `release_voltage_v`, `hysteresis_v` or `stop_travel_m` is null (absent when none is).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub release_note: Option<String>,
     pub conversion_factor_n_per_v2: f64,
     pub conversion_factor_travel_m: f64,
     pub spring_stiffness_n_per_m: f64,
@@ -90,6 +93,23 @@ pub fn pick_array(path: &Path, name: Option<&str>, sets: &[String]) -> Result<(S
     Ok((name, spec))
 }
 
+/// Why the summary's release voltage (and hysteresis, and stop) is null, or `None` when it is not:
+/// without a stop the plates close the gap at pull-in and no release voltage is defined; with a
+/// stop reached before the pull-in travel the plates never snap, so they release where they closed.
+fn release_note(has_stop: bool, limited_by_stop: bool) -> Option<String> {
+    if !has_stop {
+        Some("no stop: the array has no stop travel, so no release voltage or hysteresis is defined".into())
+    } else if limited_by_stop {
+        Some(
+            "the stop is reached before the pull-in travel: the plates do not snap, so there is no separate \
+             release voltage and no hysteresis"
+                .into(),
+        )
+    } else {
+        None
+    }
+}
+
 /// Computes the request on the scenario file `scenario` with the overrides `sets`.
 pub fn actuator(scenario: &Path, sets: &[String], req: &ActuatorRequest) -> Result<ActuatorRun, Error> {
     let (name, spec) = pick_array(scenario, req.array.as_deref(), sets)?;
@@ -104,6 +124,7 @@ pub fn actuator(scenario: &Path, sets: &[String], req: &ActuatorRequest) -> Resu
         pull_in_limited_by_stop: pull_in.limited_by_stop,
         release_voltage_v: release,
         hysteresis_v: release.map(|r| pull_in.voltage_v - r),
+        release_note: release_note(model.stop_travel_m.is_some(), pull_in.limited_by_stop),
         conversion_factor_n_per_v2: model.conversion_factor_n_per_v2(spec.operating_travel),
         conversion_factor_travel_m: spec.operating_travel,
         spring_stiffness_n_per_m: model.stiffness_n_per_m(),

@@ -135,6 +135,9 @@ pub struct HumiditySweep {
     pub counter_face_contact_angle_rad: f64,
     /// The measured reference, when the scenario has one of this device.
     pub reference: Option<HumidityReference>,
+    /// Why `reference` is null (absent when there is one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference_note: Option<String>,
     /// One point per humidity, the dry point (RH = 0) first.
     pub points: Vec<HumidityPoint>,
     /// What loading the scenario noted (a reference of another device dropped, ...).
@@ -228,6 +231,9 @@ pub fn sweep(
             .map_or(stiction_scenario::DEFAULT_TEMPERATURE_K, |e| e.temperature),
         contact_angle_rad: a1,
         counter_face_contact_angle_rad: a2,
+        reference_note: reference
+            .is_none()
+            .then(|| "the scenario gives no measured reference of this device (see `warnings`)".to_string()),
         reference,
         points,
         warnings: scenario.notes.clone(),

@@ -38,7 +38,13 @@ pub struct Args {
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     if args.schema {
-        return print_json(&Scenario::json_schema());
+        // The JSON Schema is a specification, not a result: its `default: null` entries are JSON
+        // Schema's own keyword (a field that defaults to absent), so the result rule (every null
+        // beside its reason) does not apply to it. It is a `serde_json` value: no float in it can
+        // be a NaN or an infinity.
+        let schema = serde_json::to_string_pretty(&Scenario::json_schema())?;
+        crate::outln!("{schema}");
+        return Ok(());
     }
     if args.domains {
         crate::outln!("{}", stiction_scenario::domain::markdown_table().trim_end());
