@@ -131,7 +131,8 @@ pub const PENTANOL_VAPORISATION_ENTHALPY_J_PER_MOL: f64 = 57.0e3;
 /// [`PENTANOL_TEMPERATURE_RANGE_K`].
 pub fn pentanol_saturation_pressure_pa(temperature_k: f64) -> f64 {
     PENTANOL_SATURATION_PRESSURE_25C_PA
-        * (-(PENTANOL_VAPORISATION_ENTHALPY_J_PER_MOL / GAS_CONSTANT_J_PER_MOL_K) * (1.0 / temperature_k - 1.0 / 298.15))
+        * (-(PENTANOL_VAPORISATION_ENTHALPY_J_PER_MOL / GAS_CONSTANT_J_PER_MOL_K)
+            * (1.0 / temperature_k - 1.0 / 298.15))
             .exp()
 }
 
