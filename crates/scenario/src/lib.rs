@@ -25,6 +25,7 @@ mod error;
 mod overrides;
 mod scenario;
 mod spec;
+pub mod structure;
 mod text;
 mod warning;
 pub use device::{Explanation, Quantity, SPRING_FORCE_RELATIVE_TOLERANCE};
@@ -200,6 +201,34 @@ impl Scenario {
                     "\"bem\" solves on a grid: it needs `surface.source` = \"height_map\" (a measured or generated \
                      `height_map`); summit lists have no surface between the summits"
                         .into(),
+                ));
+            }
+        }
+        if let Some(st) = &self.structure {
+            st.validate().map_err(|(p, msg)| (format!("structure.{p}"), msg))?;
+            if self.meter.is_some() || !self.actuators.is_empty() {
+                return Err((
+                    "structure".into(),
+                    "a scenario describes one device: a `structure` built from parts, or the paper's `actuators` \
+                     and `meter`, not both"
+                        .into(),
+                ));
+            }
+            if self.surface.is_none() {
+                return Err(("surface".into(), "missing: a scenario with a `structure` needs a surface".into()));
+            }
+            if self.material.is_none() {
+                return Err(("material".into(), "missing: a scenario with a `structure` needs a material".into()));
+            }
+            let model = self.contact_or_default().model;
+            let dimples = matches!(st.geometry, structure::GeometrySpec::Dimples { .. });
+            if dimples != (model == ContactModel::Discrete) {
+                return Err((
+                    "structure.geometry.kind".into(),
+                    format!(
+                        "dimples are the discrete model's N spheres and need `contact.model` = \"discrete\" (and a \
+                         discrete model needs dimples here); found {model}"
+                    ),
                 ));
             }
         }

@@ -237,6 +237,12 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
             r.fit_note.as_deref().unwrap_or("the fitted slope is not positive, so mu_e,a and F_a0 are undefined")
         ),
     }
+    if let Some(lab) = &r.lab_coefficient {
+        let c =
+            lab.coefficient.map_or_else(|| lab.coefficient_reason.clone().unwrap_or_default(), |c| format!("{c:.3}"));
+        let sd = lab.spread.map_or(String::new(), |s| format!(" (spread {s:.3})"));
+        crate::outln!("  the lab's reduction ({}): {c}{sd} over {} points", lab.kind, lab.points);
+    }
     for w in &r.warnings {
         crate::outln!("  warning [{}]: {}", w.code, w.message);
     }
@@ -284,7 +290,11 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
             "  after slip the pull shuttle reaches its stop in {t0:.1}-{t1:.1} us at {v0:.2}-{v1:.2} m/s (rapier dynamics)"
         );
     }
-    let stuck = r.points.iter().filter(|p| p.in_contact && p.error.is_none() && p.v_pull.is_none()).count();
+    let stuck = r
+        .points
+        .iter()
+        .filter(|p| p.in_contact && p.error.is_none() && p.v_pull.is_none() && p.displacement_m.is_none())
+        .count();
     if stuck > 0 {
         crate::outln!(
             "  {stuck} clamp voltages: no slip up to pull_voltage_max (friction above what the pull array can give)"
