@@ -384,7 +384,7 @@ impl Meter {
             };
             let points = run.run(voltages, progress)?;
             let mut result =
-                structure::result(self.contact.name(), points, device, self.apparent_area_m2, self.humidity);
+                structure::result(self.contact.name(), points, device, self.apparent_area_m2, self.humidity.clone());
             if let Some(r) = self.reduction {
                 result.reduction = r;
             }
