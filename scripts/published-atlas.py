@@ -7,7 +7,8 @@ slope) and of F_a0, with first-order Sobol indices; `stiction run` at the nomina
 lab's own reduction (the number the publication reports) beside it. Writes
 data/published-friction/atlas.csv (one row per experiment), the table and the honesty checks into
 docs/published.md (between the `atlas` markers) and the figures' data for
-`cargo run --release -p stiction-plot --example published_atlas`.
+`cargo run --release -p stiction-plot --example published_atlas`, which it runs (the figures
+docs/figures/published-*.png, .svg, .csv).
 
 Usage: scripts/published-atlas.py [--check] [--bin PATH]
   --check  recompute and fail (exit 1) when a row differs from data/published-friction/atlas.csv
@@ -156,6 +157,9 @@ def main():
     b, e = "<!-- atlas: begin -->\n", "<!-- atlas: end -->"
     i, j = doc.index(b) + len(b), doc.index(e)
     open(DOC, "w").write(doc[:i] + table(rows, honesty(rows)) + doc[j:])
+    # The figures, drawn by the project's plot crate from the CSV just written.
+    subprocess.run(["cargo", "run", "--quiet", "--release", "-p", "stiction-plot", "--example", "published_atlas", "--",
+                    ATLAS, os.path.join(ROOT, "docs/figures")], cwd=ROOT, check=True)
     print(text)
 
 
