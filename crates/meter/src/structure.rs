@@ -511,34 +511,29 @@ impl StructureRun<'_> {
                     for (i, &v) in lowered.iter().enumerate() {
                         let point = self.point_at(v, slip, i == 0)?;
                         match point {
-                            Ok(mut p) if p.friction_capacity_n > force => {
-                                p.v_pull = Some(vt);
-                                last_held = Some(p);
+                            Ok(p) if p.friction_capacity_n > force => last_held = Some(p),
+                            Ok(mut p) if i == 0 => {
+                                p.reason = Some(format!(
+                                    "slips at the highest normal voltage under the tangential voltage {vt} V: the \
+                                     load at slip is only bounded; left out of the eq. 10 fit"
+                                ));
+                                found = Some(p);
+                                break;
                             }
                             Ok(mut p) => {
                                 p.v_pull = Some(vt);
                                 p.v_pull_sq = Some(vt * vt);
                                 p.friction_n = Some(force);
                                 p.true_friction_n = Some(force);
-                                if i == 0 {
-                                    p.reason = Some(
-                                        "slips at the highest normal voltage: the load at slip is only bounded; left \
-                                         out of the eq. 10 fit"
-                                            .into(),
-                                    );
-                                    p.friction_n = None;
-                                    p.true_friction_n = None;
-                                }
                                 found = Some(p);
                                 break;
                             }
                             Err(mut p) => {
                                 // Out of contact (or unloaded) while the tangential load is held:
-                                // it slips there, with the load at slip not above zero.
-                                p.v_pull = Some(vt);
+                                // it slipped on the way, at a load not resolved.
                                 p.reason = Some(format!(
-                                    "{}; slips on the way there (the capacity fell to the tangential load {:.4} uN \
-                                     between two normal voltages or at contact loss)",
+                                    "{}; the tangential voltage {vt} V ({:.4} uN) slipped it on the way there, at a \
+                                     load between this normal voltage and the one before",
                                     p.reason.unwrap_or_default(),
                                     force * 1e6
                                 ));
@@ -552,7 +547,8 @@ impl StructureRun<'_> {
                         None => {
                             let mut p = last_held.unwrap_or_else(|| empty_point(0.0, 0.0, false, self.humid));
                             p.reason = Some(format!(
-                                "no slip: the tangential load {:.4} uN is held down to the lowest normal voltage",
+                                "no slip: the tangential voltage {vt} V ({:.4} uN) is held down to the lowest normal \
+                                 voltage",
                                 force * 1e6
                             ));
                             p

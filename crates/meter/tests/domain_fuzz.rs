@@ -132,7 +132,8 @@ fn check_result(r: &stiction_meter::MeterResult, apparent_area_m2: f64) -> Resul
         {
             return Err(format!("point {i}: capillary {c} outside [0, {}]", p.adhesive_load_n));
         }
-        if p.friction_n.is_some() != p.v_pull.is_some() {
+        // A friction with a slip: a pull (tangential) voltage, or a released spring's displacement.
+        if p.friction_n.is_some() != (p.v_pull.is_some() || p.displacement_m.is_some()) {
             return Err(format!("point {i}: a friction without a slip or the reverse"));
         }
         if p.friction_n.is_none() && p.reason.is_none() {

@@ -213,3 +213,42 @@ fn pad_friction_does_not_depend_on_apparent_area_without_adhesion() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Dimples: the discrete model's N spheres of the dimple radius (not the surface's summits) share
+/// the load; under the plastic criterion with DMT each carries 2 pi R_d w of adhesion, so the
+/// release threshold is mu (L + N 2 pi R_d w) to one displacement step. The lab that measured the
+/// adhesion force separately (`friction_over_total_load` with F_a = N 2 pi R_d w) recovers mu to
+/// the step's k dx / L.
+#[test]
+fn dimples_share_the_load_and_the_lab_with_the_adhesion_recovers_mu() {
+    let d = dir("dimples");
+    let csv = one_summit(&d);
+    let (k, dx, r_d, n) = (1.0, 1e-10, 3e-6, 3.0);
+    let f_a = n * 2.0 * PI * r_d * W;
+    let mut v = scenario(
+        &csv,
+        5e-6,
+        W,
+        json!({"kind": "released_spring", "stiffness": k}),
+        json!({"kind": "release", "displacement_step": dx, "displacement_max": "1 mm"}),
+        json!({"kind": "eq10"}),
+    )
+    .source_json;
+    v["contact"] = json!({"law": "dmt", "model": "discrete"});
+    v["structure"]["geometry"] = json!({"kind": "dimples", "count": n as u32, "radius": r_d});
+    v["structure"]["lab_reduction"] = json!({"kind": "friction_over_total_load", "adhesion_force": f_a});
+    let s = Scenario::from_value(v, Path::new("dimples.json")).unwrap();
+    let r = run(&s);
+    for p in &r.points {
+        let l = plate_load(p.v_clamp);
+        assert!((p.adhesive_load_n - f_a).abs() <= 1e-9 * f_a, "{} vs {f_a}", p.adhesive_load_n);
+        let threshold = MU * (l + f_a);
+        let x = p.displacement_m.unwrap();
+        assert!(k * x <= threshold && threshold < k * (x + dx), "k x = {} vs {threshold}", k * x);
+    }
+    let lab = r.lab_coefficient.as_ref().unwrap();
+    assert_eq!(lab.kind, "friction_over_total_load");
+    let l_min = plate_load(20.0);
+    assert!((lab.coefficient.unwrap() - MU).abs() <= k * dx / l_min, "{} vs {MU}", lab.coefficient.unwrap());
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -193,7 +193,27 @@ impl Scenario {
             }
         }
         if let Some(c) = &self.contact {
-            c.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+            // Dimples give the discrete model its number of contacts (one source of truth).
+            let dimples = self.structure.as_ref().and_then(|st| match st.geometry {
+                structure::GeometrySpec::Dimples { count, .. } => Some(count),
+                _ => None,
+            });
+            if let Some(count) = dimples {
+                if c.contacts.is_some() {
+                    return Err((
+                        "contact.contacts".into(),
+                        format!(
+                            "given beside `structure.geometry` dimples ({count}): the dimples are the contacts; drop \
+                             `contact.contacts`"
+                        ),
+                    ));
+                }
+                let mut with = c.clone();
+                with.contacts = Some(count as usize);
+                with.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+            } else {
+                c.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+            }
             let on_map = self.surface.as_ref().is_some_and(|s| s.source == stiction_surface::SurfaceSource::HeightMap);
             if c.model == ContactModel::Bem && !on_map {
                 return Err((

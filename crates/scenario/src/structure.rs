@@ -63,7 +63,7 @@ pub enum GeometrySpec {
     /// A few dimples under the structure, each a sphere of radius `radius` carrying an equal share
     /// of the load (the discrete model with N = `count`; `contact.model` must be "discrete").
     Dimples {
-        /// Number of dimples N.
+        /// Number of dimples N: 1, 2 or 3 (equal shares hold by statics only up to three).
         count: u32,
         /// Dimple tip radius.
         #[serde(deserialize_with = "stiction_units::de::length_positive")]
@@ -239,9 +239,15 @@ impl StructureSpec {
             return Err(("normal_voltages".into(), format!("more than {MAX_PROTOCOL_STEPS:e} voltages")));
         }
         if let GeometrySpec::Dimples { count, .. } = self.geometry
-            && count == 0
+            && !(1..=3).contains(&count)
         {
-            return Err(("geometry.count".into(), "0 dimples: expected at least 1".into()));
+            return Err((
+                "geometry.count".into(),
+                format!(
+                    "{count} dimples: expected 1, 2 or 3 (a rigid structure shares its load equally only among up to \
+                     three dimples, by statics; with more the shares depend on the dimples' heights)"
+                ),
+            ));
         }
         Ok(())
     }
