@@ -11,7 +11,10 @@ use stiction_plot::{Chart, LegendPosition, Series};
 fn order(x: &[f64], names: &[String]) -> String {
     let mut v: Vec<(f64, &String)> = x.iter().copied().zip(names).collect();
     v.sort_by(|a, b| a.0.total_cmp(&b.0));
-    v.iter().map(|(x, n)| if *x >= 100.0 { format!("{n} ({x:.0})") } else { format!("{n} ({x:.3})") }).collect::<Vec<_>>().join(", ")
+    v.iter()
+        .map(|(x, n)| if *x >= 100.0 { format!("{n} ({x:.0})") } else { format!("{n} ({x:.3})") })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn main() {
@@ -34,7 +37,8 @@ fn main() {
     let lo: Vec<f64> = mu.iter().map(|r| num(r, "predicted_p05").unwrap()).collect();
     let hi: Vec<f64> = mu.iter().map(|r| num(r, "predicted_p95").unwrap()).collect();
     let med: Vec<f64> = mu.iter().map(|r| num(r, "predicted_median").unwrap()).collect();
-    let mid: Vec<(f64, f64)> = measured.iter().zip(lo.iter().zip(&hi)).map(|(&m, (&l, &h))| (m, 0.5 * (l + h))).collect();
+    let mid: Vec<(f64, f64)> =
+        measured.iter().zip(lo.iter().zip(&hi)).map(|(&m, (&l, &h))| (m, 0.5 * (l + h))).collect();
     let half: Vec<f64> = lo.iter().zip(&hi).map(|(l, h)| 0.5 * (h - l)).collect();
     let diag = vec![(0.1, 0.1), (10.0, 10.0)];
     let mut c = Chart::new(
@@ -66,8 +70,10 @@ fn main() {
     let load: Vec<f64> = mu.iter().map(|r| num(r, "load_per_area_pa").unwrap()).collect();
     let lab: Vec<f64> = mu.iter().map(|r| num(r, "lab_number_nominal").unwrap()).collect();
     let names2: Vec<String> = mu.iter().map(|r| r["experiment"].clone()).collect();
-    let mut sorted: Vec<(f64, String)> =
-        mu.iter().map(|r| (num(r, "load_per_area_pa").unwrap(), format!("{} {}", r["experiment"], r["adhesion_ratio"]))).collect();
+    let mut sorted: Vec<(f64, String)> = mu
+        .iter()
+        .map(|r| (num(r, "load_per_area_pa").unwrap(), format!("{} {}", r["experiment"], r["adhesion_ratio"])))
+        .collect();
     sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
     let ratios: Vec<String> = sorted.into_iter().map(|(_, s)| s).collect();
     let labels: Vec<String> = mu
@@ -79,8 +85,19 @@ fn main() {
         "mean applied load per apparent area L/A_a (Pa)",
         "friction coefficient",
     )
-    .with(Series::markers("measured (as published)", load.iter().copied().zip(measured.iter().copied()).collect()).with_y_err(mu.iter().map(|r| num(r, "measured_uncertainty").unwrap_or(0.0)).collect()).with_labels(names))
-    .with(Series::markers("virtual lab's number, nominal inputs (its own reduction)", load.iter().copied().zip(lab).collect()).with_labels(labels).with_marker(stiction_plot::Marker::Triangle))
+    .with(
+        Series::markers("measured (as published)", load.iter().copied().zip(measured.iter().copied()).collect())
+            .with_y_err(mu.iter().map(|r| num(r, "measured_uncertainty").unwrap_or(0.0)).collect())
+            .with_labels(names),
+    )
+    .with(
+        Series::markers(
+            "virtual lab's number, nominal inputs (its own reduction)",
+            load.iter().copied().zip(lab).collect(),
+        )
+        .with_labels(labels)
+        .with_marker(stiction_plot::Marker::Triangle),
+    )
     .with_note(format!(
         "left to right: {}; F_a0/L at the nominal inputs: {}",
         order(&load, &names2),

@@ -112,3 +112,31 @@ fn bad_liquids_are_refused_naming_the_field() {
         humid_with(json!({"relative_humidity": 0.5, "temperature": "60 C", "liquid": "1-pentanol"}), None).unwrap_err();
     assert!(err.contains("environment.temperature") && err.contains("1-pentanol"), "{err}");
 }
+
+/// The published experiments (scenarios/published/, docs/published.md) are valid against the
+/// schema, load, and state their source: a description and a reference with a source, a device
+/// fingerprint that is their own, and a measured value (mu or an adhesion force).
+#[test]
+fn published_scenarios_are_valid_and_state_their_source() {
+    let schema = Scenario::json_schema();
+    let validator = jsonschema::validator_for(&schema).expect("the schema compiles");
+    let mut count = 0;
+    for entry in std::fs::read_dir(root().join("scenarios/published")).unwrap() {
+        let path = entry.unwrap().path();
+        let value: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let errors: Vec<String> =
+            validator.iter_errors(&value).map(|e| format!("{e} at {}", e.instance_path())).collect();
+        assert!(errors.is_empty(), "{}: {errors:#?}", path.display());
+        let s = Scenario::load(&path, &[]).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert!(
+            value["description"].as_str().is_some_and(|d| d.contains("read") || d.contains("full text")),
+            "{}",
+            path.display()
+        );
+        let r = s.reference.as_ref().unwrap_or_else(|| panic!("{}: no reference kept", path.display()));
+        assert!(!r.source.is_empty());
+        assert!(r.mu_apparent.is_some() || r.apparent_adhesion_force.is_some(), "{}", path.display());
+        count += 1;
+    }
+    assert!(count >= 6, "{count}");
+}

@@ -63,7 +63,10 @@ fn check_row(experiment: &str) {
     let prefix = if force { "predicted" } else { "mu_ea" };
     for (name, got) in [("p05", spread.p05), ("median", spread.median), ("p95", spread.p95)] {
         let want = num(&format!("{prefix}_{name}"));
-        assert!((got - want).abs() <= 1e-3 * want.abs(), "{experiment}: {prefix}_{name} {got} against the atlas's {want}");
+        assert!(
+            (got - want).abs() <= 1e-3 * want.abs(),
+            "{experiment}: {prefix}_{name} {got} against the atlas's {want}"
+        );
         // A lab that reduces by eq. 10 publishes mu_e,a itself: the prediction is the study's.
         if !force && col("lab_reduction") == "eq10" {
             assert_eq!(col(&format!("predicted_{name}")), col(&format!("mu_ea_{name}")), "{experiment}: {name}");
