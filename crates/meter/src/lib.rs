@@ -154,8 +154,9 @@ pub struct MeterResult {
     /// The parts of a `structure` scenario (absent for the paper's meter).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub structure: Option<structure::StructureReport>,
-    /// The coefficient by the laboratory's own reduction (`structure.lab_reduction`), beside
-    /// mu_e,a; absent for the paper's meter, whose lab reduction is eq. 10 itself.
+    /// The coefficient by the laboratory's own reduction (`structure.lab_reduction` or
+    /// `meter.lab_reduction`), beside mu_e,a; absent when the scenario states none for the
+    /// paper's meter (its reduction is eq. 10 itself).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lab_coefficient: Option<structure::LabCoefficient>,
     /// Why there is no pull-array pull-in voltage (a `structure` has no pull array).
@@ -297,6 +298,7 @@ impl Meter {
             reclamp: true,
             slip_dynamics: None,
             max_clamp_voltages: None,
+            lab_reduction: None,
         };
         Ok(Meter {
             apparent_area_m2: surface.apparent_length * surface.apparent_width,
@@ -633,6 +635,8 @@ impl Meter {
                 None => warnings.push(stiction_scenario::Warning::new("coarse_pull_step", refine)),
             }
         }
+        let lab_coefficient =
+            self.protocol.lab_reduction.as_ref().map(|spec| structure::lab_coefficient(spec, &pairs, &eq10));
         Ok(MeterResult {
             contact_model: self.contact.name(),
             points,
@@ -646,7 +650,7 @@ impl Meter {
             environment: self.humidity.clone(),
             warnings,
             structure: None,
-            lab_coefficient: None,
+            lab_coefficient,
             pull_array_note: None,
         })
     }

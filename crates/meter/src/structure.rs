@@ -420,12 +420,14 @@ impl StructureRun<'_> {
                         let p = point.as_mut().map_err(|_| MeterError::Scenario("unreachable".into()))?;
                         let n_max = (voltage_max / voltage_step).floor();
                         let n = (capacity / a_t).sqrt() / voltage_step;
-                        // The first step n with a_t (n dV)^2 >= capacity, checked on the force itself.
-                        let mut n = n.ceil().max(1.0);
+                        // The first step n with a_t (n dV)^2 >= capacity, checked on the force itself;
+                        // the guess is kept within [1, n_max + 1] (n_max <= MAX_PROTOCOL_STEPS), so
+                        // both corrections below end after a few steps.
+                        let mut n = if n.is_finite() { n.ceil().clamp(1.0, n_max + 1.0) } else { n_max + 1.0 };
                         while n > 1.0 && a_t * ((n - 1.0) * voltage_step).powi(2) >= capacity {
                             n -= 1.0;
                         }
-                        while a_t * (n * voltage_step).powi(2) < capacity {
+                        while n <= n_max && a_t * (n * voltage_step).powi(2) < capacity {
                             n += 1.0;
                         }
                         let side = comb.side_pull_in_voltage_at_v(0.0);
@@ -449,6 +451,8 @@ impl StructureRun<'_> {
                             p.v_pull_sq = Some(vt * vt);
                             p.friction_n = Some(a_t * vt * vt);
                             p.true_friction_n = p.friction_n;
+                            let step_n = a_t * (vt * vt - (vt - voltage_step).powi(2));
+                            invariants::check_reading(a_t * vt * vt, capacity, step_n, v)?;
                             if n <= 1.0 {
                                 p.reason = Some(format!(
                                     "slip at the first tangential step ({voltage_step} V): the friction is only \
@@ -469,7 +473,8 @@ impl StructureRun<'_> {
                         let capacity = p.friction_capacity_n;
                         let n_max = (displacement_max / displacement_step).floor();
                         // Sticks while k x_n < capacity: the largest such n (0: even the first slips).
-                        let mut n = (capacity / (k_n_per_m * displacement_step)).floor().min(n_max + 1.0);
+                        let guess = (capacity / (k_n_per_m * displacement_step)).floor();
+                        let mut n = if guess.is_finite() { guess.clamp(0.0, n_max + 1.0) } else { n_max + 1.0 };
                         while n > 0.0 && k_n_per_m * n * displacement_step >= capacity {
                             n -= 1.0;
                         }
@@ -494,6 +499,7 @@ impl StructureRun<'_> {
                             p.displacement_m = Some(x);
                             p.friction_n = Some(k_n_per_m * x);
                             p.true_friction_n = p.friction_n;
+                            invariants::check_reading(k_n_per_m * x, capacity, k_n_per_m * displacement_step, v)?;
                         }
                     }
                     points.push(point.unwrap_or_else(|p| p));

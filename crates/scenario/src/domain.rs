@@ -713,7 +713,7 @@ pub static DOMAINS: &[Domain] = &[
         "the pressure coefficient of the shear strength: a friction coefficient of the interface, below 10",
     ),
     d(
-        &["structure.lab_reduction.adhesion_force"],
+        &["structure.lab_reduction.adhesion_force", "meter.lab_reduction.adhesion_force"],
         "N",
         0.0,
         true,
