@@ -32,6 +32,8 @@ cargo clippy -p stiction-py --all-targets --release --features python -- -D warn
 "$venv/bin/maturin" build --release -q -m crates/py/Cargo.toml --out "$tmp/wheels"
 "$venv/bin/pip" install -q --no-deps "$tmp"/wheels/stiction-*.whl
 cargo build --release -q -p stiction-cli
+# The atlas of published experiments (docs/published.md): every row recomputed, none changed.
+python3 scripts/published-atlas.py --check
 "$venv/bin/python" -m pytest -q -p no:cacheprovider crates/py/tests 2>&1 | tee -a "$log"
 
 # One closing line over every test binary (cargo's own last line is often a doc-test run of 0) and

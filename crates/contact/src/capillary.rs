@@ -1,11 +1,14 @@
-//! Capillary condensation in the narrow gaps of a wetted contact (water in humid air).
+//! Capillary condensation in the narrow gaps of a wetted contact (water in humid air, or the
+//! vapour of another liquid: 1-pentanol, or a liquid given by its properties).
 //!
 //! # Model
 //! * The liquid condenses where the gap is narrower than the meniscus height and stays in
 //!   equilibrium with the vapour at relative humidity `RH` and temperature `T`: its mean curvature is
 //!   fixed by the Kelvin equation, with the Kelvin radius
 //!   `r_K = gamma V_m / (R_g T ln(1/RH))` (m), `gamma` the surface tension (N/m), `V_m` the molar
-//!   volume of the liquid (m^3/mol) and `R_g` the gas constant.
+//!   volume of the liquid (m^3/mol) and `R_g` the gas constant. `RH` is the relative vapour
+//!   pressure `p/p_sat` of the condensing liquid (the relative humidity for water); the liquid's
+//!   properties enter only through [`Liquid`] (`gamma`, `V_m`).
 //! * Circular-meniscus approximation: the meniscus profile is a circle of radius `r_K` in the
 //!   meridional plane; the azimuthal curvature (about `1/x` with `x` the wetted radius) is neglected,
 //!   which holds for `r_K << x`, i.e. `r_K << R` for a summit of radius `R`.
@@ -83,6 +86,56 @@ pub fn water_molar_volume_m3_per_mol(temperature_k: f64) -> f64 {
     WATER_MOLAR_MASS_KG_PER_MOL / water_liquid_density_kg_per_m3(temperature_k)
 }
 
+/// Molar mass of 1-pentanol, C5H11OH, kg/mol (IUPAC standard atomic weights: 88.148 g/mol).
+pub const PENTANOL_MOLAR_MASS_KG_PER_MOL: f64 = 88.148e-3;
+
+/// The temperature range over which the 1-pentanol correlations here are used, K: 15 C to 35 C,
+/// room conditions around the 25 C reference of the handbook values (the surface tension and
+/// density are linear in T there; the saturation pressure is Clausius-Clapeyron about 25 C).
+pub const PENTANOL_TEMPERATURE_RANGE_K: (f64, f64) = (288.15, 308.15);
+
+/// Surface tension of 1-pentanol against its vapour, N/m: `gamma = (27.54 - 0.08736 t) mN/m` with
+/// `t` in degrees Celsius (Jasper, J. Phys. Chem. Ref. Data 1 (1972) 841, as tabulated in the CRC
+/// Handbook of Chemistry and Physics, "Surface tension of common liquids": 25.36 mN/m at 25 C).
+/// Used over [`PENTANOL_TEMPERATURE_RANGE_K`].
+pub fn pentanol_surface_tension_n_per_m(temperature_k: f64) -> f64 {
+    (27.54 - 0.08736 * (temperature_k - 273.15)) * 1e-3
+}
+
+/// Density of liquid 1-pentanol, kg/m^3: `rho = 810.8 - 0.72 (T - 298.15 K)`, through the CRC
+/// Handbook's 0.8144 g/cm^3 at 20 C and 0.8108 g/cm^3 at 25 C (the 25 C value as measured by
+/// Segade et al., J. Chem. Eng. Data 48 (2003) 1251, pure 1-pentanol). Used over
+/// [`PENTANOL_TEMPERATURE_RANGE_K`].
+pub fn pentanol_liquid_density_kg_per_m3(temperature_k: f64) -> f64 {
+    810.8 - 0.72 * (temperature_k - 298.15)
+}
+
+/// Molar volume of liquid 1-pentanol `M / rho(T)`, m^3/mol (108.7 cm^3/mol at 25 C).
+pub fn pentanol_molar_volume_m3_per_mol(temperature_k: f64) -> f64 {
+    PENTANOL_MOLAR_MASS_KG_PER_MOL / pentanol_liquid_density_kg_per_m3(temperature_k)
+}
+
+/// Saturation vapour pressure of 1-pentanol at 25 C, Pa: 2.2 Torr = 293 Pa, the value the MEMS
+/// vapour-phase lubrication experiments state (Tribol. Lett. (2014), "Humidity effects on in situ
+/// vapor phase lubrication with n-pentanol": "P_sat = ~2.2 Torr at room temperature").
+pub const PENTANOL_SATURATION_PRESSURE_25C_PA: f64 = 2.2 * 133.322_368;
+
+/// Enthalpy of vaporisation of 1-pentanol at 25 C, J/mol (CRC Handbook, "Enthalpy of vaporization":
+/// 57.0 kJ/mol).
+pub const PENTANOL_VAPORISATION_ENTHALPY_J_PER_MOL: f64 = 57.0e3;
+
+/// Saturation vapour pressure of 1-pentanol, Pa: Clausius-Clapeyron about 25 C,
+/// `p_sat = p_25 exp(-(dH_vap / R) (1/T - 1/298.15 K))` with [`PENTANOL_SATURATION_PRESSURE_25C_PA`]
+/// and [`PENTANOL_VAPORISATION_ENTHALPY_J_PER_MOL`]. It sets only the partial pressure a relative
+/// vapour pressure stands for (the Kelvin radius needs `p/p_sat` alone). Used over
+/// [`PENTANOL_TEMPERATURE_RANGE_K`].
+pub fn pentanol_saturation_pressure_pa(temperature_k: f64) -> f64 {
+    PENTANOL_SATURATION_PRESSURE_25C_PA
+        * (-(PENTANOL_VAPORISATION_ENTHALPY_J_PER_MOL / GAS_CONSTANT_J_PER_MOL_K)
+            * (1.0 / temperature_k - 1.0 / 298.15))
+            .exp()
+}
+
 /// The condensing liquid.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Liquid {
@@ -99,6 +152,21 @@ impl Liquid {
             surface_tension_n_per_m: water_surface_tension_n_per_m(temperature_k),
             molar_volume_m3_per_mol: water_molar_volume_m3_per_mol(temperature_k),
         }
+    }
+
+    /// 1-pentanol at `temperature_k` (handbook surface tension and density,
+    /// [`pentanol_surface_tension_n_per_m`], [`pentanol_molar_volume_m3_per_mol`]).
+    pub fn pentanol(temperature_k: f64) -> Liquid {
+        Liquid {
+            surface_tension_n_per_m: pentanol_surface_tension_n_per_m(temperature_k),
+            molar_volume_m3_per_mol: pentanol_molar_volume_m3_per_mol(temperature_k),
+        }
+    }
+
+    /// The Kelvin radius `r_K = gamma V_m / (R_g T ln(p_sat/p))`, m, at relative vapour pressure
+    /// `relative_pressure` = `p/p_sat` in (0, 1) (infinite at 1, the liquid's bulk).
+    pub fn kelvin_radius_m(&self, temperature_k: f64, relative_pressure: f64) -> f64 {
+        self.kelvin_length_m(temperature_k) / (1.0 / relative_pressure).ln()
     }
 
     /// Kelvin length `gamma V_m / (R_g T)`, m: the Kelvin radius at `RH = 1/e`.
@@ -362,5 +430,47 @@ mod tests {
             assert!(Capillarity::new(w, T25, 0.35, a, 0.0).is_err());
             assert!(Capillarity::new(w, T25, 0.35, 0.0, a).is_err());
         }
+    }
+    #[test]
+    fn pentanol_handbook_values() {
+        // CRC Handbook (Jasper 1972): 25.36 mN/m at 25 C (tabulated to 0.01 mN/m); 0.8144 g/cm^3 at
+        // 20 C (tabulated to 1e-4 g/cm^3).
+        assert!((pentanol_surface_tension_n_per_m(298.15) - 25.36e-3).abs() < 0.006e-3);
+        assert!((pentanol_liquid_density_kg_per_m3(293.15) - 814.4).abs() < 0.1);
+        // Molar volume at 25 C: 88.148 / 0.8108 = 108.72 cm^3/mol (to 0.02 cm^3/mol).
+        assert!((pentanol_molar_volume_m3_per_mol(298.15) - 108.72e-6).abs() < 0.02e-6);
+        // Saturation pressure: "~2.2 Torr at room temperature" (Tribol. Lett. 2014); at 20 C
+        // Clausius-Clapeyron with 57.0 kJ/mol gives 2.2 * exp(-57000/8.3145 (1/293.15 - 1/298.15))
+        // = 2.2 * 0.6757 = 1.49 Torr (to 0.01 Torr); the function rises with T.
+        assert!((pentanol_saturation_pressure_pa(298.15) / 133.322 - 2.2).abs() < 1e-3);
+        assert!((pentanol_saturation_pressure_pa(293.15) / 133.322 - 1.487).abs() < 0.01);
+    }
+
+    #[test]
+    fn kelvin_radius_of_pentanol_is_the_kelvin_equation() {
+        // Kelvin length of 1-pentanol at 25 C from the handbook values:
+        // 25.356e-3 N/m * 108.72e-6 m^3/mol / (8.314462618 * 298.15 J/mol) = 1.1120 nm (to 0.001 nm).
+        let t = 298.15;
+        let p = Liquid::pentanol(t);
+        assert!((p.kelvin_length_m(t) - 1.1120e-9).abs() < 0.001e-9, "{}", p.kelvin_length_m(t));
+        // Kelvin equation closed form r_K = l_K / ln(p_sat/p) at the pentanol vapour pressures of
+        // the MEMS experiment (0.2, 0.5, 0.95 of saturation): 0.6909 nm, 1.604 nm, 21.68 nm.
+        for (x, want) in [(0.2, 0.6909e-9), (0.5, 1.6043e-9), (0.95, 21.679e-9)] {
+            let r = p.kelvin_radius_m(t, x);
+            assert!((r - want).abs() < 2e-3 * want, "p/p_sat {x}: {r} vs {want}");
+            // The same radius through Capillarity (fully wetting, 0 deg): h_m = 2 r_K.
+            let c = Capillarity::new(p, t, x, 0.0, 0.0).unwrap().unwrap();
+            assert!((c.kelvin_radius_m - r).abs() <= 1e-15 * r);
+            assert!((c.meniscus_height_m() - 2.0 * r).abs() <= 1e-15 * r);
+        }
+        // Pentanol's Kelvin length is 2.1 times water's at 25 C (1.112 / 0.5246): at the same
+        // relative pressure its menisci are 2.1 times taller, its Laplace pressure 0.35/2.1 as strong.
+        let ratio = p.kelvin_length_m(t) / Liquid::water(t).kelvin_length_m(t);
+        assert!((ratio - 2.120).abs() < 0.005, "{ratio}");
+        // Water's sphere-flat force at contact is 4 pi R gamma: pentanol's is gamma_p/gamma_w = 0.352 of it.
+        let cw = Capillarity::new(Liquid::water(t), t, 0.5, 0.0, 0.0).unwrap().unwrap();
+        let cp = Capillarity::new(p, t, 0.5, 0.0, 0.0).unwrap().unwrap();
+        let f_ratio = cp.sphere_flat_force_n(1e-6, 0.0) / cw.sphere_flat_force_n(1e-6, 0.0);
+        assert!((f_ratio - 25.356 / 71.97).abs() < 1e-3, "{f_ratio}");
     }
 }

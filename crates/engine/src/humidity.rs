@@ -161,8 +161,8 @@ pub fn sweep(
     if let Some(conflict) = scenario.spring_force_conflict() {
         return Err(format!("{name}: {conflict}").into());
     }
-    let material = scenario.require_material().map_err(|e| format!("{name}: {e}"))?;
-    let (a1, a2) = material.contact_angles_rad();
+    scenario.require_material().map_err(|e| format!("{name}: {e}"))?;
+    let (a1, a2) = scenario.contact_angles_rad();
     let reference = scenario.reference.as_ref().map(|r| HumidityReference {
         source: r.source.clone(),
         relative_humidity: scenario.environment.as_ref().map(|e| e.relative_humidity),

@@ -168,9 +168,12 @@ pub struct MeterResult {
 pub const NO_MENISCUS_NOTE: &str = "no meniscus: dry (RH 0), faces that do not condense water (cos theta_1 + cos theta_2 <= 0), or a Kelvin radius below the smallest one (min_kelvin_radius)";
 
 /// The humid air of a run and the meniscus it condenses in the contact.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Humidity {
-    /// Relative humidity (fraction).
+    /// The condensing liquid when it is not water (absent: water).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub liquid: Option<String>,
+    /// Relative humidity (fraction): the relative vapour pressure `p/p_sat` of the liquid.
     pub relative_humidity: f64,
     /// Temperature, K.
     pub temperature_k: f64,
@@ -200,9 +203,10 @@ impl Humidity {
         let air = s.capillarity_before_cut_off().map_err(MeterError::Scenario)?;
         let cap = air.and_then(|c| c.above_min_kelvin_radius(env.min_kelvin_radius));
         Ok(Some(Humidity {
+            liquid: (!env.is_water()).then(|| env.liquid_name().to_string()),
             relative_humidity: env.relative_humidity,
             temperature_k: env.temperature,
-            contact_angles_rad: s.material.as_ref().map_or((0.0, 0.0), |m| m.contact_angles_rad()),
+            contact_angles_rad: s.contact_angles_rad(),
             kelvin_radius_m: air.map(|c| c.kelvin_radius_m),
             meniscus_height_m: cap.map(|c| c.meniscus_height_m()),
             min_kelvin_radius_m: env.min_kelvin_radius,
@@ -382,7 +386,7 @@ impl Meter {
             };
             let points = run.run(voltages, progress)?;
             let mut result =
-                structure::result(self.contact.name(), points, device, self.apparent_area_m2, self.humidity);
+                structure::result(self.contact.name(), points, device, self.apparent_area_m2, self.humidity.clone());
             if let Some(r) = self.reduction {
                 result.reduction = r;
             }
@@ -431,7 +435,7 @@ impl Meter {
                 real_area_m2: 0.0,
                 contacts: 0.0,
                 adhesive_load_n: 0.0,
-                capillary_load_n: self.humidity.map(|_| 0.0),
+                capillary_load_n: self.humidity.as_ref().map(|_| 0.0),
                 tilt_x_rad: 0.0,
                 tilt_y_rad: 0.0,
                 max_pressure_pa: 0.0,
@@ -643,7 +647,7 @@ impl Meter {
             spring_force_n: spring_force_used,
             pull_array_pull_in_v: pull_in_v,
             reduction,
-            environment: self.humidity,
+            environment: self.humidity.clone(),
             warnings,
             structure: None,
             lab_coefficient,

@@ -58,7 +58,22 @@ fn scenarios() -> Vec<(String, Value)> {
         if v.pointer("/contact/model").and_then(Value::as_str) == Some("bem") {
             continue; // the boundary-element model has its own fuzzing (crates/bem)
         }
-        out.push((p.file_name().unwrap().to_string_lossy().into_owned(), v));
+        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        // A humid scenario once more with a liquid given by its properties (ethanol, CRC values at
+        // 25 C), so that the liquid's fields are fuzzed like the others.
+        if v.get("environment").is_some() {
+            let mut given = v.clone();
+            given["environment"]["liquid"] = serde_json::json!({
+                "name": "ethanol", "surface_tension": "21.97 mN/m", "molar_volume": "58.68 cm^3/mol",
+                "saturation_pressure": "7.87 kPa", "contact_angle": "10 deg", "source": "CRC Handbook, 25 C"
+            });
+            if let Some(m) = given.get_mut("material").and_then(Value::as_object_mut) {
+                m.remove("contact_angle");
+                m.remove("counter_face_contact_angle");
+            }
+            out.push((format!("{name} + ethanol"), given));
+        }
+        out.push((name, v));
     }
     out
 }

@@ -229,6 +229,24 @@ fn mutated_bundled_scenarios_and_sets_keep_the_contract() {
         {
             e.insert("min_kelvin_radius".into(), Value::from("0.28 nm"));
         }
+        // Nor another liquid: one humid case in three condenses 1-pentanol or a liquid given by
+        // its properties (its fields leaves too).
+        if let Some(e) = v.get_mut("environment").and_then(Value::as_object_mut) {
+            match rng.below(6) {
+                0 => {
+                    e.insert("liquid".into(), Value::from("1-pentanol"));
+                }
+                1 => {
+                    e.insert(
+                        "liquid".into(),
+                        serde_json::json!({"name": "ethanol", "surface_tension": "21.97 mN/m",
+                            "molar_volume": "58.68 cm^3/mol", "saturation_pressure": "7.87 kPa",
+                            "source": "CRC Handbook, 25 C"}),
+                    );
+                }
+                _ => {}
+            }
+        }
         let mut paths = Vec::new();
         leaves(&v, &mut Vec::new(), &mut paths);
         paths.retain(|p| p.last().is_none_or(|l| l != "max_summits"));

@@ -18,7 +18,6 @@ use serde_json::Value;
 use stiction_units::{Constraint, Dimension, format_quantity, nominal_from_json};
 
 use crate::scenario::Scenario;
-use crate::spec::MaterialSpec;
 use crate::warning::Warning;
 
 /// Relative tolerance between a given `meter.spring_force` without an `sd` and k x_c (1 %).
@@ -609,10 +608,16 @@ impl Scenario {
             let origin = |f: &str, default: &str| {
                 if given(f) { format!("given: environment.{f}") } else { format!("default: {default}") }
             };
+            let water = env.is_water();
+            let liquid = env.liquid_name().to_string();
             push(
                 &mut q,
                 "relative_humidity".into(),
-                "relative humidity RH (environment.relative_humidity)".into(),
+                if water {
+                    "relative humidity RH (environment.relative_humidity)".into()
+                } else {
+                    format!("relative vapour pressure p/p_sat of {liquid} (environment.relative_humidity)")
+                },
                 env.relative_humidity,
                 None,
                 "",
@@ -631,22 +636,88 @@ impl Scenario {
                 origin("temperature", "25 C"),
                 None,
             );
-            let (a1, a2) = self.material.as_ref().map_or((0.0, 0.0), MaterialSpec::contact_angles_rad);
+            if !water {
+                let l = env.liquid_properties();
+                let named = !matches!(env.liquid, Some(crate::spec::LiquidSpec::Given(_)));
+                let origin = |what: &str| {
+                    if named {
+                        format!("derived: {liquid} at T, {what} (stiction_contact::capillary, sources there)")
+                    } else {
+                        format!("given: environment.liquid ({liquid})")
+                    }
+                };
+                push(
+                    &mut q,
+                    "surface_tension".into(),
+                    format!("surface tension gamma of {liquid}"),
+                    l.surface_tension_n_per_m,
+                    Some(Dimension::SurfaceEnergy),
+                    "N/m",
+                    None,
+                    origin("handbook surface tension"),
+                    None,
+                );
+                push(
+                    &mut q,
+                    "molar_volume".into(),
+                    format!("molar volume V_m of {liquid}"),
+                    l.molar_volume_m3_per_mol,
+                    Some(Dimension::MolarVolume),
+                    "m^3/mol",
+                    None,
+                    origin("molar mass over handbook density"),
+                    None,
+                );
+                if let Some(p_sat) = env.saturation_pressure_pa() {
+                    push(
+                        &mut q,
+                        "saturation_pressure".into(),
+                        format!("saturation vapour pressure p_sat of {liquid}"),
+                        p_sat,
+                        Some(Dimension::Pressure),
+                        "Pa",
+                        None,
+                        origin("saturation pressure"),
+                        None,
+                    );
+                    push(
+                        &mut q,
+                        "partial_pressure".into(),
+                        format!("partial pressure p of {liquid} vapour"),
+                        p_sat * env.relative_humidity,
+                        Some(Dimension::Pressure),
+                        "Pa",
+                        None,
+                        "derived: p = (p/p_sat) p_sat".into(),
+                        None,
+                    );
+                }
+            }
+            let (a1, a2) = self.contact_angles_rad();
+            let on_liquid = matches!(&env.liquid, Some(crate::spec::LiquidSpec::Given(g)) if g.contact_angle.is_some());
+            let angle_word = if water { "water".to_string() } else { liquid.clone() };
             for (key, name, field, v) in [
-                ("contact_angle", "water contact angle of the sidewall", "contact_angle", a1),
-                ("counter_face_contact_angle", "water contact angle of the shoe", "counter_face_contact_angle", a2),
+                ("contact_angle", format!("{angle_word} contact angle of the sidewall"), "contact_angle", a1),
+                (
+                    "counter_face_contact_angle",
+                    format!("{angle_word} contact angle of the shoe"),
+                    "counter_face_contact_angle",
+                    a2,
+                ),
             ] {
-                let given = self.source_json.pointer(&format!("/material/{field}")).is_some();
+                let section = if on_liquid { "environment/liquid" } else { "material" };
+                let given = self.source_json.pointer(&format!("/{section}/{field}")).is_some();
+                let dotted = section.replace('/', ".");
                 push(
                     &mut q,
                     key.into(),
-                    format!("{name} (material.{field})"),
+                    format!("{name} ({dotted}.{field})"),
                     v,
                     Some(Dimension::Angle),
                     "rad",
-                    self.given_sd(&["material", field], Dimension::Angle),
+                    if on_liquid { None } else { self.given_sd(&["material", field], Dimension::Angle) },
                     if given {
-                        format!("given: material.{field}")
+                        format!("given: {dotted}.{field}")
                     } else if field == "contact_angle" {
                         "default: 0 deg (a clean, fully wetting oxide)".into()
                     } else {
@@ -677,7 +748,11 @@ impl Scenario {
                     Some(Dimension::Length),
                     "m",
                     None,
-                    "derived: r_K = gamma V_m / (R T ln(1/RH)), water at T (IAPWS)".into(),
+                    if water {
+                        "derived: r_K = gamma V_m / (R T ln(1/RH)), water at T (IAPWS)".into()
+                    } else {
+                        format!("derived: r_K = gamma V_m / (R T ln(p_sat/p)), {liquid} at T")
+                    },
                     None,
                 );
                 push(

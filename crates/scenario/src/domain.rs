@@ -274,8 +274,8 @@ pub static DOMAINS: &[Domain] = &[
         max: 1.0,
         max_inclusive: false,
         usual: (0.0, 0.95),
-        reason: "a relative humidity is a fraction in [0, 1) (or a percentage); at saturation the Kelvin radius \
-                 is infinite and the gap floods",
+        reason: "a relative humidity (for another liquid its relative vapour pressure p/p_sat) is a \
+                 fraction in [0, 1) (or a percentage); at saturation the Kelvin radius is infinite and the gap floods",
     },
     Domain {
         paths: &["environment.temperature"],
@@ -288,6 +288,46 @@ pub static DOMAINS: &[Domain] = &[
         reason: "the water correlations (IAPWS surface tension and saturated-liquid density) hold from the \
                  triple point (273.16 K, 0.01 C) to the critical point (647.096 K); a bare number is kelvin",
     },
+    d(
+        &["environment.liquid.surface_tension"],
+        "N/m",
+        0.0,
+        false,
+        1.0,
+        (0.015, 0.08),
+        "the surface tension of a liquid against its vapour: from about 10 mN/m (fluorocarbons) to 72 mN/m \
+         (water) and 0.49 N/m (mercury)",
+    ),
+    d(
+        &["environment.liquid.molar_volume"],
+        "m^3/mol",
+        0.0,
+        false,
+        1e-3,
+        (1.5e-5, 3e-4),
+        "the molar volume of a liquid: from 14.8 cm^3/mol (mercury) and 18 cm^3/mol (water) to a few hundred \
+         cm^3/mol (long alcohols and alkanes)",
+    ),
+    d(
+        &["environment.liquid.saturation_pressure"],
+        "Pa",
+        0.0,
+        false,
+        1e7,
+        (1.0, 1.1e5),
+        "the saturation vapour pressure of a liquid at the temperature: above 0, and below the critical \
+         pressures of common liquids (about 10 MPa); a liquid that condenses at room temperature has a few Pa to \
+         one atmosphere",
+    ),
+    d(
+        &["environment.liquid.contact_angle", "environment.liquid.counter_face_contact_angle"],
+        "rad",
+        0.0,
+        true,
+        std::f64::consts::PI,
+        (0.0, std::f64::consts::PI),
+        "a contact angle lies between 0 and 180 deg",
+    ),
     d(
         &["environment.min_kelvin_radius"],
         "m",

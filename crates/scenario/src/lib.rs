@@ -174,6 +174,23 @@ impl Scenario {
         }
         if let Some(e) = &self.environment {
             e.validate().map_err(|(p, msg)| (format!("environment.{p}"), msg))?;
+            if let Some(spec::LiquidSpec::Given(g)) = &e.liquid {
+                let material_angle = self.material.as_ref().is_some_and(|m| m.contact_angle.is_some());
+                if g.contact_angle.is_none() && g.counter_face_contact_angle.is_some() {
+                    return Err((
+                        "environment.liquid.counter_face_contact_angle".into(),
+                        "given without `contact_angle`: give the sidewall's angle in `environment.liquid.contact_angle`"
+                            .into(),
+                    ));
+                }
+                if g.contact_angle.is_some() && material_angle {
+                    return Err((
+                        "environment.liquid.contact_angle".into(),
+                        "the contact angle is given twice (here and in `material.contact_angle`): give it in one place"
+                            .into(),
+                    ));
+                }
+            }
         }
         if let Some(c) = &self.contact {
             // Dimples give the discrete model its number of contacts (one source of truth).
@@ -308,14 +325,26 @@ impl Scenario {
 
     /// [`Scenario::capillarity`] without the `min_kelvin_radius` cut-off (what would condense).
     pub fn capillarity_before_cut_off(&self) -> Result<Option<stiction_contact::capillary::Capillarity>, String> {
-        use stiction_contact::capillary::{Capillarity, Liquid};
+        use stiction_contact::capillary::Capillarity;
         let Some(env) = &self.environment else { return Ok(None) };
         if env.relative_humidity == 0.0 {
             return Ok(None);
         }
-        let (a1, a2) = self.material.as_ref().map_or((0.0, 0.0), MaterialSpec::contact_angles_rad);
+        let (a1, a2) = self.contact_angles_rad();
         let t = env.temperature;
-        Capillarity::new(Liquid::water(t), t, env.relative_humidity, a1, a2).map_err(|e| format!("environment: {e}"))
+        Capillarity::new(env.liquid_properties(), t, env.relative_humidity, a1, a2)
+            .map_err(|e| format!("environment: {e}"))
+    }
+
+    /// The contact angles of the environment's liquid on the sidewall and on the shoe's face, rad:
+    /// a given liquid's own `contact_angle` when it states one, else the material's (default 0).
+    pub fn contact_angles_rad(&self) -> (f64, f64) {
+        if let Some(spec::LiquidSpec::Given(g)) = self.environment.as_ref().and_then(|e| e.liquid.as_ref())
+            && let Some(a) = g.contact_angle
+        {
+            return (a, g.counter_face_contact_angle.unwrap_or(a));
+        }
+        self.material.as_ref().map_or((0.0, 0.0), MaterialSpec::contact_angles_rad)
     }
 
     /// The contact section, or the paper's default (explicit solver, DMT, tilt free).

@@ -57,8 +57,10 @@ pub struct MaterialSpec {
     #[serde(default = "default_spacing", deserialize_with = "stiction_units::de::length_positive")]
     #[schemars(with = "QuantityInput")]
     pub equilibrium_spacing: f64,
-    /// Contact angle theta of water on both faces ("0 deg" for a clean hydrophilic oxide, "110 deg"
-    /// for a hydrophobic FOTS/OTS monolayer); used only with an `environment` section. Default 0 deg.
+    /// Contact angle theta of the environment's liquid (water unless `environment.liquid` names
+    /// another) on both faces ("0 deg" for water on a clean hydrophilic oxide, "110 deg" for water on
+    /// a hydrophobic FOTS/OTS monolayer); used only with an `environment` section. Default 0 deg. A
+    /// liquid given by its properties may state its own angles instead (not both).
     #[serde(
         default,
         deserialize_with = "stiction_units::de::opt_angle_nonnegative",
@@ -133,18 +135,21 @@ impl MaterialSpec {
     }
 }
 
-/// The air around the device: humidity (water condensing in the narrow gaps of the contact,
-/// capillary adhesion) and temperature.
+/// The air around the device: the vapour of a liquid (water by default) condensing in the narrow
+/// gaps of the contact (capillary adhesion), and the temperature.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct EnvironmentSpec {
-    /// Relative humidity of the air, a fraction in [0, 1) or a percentage ("35 %"); may be an
-    /// uncertain parameter (`{"value": "35 %", "sd": "5 %"}`) for a study to draw. 0: dry.
+    /// Relative vapour pressure `p/p_sat` of the condensing liquid: for water the relative humidity
+    /// of the air. A fraction in [0, 1) or a percentage ("35 %"); may be an uncertain parameter
+    /// (`{"value": "35 %", "sd": "5 %"}`) for a study to draw. 0: dry. With a liquid other than
+    /// water (`liquid`) it is that liquid's relative vapour pressure (0.95: 95 % of saturation).
     #[serde(deserialize_with = "stiction_units::de::dimensionless_nonnegative")]
     #[schemars(with = "QuantityInput")]
     pub relative_humidity: f64,
     /// Temperature: "25 C" (degrees Celsius), "298.15 K" or a number in kelvin; default 25 C. Sets
-    /// the surface tension and molar volume of water (IAPWS) and the Kelvin radius.
+    /// the surface tension and molar volume of the liquid (water: IAPWS; 1-pentanol: handbook
+    /// values, 15 C to 35 C) and the Kelvin radius.
     #[serde(default = "default_temperature", deserialize_with = "temperature_k")]
     #[schemars(with = "TemperatureInput")]
     pub temperature: f64,
@@ -158,6 +163,95 @@ pub struct EnvironmentSpec {
     )]
     #[schemars(with = "Option<QuantityInput>")]
     pub min_kelvin_radius: Option<f64>,
+    /// The condensing liquid: "water" (default: the IAPWS correlations), "1-pentanol" (handbook
+    /// values with their sources, `stiction_contact::capillary`), or a liquid given by its surface
+    /// tension, molar volume, saturation pressure (and optionally contact angles) with their source.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub liquid: Option<LiquidSpec>,
+}
+
+/// A liquid the program knows by name.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema, PartialEq, Eq)]
+pub enum LiquidName {
+    /// Water: IAPWS surface tension and saturated-liquid density.
+    #[serde(rename = "water")]
+    Water,
+    /// 1-pentanol (n-pentanol, the vapour-phase lubricant of MEMS sidewalls): handbook surface
+    /// tension and density, saturation pressure about 25 C; used from 15 C to 35 C.
+    #[serde(rename = "1-pentanol")]
+    Pentanol,
+}
+
+/// The condensing liquid of the `environment`: a name, or the liquid's properties.
+#[derive(Debug, Clone, Serialize, JsonSchema, PartialEq)]
+#[serde(untagged)]
+pub enum LiquidSpec {
+    /// "water" or "1-pentanol".
+    Named(LiquidName),
+    /// A liquid given by its properties at the scenario's temperature, with their source.
+    Given(GivenLiquid),
+}
+
+impl<'de> Deserialize<'de> for LiquidSpec {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        match Value::deserialize(d)? {
+            Value::String(name) => match name.as_str() {
+                "water" => Ok(LiquidSpec::Named(LiquidName::Water)),
+                "1-pentanol" => Ok(LiquidSpec::Named(LiquidName::Pentanol)),
+                other => Err(D::Error::custom(format!(
+                    "unknown liquid {:?}; expected \"water\", \"1-pentanol\" or an object giving `name`, \
+                     `surface_tension`, `molar_volume`, `saturation_pressure` and `source`",
+                    crate::text::truncate(other, 40)
+                ))),
+            },
+            v @ Value::Object(_) => GivenLiquid::deserialize(v).map(LiquidSpec::Given).map_err(D::Error::custom),
+            other => Err(D::Error::custom(format!(
+                "{}: expected a liquid's name (\"water\", \"1-pentanol\") or an object giving its properties",
+                crate::text::truncate(&other.to_string(), 40)
+            ))),
+        }
+    }
+}
+
+/// A condensing liquid given by its properties at the scenario's temperature (no temperature
+/// dependence is assumed: state the values at `environment.temperature`).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct GivenLiquid {
+    /// The liquid's name, for the outputs ("ethanol").
+    pub name: String,
+    /// Surface tension against its vapour, N/m ("22.0 mN/m").
+    #[serde(deserialize_with = "stiction_units::de::surface_energy_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub surface_tension: f64,
+    /// Molar volume of the liquid, m^3/mol ("58.7 cm^3/mol").
+    #[serde(deserialize_with = "stiction_units::de::molar_volume_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub molar_volume: f64,
+    /// Saturation vapour pressure at the temperature, Pa ("7.9 kPa"): the partial pressure a
+    /// relative pressure stands for (the Kelvin radius needs only `p/p_sat`).
+    #[serde(deserialize_with = "stiction_units::de::pressure_positive")]
+    #[schemars(with = "QuantityInput")]
+    pub saturation_pressure: f64,
+    /// Contact angle of the liquid on both faces (optional; else `material.contact_angle`, not both).
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_angle_nonnegative",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub contact_angle: Option<f64>,
+    /// Contact angle on the shoe's face when it differs (optional; default `contact_angle`).
+    #[serde(
+        default,
+        deserialize_with = "stiction_units::de::opt_angle_nonnegative",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[schemars(with = "Option<QuantityInput>")]
+    pub counter_face_contact_angle: Option<f64>,
+    /// Where the values were read (a handbook, a paper): required.
+    pub source: String,
 }
 
 /// A temperature: a number (kelvin) or a string "25 C", "25 degC", "298.15 K".
@@ -229,7 +323,71 @@ fn temperature_k<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
 }
 
 impl EnvironmentSpec {
+    /// The condensing liquid's name ("water", "1-pentanol", or the given liquid's `name`).
+    pub fn liquid_name(&self) -> &str {
+        match &self.liquid {
+            None | Some(LiquidSpec::Named(LiquidName::Water)) => "water",
+            Some(LiquidSpec::Named(LiquidName::Pentanol)) => "1-pentanol",
+            Some(LiquidSpec::Given(g)) => &g.name,
+        }
+    }
+
+    /// Whether the liquid is water (no `liquid`, or "water").
+    pub fn is_water(&self) -> bool {
+        matches!(self.liquid, None | Some(LiquidSpec::Named(LiquidName::Water)))
+    }
+
+    /// The liquid's surface tension and molar volume at the scenario's temperature.
+    pub fn liquid_properties(&self) -> stiction_contact::capillary::Liquid {
+        use stiction_contact::capillary::Liquid;
+        let t = self.temperature;
+        match &self.liquid {
+            None | Some(LiquidSpec::Named(LiquidName::Water)) => Liquid::water(t),
+            Some(LiquidSpec::Named(LiquidName::Pentanol)) => Liquid::pentanol(t),
+            Some(LiquidSpec::Given(g)) => {
+                Liquid { surface_tension_n_per_m: g.surface_tension, molar_volume_m3_per_mol: g.molar_volume }
+            }
+        }
+    }
+
+    /// The liquid's saturation vapour pressure at the temperature, Pa (water: not computed, None).
+    pub fn saturation_pressure_pa(&self) -> Option<f64> {
+        match &self.liquid {
+            None | Some(LiquidSpec::Named(LiquidName::Water)) => None,
+            Some(LiquidSpec::Named(LiquidName::Pentanol)) => {
+                Some(stiction_contact::capillary::pentanol_saturation_pressure_pa(self.temperature))
+            }
+            Some(LiquidSpec::Given(g)) => Some(g.saturation_pressure),
+        }
+    }
+
     pub(crate) fn validate(&self) -> Result<(), (String, String)> {
+        if let Some(LiquidSpec::Named(LiquidName::Pentanol)) = self.liquid {
+            let (lo, hi) = stiction_contact::capillary::PENTANOL_TEMPERATURE_RANGE_K;
+            if !(lo..=hi).contains(&self.temperature) {
+                return Err((
+                    "temperature".into(),
+                    format!(
+                        "{} K is outside the range of the 1-pentanol correlations, {lo} K to {hi} K (15 C to 35 C, \
+                         handbook values about 25 C); give the liquid by its properties at this temperature",
+                        crate::domain::short(self.temperature)
+                    ),
+                ));
+            }
+        }
+        if let Some(LiquidSpec::Given(g)) = &self.liquid {
+            for (field, text) in [("name", &g.name), ("source", &g.source)] {
+                if text.trim().is_empty() || text.chars().count() > 400 {
+                    return Err((
+                        format!("liquid.{field}"),
+                        format!(
+                            "expected a non-empty text of at most 400 characters, got {} characters",
+                            text.chars().count()
+                        ),
+                    ));
+                }
+            }
+        }
         if self.relative_humidity >= 1.0 {
             return Err((
                 "relative_humidity".into(),

@@ -206,7 +206,7 @@ impl Vary {
     pub fn check_values(&self) -> Result<(), StudyError> {
         let mut canon: Vec<Canon> = self.values.iter().map(|v| Canon::of_set_text(v)).collect();
         // A bare number is SI in the field's unit: with one unit among the values, it takes it.
-        let mut dims: Vec<[i8; 4]> = Vec::new();
+        let mut dims: Vec<[i8; 5]> = Vec::new();
         canon.iter().for_each(|c| c.dims(&mut dims));
         dims.sort_unstable();
         dims.dedup();
@@ -241,7 +241,7 @@ impl Vary {
 enum Canon {
     Null,
     Bool(bool),
-    Num(f64, [i8; 4]),
+    Num(f64, [i8; 5]),
     Text(String),
     List(Vec<Canon>),
     Map(Vec<(String, Canon)>),
@@ -260,7 +260,7 @@ impl Canon {
         match v {
             V::Null => Canon::Null,
             V::Bool(b) => Canon::Bool(*b),
-            V::Number(n) => Canon::Num(n.as_f64().unwrap_or(f64::NAN), [0; 4]),
+            V::Number(n) => Canon::Num(n.as_f64().unwrap_or(f64::NAN), [0; 5]),
             V::String(s) => match stiction_units::parse_any(s) {
                 Ok((x, d)) if x.is_finite() => Canon::Num(x, d.0),
                 _ => Canon::Text(s.clone()),
@@ -274,9 +274,9 @@ impl Canon {
     }
 
     /// The units (other than none) of the numbers in it.
-    fn dims(&self, out: &mut Vec<[i8; 4]>) {
+    fn dims(&self, out: &mut Vec<[i8; 5]>) {
         match self {
-            Canon::Num(_, d) if *d != [0; 4] => out.push(*d),
+            Canon::Num(_, d) if *d != [0; 5] => out.push(*d),
             Canon::List(a) => a.iter().for_each(|c| c.dims(out)),
             Canon::Map(m) => m.iter().for_each(|(_, c)| c.dims(out)),
             _ => {}
@@ -284,9 +284,9 @@ impl Canon {
     }
 
     /// Gives its bare numbers the unit `dim`.
-    fn assume_dim(&mut self, dim: [i8; 4]) {
+    fn assume_dim(&mut self, dim: [i8; 5]) {
         match self {
-            Canon::Num(_, d) if *d == [0; 4] => *d = dim,
+            Canon::Num(_, d) if *d == [0; 5] => *d = dim,
             Canon::List(a) => a.iter_mut().for_each(|c| c.assume_dim(dim)),
             Canon::Map(m) => m.iter_mut().for_each(|(_, c)| c.assume_dim(dim)),
             _ => {}

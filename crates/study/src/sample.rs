@@ -201,7 +201,7 @@ pub fn uncertain_parameters(value: &Value) -> Result<Vec<(String, String)>, Stud
 /// The SI unit of a dimension vector, by the names the scenario format uses.
 fn unit_of(dim: stiction_units::DimensionVector) -> String {
     use stiction_units::Dimension as D;
-    const ALL: [D; 15] = [
+    const ALL: [D; 16] = [
         D::Dimensionless,
         D::Length,
         D::Area,
@@ -217,12 +217,13 @@ fn unit_of(dim: stiction_units::DimensionVector) -> String {
         D::Time,
         D::Mass,
         D::Damping,
+        D::MolarVolume,
     ];
     match ALL.iter().find(|d| d.vector() == dim) {
         Some(D::Dimensionless) => "1".into(),
         Some(d) => d.si_unit().into(),
         None => {
-            let names = ["m", "kg", "s", "A"];
+            let names = ["m", "kg", "s", "A", "mol"];
             let parts: Vec<String> =
                 dim.0.iter().zip(names).filter(|(e, _)| **e != 0).map(|(e, n)| format!("{n}^{e}")).collect();
             parts.join(" ")

@@ -63,6 +63,7 @@ helpers! {
     time, time_positive, time_nonnegative, opt_time, opt_time_positive, opt_time_nonnegative => Dimension::Time;
     mass, mass_positive, mass_nonnegative, opt_mass, opt_mass_positive, opt_mass_nonnegative => Dimension::Mass;
     damping, damping_positive, damping_nonnegative, opt_damping, opt_damping_positive, opt_damping_nonnegative => Dimension::Damping;
+    molar_volume, molar_volume_positive, molar_volume_nonnegative, opt_molar_volume, opt_molar_volume_positive, opt_molar_volume_nonnegative => Dimension::MolarVolume;
 }
 
 #[cfg(test)]

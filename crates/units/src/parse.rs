@@ -6,29 +6,30 @@ use crate::{Constraint, Dimension, DimensionVector, QuantityError};
 struct Symbol {
     name: &'static str,
     factor: f64,
-    dims: [i8; 4],
+    dims: [i8; 5],
     /// Whether SI prefixes may be put in front of it.
     prefixable: bool,
 }
 
 const SYMBOLS: &[Symbol] = &[
-    Symbol { name: "m", factor: 1.0, dims: [1, 0, 0, 0], prefixable: true },
-    Symbol { name: "g", factor: 1e-3, dims: [0, 1, 0, 0], prefixable: true },
-    Symbol { name: "s", factor: 1.0, dims: [0, 0, 1, 0], prefixable: true },
-    Symbol { name: "A", factor: 1.0, dims: [0, 0, 0, 1], prefixable: true },
-    Symbol { name: "N", factor: 1.0, dims: [1, 1, -2, 0], prefixable: true },
-    Symbol { name: "Pa", factor: 1.0, dims: [-1, 1, -2, 0], prefixable: true },
-    Symbol { name: "J", factor: 1.0, dims: [2, 1, -2, 0], prefixable: true },
-    Symbol { name: "W", factor: 1.0, dims: [2, 1, -3, 0], prefixable: true },
-    Symbol { name: "V", factor: 1.0, dims: [2, 1, -3, -1], prefixable: true },
-    Symbol { name: "C", factor: 1.0, dims: [0, 0, 1, 1], prefixable: true },
-    Symbol { name: "F", factor: 1.0, dims: [-2, -1, 4, 2], prefixable: true },
-    Symbol { name: "Hz", factor: 1.0, dims: [0, 0, -1, 0], prefixable: true },
-    Symbol { name: "rad", factor: 1.0, dims: [0, 0, 0, 0], prefixable: true },
-    Symbol { name: "deg", factor: std::f64::consts::PI / 180.0, dims: [0, 0, 0, 0], prefixable: false },
-    Symbol { name: "%", factor: 0.01, dims: [0, 0, 0, 0], prefixable: false },
-    Symbol { name: "ppm", factor: 1e-6, dims: [0, 0, 0, 0], prefixable: false },
-    Symbol { name: "1", factor: 1.0, dims: [0, 0, 0, 0], prefixable: false },
+    Symbol { name: "m", factor: 1.0, dims: [1, 0, 0, 0, 0], prefixable: true },
+    Symbol { name: "g", factor: 1e-3, dims: [0, 1, 0, 0, 0], prefixable: true },
+    Symbol { name: "s", factor: 1.0, dims: [0, 0, 1, 0, 0], prefixable: true },
+    Symbol { name: "A", factor: 1.0, dims: [0, 0, 0, 1, 0], prefixable: true },
+    Symbol { name: "N", factor: 1.0, dims: [1, 1, -2, 0, 0], prefixable: true },
+    Symbol { name: "Pa", factor: 1.0, dims: [-1, 1, -2, 0, 0], prefixable: true },
+    Symbol { name: "J", factor: 1.0, dims: [2, 1, -2, 0, 0], prefixable: true },
+    Symbol { name: "W", factor: 1.0, dims: [2, 1, -3, 0, 0], prefixable: true },
+    Symbol { name: "V", factor: 1.0, dims: [2, 1, -3, -1, 0], prefixable: true },
+    Symbol { name: "C", factor: 1.0, dims: [0, 0, 1, 1, 0], prefixable: true },
+    Symbol { name: "F", factor: 1.0, dims: [-2, -1, 4, 2, 0], prefixable: true },
+    Symbol { name: "Hz", factor: 1.0, dims: [0, 0, -1, 0, 0], prefixable: true },
+    Symbol { name: "rad", factor: 1.0, dims: [0, 0, 0, 0, 0], prefixable: true },
+    Symbol { name: "deg", factor: std::f64::consts::PI / 180.0, dims: [0, 0, 0, 0, 0], prefixable: false },
+    Symbol { name: "%", factor: 0.01, dims: [0, 0, 0, 0, 0], prefixable: false },
+    Symbol { name: "ppm", factor: 1e-6, dims: [0, 0, 0, 0, 0], prefixable: false },
+    Symbol { name: "1", factor: 1.0, dims: [0, 0, 0, 0, 0], prefixable: false },
+    Symbol { name: "mol", factor: 1.0, dims: [0, 0, 0, 0, 1], prefixable: true },
 ];
 
 const PREFIXES: &[(&str, f64)] = &[
@@ -245,12 +246,13 @@ fn describe(d: DimensionVector) -> String {
         Dimension::Time,
         Dimension::Mass,
         Dimension::Damping,
+        Dimension::MolarVolume,
     ] {
         if dim.vector() == d {
             return dim.description().to_string();
         }
     }
-    let names = ["m", "kg", "s", "A"];
+    let names = ["m", "kg", "s", "A", "mol"];
     let parts: Vec<String> = names.iter().zip(d.0).filter(|(_, p)| *p != 0).map(|(n, p)| format!("{n}^{p}")).collect();
     format!("of dimension {}", parts.join(" "))
 }
@@ -330,6 +332,10 @@ mod tests {
             ("180 deg", Dimension::Angle, std::f64::consts::PI),
             ("1 /um^2", Dimension::ArealDensity, 1e12),
             ("5 mm", Dimension::Length, 5e-3),
+            // 1-pentanol at 25 C: 88.148 g/mol / 0.8108 g/cm^3 = 108.7 cm^3/mol = 1.087e-4 m^3/mol.
+            ("108.7 cm^3/mol", Dimension::MolarVolume, 108.7e-6),
+            ("18.07e-6 m^3/mol", Dimension::MolarVolume, 18.07e-6),
+            ("1.087e-4", Dimension::MolarVolume, 1.087e-4),
         ];
         for (text, dim, want) in cases {
             let got = parse_quantity(text, *dim).unwrap_or_else(|e| panic!("{text}: {e}"));

@@ -1,9 +1,9 @@
 //! What a quantity is: the dimension its unit must have ([`Dimension`], [`DimensionVector`]), the
 //! constraint on its value ([`Constraint`]) and the error naming what was wrong ([`QuantityError`]).
 
-/// Exponents of the base dimensions (metre, kilogram, second, ampere) of a unit.
+/// Exponents of the base dimensions (metre, kilogram, second, ampere, mole) of a unit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct DimensionVector(pub [i8; 4]);
+pub struct DimensionVector(pub [i8; 5]);
 
 /// Largest |exponent| of a base dimension in a unit expression (m^-2, V^-2 are far below it).
 pub const MAX_UNIT_EXPONENT: i32 = 24;
@@ -57,25 +57,28 @@ pub enum Dimension {
     Mass,
     /// Viscous damping coefficient, N s/m.
     Damping,
+    /// Molar volume of a liquid, m^3/mol ("108.7 cm^3/mol").
+    MolarVolume,
 }
 
 impl Dimension {
     /// The base-dimension exponents (m, kg, s, A) of this dimension.
     pub fn vector(self) -> DimensionVector {
         DimensionVector(match self {
-            Dimension::Length => [1, 0, 0, 0],
-            Dimension::Area => [2, 0, 0, 0],
-            Dimension::Force => [1, 1, -2, 0],
-            Dimension::Pressure => [-1, 1, -2, 0],
-            Dimension::SurfaceEnergy | Dimension::Stiffness => [0, 1, -2, 0],
-            Dimension::Compliance => [1, -1, 2, 0],
-            Dimension::ArealDensity => [-2, 0, 0, 0],
-            Dimension::ForcePerVoltageSquared => [-3, -1, 4, 2],
-            Dimension::Voltage => [2, 1, -3, -1],
-            Dimension::Dimensionless | Dimension::Angle => [0, 0, 0, 0],
-            Dimension::Time => [0, 0, 1, 0],
-            Dimension::Mass => [0, 1, 0, 0],
-            Dimension::Damping => [0, 1, -1, 0],
+            Dimension::Length => [1, 0, 0, 0, 0],
+            Dimension::Area => [2, 0, 0, 0, 0],
+            Dimension::Force => [1, 1, -2, 0, 0],
+            Dimension::Pressure => [-1, 1, -2, 0, 0],
+            Dimension::SurfaceEnergy | Dimension::Stiffness => [0, 1, -2, 0, 0],
+            Dimension::Compliance => [1, -1, 2, 0, 0],
+            Dimension::ArealDensity => [-2, 0, 0, 0, 0],
+            Dimension::ForcePerVoltageSquared => [-3, -1, 4, 2, 0],
+            Dimension::Voltage => [2, 1, -3, -1, 0],
+            Dimension::Dimensionless | Dimension::Angle => [0, 0, 0, 0, 0],
+            Dimension::Time => [0, 0, 1, 0, 0],
+            Dimension::Mass => [0, 1, 0, 0, 0],
+            Dimension::Damping => [0, 1, -1, 0, 0],
+            Dimension::MolarVolume => [3, 0, 0, 0, -1],
         })
     }
 
@@ -97,6 +100,7 @@ impl Dimension {
             Dimension::Time => "a time",
             Dimension::Mass => "a mass",
             Dimension::Damping => "a damping coefficient (force per velocity)",
+            Dimension::MolarVolume => "a molar volume (volume per amount of substance)",
         }
     }
 
@@ -118,6 +122,7 @@ impl Dimension {
             Dimension::Time => "s",
             Dimension::Mass => "kg",
             Dimension::Damping => "N s/m",
+            Dimension::MolarVolume => "m^3/mol",
         }
     }
 
@@ -139,6 +144,7 @@ impl Dimension {
             Dimension::Time => "\"10 ms\"",
             Dimension::Mass => "\"107 ng\"",
             Dimension::Damping => "\"2.1e-7 N s/m\"",
+            Dimension::MolarVolume => "\"108.7 cm^3/mol\"",
         }
     }
 }

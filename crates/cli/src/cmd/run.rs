@@ -232,11 +232,18 @@ fn print_humidity(r: &MeterResult, h: &stiction_meter::Humidity) {
         ),
         _ => "cos th1 + cos th2 <= 0: hydrophobic faces, no meniscus forms".to_string(),
     };
-    crate::outln!(
-        "  humid air: relative humidity {:.1} %, {:.2} C, water contact angle {angles}; {meniscus}",
-        h.relative_humidity * 100.0,
-        h.temperature_k - 273.15
-    );
+    match &h.liquid {
+        None => crate::outln!(
+            "  humid air: relative humidity {:.1} %, {:.2} C, water contact angle {angles}; {meniscus}",
+            h.relative_humidity * 100.0,
+            h.temperature_k - 273.15
+        ),
+        Some(name) => crate::outln!(
+            "  {name} vapour: {:.1} % of its saturation pressure, {:.2} C, {name} contact angle {angles}; {meniscus}",
+            h.relative_humidity * 100.0,
+            h.temperature_k - 273.15
+        ),
+    }
     if let Some(share) = stiction_engine::humidity::capillary_share(r) {
         crate::outln!(
             "  capillary share of the adhesive load: {:.1} % (summed over the points in contact; per point: \
