@@ -52,8 +52,9 @@ fn main() {
     }
     let mean = h.iter().sum::<f64>() / h.len() as f64;
     let top = h.iter().copied().fold(f64::NEG_INFINITY, f64::max) - mean;
-    // Mean gaps from just out of reach (top + range) down to a tenth of the top, and back.
-    let (hi, lo) = (top + RANGE_M, 0.1 * top);
+    // Mean gaps from just within reach of the highest point (top + 0.9 range) down to a tenth
+    // of the top, and back.
+    let (hi, lo) = (top + 0.9 * RANGE_M, 0.1 * top);
     let gaps: Vec<f64> = (0..points).map(|i| hi + (lo - hi) * i as f64 / (points - 1) as f64).collect();
     let law = Dugdale::from_work_and_range(w, RANGE_M).expect("law");
     let opts = SolverOptions { tolerance: tol, ..Default::default() };

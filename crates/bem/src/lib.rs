@@ -64,5 +64,5 @@ pub mod synth;
 pub use error::BemError;
 pub use grid::{BYTES_PER_POINT, Grid, MAX_POINTS};
 pub use loading::LoadingPath;
-pub use solver::{BemSolver, ContactSolution, Dugdale, HalfSpace, MAX_SEPARATION_STEPS, Separation, SolverOptions};
+pub use solver::{BemSolver, ContactSolution, Dugdale, HalfSpace, MAX_SEPARATION_STEPS, PlasticSolution, Separation, SolverOptions};
 pub use spec::BemSpec;

@@ -12,6 +12,9 @@ use crate::fft::Fft2;
 use crate::grid::{Grid, SUM_BLOCK, block_sum, block_sum2, in_pool};
 use crate::{patches, synth};
 
+mod plastic;
+pub use plastic::PlasticSolution;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Operator {
     /// `u(q) = 2 p(q)/(E* |q|)` (m/Pa).
