@@ -127,7 +127,8 @@ fn tamaas_dcfft() {
     let dx = doc["pixel_m"].as_f64().unwrap();
     let e_star = doc["e_star_pa"].as_f64().unwrap();
     let l = n as f64 * dx;
-    let vec = |v: &serde_json::Value| -> Vec<f64> { v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect() };
+    let vec =
+        |v: &serde_json::Value| -> Vec<f64> { v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect() };
     for name in ["punch", "hertz", "rough"] {
         let c = &doc["cases"][name];
         let h = match name {
