@@ -32,7 +32,7 @@ pub(super) fn in_pool<R: Send, F: FnOnce() -> R + Send>(f: F) -> R {
 }
 
 /// Deterministic parallel sum of `f` over fixed blocks of `0..n`, added in block order.
-pub(super) fn block_sum<F: Fn(std::ops::Range<usize>) -> f64 + Sync>(n: usize, f: F) -> f64 {
+pub(crate) fn block_sum<F: Fn(std::ops::Range<usize>) -> f64 + Sync>(n: usize, f: F) -> f64 {
     let nb = n.div_ceil(SUM_BLOCK);
     let parts: Vec<f64> = (0..nb).into_par_iter().map(|b| f(b * SUM_BLOCK..((b + 1) * SUM_BLOCK).min(n))).collect();
     parts.iter().sum()

@@ -9,6 +9,7 @@ use serde::Serialize;
 
 use crate::error::{BemError, check_nonnegative, check_positive};
 use crate::fft::Fft2;
+use crate::green::{Boundary, MAX_POINTS_NON_PERIODIC, Padded};
 use crate::grid::{Grid, SUM_BLOCK, block_sum, block_sum2, in_pool};
 use crate::{patches, synth};
 
@@ -23,11 +24,14 @@ pub(super) enum Operator {
     Stiffness,
 }
 
-/// The elastic half-space on a periodic grid: FFT plans, the multipliers and work buffers.
+/// The elastic half-space on the grid: FFT plans, the multipliers and work buffers; periodic, or
+/// a finite patch on an unbounded half-space ([`Boundary`], [`crate::green`]).
 #[derive(Debug)]
 pub struct HalfSpace {
     grid: Grid,
     e_star_pa: f64,
+    /// The zero-padded (non-periodic) compliance, when the boundary is non-periodic.
+    padded: Option<Box<Padded>>,
     fft: Fft2,
     compliance: Vec<f64>,
     stiffness: Vec<f64>,
@@ -57,12 +61,30 @@ impl HalfSpace {
         Ok(HalfSpace {
             grid,
             e_star_pa,
+            padded: None,
             fft,
             compliance,
             stiffness,
             rows: vec![Complex::default(); n],
             spec: vec![Complex::default(); n],
         })
+    }
+
+    /// The half-space of composite modulus `e_star_pa` (Pa) under a finite `grid` patch that goes
+    /// on beyond it (no periodic images; [`crate::green`]); `nx ny` at most
+    /// [`MAX_POINTS_NON_PERIODIC`]. Its traction-from-displacement operator is not available.
+    pub fn non_periodic(grid: Grid, e_star_pa: f64) -> Result<Self, BemError> {
+        if grid.len() > MAX_POINTS_NON_PERIODIC {
+            return Err(BemError::GridSize { nx: grid.nx, ny: grid.ny, limit: MAX_POINTS_NON_PERIODIC });
+        }
+        let mut h = HalfSpace::new(grid, e_star_pa)?;
+        h.padded = Some(Box::new(Padded::new(grid, e_star_pa)));
+        Ok(h)
+    }
+
+    /// Which Green's function this half-space uses.
+    pub fn boundary(&self) -> Boundary {
+        if self.padded.is_some() { Boundary::NonPeriodic } else { Boundary::Periodic }
     }
 
     /// The grid.
@@ -76,6 +98,10 @@ impl HalfSpace {
     }
 
     fn apply(&mut self, op: Operator, input: &[f64], out: &mut [f64]) {
+        if let (Some(p), Operator::Compliance) = (self.padded.as_mut(), op) {
+            p.compliance(input, out);
+            return;
+        }
         let m = match op {
             Operator::Compliance => &self.compliance,
             Operator::Stiffness => &self.stiffness,
@@ -92,6 +118,13 @@ impl HalfSpace {
         prepare: P,
         out: &mut [f64],
     ) {
+        if self.padded.is_some() && op == Operator::Compliance {
+            // The padded convolution reads the whole field: prepare it first, in blocks of rows.
+            let block = 16 * self.grid.nx;
+            field.par_chunks_mut(block).enumerate().for_each(|(k, c)| prepare(k * block, c));
+            self.apply(op, field, out);
+            return;
+        }
         let m = match op {
             Operator::Compliance => &self.compliance,
             Operator::Stiffness => &self.stiffness,
@@ -106,15 +139,16 @@ impl HalfSpace {
         u
     }
 
-    /// Traction `p = K^-1[u] - mean` (Pa, zero mean) for the displacement `u` (m).
+    /// Traction `p = K^-1[u] - mean` (Pa, zero mean) for the displacement `u` (m), with the
+    /// periodic stiffness (also on a non-periodic half-space, whose own inverse is not diagonal).
     pub fn traction(&mut self, displacement_m: &[f64]) -> Vec<f64> {
         let mut p = vec![0.0; self.grid.len()];
         self.apply(Operator::Stiffness, displacement_m, &mut p);
         p
     }
 
-    /// Elastic energy per nominal area, J/m^2: `U/A0 = mean(p u)/2` with `u = K[p]` (the mean
-    /// pressure does no work on the zero-mean displacement).
+    /// Elastic energy per nominal area, J/m^2: `U/A0 = mean(p u)/2` with `u = K[p]` (periodic: the
+    /// mean pressure does no work on the zero-mean displacement; non-periodic: the whole work).
     pub fn elastic_energy_j_per_m2(&mut self, pressure_pa: &[f64]) -> f64 {
         let u = self.displacement(pressure_pa);
         0.5 * block_sum(u.len(), |r| r.map(|i| pressure_pa[i] * u[i]).sum()) / u.len() as f64
@@ -277,6 +311,21 @@ impl BemSolver {
         heights_m: &[f64],
         e_star_pa: f64,
     ) -> Result<Self, BemError> {
+        Self::with_boundary(nx, ny, dx_m, dy_m, heights_m, e_star_pa, Boundary::Periodic)
+    }
+
+    /// As [`Self::new`], with the Green's function of `boundary`: [`Boundary::NonPeriodic`] makes
+    /// the grid a finite patch (a shoe face) on a half-space that goes on ([`crate::green`]);
+    /// only load-controlled solves are then available.
+    pub fn with_boundary(
+        nx: usize,
+        ny: usize,
+        dx_m: f64,
+        dy_m: f64,
+        heights_m: &[f64],
+        e_star_pa: f64,
+        boundary: Boundary,
+    ) -> Result<Self, BemError> {
         let grid = Grid::new(nx, ny, dx_m, dy_m)?;
         if heights_m.len() != grid.len() {
             return Err(BemError::HeightLength { len: heights_m.len(), expected: grid.len() });
@@ -284,7 +333,10 @@ impl BemSolver {
         if let Some((index, &value)) = heights_m.iter().enumerate().find(|(_, h)| !h.is_finite()) {
             return Err(BemError::HeightValue { index, value });
         }
-        let mut half = HalfSpace::new(grid, e_star_pa)?;
+        let mut half = match boundary {
+            Boundary::Periodic => HalfSpace::new(grid, e_star_pa)?,
+            Boundary::NonPeriodic => HalfSpace::non_periodic(grid, e_star_pa)?,
+        };
         let n = grid.len() as f64;
         let height_mean = block_sum(heights_m.len(), |r| heights_m[r].iter().sum()) / n;
         let height_max = heights_m.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -298,6 +350,51 @@ impl BemSolver {
     /// The grid.
     pub fn grid(&self) -> Grid {
         self.half.grid
+    }
+
+    /// Replaces the height field (same grid; finite values checked) and its statistics, keeping
+    /// the half-space (FFT plans and multipliers): for a rigid shoe whose pose changes.
+    pub fn set_heights(&mut self, heights_m: &[f64]) -> Result<(), BemError> {
+        let n = self.heights.len();
+        if heights_m.len() != n {
+            return Err(BemError::HeightLength { len: heights_m.len(), expected: n });
+        }
+        if let Some((index, &value)) = heights_m.iter().enumerate().find(|(_, h)| !h.is_finite()) {
+            return Err(BemError::HeightValue { index, value });
+        }
+        self.heights.copy_from_slice(heights_m);
+        let nf = n as f64;
+        self.height_mean = block_sum(n, |r| heights_m[r].iter().sum()) / nf;
+        self.height_max = heights_m.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let m = self.height_mean;
+        self.height_rms = (block_sum(n, |r| heights_m[r].iter().map(|h| (h - m).powi(2)).sum()) / nf).sqrt();
+        let k = self.half.traction(heights_m);
+        self.stiff_rms = (block_sum(n, |r| k[r].iter().map(|v| v * v).sum()) / nf).sqrt();
+        Ok(())
+    }
+
+    /// The height field, m (row-major).
+    pub fn heights_m(&self) -> &[f64] {
+        &self.heights
+    }
+
+    /// The Green's function in use.
+    pub fn boundary(&self) -> Boundary {
+        self.half.boundary()
+    }
+
+    /// Refuses a mean-gap (dual) solve on a non-periodic half-space, whose stiffness operator is
+    /// not diagonal in Fourier space.
+    fn require_periodic(&self) -> Result<(), BemError> {
+        if self.half.boundary() == Boundary::NonPeriodic {
+            return Err(BemError::Value {
+                name: "mean_gap_m",
+                value: f64::NAN,
+                expected: "load control on a non-periodic half-space (mean-gap control needs the periodic \
+                           Green's function)",
+            });
+        }
+        Ok(())
     }
 
     /// The half-space (for displacements and energies of a solution).
@@ -528,7 +625,10 @@ impl BemSolver {
         let mean_gap_m = block_sum(gap_m.len(), |r| gap_m[r].iter().sum()) / n;
         let n_contact = contact.iter().filter(|&&c| c).count();
         let contact_fraction = n_contact as f64 / n;
-        let patches = patches::count_patches(&contact, grid.nx, grid.ny);
+        let patches = match self.half.boundary() {
+            Boundary::Periodic => patches::count_patches(&contact, grid.nx, grid.ny),
+            Boundary::NonPeriodic => patches::count_patches_bounded(&contact, grid.nx, grid.ny),
+        };
         let elastic_energy_j_per_m2 = self.half.elastic_energy_j_per_m2(&pressure_pa);
         ContactSolution {
             pressure_pa,
@@ -593,6 +693,7 @@ impl BemSolver {
         warm: Option<&ContactSolution>,
     ) -> Result<ContactSolution, BemError> {
         opts.validate()?;
+        self.require_periodic()?;
         check_positive("mean_gap_m", mean_gap_m, "a finite mean gap > 0 (m)")?;
         let b = self.data_for_gap(None);
         self.gap_solve(&b, mean_gap_m, opts, warm.map(|s| s.gap_m.as_slice())).map(|(g, p, it, res)| {
@@ -687,6 +788,7 @@ impl BemSolver {
         warm: Option<&ContactSolution>,
     ) -> Result<ContactSolution, BemError> {
         opts.validate()?;
+        self.require_periodic()?;
         check_positive("mean_gap_m", mean_gap_m, "a finite mean gap > 0 (m)")?;
         if laws.is_empty() {
             return Err(BemError::Value { name: "laws", value: 0.0, expected: "at least one cohesive law" });
