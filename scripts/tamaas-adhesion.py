@@ -80,7 +80,7 @@ class CaptureStderr:
 
 def last_iteration(log):
     rows = re.findall(r"^\s*(\d+)\s+\S+\s+\S+\s*$", log, re.M)
-    return int(rows[-1]) if rows else -1
+    return max(int(r) for r in rows) if rows else -1
 
 
 def energy(p, u, gap, w):

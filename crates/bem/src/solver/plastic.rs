@@ -87,8 +87,9 @@ const SHIFT_STEPS: usize = 80;
 /// target, the shift of the contact points by bisection. Deterministic block sums.
 fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> {
     let n = x.len() as f64;
-    let (free_sum, capped) =
-        block_sum2(x.len(), |rg| rg.fold((0.0, 0.0), |a, i| if x[i] < cap { (a.0 + x[i], a.1) } else { (a.0, a.1 + cap) }));
+    let (free_sum, capped) = block_sum2(x.len(), |rg| {
+        rg.fold((0.0, 0.0), |a, i| if x[i] < cap { (a.0 + x[i], a.1) } else { (a.0, a.1 + cap) })
+    });
     if !(free_sum + capped).is_finite() || free_sum + capped <= 0.0 {
         return None;
     }
@@ -292,8 +293,7 @@ impl BemSolver {
         }
         let contact: Vec<bool> = x.iter().map(|&v| v > 0.0).collect();
         let plastic = x.iter().filter(|&&v| v >= cap).count();
-        let max_plastic_depth_m =
-            x.iter().zip(&r).filter(|&(&v, _)| v >= cap).fold(0.0f64, |m, (_, &g)| m.max(-g));
+        let max_plastic_depth_m = x.iter().zip(&r).filter(|&(&v, _)| v >= cap).fold(0.0f64, |m, (_, &g)| m.max(-g));
         let gap: Vec<f64> = x.iter().zip(&r).map(|(&v, &g)| if v > 0.0 { 0.0 } else { g.max(0.0) }).collect();
         let sol = self.finish(x, gap, contact, 0, it, 1, residual);
         let grid = self.half.grid;
