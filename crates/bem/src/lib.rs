@@ -68,5 +68,7 @@ pub use green::Boundary;
 pub use grid::{BYTES_PER_POINT, Grid, MAX_POINTS};
 pub use loading::LoadingPath;
 pub use shoe::TiltedShoe;
-pub use solver::{BemSolver, ContactSolution, Dugdale, HalfSpace, MAX_SEPARATION_STEPS, Separation, SolverOptions};
+pub use solver::{
+    BemSolver, ContactSolution, Dugdale, HalfSpace, MAX_SEPARATION_STEPS, PlasticSolution, Separation, SolverOptions,
+};
 pub use spec::BemSpec;

@@ -10,8 +10,11 @@ use serde::Serialize;
 use crate::error::{BemError, check_nonnegative, check_positive};
 use crate::fft::Fft2;
 use crate::green::{Boundary, MAX_POINTS_NON_PERIODIC, Padded};
-use crate::grid::{Grid, SUM_BLOCK, block_sum, block_sum2};
+use crate::grid::{Grid, SUM_BLOCK, block_sum, block_sum2, in_pool};
 use crate::{patches, synth};
+
+mod plastic;
+pub use plastic::PlasticSolution;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Operator {
@@ -34,7 +37,6 @@ pub struct HalfSpace {
     stiffness: Vec<f64>,
     rows: Vec<Complex<f64>>,
     spec: Vec<Complex<f64>>,
-    work: Vec<f64>,
 }
 
 impl HalfSpace {
@@ -65,7 +67,6 @@ impl HalfSpace {
             stiffness,
             rows: vec![Complex::default(); n],
             spec: vec![Complex::default(); n],
-            work: vec![0.0; grid.len()],
         })
     }
 
@@ -101,18 +102,34 @@ impl HalfSpace {
             p.compliance(input, out);
             return;
         }
-        self.work.copy_from_slice(input);
-        self.fft.forward(&mut self.work, &mut self.rows, &mut self.spec);
         let m = match op {
             Operator::Compliance => &self.compliance,
             Operator::Stiffness => &self.stiffness,
         };
-        self.spec.par_chunks_mut(SUM_BLOCK).zip(m.par_chunks(SUM_BLOCK)).for_each(|(s, m)| {
-            for (s, m) in s.iter_mut().zip(m) {
-                *s *= *m;
-            }
-        });
-        self.fft.inverse(&mut self.spec, &mut self.rows, out);
+        self.fft.convolve(input, m, &mut self.rows, &mut self.spec, out);
+    }
+
+    /// `out = A[field]` after `prepare(offset, block)` has rewritten `field` block by block, in
+    /// the pass that transforms it ([`Fft2::convolve_prepared`]).
+    fn apply_prepared<P: Fn(usize, &mut [f64]) + Sync>(
+        &mut self,
+        op: Operator,
+        field: &mut [f64],
+        prepare: P,
+        out: &mut [f64],
+    ) {
+        if let (Some(p), Operator::Compliance) = (self.padded.as_mut(), op) {
+            // `prepare` rewrites the field element by element (by offset): row by row here.
+            let nx = self.grid.nx;
+            field.par_chunks_mut(nx).enumerate().for_each(|(j, row)| prepare(j * nx, row));
+            p.compliance(field, out);
+            return;
+        }
+        let m = match op {
+            Operator::Compliance => &self.compliance,
+            Operator::Stiffness => &self.stiffness,
+        };
+        self.fft.convolve_prepared(field, prepare, m, &mut self.rows, &mut self.spec, out);
     }
 
     /// Surface displacement `u = K[p]` (m, zero mean) under the traction `pressure_pa` (Pa).
@@ -407,6 +424,22 @@ impl BemSolver {
         scale: f64,
         opts: &SolverOptions,
     ) -> Result<CgOut, BemError> {
+        in_pool(|| self.constrained_cg_on_worker(op, b, x, target, scale, opts))
+    }
+
+    /// [`Self::constrained_cg`] on a pool worker. Each iteration is seven parallel passes over
+    /// the grid besides its convolution's five (the direction is built in the convolution's first
+    /// pass); the block sums are those of [`block_sum`], so the bytes do not depend on the
+    /// thread count.
+    fn constrained_cg_on_worker(
+        &mut self,
+        op: Operator,
+        b: &[f64],
+        x: &mut [f64],
+        target: f64,
+        scale: f64,
+        opts: &SolverOptions,
+    ) -> Result<CgOut, BemError> {
         let n = x.len();
         let scale = if scale > 0.0 { scale } else { 1.0 };
         let mut r = vec![0.0; n];
@@ -428,9 +461,21 @@ impl BemSolver {
                 self.half.apply(op, x, &mut ax);
                 exact = true;
             }
-            r.par_iter_mut().zip(ax.par_iter()).zip(b.par_iter()).for_each(|((r, a), b)| *r = a - b);
-            let (ns, sum_rs) =
-                block_sum2(n, |rg| rg.filter(|&i| x[i] > 0.0).fold((0.0, 0.0), |a, i| (a.0 + 1.0, a.1 + r[i])));
+            // r = A x - b, and the count and sum of r on the active set S = {x > 0}.
+            let parts: Vec<(f64, f64)> = {
+                let (xs, ax) = (&*x, &ax);
+                r.par_chunks_mut(SUM_BLOCK)
+                    .enumerate()
+                    .map(|(k, rc)| {
+                        let o = k * SUM_BLOCK;
+                        for (j, r) in rc.iter_mut().enumerate() {
+                            *r = ax[o + j] - b[o + j];
+                        }
+                        (0..rc.len()).filter(|&j| xs[o + j] > 0.0).fold((0.0, 0.0), |a, j| (a.0 + 1.0, a.1 + rc[j]))
+                    })
+                    .collect()
+            };
+            let (ns, sum_rs) = parts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
             if ns == 0.0 {
                 return Err(BemError::NoConvergence {
                     what: "constrained CG (empty active set)",
@@ -440,16 +485,28 @@ impl BemSolver {
                 });
             }
             let rbar = sum_rs / ns;
-            r.par_iter_mut().for_each(|r| *r -= rbar);
-            let (sum_x, sum_viol) = block_sum2(n, |rg| {
-                rg.fold((0.0, 0.0), |a, i| {
-                    if x[i] > 0.0 {
-                        (a.0 + x[i], a.1 + x[i] * r[i].abs())
-                    } else {
-                        (a.0, a.1 + (-r[i]).max(0.0) * target)
-                    }
-                })
-            });
+            // r -= mean_S r; the residual's two sums and the squared norm of r on S.
+            let parts: Vec<(f64, f64, f64)> = {
+                let xs = &*x;
+                r.par_chunks_mut(SUM_BLOCK)
+                    .enumerate()
+                    .map(|(k, rc)| {
+                        let o = k * SUM_BLOCK;
+                        rc.iter_mut().for_each(|r| *r -= rbar);
+                        let (sx, sv) = (0..rc.len()).fold((0.0, 0.0), |a, j| {
+                            let xi = xs[o + j];
+                            if xi > 0.0 {
+                                (a.0 + xi, a.1 + xi * rc[j].abs())
+                            } else {
+                                (a.0, a.1 + (-rc[j]).max(0.0) * target)
+                            }
+                        });
+                        let g: f64 = (0..rc.len()).filter(|&j| xs[o + j] > 0.0).map(|j| rc[j] * rc[j]).sum();
+                        (sx, sv, g)
+                    })
+                    .collect()
+            };
+            let (sum_x, sum_viol) = parts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
             residual = sum_viol / (sum_x * scale);
             if residual < opts.tolerance {
                 if exact {
@@ -459,13 +516,24 @@ impl BemSolver {
                 exact = true;
                 continue;
             }
-            let g = block_sum(n, |rg| rg.filter(|&i| x[i] > 0.0).map(|i| r[i] * r[i]).sum());
+            let g: f64 = parts.iter().map(|p| p.2).sum();
             let beta = delta * g / g_old;
-            t.par_iter_mut().zip(x.par_iter()).zip(r.par_iter()).for_each(|((t, x), r)| {
-                *t = if *x > 0.0 { r + beta * *t } else { 0.0 };
-            });
+            // t = r + beta t on S, 0 elsewhere, built in the convolution's first pass; w = A t.
+            {
+                let (xs, rs) = (&*x, &r);
+                self.half.apply_prepared(
+                    op,
+                    &mut t,
+                    |o, tc| {
+                        for (j, t) in tc.iter_mut().enumerate() {
+                            let i = o + j;
+                            *t = if xs[i] > 0.0 { rs[i] + beta * *t } else { 0.0 };
+                        }
+                    },
+                    &mut w,
+                );
+            }
             g_old = g;
-            self.half.apply(op, &t, &mut w);
             let sum_w = block_sum(n, |rg| rg.filter(|&i| x[i] > 0.0).map(|i| w[i]).sum());
             let wbar = sum_w / ns;
             let (num, den) = block_sum2(n, |rg| {
@@ -481,8 +549,9 @@ impl BemSolver {
             }
             let tau = num / den;
             // Step on the active set, project on x >= 0, and release the points that overlap
-            // (x = 0 with a negative complementary field).
-            let n_overlap: usize = x
+            // (x = 0 with a negative complementary field); in the same pass, count the points
+            // the step put on the bound and sum x.
+            let parts: Vec<(usize, f64, f64)> = x
                 .par_chunks_mut(SUM_BLOCK)
                 .zip(t.par_chunks(SUM_BLOCK))
                 .zip(r.par_chunks(SUM_BLOCK))
@@ -496,12 +565,15 @@ impl BemSolver {
                             k += 1;
                         }
                     }
-                    k
+                    let bound = x.iter().zip(t).filter(|&(x, t)| *t != 0.0 && *x == 0.0).count() as f64;
+                    let sum: f64 = x.iter().sum();
+                    (k, bound, sum)
                 })
-                .sum();
+                .collect();
+            let n_overlap: usize = parts.iter().map(|p| p.0).sum();
             delta = if n_overlap == 0 { 1.0 } else { 0.0 };
-            let n_bound = block_sum(n, |rg| rg.filter(|&i| t[i] != 0.0 && x[i] == 0.0).count() as f64);
-            let mean = block_sum(n, |rg| x[rg].iter().sum()) / n as f64;
+            let n_bound: f64 = parts.iter().map(|p| p.1).sum();
+            let mean = parts.iter().map(|p| p.2).sum::<f64>() / n as f64;
             if mean.is_nan() || mean <= 0.0 {
                 return Err(BemError::NoConvergence {
                     what: "constrained CG (all points released)",
@@ -511,12 +583,19 @@ impl BemSolver {
                 });
             }
             let f = target / mean;
-            x.par_iter_mut().for_each(|x| *x *= f);
             it += 1;
             if n_overlap == 0 && n_bound == 0.0 {
-                ax.par_iter_mut().zip(w.par_iter()).for_each(|(a, w)| *a = f * (*a - tau * w));
+                x.par_chunks_mut(SUM_BLOCK).zip(ax.par_chunks_mut(SUM_BLOCK)).zip(w.par_chunks(SUM_BLOCK)).for_each(
+                    |((x, a), w)| {
+                        for ((x, a), w) in x.iter_mut().zip(a).zip(w) {
+                            *x *= f;
+                            *a = f * (*a - tau * w);
+                        }
+                    },
+                );
                 exact = false;
             } else {
+                x.par_chunks_mut(SUM_BLOCK).for_each(|x| x.iter_mut().for_each(|x| *x *= f));
                 self.half.apply(op, x, &mut ax);
                 exact = true;
             }
@@ -691,6 +770,17 @@ impl BemSolver {
     /// [`Dugdale::capillary`]) under mean-gap control (m, > 0). The zones are updated together
     /// until none changes. One law is [`Self::solve_adhesive_mean_gap`], to the bit.
     pub fn solve_cohesive_mean_gap(
+        &mut self,
+        mean_gap_m: f64,
+        laws: &[Dugdale],
+        opts: &SolverOptions,
+        warm: Option<&ContactSolution>,
+    ) -> Result<ContactSolution, BemError> {
+        in_pool(|| self.solve_cohesive_on_worker(mean_gap_m, laws, opts, warm))
+    }
+
+    /// [`Self::solve_cohesive_mean_gap`] on a pool worker.
+    fn solve_cohesive_on_worker(
         &mut self,
         mean_gap_m: f64,
         laws: &[Dugdale],
