@@ -45,13 +45,18 @@ pub const MAX_POINTS_NON_PERIODIC: usize = MAX_POINTS / 4;
 /// and the real multiplier (2 x 8 bytes) = 112 bytes per point of the patch.
 pub const PADDED_BYTES_PER_POINT: usize = 112;
 
-/// Which Green's function a [`crate::HalfSpace`] uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
+/// Which Green's function a [`crate::HalfSpace`] uses (scenario `contact.bem.boundary`:
+/// "non_periodic" or "periodic").
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
 pub enum Boundary {
     /// The grid is one periodic cell (a statistically homogeneous interface).
     #[default]
     Periodic,
-    /// The grid is a finite patch on an unbounded half-space (zero padding, no images).
+    /// The grid is a finite patch on an unbounded half-space (zero padding, no images): a shoe
+    /// face on a wall that goes on.
     NonPeriodic,
 }
 

@@ -234,9 +234,15 @@ impl BemSolver {
         let (mut sol, mut m) = pose(self, t, warm.map(|w| &w.solution))?;
         // Characteristic tilt: the height range over the half-diagonal (at least one in 1e6).
         let (hmin, hmax) = base.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &h| (a.0.min(h), a.1.max(h)));
-        let tilt_scale = ((hmax - hmin) / half_diag).max(1e-6).min(MAX_TILT_RAD);
-        let mut radius = 0.25 * tilt_scale;
+        let tilt_scale = ((hmax - hmin) / half_diag).clamp(1e-6, MAX_TILT_RAD);
+        let mut step = 0.25 * tilt_scale;
         let norm = |m: (f64, f64)| m.0.hypot(m.1);
+        let dot = |a: (f64, f64), b: (f64, f64)| a.0 * b.0 + a.1 * b.1;
+        let tip_over = || BemError::Value {
+            name: "target_pa",
+            value: target_pa,
+            expected: "a load the shoe carries without tipping over (tilt below 0.05 rad)",
+        };
         loop {
             if norm(m) < MOMENT_TOLERANCE {
                 let moment_residual_n_m = (m.0 * scale, m.1 * scale);
@@ -248,7 +254,7 @@ impl BemSolver {
                     solves: solves.get(),
                 });
             }
-            if solves.get() >= MAX_POSE_SOLVES || radius < 1e-14 * tilt_scale {
+            if solves.get() >= MAX_POSE_SOLVES {
                 return Err(BemError::NoConvergence {
                     what: "tilting shoe (moment balance)",
                     iterations: solves.get(),
@@ -257,51 +263,91 @@ impl BemSolver {
                 });
             }
             // Jacobian dM/dt by forward differences, warm-started from the current state.
-            let eps = 1e-3 * radius;
+            let eps = 1e-4 * step.max(1e-3 * tilt_scale);
             let (_, mx) = pose(self, (t.0 + eps, t.1), Some(&sol))?;
             let (_, my) = pose(self, (t.0, t.1 + eps), Some(&sol))?;
             let j = [[(mx.0 - m.0) / eps, (my.0 - m.0) / eps], [(mx.1 - m.1) / eps, (my.1 - m.1) / eps]];
             let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
             let trace = j[0][0] + j[1][1];
-            // Newton where the Jacobian is negative definite and well conditioned, else ascent
-            // along M (which tilts the face down on the unloaded side).
-            let newton = if det > 0.0 && trace < 0.0 && det > 1e-8 * trace * trace {
-                let dx = -(j[1][1] * m.0 - j[0][1] * m.1) / det;
-                let dy = -(-j[1][0] * m.0 + j[0][0] * m.1) / det;
-                Some((dx, dy))
-            } else {
-                None
+            // The Newton step where the Jacobian is negative definite and well conditioned (an
+            // ascent direction of the dual energy: m . dt > 0), else the moment itself (which
+            // tilts the face down on the unloaded side).
+            let newton = (det > 0.0 && trace < 0.0 && det > 1e-8 * trace * trace)
+                .then(|| (-(j[1][1] * m.0 - j[0][1] * m.1) / det, -(-j[1][0] * m.0 + j[0][0] * m.1) / det))
+                .filter(|d| dot(*d, m) > 0.0);
+            let (dir, s0) = match newton {
+                Some(d) => {
+                    let len = d.0.hypot(d.1);
+                    ((d.0 / len, d.1 / len), len.min(4.0 * tilt_scale))
+                }
+                None => ((m.0 / norm(m), m.1 / norm(m)), step),
             };
-            let (mut dt, is_newton) = match newton {
-                Some(d) => (d, true),
-                None => {
-                    let k = radius / norm(m);
-                    ((m.0 * k, m.1 * k), false)
+            // Along the direction, f(s) = M(t + s dir) . dir is non-increasing (the dual energy is
+            // concave): take the Newton step if it halves |M|, else find the root of f by
+            // bracketing and the Illinois rule.
+            let at = |s: f64| (t.0 + s * dir.0, t.1 + s * dir.1);
+            let f0 = dot(m, dir);
+            // The largest step that keeps the tilt within MAX_TILT_RAD: |t + s dir| = MAX.
+            let b = dot(t, dir);
+            let s_max = -b + (b * b - dot(t, t) + MAX_TILT_RAD * MAX_TILT_RAD).max(0.0).sqrt();
+            let s0 = s0.min(s_max);
+            let mut trial = |s: f64| -> Result<(ContactSolution, (f64, f64)), BemError> {
+                pose(self, at(s), Some(&sol))
+            };
+            let (s_new, sol_new, m_new) = {
+                let (s1, m1) = trial(s0)?;
+                if newton.is_some() && norm(m1) < 0.5 * norm(m) {
+                    (s0, s1, m1)
+                } else {
+                    let (mut lo, mut f_lo) = (0.0, f0);
+                    let (mut hi, mut f_hi, mut best) = (s0, dot(m1, dir), (s0, s1, m1));
+                    while f_hi > 0.0 {
+                        if solves.get() >= MAX_POSE_SOLVES {
+                            break;
+                        }
+                        if hi >= s_max {
+                            return Err(tip_over());
+                        }
+                        lo = hi;
+                        f_lo = f_hi;
+                        hi = (2.0 * hi).min(s_max);
+                        let (s2, m2) = trial(hi)?;
+                        f_hi = dot(m2, dir);
+                        best = (hi, s2, m2);
+                    }
+                    let mut side = 0i8;
+                    while f_hi <= 0.0 && best.2 != m && dot(best.2, dir).abs() > 0.1 * f0 {
+                        if solves.get() >= MAX_POSE_SOLVES {
+                            break;
+                        }
+                        let s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+                        let s = if s.is_finite() && s > lo && s < hi { s } else { 0.5 * (lo + hi) };
+                        let (s2, m2) = trial(s)?;
+                        let f = dot(m2, dir);
+                        if f > 0.0 {
+                            lo = s;
+                            f_lo = f;
+                            if side == 1 {
+                                f_hi *= 0.5;
+                            }
+                            side = 1;
+                        } else {
+                            hi = s;
+                            f_hi = f;
+                            if side == -1 {
+                                f_lo *= 0.5;
+                            }
+                            side = -1;
+                        }
+                        best = (s, s2, m2);
+                    }
+                    best
                 }
             };
-            let len = dt.0.hypot(dt.1);
-            if len > radius {
-                dt = (dt.0 * radius / len, dt.1 * radius / len);
-            }
-            let trial = (t.0 + dt.0, t.1 + dt.1);
-            if trial.0.hypot(trial.1) > MAX_TILT_RAD {
-                return Err(BemError::Value {
-                    name: "target_pa",
-                    value: target_pa,
-                    expected: "a load the shoe carries without tipping over (tilt below 0.05 rad)",
-                });
-            }
-            let (s2, m2) = pose(self, trial, Some(&sol))?;
-            // Accept a decrease of |M|; an ascent step across a plateau (one contact, |M| about
-            // constant until the next summit touches) is accepted too unless |M| grows.
-            if norm(m2) < norm(m) || (!is_newton && norm(m2) <= norm(m) * (1.0 + 1e-3)) {
-                t = trial;
-                sol = s2;
-                m = m2;
-                radius = (2.0 * radius).min(tilt_scale * 4.0);
-            } else {
-                radius *= 0.25;
-            }
+            t = at(s_new);
+            sol = sol_new;
+            m = m_new;
+            step = s_new.max(1e-6 * tilt_scale);
         }
     }
 }

@@ -118,11 +118,11 @@ impl HalfSpace {
         prepare: P,
         out: &mut [f64],
     ) {
-        if self.padded.is_some() && op == Operator::Compliance {
-            // The padded convolution reads the whole field: prepare it first, in blocks of rows.
-            let block = 16 * self.grid.nx;
-            field.par_chunks_mut(block).enumerate().for_each(|(k, c)| prepare(k * block, c));
-            self.apply(op, field, out);
+        if let (Some(p), Operator::Compliance) = (self.padded.as_mut(), op) {
+            // `prepare` rewrites the field element by element (by offset): row by row here.
+            let nx = self.grid.nx;
+            field.par_chunks_mut(nx).enumerate().for_each(|(j, row)| prepare(j * nx, row));
+            p.compliance(field, out);
             return;
         }
         let m = match op {

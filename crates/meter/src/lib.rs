@@ -23,7 +23,7 @@ pub mod fit;
 pub mod invariants;
 pub mod measured;
 pub mod slip;
-pub use contact_model::{BemContact, ContactModel, ContactState};
+pub use contact_model::{BemContact, BemShoe, ContactModel, ContactState};
 pub use error::MeterError;
 pub use slip::SlipPath;
 use stiction_contact::explicit;
@@ -671,7 +671,8 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
 /// under the shoe ([`stiction_surface::height_map_patch`]), coarsened as `contact.bem` asks and
 /// checked against its point limit before the solver allocates; E* = 3/(4D); the Dugdale law with
 /// the material's work of adhesion and `contact.bem.range` (default z0/1.03) unless the law is
-/// "hertz" or the work of adhesion is 0.
+/// "hertz" or the work of adhesion is 0; the Green's function of `contact.bem.boundary` (default
+/// the finite patch on the wall) and the shoe of `contact.mode` ("tilt", the default, or "flat").
 pub fn build_bem(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Result<BemContact, MeterError> {
     let c = s.contact_or_default();
     let spec = c.bem.clone().unwrap_or_default();
@@ -698,5 +699,16 @@ pub fn build_bem(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Resu
     } else {
         None
     };
-    BemContact::new(grid, &heights, 0.75 / material.compliance_per_pa(), law, spec.tolerance(), (kx, ky))
+    let tilting = match c.mode {
+        ShoeMode::Tilt => true,
+        ShoeMode::Flat => false,
+        ShoeMode::Fixed => {
+            return Err(MeterError::Scenario(
+                "contact.mode: \"fixed\" belongs to the explicit solver; the bem model's shoe is \"tilt\" or \"flat\""
+                    .into(),
+            ));
+        }
+    };
+    let shoe = BemShoe { boundary: spec.boundary(), tilting };
+    BemContact::new(grid, &heights, 0.75 / material.compliance_per_pa(), law, spec.tolerance(), (kx, ky), shoe)
 }
