@@ -26,9 +26,7 @@ Writes OUT/adhesion-N-SLOPE-W-POINTS.csv (one row per state, both codes) and pri
 """
 
 import argparse
-import contextlib
 import csv
-import io
 import json
 import os
 import re
@@ -61,9 +59,28 @@ def run_stiction(n, slope, w, points, tol, threads, heights_path=""):
     return states, wall, out.stderr.strip()
 
 
+class CaptureStderr:
+    """The text written to file descriptor 2 inside the block (C++ writes it directly)."""
+
+    def __enter__(self):
+        sys.stderr.flush()
+        self.tmp = tempfile.TemporaryFile(mode="w+")
+        self.saved = os.dup(2)
+        os.dup2(self.tmp.fileno(), 2)
+        return self
+
+    def __exit__(self, *exc):
+        sys.stderr.flush()
+        os.dup2(self.saved, 2)
+        os.close(self.saved)
+        self.tmp.seek(0)
+        self.text = self.tmp.read()
+        self.tmp.close()
+
+
 def last_iteration(log):
     rows = re.findall(r"^\s*(\d+)\s+\S+\s+\S+\s*$", log, re.M)
-    return int(rows[-1]) if rows else -1
+    return max(int(r) for r in rows) if rows else -1
 
 
 def energy(p, u, gap, w):
@@ -85,9 +102,8 @@ def run_tamaas(h, gaps, w, tol):
     solver.addFunctionalTerm(adhesion)
     states, solve_s = [], 0.0
     for branch, g in gaps:
-        # Tamaas writes its iteration log through Python's sys.stdout.
-        log = io.StringIO()
-        with contextlib.redirect_stdout(log):
+        # Tamaas writes its iteration log to the standard error (file descriptor 2).
+        with CaptureStderr() as log:
             t0 = time.perf_counter()
             err = solver.solve(g)
             dt = time.perf_counter() - t0
@@ -103,7 +119,7 @@ def run_tamaas(h, gaps, w, tol):
                 "repulsive_fraction": float(np.mean(gap == 0.0)),
                 "cohesive_fraction": float(np.mean(gap < RANGE_M)),
                 "energy_j_per_m2": float(energy(p, u, gap, w)),
-                "iterations": last_iteration(log.getvalue()),
+                "iterations": last_iteration(log.text),
                 "seconds": dt,
                 "error": float(err),
             }

@@ -23,8 +23,10 @@ use rustfft::{Fft, FftPlanner};
 /// Least rows (or columns) per rayon task in the transforms and transposes.
 const BLOCK: usize = 16;
 
-/// Least values per rayon task in the transforms (2^15: a 64 x 64 grid is one task).
-const MIN_TASK_POINTS: usize = 1 << 15;
+/// Least values per rayon task in the transforms (2^12: a 64 x 64 grid is one task; from 256
+/// points a side, [`BLOCK`] rows, so that a worker can take over the blocks of one that the
+/// machine has descheduled).
+const MIN_TASK_POINTS: usize = 1 << 12;
 
 /// Plans and sizes of a 2-D real FFT on an `ny x nx` grid.
 pub struct Fft2 {

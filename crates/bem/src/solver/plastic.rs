@@ -13,9 +13,11 @@
 //! `F = {0 < p < H}` (the rigid approach is the mean of the complementary field on `F`), with the
 //! step projected on `[0, H]`, points released from either bound where the field says so
 //! (`p = 0` with `g < 0`; `p = H` with `g > 0`), and the mean restored by a scale factor `f`
-//! solving `mean(min(f p, H)) = target` (Newton's method on this concave piecewise-linear
-//! function, which from `f0 = target/mean(p)` rises monotonically to the root and reaches it in
-//! a few steps). Residual: `eps = (sum_F p |g| + target sum_{p=0} max(-g, 0)
+//! of the points below the cap solving `mean(min(f p, H)) = target` (Newton's method on this
+//! concave piecewise-linear function, which from below rises monotonically to the root and
+//! reaches it in a few steps), or, when a step has put so many points at the cap that they alone
+//! carry more than the target, by a shift of the contact points clamped to `[0, H]` (bisection;
+//! the projection of Kato-type methods). Residual: `eps = (sum_F p |g| + target sum_{p=0} max(-g, 0)
 //! + H sum_{p=H} max(g, 0)) / (sum p * rms(h))`.
 
 use rayon::prelude::*;
@@ -42,20 +44,67 @@ pub struct PlasticSolution {
     pub max_plastic_depth_m: f64,
 }
 
-/// Steps of the Newton iteration for the scale factor of the mean (it ends in a few).
+/// Steps of the Newton iteration for the scale of the mean (it ends in a few).
 const MAX_SCALE_STEPS: usize = 100;
 
-/// The scale `f` of the points below the cap with `mean(min(f x, cap)) = target`, the points at
-/// the cap kept there (x >= 0, `target < cap`), by Newton's method from below; deterministic
-/// block sums. If the points at the cap alone carry more than the target, every point is scaled
-/// by `target/mean(x)` (they leave the cap). Returns `(f, whether the capped points are scaled)`.
-fn scale_to_mean(x: &[f64], cap: f64, target: f64) -> Option<(f64, bool)> {
+/// How the mean pressure is restored after a step ([`restore_mean`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum MeanFix {
+    /// Points below the cap scaled by `f` (clamped at the cap), points at the cap kept.
+    Scale(f64),
+    /// Points in contact shifted by `lambda` (Pa) and clamped to `[0, cap]`: when the points at
+    /// the cap alone carry more than the target (a step that saturated too many).
+    Shift(f64),
+}
+
+impl MeanFix {
+    fn apply(self, v: f64, cap: f64) -> f64 {
+        match self {
+            MeanFix::Scale(f) => {
+                if v < cap {
+                    (v * f).min(cap)
+                } else {
+                    cap
+                }
+            }
+            MeanFix::Shift(l) => {
+                if v > 0.0 {
+                    (v + l).clamp(0.0, cap)
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+}
+
+/// Bisection steps for the shift (to the last bit of a value below the cap).
+const SHIFT_STEPS: usize = 80;
+
+/// The fix that makes `mean(fix(x)) = target` (x in `[0, cap]`, `0 < target < cap`): the scale
+/// `f` of the points below the cap by Newton's method from below (the mean of `min(f x, cap)`
+/// is concave and piecewise linear in `f`); when the points at the cap alone carry more than the
+/// target, the shift of the contact points by bisection. Deterministic block sums.
+fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> {
     let n = x.len() as f64;
-    let (free_sum, capped) =
-        block_sum2(x.len(), |rg| rg.fold((0.0, 0.0), |a, i| if x[i] < cap { (a.0 + x[i], a.1) } else { (a.0, a.1 + cap) }));
-    if !(free_sum.is_finite() && free_sum > 0.0) || capped >= target * n {
-        let mean = (free_sum + capped) / n;
-        return if mean.is_finite() && mean > 0.0 { Some((target / mean, true)) } else { None };
+    let (free_sum, capped) = block_sum2(x.len(), |rg| {
+        rg.fold((0.0, 0.0), |a, i| if x[i] < cap { (a.0 + x[i], a.1) } else { (a.0, a.1 + cap) })
+    });
+    if !(free_sum + capped).is_finite() || free_sum + capped <= 0.0 {
+        return None;
+    }
+    if capped >= target * n || free_sum <= 0.0 {
+        let mean_at = |l: f64| block_sum(x.len(), |rg| rg.map(|i| MeanFix::Shift(l).apply(x[i], cap)).sum()) / n;
+        let (mut lo, mut hi) = (-cap, cap);
+        for _ in 0..SHIFT_STEPS {
+            let mid = 0.5 * (lo + hi);
+            if mean_at(mid) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        return Some(MeanFix::Shift(0.5 * (lo + hi)));
     }
     let mut f = (target * n - capped) / free_sum;
     for _ in 0..MAX_SCALE_STEPS {
@@ -66,15 +115,15 @@ fn scale_to_mean(x: &[f64], cap: f64, target: f64) -> Option<(f64, bool)> {
             })
         });
         if slope <= 0.0 {
-            return Some((f, false));
+            break;
         }
         let step = (target * n - value) / slope;
         if step <= f * 1e-15 {
-            return Some((f, false));
+            break;
         }
         f += step;
     }
-    Some((f, false))
+    Some(MeanFix::Scale(f))
 }
 
 impl BemSolver {
@@ -118,12 +167,12 @@ impl BemSolver {
             }
             _ => vec![target; n],
         };
-        let (f, all) = scale_to_mean(&x, cap, target).ok_or(BemError::Value {
+        let fix = restore_mean(&x, cap, target).ok_or(BemError::Value {
             name: "mean_pressure_pa",
             value: target,
             expected: "a warm start with some pressure",
         })?;
-        x.iter_mut().for_each(|v| *v = if all || *v < cap { (*v * f).min(cap) } else { cap });
+        x.iter_mut().for_each(|v| *v = fix.apply(*v, cap));
         let b = self.heights.clone();
         let scale = if self.height_rms > 0.0 { self.height_rms } else { 1.0 };
         let op = Operator::Compliance;
@@ -224,13 +273,13 @@ impl BemSolver {
                 });
             }
             delta = if changed == 0 { 1.0 } else { 0.0 };
-            let (f, all) = scale_to_mean(&x, cap, target).ok_or(BemError::NoConvergence {
+            let fix = restore_mean(&x, cap, target).ok_or(BemError::NoConvergence {
                 what: "plastic CG (all points released)",
                 iterations: it,
                 residual,
                 tolerance: opts.tolerance,
             })?;
-            x.par_iter_mut().for_each(|v| *v = if all || *v < cap { (*v * f).min(cap) } else { cap });
+            x.par_iter_mut().for_each(|v| *v = fix.apply(*v, cap));
             self.half.apply(op, &x, &mut ax);
             it += 1;
         };
@@ -244,8 +293,7 @@ impl BemSolver {
         }
         let contact: Vec<bool> = x.iter().map(|&v| v > 0.0).collect();
         let plastic = x.iter().filter(|&&v| v >= cap).count();
-        let max_plastic_depth_m =
-            x.iter().zip(&r).filter(|&(&v, _)| v >= cap).fold(0.0f64, |m, (_, &g)| m.max(-g));
+        let max_plastic_depth_m = x.iter().zip(&r).filter(|&(&v, _)| v >= cap).fold(0.0f64, |m, (_, &g)| m.max(-g));
         let gap: Vec<f64> = x.iter().zip(&r).map(|(&v, &g)| if v > 0.0 { 0.0 } else { g.max(0.0) }).collect();
         let sol = self.finish(x, gap, contact, 0, it, 1, residual);
         let grid = self.half.grid;
