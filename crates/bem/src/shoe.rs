@@ -300,9 +300,8 @@ impl BemSolver {
             let b = dot(t, dir);
             let s_max = -b + (b * b - dot(t, t) + MAX_TILT_RAD * MAX_TILT_RAD).max(0.0).sqrt();
             let s0 = s0.min(s_max);
-            let mut trial = |s: f64| -> Result<(ContactSolution, (f64, f64)), BemError> {
-                pose(self, at(s), Some(&sol))
-            };
+            let mut trial =
+                |s: f64| -> Result<(ContactSolution, (f64, f64)), BemError> { pose(self, at(s), Some(&sol)) };
             let (s_new, sol_new, m_new) = {
                 let (s1, m1) = trial(s0)?;
                 if newton.is_some() && norm(m1) < 0.5 * norm(m) {

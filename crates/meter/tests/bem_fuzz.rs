@@ -86,7 +86,13 @@ fn every_bem_input_is_refused_or_runs_to_a_bounded_result() {
     let (mut ran, mut refused) = (0, 0);
     for field in fields {
         let d = domain::lookup(field).unwrap_or_else(|| panic!("{field}: no domain"));
-        let lo = if d.min_inclusive { d.min } else if d.min == 0.0 { d.max * 1e-12 } else { d.min * (1.0 + 1e-9) };
+        let lo = if d.min_inclusive {
+            d.min
+        } else if d.min == 0.0 {
+            d.max * 1e-12
+        } else {
+            d.min * (1.0 + 1e-9)
+        };
         let hi = d.max;
         for (value, inside) in [(lo, true), (hi, true), (hi * 10.0 + 1.0, false)] {
             for shoe in shoes {
@@ -94,7 +100,11 @@ fn every_bem_input_is_refused_or_runs_to_a_bounded_result() {
                 sets.push(format!("{field}={value:e}"));
                 let t = std::time::Instant::now();
                 let outcome = run(&text, &sets).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-                eprintln!("{sets:?}: {} in {:.2} s", if outcome { "ran" } else { "refused" }, t.elapsed().as_secs_f64());
+                eprintln!(
+                    "{sets:?}: {} in {:.2} s",
+                    if outcome { "ran" } else { "refused" },
+                    t.elapsed().as_secs_f64()
+                );
                 if !inside {
                     assert!(!outcome, "{sets:?}: outside the domain and ran");
                 }
@@ -105,7 +115,9 @@ fn every_bem_input_is_refused_or_runs_to_a_bounded_result() {
     // A tilting shoe on the periodic cell is refused naming the field.
     let sets = vec!["contact.bem.boundary=\"periodic\"".to_string(), "contact.bem.tilt=true".to_string()];
     let s = Scenario::from_str_with_sets(&text, Path::new("x.json"), &sets).unwrap();
-    let Err(e) = Meter::from_scenario(&s, &root().join("scenarios")) else { panic!("a tilting periodic shoe was built") };
+    let Err(e) = Meter::from_scenario(&s, &root().join("scenarios")) else {
+        panic!("a tilting periodic shoe was built")
+    };
     let e = e.to_string();
     assert!(e.contains("contact.bem.tilt"), "{e}");
     eprintln!("{ran} ran, {refused} refused, {:.1} s in all", start.elapsed().as_secs_f64());
