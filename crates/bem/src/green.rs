@@ -47,9 +47,7 @@ pub const PADDED_BYTES_PER_POINT: usize = 112;
 
 /// Which Green's function a [`crate::HalfSpace`] uses (scenario `contact.bem.boundary`:
 /// "non_periodic" or "periodic").
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Boundary {
     /// The grid is one periodic cell (a statistically homogeneous interface).

@@ -63,9 +63,14 @@ pub struct BemSpec {
     /// The Green's function: "non_periodic" (default: the shoe face is a finite patch, a rigid
     /// punch of the shoe's size on a wall that goes on beyond it; zero-padded FFT of twice the
     /// size, `crate::green`) or "periodic" (the face is one periodic cell: its opposite edges meet).
-    /// With "periodic" the shoe cannot tilt (`contact.mode` = "flat").
+    /// With "periodic" the shoe cannot tilt.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub boundary: Option<crate::Boundary>,
+    /// Whether the rigid shoe tilts (true: approach and two tilts from the force and moment
+    /// balances about the patch centre, `crate::shoe`; non-periodic only; about 10-60 solves per
+    /// load) or approaches flat (false, the default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tilt: Option<bool>,
 }
 
 impl BemSpec {
@@ -101,6 +106,11 @@ impl BemSpec {
             crate::Boundary::Periodic => BYTES_PER_POINT,
             crate::Boundary::NonPeriodic => BYTES_PER_POINT + crate::green::PADDED_BYTES_PER_POINT,
         }
+    }
+
+    /// Whether the shoe tilts (default false).
+    pub fn tilt(&self) -> bool {
+        self.tilt.unwrap_or(false)
     }
 
     /// The tolerance in use.

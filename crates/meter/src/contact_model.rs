@@ -155,9 +155,9 @@ impl ContactModel {
 
 /// The boundary-element model of the shoe face: the composite height patch under the shoe's
 /// apparent area, by default a finite patch on a wall that goes on (the non-periodic Green's
-/// function, `contact.bem.boundary`), or one periodic cell; a rigid shoe that tilts until its
-/// moments balance (`contact.mode` "tilt", the default; non-periodic only) or approaches flat
-/// ("flat"); the elastic interaction of every point with every other through the half-space.
+/// function, `contact.bem.boundary`), or one periodic cell; a rigid shoe that approaches flat (the
+/// default) or tilts until its moments balance (`contact.bem.tilt`, non-periodic only); the
+/// elastic interaction of every point with every other through the half-space.
 /// Without adhesion (law "hertz" or no work of adhesion) the state at a load is the Polonsky-Keer
 /// solution; with adhesion the Dugdale cohesive law (`w` of the material, range
 /// `contact.bem.range`) on the loading branch (`stiction_bem::shoe` under load control for the
@@ -199,8 +199,8 @@ impl BemContact {
     ) -> Result<Self, MeterError> {
         if shoe.tilting && shoe.boundary == stiction_bem::Boundary::Periodic {
             return Err(MeterError::Scenario(
-                "contact.mode: a tilting shoe needs the finite patch (contact.bem.boundary = \"non_periodic\"); a \
-                 periodic cell has no edge to tilt about: set contact.mode = \"flat\""
+                "contact.bem.tilt: a tilting shoe needs the finite patch (contact.bem.boundary = \"non_periodic\"); a \
+                 periodic cell has no edge to tilt about"
                     .into(),
             ));
         }
@@ -214,7 +214,9 @@ impl BemContact {
             shoe.boundary,
         )
         .map_err(|e| MeterError::Contact(format!("bem: {e}")))?;
-        let options = stiction_bem::SolverOptions { tolerance, ..Default::default() };
+        // At most 50 cohesive-zone updates per solve (1-7 in the validation cases): with the path's
+        // work budget (stiction_bem::error::PATH_WORK_FACTOR) every load is bounded.
+        let options = stiction_bem::SolverOptions { tolerance, max_zone_updates: 50, ..Default::default() };
         Ok(BemContact {
             solver,
             grid,

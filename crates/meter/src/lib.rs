@@ -672,7 +672,7 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
 /// checked against its point limit before the solver allocates; E* = 3/(4D); the Dugdale law with
 /// the material's work of adhesion and `contact.bem.range` (default z0/1.03) unless the law is
 /// "hertz" or the work of adhesion is 0; the Green's function of `contact.bem.boundary` (default
-/// the finite patch on the wall) and the shoe of `contact.mode` ("tilt", the default, or "flat").
+/// the finite patch on the wall); a flat shoe, or a tilting one with `contact.bem.tilt`.
 pub fn build_bem(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Result<BemContact, MeterError> {
     let c = s.contact_or_default();
     let spec = c.bem.clone().unwrap_or_default();
@@ -699,16 +699,17 @@ pub fn build_bem(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Resu
     } else {
         None
     };
-    let tilting = match c.mode {
-        ShoeMode::Tilt => true,
-        ShoeMode::Flat => false,
-        ShoeMode::Fixed => {
-            return Err(MeterError::Scenario(
-                "contact.mode: \"fixed\" belongs to the explicit solver; the bem model's shoe is \"tilt\" or \"flat\""
-                    .into(),
-            ));
-        }
-    };
-    let shoe = BemShoe { boundary: spec.boundary(), tilting };
-    BemContact::new(grid, &heights, 0.75 / material.compliance_per_pa(), law, spec.tolerance(), (kx, ky), shoe)
+    let e_star = 0.75 / material.compliance_per_pa();
+    // A Dugdale stress above E* (the theoretical strength of a solid is about E/10) describes no
+    // interface, and its cohesive zone cannot settle on any grid: refused before any solve.
+    if let Some(l) = law.filter(|l| l.stress_pa > e_star) {
+        return Err(MeterError::Scenario(format!(
+            "contact.bem.range (or material.equilibrium_spacing, material.work_of_adhesion): the Dugdale stress \
+             w/h0 = {:e} Pa (w = {:e} J/m^2 over h0 = {:e} m) exceeds E* = {e_star:e} Pa; a solid breaks near E/10: \
+             give a longer range",
+            l.stress_pa, material.work_of_adhesion, l.range_m
+        )));
+    }
+    let shoe = BemShoe { boundary: spec.boundary(), tilting: spec.tilt() };
+    BemContact::new(grid, &heights, e_star, law, spec.tolerance(), (kx, ky), shoe)
 }

@@ -335,8 +335,8 @@ fn bem_run(
     sweep_loads: Option<&[f64]>,
 ) -> Result<BemRun, Box<dyn std::error::Error>> {
     if args.mode.is_some() || args.contacts.is_some() || args.summits {
-        return Err("--mode, --contacts and --summits belong to the explicit solver; --model bem takes its shoe from \
-                    the scenario's contact.mode (\"tilt\" or \"flat\": --set contact.mode=flat) and reports contact \
+        return Err("--mode, --contacts and --summits belong to the explicit solver; --model bem has a flat shoe \
+                    unless the scenario's contact.bem.tilt is true (--set contact.bem.tilt=true) and reports contact \
                     patches"
             .into());
     }
