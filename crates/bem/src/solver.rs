@@ -13,11 +13,8 @@ use crate::green::{Boundary, MAX_POINTS_NON_PERIODIC, Padded};
 use crate::grid::{Grid, SUM_BLOCK, block_sum, block_sum2, in_pool};
 use crate::{patches, synth};
 
-mod plastic;
-pub use plastic::PlasticSolution;
-
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Operator {
+pub(crate) enum Operator {
     /// `u(q) = 2 p(q)/(E* |q|)` (m/Pa).
     Compliance,
     /// `p(q) = E* |q| u(q)/2` (Pa/m).
@@ -97,7 +94,7 @@ impl HalfSpace {
         self.e_star_pa
     }
 
-    fn apply(&mut self, op: Operator, input: &[f64], out: &mut [f64]) {
+    pub(crate) fn apply(&mut self, op: Operator, input: &[f64], out: &mut [f64]) {
         if let (Some(p), Operator::Compliance) = (self.padded.as_mut(), op) {
             p.compliance(input, out);
             return;
@@ -173,7 +170,7 @@ impl Default for SolverOptions {
 }
 
 impl SolverOptions {
-    fn validate(&self) -> Result<(), BemError> {
+    pub(crate) fn validate(&self) -> Result<(), BemError> {
         if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance < 1.0) {
             return Err(BemError::Value {
                 name: "tolerance",
@@ -285,11 +282,11 @@ impl ContactSolution {
 /// The rough-contact problem: a height field on a half-space.
 #[derive(Debug)]
 pub struct BemSolver {
-    half: HalfSpace,
-    heights: Vec<f64>,
+    pub(crate) half: HalfSpace,
+    pub(crate) heights: Vec<f64>,
     height_mean: f64,
     height_max: f64,
-    height_rms: f64,
+    pub(crate) height_rms: f64,
     stiff_rms: f64,
 }
 
@@ -609,7 +606,7 @@ impl BemSolver {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn finish(
+    pub(crate) fn finish(
         &mut self,
         pressure_pa: Vec<f64>,
         gap_m: Vec<f64>,

@@ -23,9 +23,9 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::{BemSolver, ContactSolution, Operator, SolverOptions};
 use crate::error::{BemError, check_positive};
 use crate::grid::{SUM_BLOCK, block_sum, block_sum2, in_pool};
+use crate::solver::{BemSolver, ContactSolution, Operator, SolverOptions};
 
 /// A contact state with the pressure capped at the hardness.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -296,7 +296,7 @@ impl BemSolver {
         let max_plastic_depth_m = x.iter().zip(&r).filter(|&(&v, _)| v >= cap).fold(0.0f64, |m, (_, &g)| m.max(-g));
         let gap: Vec<f64> = x.iter().zip(&r).map(|(&v, &g)| if v > 0.0 { 0.0 } else { g.max(0.0) }).collect();
         let sol = self.finish(x, gap, contact, 0, it, 1, residual);
-        let grid = self.half.grid;
+        let grid = self.half.grid();
         let plastic_fraction = plastic as f64 / grid.len() as f64;
         Ok(PlasticSolution {
             solution: sol,
