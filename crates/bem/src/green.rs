@@ -170,7 +170,7 @@ mod tests {
         let mut u = vec![0.0; 35];
         op.compliance(&p, &mut u);
         let c = 1.0 / (std::f64::consts::PI * 2.0);
-        for i in 0..35 {
+        for (i, ui) in u.iter().enumerate() {
             let (xi, yi) = ((i % 7) as f64, (i / 7) as f64 * 1.3);
             let direct: f64 = (0..35)
                 .map(|j| {
@@ -178,7 +178,7 @@ mod tests {
                     c * love_coefficient(xi - xj, yi - yj, 0.5, 0.65) * p[j]
                 })
                 .sum();
-            assert!((u[i] - direct).abs() < 1e-12 * direct.abs().max(1.0), "{i}: {} vs {direct}", u[i]);
+            assert!((ui - direct).abs() < 1e-12 * direct.abs().max(1.0), "{i}: {ui} vs {direct}");
         }
     }
 }

@@ -3,8 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
-use serde::Serialize;
-use stiction_meter::measured::{Comparison, read_measured_voltages};
+use stiction_engine::run::{Experiment, RunOutput, experiment};
 use stiction_meter::{ContactModel, Meter, MeterResult};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
@@ -33,17 +32,6 @@ pub struct Args {
     /// Figure size and font.
     #[command(flatten)]
     pub fig: FigureArgs,
-}
-
-#[derive(Serialize)]
-struct RunOutput<'a> {
-    scenario: String,
-    description: &'a str,
-    #[serde(flatten)]
-    result: &'a MeterResult,
-    /// The scenario's measured voltages beside the model, when it has a `measured` section.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    measured: Option<Comparison>,
 }
 
 /// Runs the subcommand.
@@ -75,96 +63,17 @@ pub fn run(args: Args) -> CliResult {
     }
     print_summary(&output, scenario.reference.as_ref(), scenario.mu_calibration_relative_sd());
     if let Some(dir) = &args.out {
+        let fig5 = if output.result.points.iter().any(|p| p.displacement_m.is_some()) {
+            ""
+        } else {
+            "fig5.svg, fig5.png, fig5.csv, "
+        };
         crate::outln!(
-            "\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig5.csv, fig7.svg, fig7.png, fig7.csv, manifest.json",
+            "\nwrote {}/results.json, results.csv, {fig5}fig7.svg, fig7.png, fig7.csv, manifest.json",
             dir.display()
         );
     }
     Ok(())
-}
-
-/// A finished friction-meter experiment: the meter (for the figures' curves), its result with the
-/// scenario's notes before the fit's warnings, and the measured voltages beside the model.
-pub struct Experiment {
-    /// The meter that ran (its contact model draws the figures' curves).
-    pub meter: Meter,
-    /// The points and the eq. 10 fit.
-    pub result: MeterResult,
-    /// The scenario's measured voltages beside the model, when it has a `measured` section.
-    pub measured: Option<Comparison>,
-}
-
-/// Runs the friction meter of `scenario` (named `name` in errors; relative paths from `base`):
-/// clamp at each clamp voltage, ramp the pull voltage until slip, fit eq. 10. `progress(done,
-/// total)` after each clamp voltage.
-pub fn experiment(
-    scenario: &Scenario,
-    name: &str,
-    base: &Path,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<Experiment, Box<dyn std::error::Error>> {
-    // One source of truth: a given spring force that contradicts the clamp spring is refused.
-    if let Some(conflict) = scenario.spring_force_conflict() {
-        return Err(format!("{name}: {conflict}").into());
-    }
-    let mut meter = Meter::from_scenario(scenario, base).map_err(|e| format!("{name}: {e}"))?;
-    let mut result = meter.run(progress)?;
-    // What the scenario's loading and calibrations say comes first, then the fit's own warnings.
-    let mut warnings = scenario.notes.clone();
-    for (name, spec) in &scenario.actuators {
-        if let Some(r) = spec.calibration_rederived() {
-            warnings.push(stiction_scenario::Warning::new("calibration_rederived", format!("actuators.{name}: {r}")));
-        }
-    }
-    // A statistical model on a height-map sidewall takes its summit statistics from the whole map
-    // (the numbers `stiction topography` prints): say so, with the numbers.
-    let model = scenario.contact_or_default().model;
-    if matches!(model, stiction_scenario::ContactModel::Gw | stiction_scenario::ContactModel::Discrete)
-        && let Ok(surface) = scenario.require_surface()
-        && surface.source == stiction_surface::SurfaceSource::HeightMap
-    {
-        let st = stiction_surface::map_summit_statistics(surface, base).map_err(|e| format!("{name}: {e}"))?;
-        warnings.push(stiction_scenario::Warning::new(
-            "statistics_from_map",
-            format!(
-                "the {model} model uses {}: {} summits, eta = {:.3} 1/um^2, sigma_s = {:.3} nm, R = {:.3} um; \
-                 not the patch under the shoe",
-                st.source,
-                st.summit_count,
-                st.summit_density_per_m2 * 1e-12,
-                st.summit_sd_m * 1e9,
-                st.summit_radius_m * 1e6,
-            ),
-        ));
-    }
-    warnings.append(&mut result.warnings);
-    result.warnings = warnings;
-    let measured = match &scenario.measured {
-        Some(m) => {
-            let data = read_measured_voltages(&base.join(&m.voltages_csv))?;
-            Some(meter.compare(&data, result.reduction)?)
-        }
-        None => None,
-    };
-    Ok(Experiment { meter, result, measured })
-}
-
-/// The JSON object `stiction run SCENARIO --json` prints for `scenario` named `name` (its
-/// `scenario` field) with relative paths from `base`.
-pub fn run_json(
-    scenario: &Scenario,
-    name: &str,
-    base: &Path,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    let e = experiment(scenario, name, base, progress)?;
-    let output = RunOutput {
-        scenario: name.to_string(),
-        description: &scenario.description,
-        result: &e.result,
-        measured: e.measured,
-    };
-    Ok(crate::json_value::finite_value(&output)?)
 }
 
 fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>, calibration_rel_sd: Option<f64>) {
@@ -237,6 +146,12 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
             r.fit_note.as_deref().unwrap_or("the fitted slope is not positive, so mu_e,a and F_a0 are undefined")
         ),
     }
+    if let Some(lab) = &r.lab_coefficient {
+        let c =
+            lab.coefficient.map_or_else(|| lab.coefficient_reason.clone().unwrap_or_default(), |c| format!("{c:.3}"));
+        let sd = lab.spread.map_or(String::new(), |s| format!(" (spread {s:.3})"));
+        crate::outln!("  the lab's reduction ({}): {c}{sd} over {} points", lab.kind, lab.points);
+    }
     for w in &r.warnings {
         crate::outln!("  warning [{}]: {}", w.code, w.message);
     }
@@ -284,7 +199,11 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
             "  after slip the pull shuttle reaches its stop in {t0:.1}-{t1:.1} us at {v0:.2}-{v1:.2} m/s (rapier dynamics)"
         );
     }
-    let stuck = r.points.iter().filter(|p| p.in_contact && p.error.is_none() && p.v_pull.is_none()).count();
+    let stuck = r
+        .points
+        .iter()
+        .filter(|p| p.in_contact && p.error.is_none() && p.v_pull.is_none() && p.displacement_m.is_none())
+        .count();
     if stuck > 0 {
         crate::outln!(
             "  {stuck} clamp voltages: no slip up to pull_voltage_max (friction above what the pull array can give)"
@@ -318,7 +237,7 @@ fn print_humidity(r: &MeterResult, h: &stiction_meter::Humidity) {
         h.relative_humidity * 100.0,
         h.temperature_k - 273.15
     );
-    if let Some(share) = crate::cmd::humidity::capillary_share(r) {
+    if let Some(share) = stiction_engine::humidity::capillary_share(r) {
         crate::outln!(
             "  capillary share of the adhesive load: {:.1} % (summed over the points in contact; per point: \
              `capillary_load_n` in --json)",
@@ -340,7 +259,12 @@ fn write_outputs(
     let measured_name = scenario.measured.as_ref().map(|m| {
         m.voltages_csv.file_name().map_or_else(|| m.voltages_csv.display().to_string(), |n| n.to_string_lossy().into())
     });
-    let fig5 = fig.apply(fig5_chart(o, scenario, base, measured_name.as_deref())?)?;
+    // Fig. 5 is in pull voltages: none for a released spring (a `structure` whose tangential load is k x).
+    let fig5 = if o.result.points.iter().any(|p| p.displacement_m.is_some()) {
+        None
+    } else {
+        Some(fig.apply(fig5_chart(o, scenario, base, measured_name.as_deref())?)?)
+    };
     let (fig7, fig7_notes) = fig7_chart(o, scenario, meter, base, measured_name.as_deref())?;
     let fig7 = fig.apply(fig7)?;
     let mut json = serde_json::to_value(o)?;
@@ -350,7 +274,12 @@ fn write_outputs(
             // What the figure's short caption leaves out.
             f.insert("notes".into(), serde_json::json!(fig7_notes));
         }
-        obj.insert("figures".into(), serde_json::json!({"fig5": fig5.data_json(), "fig7": fig7_json}));
+        let mut figures = serde_json::Map::new();
+        if let Some(f5) = &fig5 {
+            figures.insert("fig5".into(), f5.data_json());
+        }
+        figures.insert("fig7".into(), fig7_json);
+        obj.insert("figures".into(), figures.into());
     }
     set.add_bytes("results.json", crate::output::json_text(&json)?.as_bytes())?;
     let mut w = csv::Writer::from_writer(Vec::new());
@@ -405,7 +334,9 @@ fn write_outputs(
     }
     let csv_bytes = w.into_inner().map_err(|e| format!("results.csv: {e}"))?;
     set.add_bytes("results.csv", &csv_bytes)?;
-    set.add_figure("fig5", &fig5)?;
+    if let Some(f5) = &fig5 {
+        set.add_figure("fig5", f5)?;
+    }
     set.add_figure("fig7", &fig7)?;
     set.commit()
 }
@@ -436,14 +367,19 @@ fn fig5_chart(
     let v2_max = r.points.iter().map(|p| p.v_clamp_sq).fold(v2_min, f64::max) * 1.02;
     let material = scenario.require_material()?;
     let radius = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
-    let curve =
-        crate::cmd::discrete::friction_curve_n3(material, radius, red.a_clamp_n_per_v2 * v2_max - red.spring_force_n)?;
+    let curve = stiction_engine::discrete::friction_curve_n3(
+        material,
+        radius,
+        red.a_clamp_n_per_v2 * v2_max - red.spring_force_n,
+    )?;
     let discrete: Vec<(f64, f64)> = curve
         .into_iter()
         .filter(|(l_un, _)| *l_un >= 0.0)
         .map(|(l_un, f_un)| {
             ((l_un * 1e-6 + red.spring_force_n) / red.a_clamp_n_per_v2, f_un * 1e-6 / red.a_pull_n_per_v2)
         })
+        // A released spring (a `structure`) has no pull voltage: no curve in pull voltages.
+        .filter(|_| red.a_pull_n_per_v2 > 0.0)
         .collect();
     let mut chart = Chart::new(
         format!("Fig. 5: pull voltage at slip, {}", what(r, measured)),
@@ -463,7 +399,8 @@ fn fig5_chart(
     let eq10 = |fit: &stiction_meter::fit::LineFit, x: f64| {
         (fit.intercept + fit.slope * (red.a_clamp_n_per_v2 * x - red.spring_force_n)) / red.a_pull_n_per_v2
     };
-    if let (Some(fit), Some(fa0)) = (&r.fit, r.apparent_adhesion_force_n) {
+    // (A released spring's fit has no pull voltages to draw it in.)
+    if let (Some(fit), Some(fa0), false) = (&r.fit, r.apparent_adhesion_force_n, pts.is_empty()) {
         let x0 = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min).max(v2_min);
         let x1 = pts.iter().map(|p| p.0).fold(0.0, f64::max);
         chart.series.push(
@@ -551,7 +488,7 @@ fn fig7_chart(
             caption.push_str("; line: one loading path (friction depends on the path)");
         }
     }
-    let discrete = crate::cmd::discrete::friction_curve_n3(material, radius, max_load)?;
+    let discrete = stiction_engine::discrete::friction_curve_n3(material, radius, max_load)?;
     chart.series.push(Series::dashed("discrete model N = 3 (eq. 12)", discrete).with_color(2));
     if let Some(c) = &o.measured {
         // Drawn first, so that the virtual meter's points at the same loads stay visible on top.
