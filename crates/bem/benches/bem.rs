@@ -1,6 +1,8 @@
 //! Speed of the non-adhesive BEM solve: a Gaussian self-affine surface (H = 0.8, roll-off L/4,
 //! short cut-off 4 dx, seed 1), load p = 0.05 E* h'_rms (A/A0 about 0.12), tolerance 1e-6, cold
-//! start (uniform pressure). `cargo bench -p stiction-bem --bench bem`.
+//! start (uniform pressure); and of an adhesive approach (the case of scripts/tamaas-adhesion.py:
+//! 128^2, rms slope 0.1, E* 1 GPa, w 12 J/m^2, range 0.3 um, three mean gaps from the reach of the
+//! highest point down, each warm-started). `cargo bench -p stiction-bem --bench bem`.
 
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
@@ -8,7 +10,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
-use stiction_bem::{BemSolver, Grid, SolverOptions, synth};
+use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, SolverOptions, synth};
 
 fn case(n: usize) -> BemSolver {
     let l = 100e-6;
@@ -32,5 +34,32 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+fn adhesive(c: &mut Criterion) {
+    let (n, l) = (128usize, 100e-6);
+    let g = Grid::new(n, n, l / n as f64, l / n as f64).expect("grid");
+    let mut h = synth::self_affine(g, 0.8, l / 4.0, 4.0 * l / n as f64, 1e-6, 1).expect("surface");
+    let f = 0.1 / synth::rms_slope(&h, g);
+    h.iter_mut().for_each(|v| *v *= f);
+    let mean = h.iter().sum::<f64>() / h.len() as f64;
+    let top = h.iter().copied().fold(f64::NEG_INFINITY, f64::max) - mean;
+    let law = Dugdale::from_work_and_range(12.0, 0.3e-6).expect("law");
+    let opts = SolverOptions { tolerance: 1e-6, ..Default::default() };
+    let mut s = BemSolver::new(n, n, g.dx_m, g.dy_m, &h, 1e9).expect("solver");
+    let gaps = [top + 0.27e-6, top + 0.1e-6, 0.8 * top];
+    let mut group = c.benchmark_group("bem_adhesive_approach_1e-6");
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(20));
+    group.bench_function("128x128, 3 gaps", |b| {
+        b.iter(|| {
+            let mut state: Option<ContactSolution> = None;
+            for &gap in &gaps {
+                state = Some(s.solve_adhesive_mean_gap(gap, &law, &opts, state.as_ref()).expect("solve"));
+            }
+            black_box(state.map(|s| s.mean_pressure_pa))
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench, adhesive);
 criterion_main!(benches);

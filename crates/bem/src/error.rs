@@ -52,6 +52,25 @@ pub enum BemError {
         /// What was expected.
         expected: &'static str,
     },
+    /// An adhesive loading path spent its work budget ([`PATH_WORK_FACTOR`] times the per-solve
+    /// iteration cap) without reaching the load.
+    #[error(
+        "{what} did not reach the mean pressure {target_pa:e} Pa within {iterations} conjugate-gradient iterations \
+         (Dugdale stress {stress_pa:e} Pa over the range {range_m:e} m): the cohesive zone keeps switching; a \
+         longer range or a coarser grid resolves it"
+    )]
+    WorkBudget {
+        /// Which path.
+        what: &'static str,
+        /// Iterations spent.
+        iterations: usize,
+        /// The target mean pressure, Pa.
+        target_pa: f64,
+        /// The Dugdale stress, Pa.
+        stress_pa: f64,
+        /// The Dugdale range, m.
+        range_m: f64,
+    },
     /// The iteration did not reach the tolerance.
     #[error("{what} did not converge in {iterations} iterations (residual {residual:e}, tolerance {tolerance:e})")]
     NoConvergence {
@@ -65,6 +84,10 @@ pub enum BemError {
         tolerance: f64,
     },
 }
+
+/// The work a loading path may take before it is given up, in conjugate-gradient iterations:
+/// this many times the per-solve cap (`SolverOptions::max_iterations`).
+pub const PATH_WORK_FACTOR: usize = 20;
 
 pub(crate) fn check_positive(name: &'static str, value: f64, expected: &'static str) -> Result<f64, BemError> {
     if value.is_finite() && value > 0.0 { Ok(value) } else { Err(BemError::Value { name, value, expected }) }

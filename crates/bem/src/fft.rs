@@ -9,7 +9,9 @@
 //! by `nx * ny`); the multipliers carry the `1/(nx ny)`.
 //!
 //! Rows and columns are transformed in parallel with rayon; each row or column is an independent
-//! transform, so the result does not depend on the thread count (bit for bit).
+//! transform, so the result does not depend on the thread count (bit for bit). A convolution is
+//! one call ([`Fft2::convolve`]): the column transforms, the multiplication and the inverse column
+//! transforms are one pass over each block of columns.
 
 use std::sync::Arc;
 
@@ -18,8 +20,13 @@ use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
-/// Rows (or columns) per rayon task in the transforms and transposes.
+/// Least rows (or columns) per rayon task in the transforms and transposes.
 const BLOCK: usize = 16;
+
+/// Least values per rayon task in the transforms (2^12: a 64 x 64 grid is one task; from 256
+/// points a side, [`BLOCK`] rows, so that a worker can take over the blocks of one that the
+/// machine has descheduled).
+const MIN_TASK_POINTS: usize = 1 << 12;
 
 /// Plans and sizes of a 2-D real FFT on an `ny x nx` grid.
 pub struct Fft2 {
@@ -114,13 +121,119 @@ impl Fft2 {
             },
         );
     }
+
+    /// Rows (or columns) of `len` values per rayon task: at least [`BLOCK`], and at least
+    /// [`MIN_TASK_POINTS`] values, so a small grid runs as a few tasks (each row or column is an
+    /// independent transform, so the grouping does not change a bit of the result).
+    fn per_task(len: usize) -> usize {
+        BLOCK.max(MIN_TASK_POINTS / len.max(1))
+    }
+
+    /// The periodic convolution `out = IFFT(m * FFT(input))` (unnormalised: `m` carries the
+    /// `1/(nx ny)`), with `m` laid out as the spectrum (`[kx][ky]`, length `nxc*ny`), `rows` and
+    /// `spec` (length `nxc*ny`) as work space. Five parallel passes: rows forward, a transpose,
+    /// each column forward, multiplied and inverse, a transpose, rows inverse.
+    pub fn convolve(
+        &self,
+        input: &[f64],
+        m: &[f64],
+        rows: &mut [Complex<f64>],
+        spec: &mut [Complex<f64>],
+        out: &mut [f64],
+    ) {
+        let (nx, nxc) = (self.nx, self.nxc);
+        debug_assert_eq!(input.len(), nx * self.ny);
+        let r2c = &self.r2c;
+        let rb = Self::per_task(nx);
+        input.par_chunks(nx * rb).zip(rows.par_chunks_mut(nxc * rb)).for_each_init(
+            || (r2c.make_scratch_vec(), vec![0.0; nx]),
+            |(scratch, row), (rin, rout)| {
+                for (a, b) in rin.chunks(nx).zip(rout.chunks_mut(nxc)) {
+                    // The transform destroys its input: it works on a copy of the row.
+                    row.copy_from_slice(a);
+                    // Lengths are right by construction, so the transform cannot fail.
+                    r2c.process_with_scratch(row, b, scratch).expect("row r2c lengths");
+                }
+            },
+        );
+        self.multiply_and_back(m, rows, spec, out);
+    }
+
+    /// [`Fft2::convolve`] of `field` after `prepare(offset, block)` has rewritten each block of
+    /// its rows in place (`offset`: index of the block's first value), in the same pass as the
+    /// rows' transforms: the solver builds its search direction this way.
+    pub fn convolve_prepared<P: Fn(usize, &mut [f64]) + Sync>(
+        &self,
+        field: &mut [f64],
+        prepare: P,
+        m: &[f64],
+        rows: &mut [Complex<f64>],
+        spec: &mut [Complex<f64>],
+        out: &mut [f64],
+    ) {
+        let (nx, nxc) = (self.nx, self.nxc);
+        debug_assert_eq!(field.len(), nx * self.ny);
+        let r2c = &self.r2c;
+        let rb = Self::per_task(nx);
+        field.par_chunks_mut(nx * rb).zip(rows.par_chunks_mut(nxc * rb)).enumerate().for_each_init(
+            || (r2c.make_scratch_vec(), vec![0.0; nx]),
+            |(scratch, row), (blk, (rin, rout))| {
+                prepare(blk * nx * rb, rin);
+                for (a, b) in rin.chunks(nx).zip(rout.chunks_mut(nxc)) {
+                    row.copy_from_slice(a);
+                    r2c.process_with_scratch(row, b, scratch).expect("row r2c lengths");
+                }
+            },
+        );
+        self.multiply_and_back(m, rows, spec, out);
+    }
+
+    /// The rest of a convolution from the rows' spectra in `rows`.
+    fn multiply_and_back(&self, m: &[f64], rows: &mut [Complex<f64>], spec: &mut [Complex<f64>], out: &mut [f64]) {
+        let (nx, ny, nxc) = (self.nx, self.ny, self.nxc);
+        debug_assert_eq!(m.len(), nxc * ny);
+        transpose(rows, spec, ny, nxc);
+        let (fwd, inv) = (&self.col_fwd, &self.col_inv);
+        let cb = Self::per_task(ny);
+        spec.par_chunks_mut(ny * cb).zip(m.par_chunks(ny * cb)).for_each_init(
+            || vec![Complex::default(); fwd.get_inplace_scratch_len().max(inv.get_inplace_scratch_len())],
+            |scratch, (c, m)| {
+                for (c, m) in c.chunks_mut(ny).zip(m.chunks(ny)) {
+                    fwd.process_with_scratch(c, scratch);
+                    for (s, m) in c.iter_mut().zip(m) {
+                        *s *= *m;
+                    }
+                    inv.process_with_scratch(c, scratch);
+                }
+            },
+        );
+        transpose(spec, rows, nxc, ny);
+        let c2r = &self.c2r;
+        let even = nx.is_multiple_of(2);
+        let rb = Self::per_task(nx);
+        rows.par_chunks_mut(nxc * rb).zip(out.par_chunks_mut(nx * rb)).for_each_init(
+            || c2r.make_scratch_vec(),
+            |scratch, (rin, rout)| {
+                for (a, b) in rin.chunks_mut(nxc).zip(rout.chunks_mut(nx)) {
+                    // The multipliers are real and even, so these imaginary parts are rounding
+                    // noise of a real field; clear them as the real transform requires.
+                    a[0].im = 0.0;
+                    if even {
+                        a[nxc - 1].im = 0.0;
+                    }
+                    c2r.process_with_scratch(a, b, scratch).expect("row c2r lengths");
+                }
+            },
+        );
+    }
 }
 
 /// Transpose `src` (`rows x cols`, row-major) into `dst` (`cols x rows`), in parallel over blocks
 /// of destination rows.
 fn transpose(src: &[Complex<f64>], dst: &mut [Complex<f64>], rows: usize, cols: usize) {
-    dst.par_chunks_mut(rows * BLOCK).enumerate().for_each(|(blk, out)| {
-        let c0 = blk * BLOCK;
+    let per = Fft2::per_task(rows);
+    dst.par_chunks_mut(rows * per).enumerate().for_each(|(blk, out)| {
+        let c0 = blk * per;
         let nc = out.len() / rows;
         // Tiles of 32 source rows keep the reads in cache.
         for r0 in (0..rows).step_by(32) {

@@ -24,8 +24,15 @@ pub const BYTES_PER_POINT: usize = 88;
 /// Block length of the deterministic sums.
 pub(super) const SUM_BLOCK: usize = 8192;
 
+/// Runs `f` on a worker of the current rayon pool (the global pool when called from outside
+/// any): a solve's many short parallel passes are then forked from a worker and stolen by the
+/// others, instead of each being handed from the calling thread to the pool and back.
+pub(super) fn in_pool<R: Send, F: FnOnce() -> R + Send>(f: F) -> R {
+    if rayon::current_thread_index().is_some() { f() } else { rayon::scope(|_| f()) }
+}
+
 /// Deterministic parallel sum of `f` over fixed blocks of `0..n`, added in block order.
-pub(super) fn block_sum<F: Fn(std::ops::Range<usize>) -> f64 + Sync>(n: usize, f: F) -> f64 {
+pub(crate) fn block_sum<F: Fn(std::ops::Range<usize>) -> f64 + Sync>(n: usize, f: F) -> f64 {
     let nb = n.div_ceil(SUM_BLOCK);
     let parts: Vec<f64> = (0..nb).into_par_iter().map(|b| f(b * SUM_BLOCK..((b + 1) * SUM_BLOCK).min(n))).collect();
     parts.iter().sum()

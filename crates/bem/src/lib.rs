@@ -54,15 +54,21 @@
 pub mod asperity;
 pub mod error;
 mod fft;
+pub mod green;
 mod grid;
 pub mod loading;
 pub mod patches;
+mod plastic;
+pub mod shoe;
 mod solver;
 pub mod spec;
 pub mod synth;
 
 pub use error::BemError;
+pub use green::Boundary;
 pub use grid::{BYTES_PER_POINT, Grid, MAX_POINTS};
 pub use loading::LoadingPath;
+pub use plastic::PlasticSolution;
+pub use shoe::TiltedShoe;
 pub use solver::{BemSolver, ContactSolution, Dugdale, HalfSpace, MAX_SEPARATION_STEPS, Separation, SolverOptions};
 pub use spec::BemSpec;

@@ -55,6 +55,15 @@ impl BemSolver {
     ) -> Result<ContactSolution, BemError> {
         crate::error::check_positive("target_pa", target_pa, "a finite mean pressure > 0 (Pa)")?;
         let h0 = law.range_m;
+        let mut spent = 0usize;
+        let budget = crate::error::PATH_WORK_FACTOR * opts.max_iterations;
+        let over = |spent: usize| BemError::WorkBudget {
+            what: "adhesive loading path (periodic)",
+            iterations: spent,
+            target_pa,
+            stress_pa: law.stress_pa,
+            range_m: law.range_m,
+        };
         let resume = path.law == Some(*law) && target_pa >= path.last_target_pa;
         let (mut gap, mut state) = match (&path.below, resume) {
             (Some((g, s)), true) => (*g, s.clone()),
@@ -76,7 +85,7 @@ impl BemSolver {
             let up = self.solve_adhesive_mean_gap(gap + h0, law, opts, Some(&state))?;
             if up.mean_pressure_pa < target_pa {
                 let below = up;
-                return self.refine(target_pa, law, opts, path, (gap + h0, below), (gap, state));
+                return self.refine(target_pa, law, opts, path, (gap + h0, below), (gap, state), 0);
             }
         }
         // March down until the load reaches the target; the step follows the secant of the last
@@ -99,6 +108,10 @@ impl BemSolver {
                 });
             }
             let s = self.solve_adhesive_mean_gap(next, law, opts, Some(&state))?;
+            spent += s.iterations;
+            if spent > budget {
+                return Err(over(spent));
+            }
             if s.mean_pressure_pa >= target_pa {
                 break (next, s);
             }
@@ -106,11 +119,14 @@ impl BemSolver {
             gap = next;
             state = s;
         };
-        self.refine(target_pa, law, opts, path, (gap, state), (lo_gap, lo_state))
+        self.refine(target_pa, law, opts, path, (gap, state), (lo_gap, lo_state), spent)
     }
 
     /// Illinois regula falsi on the mean gap between `upper` (load below the target) and `lower`
-    /// (load at or above it), each trial warm-started from the current upper state.
+    /// (load at or above it), each trial warm-started from the current upper state; `spent`: the
+    /// iterations the path has taken so far (the budget is [`crate::error::PATH_WORK_FACTOR`] times
+    /// the per-solve cap).
+    #[allow(clippy::too_many_arguments)]
     fn refine(
         &mut self,
         target_pa: f64,
@@ -119,8 +135,10 @@ impl BemSolver {
         path: &mut LoadingPath,
         upper: (f64, ContactSolution),
         lower: (f64, ContactSolution),
+        mut spent: usize,
     ) -> Result<ContactSolution, BemError> {
         let h0 = law.range_m;
+        let budget = crate::error::PATH_WORK_FACTOR * opts.max_iterations;
         let (gap, mut state) = upper;
         let (lo_gap, lo_state) = lower;
         let (mut g_hi, mut f_hi) = (gap, state.mean_pressure_pa - target_pa);
@@ -138,6 +156,16 @@ impl BemSolver {
             let g = (g_lo * f_hi - g_hi * f_lo) / (f_hi - f_lo);
             let g = if g.is_finite() && g > g_lo && g < g_hi { g } else { 0.5 * (g_lo + g_hi) };
             let s = self.solve_adhesive_mean_gap(g, law, opts, Some(&state))?;
+            spent += s.iterations;
+            if spent > budget {
+                return Err(BemError::WorkBudget {
+                    what: "adhesive loading path (periodic)",
+                    iterations: spent,
+                    target_pa,
+                    stress_pa: law.stress_pa,
+                    range_m: law.range_m,
+                });
+            }
             let f = s.mean_pressure_pa - target_pa;
             if f >= 0.0 {
                 g_lo = g;

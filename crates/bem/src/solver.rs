@@ -9,28 +9,31 @@ use serde::Serialize;
 
 use crate::error::{BemError, check_nonnegative, check_positive};
 use crate::fft::Fft2;
-use crate::grid::{Grid, SUM_BLOCK, block_sum, block_sum2};
+use crate::green::{Boundary, MAX_POINTS_NON_PERIODIC, Padded};
+use crate::grid::{Grid, SUM_BLOCK, block_sum, block_sum2, in_pool};
 use crate::{patches, synth};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Operator {
+pub(crate) enum Operator {
     /// `u(q) = 2 p(q)/(E* |q|)` (m/Pa).
     Compliance,
     /// `p(q) = E* |q| u(q)/2` (Pa/m).
     Stiffness,
 }
 
-/// The elastic half-space on a periodic grid: FFT plans, the multipliers and work buffers.
+/// The elastic half-space on the grid: FFT plans, the multipliers and work buffers; periodic, or
+/// a finite patch on an unbounded half-space ([`Boundary`], [`crate::green`]).
 #[derive(Debug)]
 pub struct HalfSpace {
     grid: Grid,
     e_star_pa: f64,
+    /// The zero-padded (non-periodic) compliance, when the boundary is non-periodic.
+    padded: Option<Box<Padded>>,
     fft: Fft2,
     compliance: Vec<f64>,
     stiffness: Vec<f64>,
     rows: Vec<Complex<f64>>,
     spec: Vec<Complex<f64>>,
-    work: Vec<f64>,
 }
 
 impl HalfSpace {
@@ -55,13 +58,30 @@ impl HalfSpace {
         Ok(HalfSpace {
             grid,
             e_star_pa,
+            padded: None,
             fft,
             compliance,
             stiffness,
             rows: vec![Complex::default(); n],
             spec: vec![Complex::default(); n],
-            work: vec![0.0; grid.len()],
         })
+    }
+
+    /// The half-space of composite modulus `e_star_pa` (Pa) under a finite `grid` patch that goes
+    /// on beyond it (no periodic images; [`crate::green`]); `nx ny` at most
+    /// [`MAX_POINTS_NON_PERIODIC`]. Its traction-from-displacement operator is not available.
+    pub fn non_periodic(grid: Grid, e_star_pa: f64) -> Result<Self, BemError> {
+        if grid.len() > MAX_POINTS_NON_PERIODIC {
+            return Err(BemError::GridSize { nx: grid.nx, ny: grid.ny, limit: MAX_POINTS_NON_PERIODIC });
+        }
+        let mut h = HalfSpace::new(grid, e_star_pa)?;
+        h.padded = Some(Box::new(Padded::new(grid, e_star_pa)));
+        Ok(h)
+    }
+
+    /// Which Green's function this half-space uses.
+    pub fn boundary(&self) -> Boundary {
+        if self.padded.is_some() { Boundary::NonPeriodic } else { Boundary::Periodic }
     }
 
     /// The grid.
@@ -74,19 +94,39 @@ impl HalfSpace {
         self.e_star_pa
     }
 
-    fn apply(&mut self, op: Operator, input: &[f64], out: &mut [f64]) {
-        self.work.copy_from_slice(input);
-        self.fft.forward(&mut self.work, &mut self.rows, &mut self.spec);
+    pub(crate) fn apply(&mut self, op: Operator, input: &[f64], out: &mut [f64]) {
+        if let (Some(p), Operator::Compliance) = (self.padded.as_mut(), op) {
+            p.compliance(input, out);
+            return;
+        }
         let m = match op {
             Operator::Compliance => &self.compliance,
             Operator::Stiffness => &self.stiffness,
         };
-        self.spec.par_chunks_mut(SUM_BLOCK).zip(m.par_chunks(SUM_BLOCK)).for_each(|(s, m)| {
-            for (s, m) in s.iter_mut().zip(m) {
-                *s *= *m;
-            }
-        });
-        self.fft.inverse(&mut self.spec, &mut self.rows, out);
+        self.fft.convolve(input, m, &mut self.rows, &mut self.spec, out);
+    }
+
+    /// `out = A[field]` after `prepare(offset, block)` has rewritten `field` block by block, in
+    /// the pass that transforms it ([`Fft2::convolve_prepared`]).
+    fn apply_prepared<P: Fn(usize, &mut [f64]) + Sync>(
+        &mut self,
+        op: Operator,
+        field: &mut [f64],
+        prepare: P,
+        out: &mut [f64],
+    ) {
+        if let (Some(p), Operator::Compliance) = (self.padded.as_mut(), op) {
+            // `prepare` rewrites the field element by element (by offset): row by row here.
+            let nx = self.grid.nx;
+            field.par_chunks_mut(nx).enumerate().for_each(|(j, row)| prepare(j * nx, row));
+            p.compliance(field, out);
+            return;
+        }
+        let m = match op {
+            Operator::Compliance => &self.compliance,
+            Operator::Stiffness => &self.stiffness,
+        };
+        self.fft.convolve_prepared(field, prepare, m, &mut self.rows, &mut self.spec, out);
     }
 
     /// Surface displacement `u = K[p]` (m, zero mean) under the traction `pressure_pa` (Pa).
@@ -96,15 +136,16 @@ impl HalfSpace {
         u
     }
 
-    /// Traction `p = K^-1[u] - mean` (Pa, zero mean) for the displacement `u` (m).
+    /// Traction `p = K^-1[u] - mean` (Pa, zero mean) for the displacement `u` (m), with the
+    /// periodic stiffness (also on a non-periodic half-space, whose own inverse is not diagonal).
     pub fn traction(&mut self, displacement_m: &[f64]) -> Vec<f64> {
         let mut p = vec![0.0; self.grid.len()];
         self.apply(Operator::Stiffness, displacement_m, &mut p);
         p
     }
 
-    /// Elastic energy per nominal area, J/m^2: `U/A0 = mean(p u)/2` with `u = K[p]` (the mean
-    /// pressure does no work on the zero-mean displacement).
+    /// Elastic energy per nominal area, J/m^2: `U/A0 = mean(p u)/2` with `u = K[p]` (periodic: the
+    /// mean pressure does no work on the zero-mean displacement; non-periodic: the whole work).
     pub fn elastic_energy_j_per_m2(&mut self, pressure_pa: &[f64]) -> f64 {
         let u = self.displacement(pressure_pa);
         0.5 * block_sum(u.len(), |r| r.map(|i| pressure_pa[i] * u[i]).sum()) / u.len() as f64
@@ -129,7 +170,7 @@ impl Default for SolverOptions {
 }
 
 impl SolverOptions {
-    fn validate(&self) -> Result<(), BemError> {
+    pub(crate) fn validate(&self) -> Result<(), BemError> {
         if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance < 1.0) {
             return Err(BemError::Value {
                 name: "tolerance",
@@ -241,11 +282,11 @@ impl ContactSolution {
 /// The rough-contact problem: a height field on a half-space.
 #[derive(Debug)]
 pub struct BemSolver {
-    half: HalfSpace,
-    heights: Vec<f64>,
+    pub(crate) half: HalfSpace,
+    pub(crate) heights: Vec<f64>,
     height_mean: f64,
     height_max: f64,
-    height_rms: f64,
+    pub(crate) height_rms: f64,
     stiff_rms: f64,
 }
 
@@ -267,6 +308,21 @@ impl BemSolver {
         heights_m: &[f64],
         e_star_pa: f64,
     ) -> Result<Self, BemError> {
+        Self::with_boundary(nx, ny, dx_m, dy_m, heights_m, e_star_pa, Boundary::Periodic)
+    }
+
+    /// As [`Self::new`], with the Green's function of `boundary`: [`Boundary::NonPeriodic`] makes
+    /// the grid a finite patch (a shoe face) on a half-space that goes on ([`crate::green`]);
+    /// only load-controlled solves are then available.
+    pub fn with_boundary(
+        nx: usize,
+        ny: usize,
+        dx_m: f64,
+        dy_m: f64,
+        heights_m: &[f64],
+        e_star_pa: f64,
+        boundary: Boundary,
+    ) -> Result<Self, BemError> {
         let grid = Grid::new(nx, ny, dx_m, dy_m)?;
         if heights_m.len() != grid.len() {
             return Err(BemError::HeightLength { len: heights_m.len(), expected: grid.len() });
@@ -274,7 +330,10 @@ impl BemSolver {
         if let Some((index, &value)) = heights_m.iter().enumerate().find(|(_, h)| !h.is_finite()) {
             return Err(BemError::HeightValue { index, value });
         }
-        let mut half = HalfSpace::new(grid, e_star_pa)?;
+        let mut half = match boundary {
+            Boundary::Periodic => HalfSpace::new(grid, e_star_pa)?,
+            Boundary::NonPeriodic => HalfSpace::non_periodic(grid, e_star_pa)?,
+        };
         let n = grid.len() as f64;
         let height_mean = block_sum(heights_m.len(), |r| heights_m[r].iter().sum()) / n;
         let height_max = heights_m.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -288,6 +347,51 @@ impl BemSolver {
     /// The grid.
     pub fn grid(&self) -> Grid {
         self.half.grid
+    }
+
+    /// Replaces the height field (same grid; finite values checked) and its statistics, keeping
+    /// the half-space (FFT plans and multipliers): for a rigid shoe whose pose changes.
+    pub fn set_heights(&mut self, heights_m: &[f64]) -> Result<(), BemError> {
+        let n = self.heights.len();
+        if heights_m.len() != n {
+            return Err(BemError::HeightLength { len: heights_m.len(), expected: n });
+        }
+        if let Some((index, &value)) = heights_m.iter().enumerate().find(|(_, h)| !h.is_finite()) {
+            return Err(BemError::HeightValue { index, value });
+        }
+        self.heights.copy_from_slice(heights_m);
+        let nf = n as f64;
+        self.height_mean = block_sum(n, |r| heights_m[r].iter().sum()) / nf;
+        self.height_max = heights_m.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let m = self.height_mean;
+        self.height_rms = (block_sum(n, |r| heights_m[r].iter().map(|h| (h - m).powi(2)).sum()) / nf).sqrt();
+        let k = self.half.traction(heights_m);
+        self.stiff_rms = (block_sum(n, |r| k[r].iter().map(|v| v * v).sum()) / nf).sqrt();
+        Ok(())
+    }
+
+    /// The height field, m (row-major).
+    pub fn heights_m(&self) -> &[f64] {
+        &self.heights
+    }
+
+    /// The Green's function in use.
+    pub fn boundary(&self) -> Boundary {
+        self.half.boundary()
+    }
+
+    /// Refuses a mean-gap (dual) solve on a non-periodic half-space, whose stiffness operator is
+    /// not diagonal in Fourier space.
+    fn require_periodic(&self) -> Result<(), BemError> {
+        if self.half.boundary() == Boundary::NonPeriodic {
+            return Err(BemError::Value {
+                name: "mean_gap_m",
+                value: f64::NAN,
+                expected: "load control on a non-periodic half-space (mean-gap control needs the periodic \
+                           Green's function)",
+            });
+        }
+        Ok(())
     }
 
     /// The half-space (for displacements and energies of a solution).
@@ -317,6 +421,22 @@ impl BemSolver {
         scale: f64,
         opts: &SolverOptions,
     ) -> Result<CgOut, BemError> {
+        in_pool(|| self.constrained_cg_on_worker(op, b, x, target, scale, opts))
+    }
+
+    /// [`Self::constrained_cg`] on a pool worker. Each iteration is seven parallel passes over
+    /// the grid besides its convolution's five (the direction is built in the convolution's first
+    /// pass); the block sums are those of [`block_sum`], so the bytes do not depend on the
+    /// thread count.
+    fn constrained_cg_on_worker(
+        &mut self,
+        op: Operator,
+        b: &[f64],
+        x: &mut [f64],
+        target: f64,
+        scale: f64,
+        opts: &SolverOptions,
+    ) -> Result<CgOut, BemError> {
         let n = x.len();
         let scale = if scale > 0.0 { scale } else { 1.0 };
         let mut r = vec![0.0; n];
@@ -338,9 +458,21 @@ impl BemSolver {
                 self.half.apply(op, x, &mut ax);
                 exact = true;
             }
-            r.par_iter_mut().zip(ax.par_iter()).zip(b.par_iter()).for_each(|((r, a), b)| *r = a - b);
-            let (ns, sum_rs) =
-                block_sum2(n, |rg| rg.filter(|&i| x[i] > 0.0).fold((0.0, 0.0), |a, i| (a.0 + 1.0, a.1 + r[i])));
+            // r = A x - b, and the count and sum of r on the active set S = {x > 0}.
+            let parts: Vec<(f64, f64)> = {
+                let (xs, ax) = (&*x, &ax);
+                r.par_chunks_mut(SUM_BLOCK)
+                    .enumerate()
+                    .map(|(k, rc)| {
+                        let o = k * SUM_BLOCK;
+                        for (j, r) in rc.iter_mut().enumerate() {
+                            *r = ax[o + j] - b[o + j];
+                        }
+                        (0..rc.len()).filter(|&j| xs[o + j] > 0.0).fold((0.0, 0.0), |a, j| (a.0 + 1.0, a.1 + rc[j]))
+                    })
+                    .collect()
+            };
+            let (ns, sum_rs) = parts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
             if ns == 0.0 {
                 return Err(BemError::NoConvergence {
                     what: "constrained CG (empty active set)",
@@ -350,16 +482,28 @@ impl BemSolver {
                 });
             }
             let rbar = sum_rs / ns;
-            r.par_iter_mut().for_each(|r| *r -= rbar);
-            let (sum_x, sum_viol) = block_sum2(n, |rg| {
-                rg.fold((0.0, 0.0), |a, i| {
-                    if x[i] > 0.0 {
-                        (a.0 + x[i], a.1 + x[i] * r[i].abs())
-                    } else {
-                        (a.0, a.1 + (-r[i]).max(0.0) * target)
-                    }
-                })
-            });
+            // r -= mean_S r; the residual's two sums and the squared norm of r on S.
+            let parts: Vec<(f64, f64, f64)> = {
+                let xs = &*x;
+                r.par_chunks_mut(SUM_BLOCK)
+                    .enumerate()
+                    .map(|(k, rc)| {
+                        let o = k * SUM_BLOCK;
+                        rc.iter_mut().for_each(|r| *r -= rbar);
+                        let (sx, sv) = (0..rc.len()).fold((0.0, 0.0), |a, j| {
+                            let xi = xs[o + j];
+                            if xi > 0.0 {
+                                (a.0 + xi, a.1 + xi * rc[j].abs())
+                            } else {
+                                (a.0, a.1 + (-rc[j]).max(0.0) * target)
+                            }
+                        });
+                        let g: f64 = (0..rc.len()).filter(|&j| xs[o + j] > 0.0).map(|j| rc[j] * rc[j]).sum();
+                        (sx, sv, g)
+                    })
+                    .collect()
+            };
+            let (sum_x, sum_viol) = parts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
             residual = sum_viol / (sum_x * scale);
             if residual < opts.tolerance {
                 if exact {
@@ -369,13 +513,24 @@ impl BemSolver {
                 exact = true;
                 continue;
             }
-            let g = block_sum(n, |rg| rg.filter(|&i| x[i] > 0.0).map(|i| r[i] * r[i]).sum());
+            let g: f64 = parts.iter().map(|p| p.2).sum();
             let beta = delta * g / g_old;
-            t.par_iter_mut().zip(x.par_iter()).zip(r.par_iter()).for_each(|((t, x), r)| {
-                *t = if *x > 0.0 { r + beta * *t } else { 0.0 };
-            });
+            // t = r + beta t on S, 0 elsewhere, built in the convolution's first pass; w = A t.
+            {
+                let (xs, rs) = (&*x, &r);
+                self.half.apply_prepared(
+                    op,
+                    &mut t,
+                    |o, tc| {
+                        for (j, t) in tc.iter_mut().enumerate() {
+                            let i = o + j;
+                            *t = if xs[i] > 0.0 { rs[i] + beta * *t } else { 0.0 };
+                        }
+                    },
+                    &mut w,
+                );
+            }
             g_old = g;
-            self.half.apply(op, &t, &mut w);
             let sum_w = block_sum(n, |rg| rg.filter(|&i| x[i] > 0.0).map(|i| w[i]).sum());
             let wbar = sum_w / ns;
             let (num, den) = block_sum2(n, |rg| {
@@ -391,8 +546,9 @@ impl BemSolver {
             }
             let tau = num / den;
             // Step on the active set, project on x >= 0, and release the points that overlap
-            // (x = 0 with a negative complementary field).
-            let n_overlap: usize = x
+            // (x = 0 with a negative complementary field); in the same pass, count the points
+            // the step put on the bound and sum x.
+            let parts: Vec<(usize, f64, f64)> = x
                 .par_chunks_mut(SUM_BLOCK)
                 .zip(t.par_chunks(SUM_BLOCK))
                 .zip(r.par_chunks(SUM_BLOCK))
@@ -406,12 +562,15 @@ impl BemSolver {
                             k += 1;
                         }
                     }
-                    k
+                    let bound = x.iter().zip(t).filter(|&(x, t)| *t != 0.0 && *x == 0.0).count() as f64;
+                    let sum: f64 = x.iter().sum();
+                    (k, bound, sum)
                 })
-                .sum();
+                .collect();
+            let n_overlap: usize = parts.iter().map(|p| p.0).sum();
             delta = if n_overlap == 0 { 1.0 } else { 0.0 };
-            let n_bound = block_sum(n, |rg| rg.filter(|&i| t[i] != 0.0 && x[i] == 0.0).count() as f64);
-            let mean = block_sum(n, |rg| x[rg].iter().sum()) / n as f64;
+            let n_bound: f64 = parts.iter().map(|p| p.1).sum();
+            let mean = parts.iter().map(|p| p.2).sum::<f64>() / n as f64;
             if mean.is_nan() || mean <= 0.0 {
                 return Err(BemError::NoConvergence {
                     what: "constrained CG (all points released)",
@@ -421,12 +580,19 @@ impl BemSolver {
                 });
             }
             let f = target / mean;
-            x.par_iter_mut().for_each(|x| *x *= f);
             it += 1;
             if n_overlap == 0 && n_bound == 0.0 {
-                ax.par_iter_mut().zip(w.par_iter()).for_each(|(a, w)| *a = f * (*a - tau * w));
+                x.par_chunks_mut(SUM_BLOCK).zip(ax.par_chunks_mut(SUM_BLOCK)).zip(w.par_chunks(SUM_BLOCK)).for_each(
+                    |((x, a), w)| {
+                        for ((x, a), w) in x.iter_mut().zip(a).zip(w) {
+                            *x *= f;
+                            *a = f * (*a - tau * w);
+                        }
+                    },
+                );
                 exact = false;
             } else {
+                x.par_chunks_mut(SUM_BLOCK).for_each(|x| x.iter_mut().for_each(|x| *x *= f));
                 self.half.apply(op, x, &mut ax);
                 exact = true;
             }
@@ -440,7 +606,7 @@ impl BemSolver {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn finish(
+    pub(crate) fn finish(
         &mut self,
         pressure_pa: Vec<f64>,
         gap_m: Vec<f64>,
@@ -456,7 +622,10 @@ impl BemSolver {
         let mean_gap_m = block_sum(gap_m.len(), |r| gap_m[r].iter().sum()) / n;
         let n_contact = contact.iter().filter(|&&c| c).count();
         let contact_fraction = n_contact as f64 / n;
-        let patches = patches::count_patches(&contact, grid.nx, grid.ny);
+        let patches = match self.half.boundary() {
+            Boundary::Periodic => patches::count_patches(&contact, grid.nx, grid.ny),
+            Boundary::NonPeriodic => patches::count_patches_bounded(&contact, grid.nx, grid.ny),
+        };
         let elastic_energy_j_per_m2 = self.half.elastic_energy_j_per_m2(&pressure_pa);
         ContactSolution {
             pressure_pa,
@@ -521,6 +690,7 @@ impl BemSolver {
         warm: Option<&ContactSolution>,
     ) -> Result<ContactSolution, BemError> {
         opts.validate()?;
+        self.require_periodic()?;
         check_positive("mean_gap_m", mean_gap_m, "a finite mean gap > 0 (m)")?;
         let b = self.data_for_gap(None);
         self.gap_solve(&b, mean_gap_m, opts, warm.map(|s| s.gap_m.as_slice())).map(|(g, p, it, res)| {
@@ -603,7 +773,19 @@ impl BemSolver {
         opts: &SolverOptions,
         warm: Option<&ContactSolution>,
     ) -> Result<ContactSolution, BemError> {
+        in_pool(|| self.solve_cohesive_on_worker(mean_gap_m, laws, opts, warm))
+    }
+
+    /// [`Self::solve_cohesive_mean_gap`] on a pool worker.
+    fn solve_cohesive_on_worker(
+        &mut self,
+        mean_gap_m: f64,
+        laws: &[Dugdale],
+        opts: &SolverOptions,
+        warm: Option<&ContactSolution>,
+    ) -> Result<ContactSolution, BemError> {
         opts.validate()?;
+        self.require_periodic()?;
         check_positive("mean_gap_m", mean_gap_m, "a finite mean gap > 0 (m)")?;
         if laws.is_empty() {
             return Err(BemError::Value { name: "laws", value: 0.0, expected: "at least one cohesive law" });

@@ -60,6 +60,17 @@ pub struct BemSpec {
     )]
     #[schemars(with = "Option<stiction_units::QuantityInput>")]
     pub range: Option<f64>,
+    /// The Green's function: "non_periodic" (default: the shoe face is a finite patch, a rigid
+    /// punch of the shoe's size on a wall that goes on beyond it; zero-padded FFT of twice the
+    /// size, `crate::green`) or "periodic" (the face is one periodic cell: its opposite edges meet).
+    /// With "periodic" the shoe cannot tilt.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub boundary: Option<crate::Boundary>,
+    /// Whether the rigid shoe tilts (true: approach and two tilts from the force and moment
+    /// balances about the patch centre, `crate::shoe`; non-periodic only; about 10-60 solves per
+    /// load) or approaches flat (false, the default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tilt: Option<bool>,
 }
 
 impl BemSpec {
@@ -84,6 +95,24 @@ impl BemSpec {
         Ok(())
     }
 
+    /// The Green's function in use (default non-periodic).
+    pub fn boundary(&self) -> crate::Boundary {
+        self.boundary.unwrap_or(crate::Boundary::NonPeriodic)
+    }
+
+    /// Bytes of solver state per grid point with this spec's Green's function.
+    pub fn bytes_per_point(&self) -> usize {
+        match self.boundary() {
+            crate::Boundary::Periodic => BYTES_PER_POINT,
+            crate::Boundary::NonPeriodic => BYTES_PER_POINT + crate::green::PADDED_BYTES_PER_POINT,
+        }
+    }
+
+    /// Whether the shoe tilts (default false).
+    pub fn tilt(&self) -> bool {
+        self.tilt.unwrap_or(false)
+    }
+
     /// The tolerance in use.
     pub fn tolerance(&self) -> f64 {
         self.tolerance.unwrap_or(DEFAULT_TOLERANCE)
@@ -105,6 +134,11 @@ impl BemSpec {
         };
         let (cx, cy) = (nx / kx, ny / ky);
         let limit = self.max_points.unwrap_or(DEFAULT_MAX_POINTS) as usize;
+        // The padded operator works on four times the grid: its own limit.
+        let limit = match self.boundary() {
+            crate::Boundary::Periodic => limit,
+            crate::Boundary::NonPeriodic => limit.min(crate::green::MAX_POINTS_NON_PERIODIC),
+        };
         if cx < 2 || cy < 2 || cx.checked_mul(cy).is_none_or(|n| n > limit) {
             return Err(BemError::GridSize { nx: cx, ny: cy, limit });
         }

@@ -154,12 +154,14 @@ impl ContactModel {
 }
 
 /// The boundary-element model of the shoe face: the composite height patch under the shoe's
-/// apparent area as one periodic cell (the patch's opposite edges meet: an approximation that
-/// matters when a contact patch touches the edge), a rigid flat shoe approaching it without tilt,
-/// the elastic interaction of every point with every other through the half-space Green's
-/// function. Without adhesion (law "hertz" or no work of adhesion) the state at a load is the
-/// Polonsky-Keer solution; with adhesion the Dugdale cohesive law (`w` of the material, range
-/// `contact.bem.range`) on the loading branch (see `stiction_bem::loading`).
+/// apparent area, by default a finite patch on a wall that goes on (the non-periodic Green's
+/// function, `contact.bem.boundary`), or one periodic cell; a rigid shoe that approaches flat (the
+/// default) or tilts until its moments balance (`contact.bem.tilt`, non-periodic only); the
+/// elastic interaction of every point with every other through the half-space.
+/// Without adhesion (law "hertz" or no work of adhesion) the state at a load is the Polonsky-Keer
+/// solution; with adhesion the Dugdale cohesive law (`w` of the material, range
+/// `contact.bem.range`) on the loading branch (`stiction_bem::shoe` under load control for the
+/// finite patch, `stiction_bem::loading` for the periodic cell).
 #[derive(Debug)]
 pub struct BemContact {
     solver: stiction_bem::BemSolver,
@@ -168,13 +170,24 @@ pub struct BemContact {
     options: stiction_bem::SolverOptions,
     path: stiction_bem::LoadingPath,
     last: Option<stiction_bem::ContactSolution>,
+    tilting: bool,
+    last_tilt: Option<stiction_bem::TiltedShoe>,
     /// Block factors (x, y) that coarsened the map's pixels into the grid.
     pub coarsening: (usize, usize),
 }
 
+/// The shoe of a [`BemContact`]: its Green's function and whether it tilts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BemShoe {
+    /// Periodic cell or finite patch on the wall.
+    pub boundary: stiction_bem::Boundary,
+    /// Whether the shoe tilts (force and moment balance) or approaches flat.
+    pub tilting: bool,
+}
+
 impl BemContact {
     /// The model on the row-major `heights_m` of an `nx x ny` grid of `dx_m x dy_m` pixels (already
-    /// coarsened and size-checked), composite modulus `e_star_pa`, optional Dugdale law.
+    /// coarsened and size-checked), composite modulus `e_star_pa`, optional Dugdale law, the shoe.
     pub fn new(
         grid: stiction_bem::Grid,
         heights_m: &[f64],
@@ -182,11 +195,39 @@ impl BemContact {
         law: Option<stiction_bem::Dugdale>,
         tolerance: f64,
         coarsening: (usize, usize),
+        shoe: BemShoe,
     ) -> Result<Self, MeterError> {
-        let solver = stiction_bem::BemSolver::new(grid.nx, grid.ny, grid.dx_m, grid.dy_m, heights_m, e_star_pa)
-            .map_err(|e| MeterError::Contact(format!("bem: {e}")))?;
-        let options = stiction_bem::SolverOptions { tolerance, ..Default::default() };
-        Ok(BemContact { solver, grid, law, options, path: Default::default(), last: None, coarsening })
+        if shoe.tilting && shoe.boundary == stiction_bem::Boundary::Periodic {
+            return Err(MeterError::Scenario(
+                "contact.bem.tilt: a tilting shoe needs the finite patch (contact.bem.boundary = \"non_periodic\"); a \
+                 periodic cell has no edge to tilt about"
+                    .into(),
+            ));
+        }
+        let solver = stiction_bem::BemSolver::with_boundary(
+            grid.nx,
+            grid.ny,
+            grid.dx_m,
+            grid.dy_m,
+            heights_m,
+            e_star_pa,
+            shoe.boundary,
+        )
+        .map_err(|e| MeterError::Contact(format!("bem: {e}")))?;
+        // At most 50 cohesive-zone updates per solve (1-7 in the validation cases): with the path's
+        // work budget (stiction_bem::error::PATH_WORK_FACTOR) every load is bounded.
+        let options = stiction_bem::SolverOptions { tolerance, max_zone_updates: 50, ..Default::default() };
+        Ok(BemContact {
+            solver,
+            grid,
+            law,
+            options,
+            path: Default::default(),
+            last: None,
+            tilting: shoe.tilting,
+            last_tilt: None,
+            coarsening,
+        })
     }
 
     /// The grid.
@@ -199,8 +240,14 @@ impl BemContact {
         self.law
     }
 
-    /// The full solution at external load `load_n` (N, > 0) on the patch.
+    /// The full solution at external load `load_n` (N, > 0) on the patch (in the shoe's pose when
+    /// it tilts: heights seen from the tilted face).
     pub fn solve(&mut self, load_n: f64) -> Result<stiction_bem::ContactSolution, MeterError> {
+        self.solve_pose(load_n).map(|(s, _)| s)
+    }
+
+    /// The solution and the tilts `(dw/dx, dw/dy)` (rad; zero for a flat shoe).
+    pub fn solve_pose(&mut self, load_n: f64) -> Result<(stiction_bem::ContactSolution, (f64, f64)), MeterError> {
         if !(load_n.is_finite() && load_n > 0.0) {
             return Err(MeterError::Contact(format!(
                 "bem: load {load_n:e} N: the loading branch needs a compressive load > 0 (below, the shoe is not in \
@@ -208,22 +255,37 @@ impl BemContact {
             )));
         }
         let p = load_n / self.grid.area_m2();
-        let s = match &self.law {
-            None => self.solver.solve_load(p, &self.options, self.last.as_ref()),
-            Some(law) => self.solver.adhesive_loading_at_pressure(p, law, &self.options, &mut self.path),
+        let err = |e: stiction_bem::BemError| MeterError::Contact(format!("bem: {e}"));
+        if self.tilting {
+            // Continue the path from the last pose while the load rises; start afresh below it.
+            let warm = self.last_tilt.as_ref().filter(|t| t.solution.mean_pressure_pa <= p);
+            let t = self.solver.tilting_at_load(p, self.law.as_ref(), &self.options, warm).map_err(err)?;
+            let out = (t.solution.clone(), (t.tilt_x_rad, t.tilt_y_rad));
+            self.last_tilt = Some(t);
+            return Ok(out);
         }
-        .map_err(|e| MeterError::Contact(format!("bem: {e}")))?;
-        if self.law.is_none() {
+        let s = match (&self.law, self.solver.boundary()) {
+            (None, _) => self.solver.solve_load(p, &self.options, self.last.as_ref()),
+            (Some(law), stiction_bem::Boundary::Periodic) => {
+                self.solver.adhesive_loading_at_pressure(p, law, &self.options, &mut self.path)
+            }
+            (Some(law), stiction_bem::Boundary::NonPeriodic) => {
+                let warm = self.last.as_ref().filter(|s| s.mean_pressure_pa <= p);
+                self.solver.adhesive_at_load(p, law, &self.options, warm)
+            }
+        }
+        .map_err(err)?;
+        if self.law.is_none() || self.solver.boundary() == stiction_bem::Boundary::NonPeriodic {
             self.last = Some(s.clone());
         }
-        Ok(s)
+        Ok((s, (0.0, 0.0)))
     }
 
     /// The contact state at external load `load_n` (N): real area (contact points times the pixel
     /// area), contact patches as "contacts", adhesive load = the Dugdale tension over the cohesive
     /// zone (the contact pressure carries `L` plus it), largest contact pressure.
     pub fn state_at_load(&mut self, load_n: f64) -> Result<ContactState, MeterError> {
-        let s = self.solve(load_n)?;
+        let (s, (tilt_x_rad, tilt_y_rad)) = self.solve_pose(load_n)?;
         let stress = self.law.map_or(0.0, |l| l.stress_pa);
         // Net traction p = p_c - sigma0 in the zone: the contact pressure is p + sigma0 there.
         let max_pressure_pa =
@@ -235,8 +297,8 @@ impl BemContact {
             contacts: s.patches as f64,
             adhesive_load_n,
             capillary_load_n: 0.0,
-            tilt_x_rad: 0.0,
-            tilt_y_rad: 0.0,
+            tilt_x_rad,
+            tilt_y_rad,
             max_pressure_pa,
         })
     }

@@ -24,7 +24,7 @@ pub mod invariants;
 pub mod measured;
 pub mod slip;
 pub mod structure;
-pub use contact_model::{BemContact, ContactModel, ContactState};
+pub use contact_model::{BemContact, BemShoe, ContactModel, ContactState};
 pub use error::MeterError;
 pub use slip::SlipPath;
 use stiction_contact::explicit;
@@ -780,7 +780,8 @@ pub fn build_contact_model(s: &Scenario, material: &MaterialSpec, base_dir: &Pat
 /// under the shoe ([`stiction_surface::height_map_patch`]), coarsened as `contact.bem` asks and
 /// checked against its point limit before the solver allocates; E* = 3/(4D); the Dugdale law with
 /// the material's work of adhesion and `contact.bem.range` (default z0/1.03) unless the law is
-/// "hertz" or the work of adhesion is 0.
+/// "hertz" or the work of adhesion is 0; the Green's function of `contact.bem.boundary` (default
+/// the finite patch on the wall); a flat shoe, or a tilting one with `contact.bem.tilt`.
 pub fn build_bem(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Result<BemContact, MeterError> {
     let c = s.contact_or_default();
     let spec = c.bem.clone().unwrap_or_default();
@@ -807,5 +808,17 @@ pub fn build_bem(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Resu
     } else {
         None
     };
-    BemContact::new(grid, &heights, 0.75 / material.compliance_per_pa(), law, spec.tolerance(), (kx, ky))
+    let e_star = 0.75 / material.compliance_per_pa();
+    // A Dugdale stress above E* (the theoretical strength of a solid is about E/10) describes no
+    // interface, and its cohesive zone cannot settle on any grid: refused before any solve.
+    if let Some(l) = law.filter(|l| l.stress_pa > e_star) {
+        return Err(MeterError::Scenario(format!(
+            "contact.bem.range (or material.equilibrium_spacing, material.work_of_adhesion): the Dugdale stress \
+             w/h0 = {:e} Pa (w = {:e} J/m^2 over h0 = {:e} m) exceeds E* = {e_star:e} Pa; a solid breaks near E/10: \
+             give a longer range",
+            l.stress_pa, material.work_of_adhesion, l.range_m
+        )));
+    }
+    let shoe = BemShoe { boundary: spec.boundary(), tilting: spec.tilt() };
+    BemContact::new(grid, &heights, e_star, law, spec.tolerance(), (kx, ky), shoe)
 }

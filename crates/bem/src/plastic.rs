@@ -1,0 +1,309 @@
+//! Perfectly plastic contact: the contact pressure capped at the hardness ([`PlasticSolution`],
+//! [`BemSolver::solve_load_plastic`]).
+//!
+//! The unknown is the pressure `p` in `[0, H]` (Pa) with `mean(p)` fixed; the complementarity
+//! conditions are those of an elastic-perfectly-plastic interface (the saturated contact of
+//! Almqvist et al. 2007, Tamaas's `KatoSaturated`):
+//!
+//! * `p = 0`: gap `g >= 0` (out of contact);
+//! * `0 < p < H`: `g = 0` (elastic contact);
+//! * `p = H`: `g <= 0`, the overlap `-g` the plastic depth (the pixel flows at the hardness).
+//!
+//! The iteration is the constrained conjugate gradient of Polonsky & Keer on the free points
+//! `F = {0 < p < H}` (the rigid approach is the mean of the complementary field on `F`), with the
+//! step projected on `[0, H]`, points released from either bound where the field says so
+//! (`p = 0` with `g < 0`; `p = H` with `g > 0`), and the mean restored by a scale factor `f`
+//! of the points below the cap solving `mean(min(f p, H)) = target` (Newton's method on this
+//! concave piecewise-linear function, which from below rises monotonically to the root and
+//! reaches it in a few steps), or, when a step has put so many points at the cap that they alone
+//! carry more than the target, by a shift of the contact points clamped to `[0, H]` (bisection;
+//! the projection of Kato-type methods). Residual: `eps = (sum_F p |g| + target sum_{p=0} max(-g, 0)
+//! + H sum_{p=H} max(g, 0)) / (sum p * rms(h))`.
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::error::{BemError, check_positive};
+use crate::grid::{SUM_BLOCK, block_sum, block_sum2, in_pool};
+use crate::solver::{BemSolver, ContactSolution, Operator, SolverOptions};
+
+/// A contact state with the pressure capped at the hardness.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PlasticSolution {
+    /// The state: pressure (capped), gap (0 on contact and plastic points), contact flags (p > 0),
+    /// means, areas, iterations and residual as for an elastic solve.
+    pub solution: ContactSolution,
+    /// The hardness the pressure is capped at, Pa.
+    pub hardness_pa: f64,
+    /// Fraction of points at the hardness (flowing plastically), `A_p/A0`.
+    pub plastic_fraction: f64,
+    /// Plastic area `A_p`, m^2.
+    pub plastic_area_m2: f64,
+    /// Largest plastic depth (the overlap `-g` at a point at the hardness), m; 0 without plastic
+    /// points.
+    pub max_plastic_depth_m: f64,
+}
+
+/// Steps of the Newton iteration for the scale of the mean (it ends in a few).
+const MAX_SCALE_STEPS: usize = 100;
+
+/// How the mean pressure is restored after a step ([`restore_mean`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum MeanFix {
+    /// Points below the cap scaled by `f` (clamped at the cap), points at the cap kept.
+    Scale(f64),
+    /// Points in contact shifted by `lambda` (Pa) and clamped to `[0, cap]`: when the points at
+    /// the cap alone carry more than the target (a step that saturated too many).
+    Shift(f64),
+}
+
+impl MeanFix {
+    fn apply(self, v: f64, cap: f64) -> f64 {
+        match self {
+            MeanFix::Scale(f) => {
+                if v < cap {
+                    (v * f).min(cap)
+                } else {
+                    cap
+                }
+            }
+            MeanFix::Shift(l) => {
+                if v > 0.0 {
+                    (v + l).clamp(0.0, cap)
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+}
+
+/// Bisection steps for the shift (to the last bit of a value below the cap).
+const SHIFT_STEPS: usize = 80;
+
+/// The fix that makes `mean(fix(x)) = target` (x in `[0, cap]`, `0 < target < cap`): the scale
+/// `f` of the points below the cap by Newton's method from below (the mean of `min(f x, cap)`
+/// is concave and piecewise linear in `f`); when the points at the cap alone carry more than the
+/// target, the shift of the contact points by bisection. Deterministic block sums.
+fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> {
+    let n = x.len() as f64;
+    let (free_sum, capped) = block_sum2(x.len(), |rg| {
+        rg.fold((0.0, 0.0), |a, i| if x[i] < cap { (a.0 + x[i], a.1) } else { (a.0, a.1 + cap) })
+    });
+    if !(free_sum + capped).is_finite() || free_sum + capped <= 0.0 {
+        return None;
+    }
+    if capped >= target * n || free_sum <= 0.0 {
+        let mean_at = |l: f64| block_sum(x.len(), |rg| rg.map(|i| MeanFix::Shift(l).apply(x[i], cap)).sum()) / n;
+        let (mut lo, mut hi) = (-cap, cap);
+        for _ in 0..SHIFT_STEPS {
+            let mid = 0.5 * (lo + hi);
+            if mean_at(mid) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        return Some(MeanFix::Shift(0.5 * (lo + hi)));
+    }
+    let mut f = (target * n - capped) / free_sum;
+    for _ in 0..MAX_SCALE_STEPS {
+        let (value, slope) = block_sum2(x.len(), |rg| {
+            rg.fold((0.0, 0.0), |a, i| {
+                let v = x[i];
+                if v >= cap || f * v >= cap { (a.0 + cap, a.1) } else { (a.0 + f * v, a.1 + v) }
+            })
+        });
+        if slope <= 0.0 {
+            break;
+        }
+        let step = (target * n - value) / slope;
+        if step <= f * 1e-15 {
+            break;
+        }
+        f += step;
+    }
+    Some(MeanFix::Scale(f))
+}
+
+impl BemSolver {
+    /// Contact under load control with the pressure capped at the hardness `hardness_pa`
+    /// (Pa, > 0): perfectly plastic pixels where the elastic pressure would exceed it (the method
+    /// is in the module docs). `mean_pressure_pa` (Pa) must lie in `(0, hardness_pa)`: at the
+    /// hardness every point flows and the approach is undetermined. `warm`: a previous state.
+    ///
+    /// Errors: bad values, no convergence within `opts.max_iterations`.
+    pub fn solve_load_plastic(
+        &mut self,
+        mean_pressure_pa: f64,
+        hardness_pa: f64,
+        opts: &SolverOptions,
+        warm: Option<&PlasticSolution>,
+    ) -> Result<PlasticSolution, BemError> {
+        opts.validate()?;
+        check_positive("hardness_pa", hardness_pa, "a finite hardness > 0 (Pa)")?;
+        check_positive("mean_pressure_pa", mean_pressure_pa, "a finite mean pressure > 0 (Pa)")?;
+        if mean_pressure_pa >= hardness_pa {
+            return Err(BemError::Value {
+                name: "mean_pressure_pa",
+                value: mean_pressure_pa,
+                expected: "a mean pressure below the hardness (at the hardness the whole face flows)",
+            });
+        }
+        in_pool(|| self.solve_load_plastic_on_worker(mean_pressure_pa, hardness_pa, opts, warm))
+    }
+
+    fn solve_load_plastic_on_worker(
+        &mut self,
+        target: f64,
+        cap: f64,
+        opts: &SolverOptions,
+        warm: Option<&PlasticSolution>,
+    ) -> Result<PlasticSolution, BemError> {
+        let n = self.heights.len();
+        let mut x: Vec<f64> = match warm {
+            Some(w) if w.solution.pressure_pa.len() == n && w.solution.mean_pressure_pa > 0.0 => {
+                w.solution.pressure_pa.iter().map(|p| p.clamp(0.0, cap)).collect()
+            }
+            _ => vec![target; n],
+        };
+        let fix = restore_mean(&x, cap, target).ok_or(BemError::Value {
+            name: "mean_pressure_pa",
+            value: target,
+            expected: "a warm start with some pressure",
+        })?;
+        x.iter_mut().for_each(|v| *v = fix.apply(*v, cap));
+        let b = self.heights.clone();
+        let scale = if self.height_rms > 0.0 { self.height_rms } else { 1.0 };
+        let op = Operator::Compliance;
+        let mut r = vec![0.0; n];
+        let mut ax = vec![0.0; n];
+        let mut t = vec![0.0; n];
+        let mut w = vec![0.0; n];
+        let (mut g_old, mut delta, mut residual) = (1.0, 0.0, f64::INFINITY);
+        self.half.apply(op, &x, &mut ax);
+        let free = |v: f64| v > 0.0 && v < cap;
+        let mut it = 0;
+        let converged = loop {
+            if it >= opts.max_iterations {
+                break false;
+            }
+            r.par_iter_mut().zip(ax.par_iter()).zip(b.par_iter()).for_each(|((r, a), b)| *r = a - b);
+            let (nf, sum_r) =
+                block_sum2(n, |rg| rg.filter(|&i| free(x[i])).fold((0.0, 0.0), |a, i| (a.0 + 1.0, a.1 + r[i])));
+            // With no free point (every contact point plastic) the approach is that of the
+            // plastic points: the mean of the field over them.
+            let (nf, sum_r) = if nf > 0.0 {
+                (nf, sum_r)
+            } else {
+                block_sum2(n, |rg| rg.filter(|&i| x[i] > 0.0).fold((0.0, 0.0), |a, i| (a.0 + 1.0, a.1 + r[i])))
+            };
+            if nf == 0.0 {
+                return Err(BemError::NoConvergence {
+                    what: "plastic CG (empty contact set)",
+                    iterations: it,
+                    residual,
+                    tolerance: opts.tolerance,
+                });
+            }
+            let rbar = sum_r / nf;
+            r.par_iter_mut().for_each(|r| *r -= rbar);
+            let (sum_x, viol) = block_sum2(n, |rg| {
+                rg.fold((0.0, 0.0), |a, i| {
+                    let (xi, ri) = (x[i], r[i]);
+                    if xi <= 0.0 {
+                        (a.0, a.1 + (-ri).max(0.0) * target)
+                    } else if xi >= cap {
+                        (a.0 + xi, a.1 + ri.max(0.0) * cap)
+                    } else {
+                        (a.0 + xi, a.1 + xi * ri.abs())
+                    }
+                })
+            });
+            residual = viol / (sum_x * scale);
+            if residual < opts.tolerance {
+                break true;
+            }
+            let g = block_sum(n, |rg| rg.filter(|&i| free(x[i])).map(|i| r[i] * r[i]).sum());
+            let beta = if g_old > 0.0 { delta * g / g_old } else { 0.0 };
+            t.par_iter_mut().zip(x.par_iter()).zip(r.par_iter()).for_each(|((t, x), r)| {
+                *t = if free(*x) { r + beta * *t } else { 0.0 };
+            });
+            g_old = g;
+            self.half.apply(op, &t, &mut w);
+            let wbar = block_sum(n, |rg| rg.filter(|&i| free(x[i])).map(|i| w[i]).sum()) / nf;
+            let (num, den) = block_sum2(n, |rg| {
+                rg.filter(|&i| free(x[i])).fold((0.0, 0.0), |a, i| (a.0 + r[i] * t[i], a.1 + (w[i] - wbar) * t[i]))
+            });
+            let tau = if den > 0.0 && den.is_finite() && num.is_finite() { num / den } else { 0.0 };
+            // Step on the free set, project on [0, H]; release the bound points the field
+            // pushes off their bound (a steepest-descent step of the same length for them).
+            let changed: usize = x
+                .par_chunks_mut(SUM_BLOCK)
+                .zip(t.par_chunks(SUM_BLOCK))
+                .zip(r.par_chunks(SUM_BLOCK))
+                .map(|((x, t), r)| {
+                    let mut k = 0;
+                    for ((x, t), r) in x.iter_mut().zip(t).zip(r) {
+                        let old = *x;
+                        if old > 0.0 && old < cap {
+                            *x = (old - tau * t).clamp(0.0, cap);
+                            if *x <= 0.0 || *x >= cap {
+                                k += 1;
+                            }
+                        } else if old <= 0.0 && *r < 0.0 {
+                            *x = (-tau.max(0.0) * r).min(cap);
+                            k += 1;
+                        } else if old >= cap && *r > 0.0 {
+                            *x = (cap - tau.max(0.0) * r).max(0.0);
+                            k += 1;
+                        }
+                    }
+                    k
+                })
+                .sum();
+            // A step of zero length (no descent on the free set) still releases by the
+            // steepest-descent length of the field's scale.
+            if tau <= 0.0 && changed == 0 {
+                return Err(BemError::NoConvergence {
+                    what: "plastic CG (no descent)",
+                    iterations: it,
+                    residual,
+                    tolerance: opts.tolerance,
+                });
+            }
+            delta = if changed == 0 { 1.0 } else { 0.0 };
+            let fix = restore_mean(&x, cap, target).ok_or(BemError::NoConvergence {
+                what: "plastic CG (all points released)",
+                iterations: it,
+                residual,
+                tolerance: opts.tolerance,
+            })?;
+            x.par_iter_mut().for_each(|v| *v = fix.apply(*v, cap));
+            self.half.apply(op, &x, &mut ax);
+            it += 1;
+        };
+        if !converged {
+            return Err(BemError::NoConvergence {
+                what: "plastic conjugate gradient",
+                iterations: opts.max_iterations,
+                residual,
+                tolerance: opts.tolerance,
+            });
+        }
+        let contact: Vec<bool> = x.iter().map(|&v| v > 0.0).collect();
+        let plastic = x.iter().filter(|&&v| v >= cap).count();
+        let max_plastic_depth_m = x.iter().zip(&r).filter(|&(&v, _)| v >= cap).fold(0.0f64, |m, (_, &g)| m.max(-g));
+        let gap: Vec<f64> = x.iter().zip(&r).map(|(&v, &g)| if v > 0.0 { 0.0 } else { g.max(0.0) }).collect();
+        let sol = self.finish(x, gap, contact, 0, it, 1, residual);
+        let grid = self.half.grid();
+        let plastic_fraction = plastic as f64 / grid.len() as f64;
+        Ok(PlasticSolution {
+            solution: sol,
+            hardness_pa: cap,
+            plastic_fraction,
+            plastic_area_m2: plastic_fraction * grid.area_m2(),
+            max_plastic_depth_m,
+        })
+    }
+}
