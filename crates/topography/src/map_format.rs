@@ -32,6 +32,10 @@ pub enum MapFormat {
     Sur,
     /// Wyko / Bruker Vision `.opd` (white-light interferometers), undefined points missing.
     Opd,
+    /// Sensofar `.plu` (confocal and interferometric profilers): float32 µm heights, non-measured points missing.
+    Plu,
+    /// Zygo MetroPro `.dat` (interferometers): int32 phase with the scale in the header, invalid points missing.
+    Metropro,
 }
 
 impl MapFormat {
@@ -58,6 +62,7 @@ impl MapFormat {
             "x3p" => MapFormat::X3p,
             "sur" => MapFormat::Sur,
             "opd" => MapFormat::Opd,
+            "plu" => MapFormat::Plu,
             _ => return None,
         })
     }
@@ -80,6 +85,8 @@ impl MapFormat {
             MapFormat::X3p => "x3p",
             MapFormat::Sur => "sur",
             MapFormat::Opd => "opd",
+            MapFormat::Plu => "plu",
+            MapFormat::Metropro => "metropro",
         }
     }
 }

@@ -48,8 +48,10 @@ impl FromStr for MapFormat {
             "x3p" => Ok(MapFormat::X3p),
             "sur" => Ok(MapFormat::Sur),
             "opd" => Ok(MapFormat::Opd),
+            "plu" => Ok(MapFormat::Plu),
+            "metropro" => Ok(MapFormat::Metropro),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur or opd"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu or metropro"
             )),
         }
     }

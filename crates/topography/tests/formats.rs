@@ -298,3 +298,62 @@ fn wyko_opd_matches_the_reference_with_its_undefined_points_missing() {
     assert_eq!(info.channel.as_ref().unwrap().name, "Raw");
     check_against_reference("opd-1.opd", 0, &map, &info, 1.0);
 }
+
+#[test]
+fn sensofar_plu_matches_the_reference() {
+    // Heights are float32 in µm; 1000001 marks a non-measured point (none in this file: the
+    // reference counts 0 missing too).
+    let path = data("plu-1.plu");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list.len(), list[0].name.as_str(), list[0].unit.as_str()), (MapFormat::Plu, 1, "layer0", "µm"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!((info.format, info.height_unit_m), (MapFormat::Plu, 1e-6));
+    check_against_reference("plu-1.plu", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn sensofar_non_measured_points_are_missing() {
+    // The real file with two of its heights set to the non-measured marker 1000001.
+    let mut b = std::fs::read(data("plu-1.plu")).unwrap();
+    for k in [0usize, 1000] {
+        let at = 508 + 4 * k;
+        b[at..at + 4].copy_from_slice(&1_000_001f32.to_le_bytes());
+    }
+    let (dir, p) = write_temp("holes.plu", &b);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!(info.missing_pixels, 2);
+    assert!(map.at(0, 0).is_nan() && map.at(1000 % 768, 1000 / 768).is_nan());
+    // A profile (measurement type 1) is refused, named.
+    b[428..432].copy_from_slice(&1u32.to_le_bytes());
+    std::fs::write(&p, &b).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("holes.plu") && e.contains("profile"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn zygo_metropro_matches_the_reference() {
+    // Height = phase x S x O x W / R (MetroPro Reference Guide): S = 0.5, O = 1, W = 570 nm,
+    // R = 32768 (phase resolution 1) in this file.
+    let path = data("metropro-1.dat");
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!((info.format, info.channel.as_ref().unwrap().name.as_str()), (MapFormat::Metropro, "Height"));
+    check_against_reference("metropro-1.dat", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn zygo_invalid_phase_is_missing_and_the_sign_inverts() {
+    let mut b = std::fs::read(data("metropro-1.dat")).unwrap();
+    let phase = 834 + 614_400;
+    let (ref_map, _) = read_file(&data("metropro-1.dat"), None, &none()).unwrap();
+    // Phase values of 2147483640 and above are invalid (the guide's "invalid data" marker).
+    b[phase..phase + 4].copy_from_slice(&2_147_483_640i32.to_be_bytes());
+    b[phase + 8..phase + 12].copy_from_slice(&i32::MAX.to_be_bytes());
+    b[232..234].copy_from_slice(&1i16.to_be_bytes());
+    let (dir, p) = write_temp("holes.dat", &b);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!(info.missing_pixels, 2);
+    assert!(map.at(0, 0).is_nan() && map.at(2, 0).is_nan());
+    assert_eq!(map.at(5, 7), -ref_map.at(5, 7));
+    std::fs::remove_dir_all(&dir).ok();
+}

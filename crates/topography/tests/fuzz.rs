@@ -689,6 +689,72 @@ fn opd_case(rng: &mut Rng) -> Vec<u8> {
     b
 }
 
+/// Structured mutation of a binary file's header and payload: fields at the given offsets set to
+/// extreme integers (`ints`: offset, width) or floats (`floats`: offset, big-endian), the text
+/// `SECRET` written into a name field, the payload truncated, random byte edits.
+fn mutate_header(
+    rng: &mut Rng,
+    b: &mut Vec<u8>,
+    ints: &[(usize, usize)],
+    floats: &[(usize, bool)],
+    names: &[usize],
+    payload_from: usize,
+) {
+    for _ in 0..1 + rng.below(3) {
+        match rng.below(6) {
+            0 | 1 if !ints.is_empty() => {
+                let (at, n) = *rng.pick(ints);
+                poke(rng, b, at, n);
+            }
+            2 if !floats.is_empty() => {
+                let (at, big) = *rng.pick(floats);
+                let v = *rng.pick(&[0.0f32, -1.0, f32::NAN, f32::INFINITY, 1e30, 1e-45]);
+                if at + 4 <= b.len() {
+                    b[at..at + 4].copy_from_slice(&if big { v.to_be_bytes() } else { v.to_le_bytes() });
+                }
+            }
+            3 if !names.is_empty() => {
+                let at = *rng.pick(names);
+                let n = SECRET.len().min(b.len().saturating_sub(at));
+                if n > 0 {
+                    b[at..at + n].copy_from_slice(&SECRET.as_bytes()[..n]);
+                }
+            }
+            4 => {
+                let keep = payload_from + rng.below(b.len().saturating_sub(payload_from) + 1);
+                b.truncate(keep);
+            }
+            _ => byte_noise(rng, b),
+        }
+    }
+}
+
+fn plu_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let h: Vec<Option<f32>> =
+        map.heights_m().iter().map(|&h| if h.is_nan() { None } else { Some((h * 1e6) as f32) }).collect();
+    let mut b = synth::plu(map.nx(), map.ny(), 0.01, &h);
+    let ints = [(388, 4), (392, 4), (428, 4), (489, 1), (500, 4), (504, 4)];
+    mutate_header(rng, &mut b, &ints, &[(404, false), (408, false)], &[0, 500], 500);
+    b
+}
+
+fn metropro_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    // Phase units: 0.5 x 633 nm / 32768 per unit.
+    let unit = 0.5 * 633e-9 / 32768.0;
+    let phase: Vec<i32> = map
+        .heights_m()
+        .iter()
+        .map(|&h| if h.is_nan() { i32::MAX } else { (h / unit).clamp(-1e9, 1e9) as i32 })
+        .collect();
+    let mut b = synth::metropro(map.nx(), map.ny(), 1e-8, &phase);
+    let ints = [(4, 2), (6, 4), (56, 2), (60, 4), (68, 2), (70, 2), (72, 4), (218, 2), (232, 2)];
+    let floats = [(164, true), (168, true), (176, true), (184, true)];
+    mutate_header(rng, &mut b, &ints, &floats, &[], 834);
+    b
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -742,7 +808,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" => {
+                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -861,5 +927,17 @@ fn sdf_files_keep_the_contract() {
 #[test]
 fn xyz_lists_keep_the_contract() {
     let c = run_format("xyz", xyz_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn plu_files_keep_the_contract() {
+    let c = run_format("plu", plu_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn metropro_files_keep_the_contract() {
+    let c = run_format("metropro", metropro_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }

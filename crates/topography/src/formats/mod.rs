@@ -8,9 +8,12 @@
 //! and the height scale come from the file; what a file lacks is asked for by name (the crate's
 //! `MapMetadata`), never guessed.
 
+mod fields;
 pub(crate) mod ibw;
 pub mod nanoscope;
 pub(crate) mod opd;
+pub(crate) mod plu;
+pub(crate) mod metropro;
 pub(crate) mod sdf;
 pub(crate) mod sur;
 pub mod x3p;
@@ -67,9 +70,18 @@ impl Sample {
     }
 }
 
+/// Which stored samples mark a missing pixel (besides NaN in float types, always missing).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Missing {
+    /// A sample equal to this value (e.g. Digital Surf's `zmin - 2`, Sensofar's 1000001).
+    Equal(f64),
+    /// A sample at or above this value (e.g. Zygo MetroPro's 2147483640).
+    AtLeast(f64),
+}
+
 /// Where a channel's `nx x ny` samples lie in the file: from `offset`, x fastest, rows in file
 /// order (row 0 of the map is the file's last row when `flip_y`); value = sample x `scale`, in
-/// the channel's unit; a sample equal to `invalid` (integer types) or NaN (float types) is missing.
+/// the channel's unit; a sample `invalid` marks, or NaN (float types), is missing.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Raster {
     pub offset: usize,
@@ -77,7 +89,7 @@ pub(crate) struct Raster {
     pub big_endian: bool,
     pub flip_y: bool,
     pub scale: f64,
-    pub invalid: Option<i64>,
+    pub invalid: Option<Missing>,
 }
 
 /// How a channel's values are had.
@@ -118,6 +130,10 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Sur)
     } else if x3p::is_zip(bytes) {
         Some(MapFormat::X3p)
+    } else if plu::is_plu(bytes) {
+        Some(MapFormat::Plu)
+    } else if metropro::is_metropro(bytes) {
+        Some(MapFormat::Metropro)
     } else {
         None
     }
@@ -132,6 +148,8 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::X3p => x3p::channels(bytes, origin),
         MapFormat::Sur => sur::channels(bytes, origin),
         MapFormat::Opd => opd::channels(bytes, origin),
+        MapFormat::Plu => plu::channels(bytes, origin),
+        MapFormat::Metropro => metropro::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }
@@ -286,17 +304,18 @@ fn convert<const N: usize, T: Into<f64>>(
     out: &mut Vec<f64>,
     from: fn([u8; N]) -> T,
     scale: f64,
-    invalid: Option<f64>,
+    invalid: Option<Missing>,
 ) {
     let it = line.chunks_exact(N).map(|c| from(c.try_into().unwrap_or([0; N])).into());
     match invalid {
-        Some(inv) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale })),
+        Some(Missing::Equal(inv)) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale })),
+        Some(Missing::AtLeast(inv)) => out.extend(it.map(|v: f64| if v >= inv { f64::NAN } else { v * scale })),
         None => out.extend(it.map(|v: f64| v * scale)),
     }
 }
 
 fn convert_row(line: &[u8], r: &Raster, scale: f64, out: &mut Vec<f64>) {
-    let inv = r.invalid.map(|v| v as f64);
+    let inv = r.invalid;
     let be = r.big_endian;
     match r.sample {
         Sample::I8 => convert(line, out, i8::from_le_bytes, scale, inv),
@@ -309,10 +328,10 @@ fn convert_row(line: &[u8], r: &Raster, scale: f64, out: &mut Vec<f64>) {
         Sample::I32 => convert(line, out, i32::from_le_bytes, scale, inv),
         Sample::U32 if be => convert(line, out, u32::from_be_bytes, scale, inv),
         Sample::U32 => convert(line, out, u32::from_le_bytes, scale, inv),
-        Sample::F32 if be => convert(line, out, f32::from_be_bytes, scale, None),
-        Sample::F32 => convert(line, out, f32::from_le_bytes, scale, None),
-        Sample::F64 if be => convert(line, out, f64::from_be_bytes, scale, None),
-        Sample::F64 => convert(line, out, f64::from_le_bytes, scale, None),
+        Sample::F32 if be => convert(line, out, f32::from_be_bytes, scale, inv),
+        Sample::F32 => convert(line, out, f32::from_le_bytes, scale, inv),
+        Sample::F64 if be => convert(line, out, f64::from_be_bytes, scale, inv),
+        Sample::F64 => convert(line, out, f64::from_le_bytes, scale, inv),
     }
 }
 

@@ -253,3 +253,44 @@ pub fn opd(nx: usize, ny: usize, wavelength_nm: f32, mult: i16, pixel_mm: f32, s
     }
     b
 }
+
+/// A Sensofar `.plu` topography of one layer: float32 heights in µm (x fastest), 1000001 where
+/// `None`, pixel size in µm.
+pub fn plu(nx: usize, ny: usize, pixel_um: f32, heights_um: &[Option<f32>]) -> Vec<u8> {
+    let mut b = vec![0u8; 500];
+    b[..24].copy_from_slice(b"Fri Mar 10 16:35:59 2023");
+    b[388..392].copy_from_slice(&(ny as u32).to_le_bytes());
+    b[392..396].copy_from_slice(&(nx as u32).to_le_bytes());
+    b[404..408].copy_from_slice(&pixel_um.to_le_bytes());
+    b[408..412].copy_from_slice(&pixel_um.to_le_bytes());
+    b[428..432].copy_from_slice(&3u32.to_le_bytes());
+    b[489] = 1;
+    b.extend_from_slice(&(ny as u32).to_le_bytes());
+    b.extend_from_slice(&(nx as u32).to_le_bytes());
+    for h in heights_um {
+        b.extend_from_slice(&h.unwrap_or(1_000_001.0).to_le_bytes());
+    }
+    b.extend_from_slice(&[0; 8]);
+    b
+}
+
+/// A Zygo MetroPro `.dat` (header format 1, 834 bytes) without intensity data: int32 phase
+/// (big-endian, x fastest), S = 0.5, O = 1, W = 633 nm, R = 32768, lateral resolution in m.
+pub fn metropro(nx: usize, ny: usize, lateral_m: f32, phase: &[i32]) -> Vec<u8> {
+    let mut b = vec![0u8; 834];
+    b[..4].copy_from_slice(&[0x88, 0x1b, 0x03, 0x6f]);
+    b[4..6].copy_from_slice(&1u16.to_be_bytes());
+    b[6..10].copy_from_slice(&834u32.to_be_bytes());
+    b[68..70].copy_from_slice(&(nx as u16).to_be_bytes());
+    b[70..72].copy_from_slice(&(ny as u16).to_be_bytes());
+    b[72..76].copy_from_slice(&((nx * ny * 4) as u32).to_be_bytes());
+    b[164..168].copy_from_slice(&0.5f32.to_be_bytes());
+    b[168..172].copy_from_slice(&633e-9f32.to_be_bytes());
+    b[176..180].copy_from_slice(&1.0f32.to_be_bytes());
+    b[184..188].copy_from_slice(&lateral_m.to_be_bytes());
+    b[218..220].copy_from_slice(&1i16.to_be_bytes());
+    for p in phase {
+        b.extend_from_slice(&p.to_be_bytes());
+    }
+    b
+}
