@@ -36,6 +36,8 @@ pub enum MapFormat {
     Plu,
     /// Zygo MetroPro `.dat` (interferometers): int32 phase with the scale in the header, invalid points missing.
     Metropro,
+    /// netCDF classic or 64-bit offset `.nc` as contact.engineering writes a map (`heights(x, y)`, `x:length`, `x:unit`, `mask`).
+    Netcdf,
 }
 
 impl MapFormat {
@@ -63,6 +65,7 @@ impl MapFormat {
             "sur" => MapFormat::Sur,
             "opd" => MapFormat::Opd,
             "plu" => MapFormat::Plu,
+            "nc" => MapFormat::Netcdf,
             _ => return None,
         })
     }
@@ -87,6 +90,7 @@ impl MapFormat {
             MapFormat::Opd => "opd",
             MapFormat::Plu => "plu",
             MapFormat::Metropro => "metropro",
+            MapFormat::Netcdf => "netcdf",
         }
     }
 }

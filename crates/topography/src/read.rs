@@ -50,8 +50,9 @@ impl FromStr for MapFormat {
             "opd" => Ok(MapFormat::Opd),
             "plu" => Ok(MapFormat::Plu),
             "metropro" => Ok(MapFormat::Metropro),
+            "netcdf" => Ok(MapFormat::Netcdf),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu or metropro"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro or netcdf"
             )),
         }
     }

@@ -51,8 +51,12 @@ fn check_against_reference(file: &str, channel: usize, map: &HeightMap, info: &M
     let sum_sq: f64 = valid.iter().map(|h| h * h).sum();
     let min = valid.iter().copied().fold(f64::INFINITY, f64::min);
     let max = valid.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    // The sum of heights that cancel (a levelled map) is compared to the sum of their magnitudes,
+    // which bounds its rounding: |sum - ref| <= 1e-9 sqrt(n sum of squares).
+    let sum_ref = entry["sum_m"].as_f64().unwrap();
+    let bound = 1e-9 * (valid.len() as f64 * sum_sq).sqrt();
+    assert!((sum - sum_ref).abs() <= bound, "{ctx}: sum {sum:e}, reference {sum_ref:e}");
     for (what, ours, theirs) in [
-        ("sum", sum, entry["sum_m"].as_f64().unwrap()),
         ("sum of squares", sum_sq, entry["sum_sq_m2"].as_f64().unwrap()),
         ("min", min, entry["min_m"].as_f64().unwrap()),
         ("max", max, entry["max_m"].as_f64().unwrap()),
@@ -355,5 +359,44 @@ fn zygo_invalid_phase_is_missing_and_the_sign_inverts() {
     assert_eq!(info.missing_pixels, 2);
     assert!(map.at(0, 0).is_nan() && map.at(2, 0).is_nan());
     assert_eq!(map.at(5, 7), -ref_map.at(5, 7));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn netcdf_as_contact_engineering_writes_it_matches_the_reference() {
+    // heights(x, y) with x the slowest index: pixel (ix, iy) is heights[ix][iy]; x:length and
+    // x:unit give the size (5 x 10 nm).
+    let path = data("nc-1.nc");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list[0].nx, list[0].ny, list[0].unit.as_str()), (MapFormat::Netcdf, 5, 10, "nm"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    check_against_reference("nc-1.nc", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn netcdf_masked_and_fill_points_are_missing_and_netcdf4_is_named() {
+    // A 3 x 2 map written here by the classic-format grammar: heights(x, y) int16 with
+    // scale_factor 0.5 and _FillValue -1, a mask(x, y) marking one point.
+    let heights: Vec<i16> = vec![10, -1, 20, 30, 40, 50];
+    let mask: Vec<i8> = vec![0, 0, 0, 0, 1, 0];
+    let b = synth::netcdf(3, 2, "um", 3.0, 4.0, &heights, 0.5, -1, Some(&mask));
+    let (dir, p) = write_temp("small.nc", &b);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!((map.nx(), map.ny(), map.dx_m(), map.dy_m(), info.missing_pixels), (3, 2, 1e-6, 2e-6, 2));
+    // heights[ix][iy] at ix * ny + iy: (1, 0) is 20 x 0.5 um; (0, 1) the fill; (2, 0) masked.
+    assert!(close(map.at(1, 0), 10e-6, 1e-12), "{}", map.at(1, 0));
+    assert!(map.at(0, 1).is_nan() && map.at(2, 0).is_nan());
+    assert!(close(map.at(2, 1), 25e-6, 1e-12), "{}", map.at(2, 1));
+    // A netCDF-4 file (HDF5) and a CDF-5 file are named, not misread.
+    let mut h = b"\x89HDF\r\n\x1a\n".to_vec();
+    h.extend_from_slice(&b[8..]);
+    std::fs::write(&p, &h).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("small.nc") && e.contains("HDF5"), "{e}");
+    let mut c = b.clone();
+    c[3] = 5;
+    std::fs::write(&p, &c).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("small.nc") && e.contains("CDF-5"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -755,6 +755,28 @@ fn metropro_case(rng: &mut Rng) -> Vec<u8> {
     b
 }
 
+fn netcdf_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    // heights(x, y), x slowest, in 0.01 nm steps; -32768 the fill.
+    let h: Vec<i16> = (0..nx * ny)
+        .map(|k| {
+            let v = map.at(k / ny, k % ny);
+            if v.is_nan() { -32768 } else { (v * 1e11).clamp(-32000.0, 32000.0) as i16 }
+        })
+        .collect();
+    let mask: Vec<i8> = (0..nx * ny).map(|k| i8::from(k % 17 == 3)).collect();
+    let with_mask = rng.chance(2);
+    let mut b = synth::netcdf(nx, ny, "nm", nx as f64 * 10.0, ny as f64 * 10.0, &h, 0.01, -32768, with_mask.then_some(&mask[..]));
+    // Every header word (counts, lengths, types, offsets) is a field to set.
+    let header = b.len() - h.len() * 2 - if with_mask { nx * ny } else { 0 };
+    let ints: Vec<(usize, usize)> = (4..header.saturating_sub(4)).step_by(4).map(|at| (at, 4)).collect();
+    let names = [8usize, 16];
+    let from = header.min(b.len());
+    mutate_header(rng, &mut b, &ints, &[], &names, from);
+    b
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -808,7 +830,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" => {
+                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" | "netcdf" => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -939,5 +961,11 @@ fn plu_files_keep_the_contract() {
 #[test]
 fn metropro_files_keep_the_contract() {
     let c = run_format("metropro", metropro_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn netcdf_files_keep_the_contract() {
+    let c = run_format("netcdf", netcdf_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }

@@ -14,6 +14,7 @@ pub mod nanoscope;
 pub(crate) mod opd;
 pub(crate) mod plu;
 pub(crate) mod metropro;
+pub(crate) mod nc;
 pub(crate) mod sdf;
 pub(crate) mod sur;
 pub mod x3p;
@@ -134,6 +135,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Plu)
     } else if metropro::is_metropro(bytes) {
         Some(MapFormat::Metropro)
+    } else if nc::is_nc(bytes) {
+        Some(MapFormat::Netcdf)
     } else {
         None
     }
@@ -150,6 +153,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Opd => opd::channels(bytes, origin),
         MapFormat::Plu => plu::channels(bytes, origin),
         MapFormat::Metropro => metropro::channels(bytes, origin),
+        MapFormat::Netcdf => nc::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }

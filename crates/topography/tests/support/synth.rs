@@ -294,3 +294,97 @@ pub fn metropro(nx: usize, ny: usize, lateral_m: f32, phase: &[i32]) -> Vec<u8> 
     }
     b
 }
+
+/// A netCDF classic file (version 1) of a map as contact.engineering writes it: dimensions x, y;
+/// variables `x` and `y` (double, with `length` and `unit`), `heights(x, y)` (short, with `unit`,
+/// `scale_factor`, `_FillValue`) and, if given, `mask(x, y)` (byte). Values x slowest.
+#[allow(clippy::too_many_arguments)]
+pub fn netcdf(
+    nx: usize,
+    ny: usize,
+    unit: &str,
+    length_x: f64,
+    length_y: f64,
+    heights: &[i16],
+    scale: f64,
+    fill: i16,
+    mask: Option<&[i8]>,
+) -> Vec<u8> {
+    fn pad(b: &mut Vec<u8>) {
+        while b.len() % 4 != 0 {
+            b.push(0);
+        }
+    }
+    fn name(b: &mut Vec<u8>, s: &str) {
+        b.extend_from_slice(&(s.len() as u32).to_be_bytes());
+        b.extend_from_slice(s.as_bytes());
+        pad(b);
+    }
+    fn attr(b: &mut Vec<u8>, n: &str, kind: u32, count: usize, data: &[u8]) {
+        name(b, n);
+        b.extend_from_slice(&kind.to_be_bytes());
+        b.extend_from_slice(&(count as u32).to_be_bytes());
+        b.extend_from_slice(data);
+        pad(b);
+    }
+    let be32 = |v: u32| v.to_be_bytes();
+    // Variables: (name, dims, attrs builder, type, bytes).
+    let xs: Vec<u8> = (0..nx).flat_map(|k| (k as f64).to_be_bytes()).collect();
+    let ys: Vec<u8> = (0..ny).flat_map(|k| (k as f64).to_be_bytes()).collect();
+    let hs: Vec<u8> = heights.iter().flat_map(|h| h.to_be_bytes()).collect();
+    let ms: Vec<u8> = mask.map(|m| m.iter().map(|&v| v as u8).collect()).unwrap_or_default();
+    let mut vars: Vec<(&str, Vec<u32>, Vec<u8>, u32, Vec<u8>)> = Vec::new();
+    for (n, dim, len, data) in [("x", 0u32, length_x, xs), ("y", 1, length_y, ys)] {
+        let mut a = Vec::new();
+        a.extend_from_slice(&be32(12));
+        a.extend_from_slice(&be32(2));
+        attr(&mut a, "length", 6, 1, &len.to_be_bytes());
+        attr(&mut a, "unit", 2, unit.len(), unit.as_bytes());
+        vars.push((n, vec![dim], a, 6, data));
+    }
+    let mut a = Vec::new();
+    a.extend_from_slice(&be32(12));
+    a.extend_from_slice(&be32(3));
+    attr(&mut a, "unit", 2, unit.len(), unit.as_bytes());
+    attr(&mut a, "scale_factor", 6, 1, &scale.to_be_bytes());
+    attr(&mut a, "_FillValue", 3, 1, &fill.to_be_bytes());
+    vars.push(("heights", vec![0, 1], a, 3, hs));
+    if mask.is_some() {
+        vars.push(("mask", vec![0, 1], vec![0; 8], 1, ms));
+    }
+    let mut head = b"CDF\x01".to_vec();
+    head.extend_from_slice(&be32(0));
+    head.extend_from_slice(&be32(10));
+    head.extend_from_slice(&be32(2));
+    name(&mut head, "x");
+    head.extend_from_slice(&be32(nx as u32));
+    name(&mut head, "y");
+    head.extend_from_slice(&be32(ny as u32));
+    head.extend_from_slice(&[0; 8]);
+    head.extend_from_slice(&be32(11));
+    head.extend_from_slice(&be32(vars.len() as u32));
+    // Header size first (begin offsets depend on it): every variable entry, begin left to patch.
+    let mut begins = Vec::new();
+    for (n, dims, attrs, kind, data) in &vars {
+        name(&mut head, n);
+        head.extend_from_slice(&be32(dims.len() as u32));
+        for d in dims {
+            head.extend_from_slice(&be32(*d));
+        }
+        head.extend_from_slice(attrs);
+        head.extend_from_slice(&be32(*kind));
+        head.extend_from_slice(&be32(data.len().div_ceil(4) as u32 * 4));
+        begins.push(head.len());
+        head.extend_from_slice(&be32(0));
+    }
+    let mut at = head.len();
+    let mut body = Vec::new();
+    for ((_, _, _, _, data), b) in vars.iter().zip(&begins) {
+        head[*b..*b + 4].copy_from_slice(&be32(at as u32));
+        body.extend_from_slice(data);
+        pad(&mut body);
+        at = head.len() + body.len();
+    }
+    head.extend(body);
+    head
+}
