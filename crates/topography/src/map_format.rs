@@ -38,6 +38,8 @@ pub enum MapFormat {
     Metropro,
     /// netCDF classic or 64-bit offset `.nc` as contact.engineering writes a map (`heights(x, y)`, `x:length`, `x:unit`, `mask`).
     Netcdf,
+    /// WSxM `.stp`, `.top` (Nanotec AFMs): a text header and double, float or int16 samples.
+    Wsxm,
 }
 
 impl MapFormat {
@@ -66,6 +68,7 @@ impl MapFormat {
             "opd" => MapFormat::Opd,
             "plu" => MapFormat::Plu,
             "nc" => MapFormat::Netcdf,
+            "stp" | "top" => MapFormat::Wsxm,
             _ => return None,
         })
     }
@@ -91,6 +94,7 @@ impl MapFormat {
             MapFormat::Plu => "plu",
             MapFormat::Metropro => "metropro",
             MapFormat::Netcdf => "netcdf",
+            MapFormat::Wsxm => "wsxm",
         }
     }
 }

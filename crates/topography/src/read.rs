@@ -51,8 +51,9 @@ impl FromStr for MapFormat {
             "plu" => Ok(MapFormat::Plu),
             "metropro" => Ok(MapFormat::Metropro),
             "netcdf" => Ok(MapFormat::Netcdf),
+            "wsxm" => Ok(MapFormat::Wsxm),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro or netcdf"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf or wsxm"
             )),
         }
     }

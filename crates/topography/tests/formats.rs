@@ -400,3 +400,47 @@ fn netcdf_masked_and_fill_points_are_missing_and_netcdf4_is_named() {
     assert!(e.contains("small.nc") && e.contains("CDF-5"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn wsxm_matches_the_reference() {
+    // Double samples are heights in nm (the Z unit), unscaled (Z Amplitude 13.7008 nm is their
+    // range to six digits); the image is stored turned by 180 degrees (Gwyddion's wsxmfile and
+    // SurfaceTopography 1.27.1 agree on both).
+    let path = data("stp-1.stp");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list[0].name.as_str(), list[0].unit.as_str()), (MapFormat::Wsxm, "Topography", "nm"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    check_against_reference("stp-1.stp", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn wsxm_int16_scales_by_the_amplitude_over_the_sample_range() {
+    // int16 samples -100..=100 (range 200) with Z Amplitude 50 nm: 0.25 nm per unit (Gwyddion's
+    // rule); the last stored sample is pixel (0, 0).
+    let (nx, ny) = (4usize, 3usize);
+    let ints: Vec<i16> = (0..12)
+        .map(|k| {
+            if k == 0 {
+                -100
+            } else if k == 11 {
+                100
+            } else {
+                k * 3
+            }
+        })
+        .collect();
+    let raw: Vec<u8> = ints.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let b = synth::wsxm(nx, ny, 400.0, "50 nm", "short", &raw);
+    let (dir, p) = write_temp("ints.stp", &b);
+    let (map, _) = read_file(&p, None, &none()).unwrap();
+    assert_eq!((map.nx(), map.ny()), (4, 3));
+    assert!(close(map.dx_m(), 100e-9, 1e-12), "{}", map.dx_m());
+    assert!(close(map.at(0, 0), 100.0 * 0.25e-9, 1e-12), "{}", map.at(0, 0));
+    assert!(close(map.at(3, 2), -100.0 * 0.25e-9, 1e-12), "{}", map.at(3, 2));
+    assert!(close(map.at(2, 2), 3.0 * 0.25e-9, 1e-12), "{}", map.at(2, 2));
+    // A Z unit that is not a length: listed, not read as heights.
+    std::fs::write(&p, synth::wsxm(nx, ny, 400.0, "2 V", "short", &raw)).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("ints.stp") && e.contains("no height channel"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

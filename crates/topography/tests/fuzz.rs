@@ -767,13 +767,65 @@ fn netcdf_case(rng: &mut Rng) -> Vec<u8> {
         .collect();
     let mask: Vec<i8> = (0..nx * ny).map(|k| i8::from(k % 17 == 3)).collect();
     let with_mask = rng.chance(2);
-    let mut b = synth::netcdf(nx, ny, "nm", nx as f64 * 10.0, ny as f64 * 10.0, &h, 0.01, -32768, with_mask.then_some(&mask[..]));
+    let mut b = synth::netcdf(
+        nx,
+        ny,
+        "nm",
+        nx as f64 * 10.0,
+        ny as f64 * 10.0,
+        &h,
+        0.01,
+        -32768,
+        with_mask.then_some(&mask[..]),
+    );
     // Every header word (counts, lengths, types, offsets) is a field to set.
     let header = b.len() - h.len() * 2 - if with_mask { nx * ny } else { 0 };
     let ints: Vec<(usize, usize)> = (4..header.saturating_sub(4)).step_by(4).map(|at| (at, 4)).collect();
     let names = [8usize, 16];
     let from = header.min(b.len());
     mutate_header(rng, &mut b, &ints, &[], &names, from);
+    b
+}
+
+fn wsxm_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let doubles = rng.chance(2);
+    let raw: Vec<u8> = if doubles {
+        map.heights_m().iter().rev().flat_map(|h| (h * 1e9).to_le_bytes()).collect()
+    } else {
+        samples(&map).iter().rev().flat_map(|&v| (v as i16).to_le_bytes()).collect()
+    };
+    let kind = if doubles { "double" } else { "short" };
+    let mut b = synth::wsxm(map.nx(), map.ny(), map.nx() as f64 * 10.0, "20 nm", kind, &raw);
+    let mut text = String::from_utf8_lossy(&b[..b.len() - raw.len()]).to_string();
+    for _ in 0..1 + rng.below(3) {
+        match rng.below(6) {
+            0 | 1 => {
+                let key = *rng.pick(&[
+                    "Number of columns",
+                    "Number of rows",
+                    "Image Data Type",
+                    "Z Amplitude",
+                    "X Amplitude",
+                    "Y Amplitude",
+                ]);
+                let v =
+                    *rng.pick(&["0", "-1", "4294967296", "1e300", "NaN", "", "2 V", "7 furlongs", "integer", SECRET]);
+                if let Some(a) = text.find(&format!("{key}: ")) {
+                    let from = a + key.len() + 2;
+                    let to = from + text[from..].find('\r').unwrap_or(0);
+                    text.replace_range(from..to, v);
+                }
+            }
+            2 => text = text.replacen("[Header end]", "", 1),
+            3 => text.insert_str(text.len() / 2, SECRET),
+            _ => {}
+        }
+    }
+    let head = text.into_bytes();
+    b = head;
+    b.extend_from_slice(&raw);
+    mutate_header(rng, &mut b, &[], &[], &[], 0);
     b
 }
 
@@ -830,7 +882,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" | "netcdf" => {
+                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" | "netcdf" | "wsxm" => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -967,5 +1019,11 @@ fn metropro_files_keep_the_contract() {
 #[test]
 fn netcdf_files_keep_the_contract() {
     let c = run_format("netcdf", netcdf_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn wsxm_files_keep_the_contract() {
+    let c = run_format("wsxm", wsxm_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }

@@ -197,6 +197,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 offset: HEADER_BYTES + k * (per_layer as usize) * sample.bytes(),
                 sample,
                 big_endian: big,
+                flip_x: false,
                 flip_y: true,
                 scale: 1.0,
                 invalid: None,

@@ -56,7 +56,10 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
     }
     crate::map::check_grid_size(origin, nx, ny)?;
     if phase_bytes != nx * ny * 4 {
-        return Err(bad(format!("{phase_bytes} phase bytes for a {nx} x {ny} matrix of int32: expected {}", nx * ny * 4)));
+        return Err(bad(format!(
+            "{phase_bytes} phase bytes for a {nx} x {ny} matrix of int32: expected {}",
+            nx * ny * 4
+        )));
     }
     let offset = u64::from(header) + intensity_bytes;
     if offset + phase_bytes > bytes.len() as u64 {
@@ -99,6 +102,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
             offset: offset as usize,
             sample: Sample::I32,
             big_endian: true,
+            flip_x: false,
             flip_y: false,
             scale,
             invalid: Some(Missing::AtLeast(INVALID_PHASE)),

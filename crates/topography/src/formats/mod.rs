@@ -10,13 +10,14 @@
 
 mod fields;
 pub(crate) mod ibw;
+pub(crate) mod metropro;
 pub mod nanoscope;
+pub(crate) mod nc;
 pub(crate) mod opd;
 pub(crate) mod plu;
-pub(crate) mod metropro;
-pub(crate) mod nc;
 pub(crate) mod sdf;
 pub(crate) mod sur;
+pub(crate) mod wsxm;
 pub mod x3p;
 
 use serde::Serialize;
@@ -81,13 +82,15 @@ pub(crate) enum Missing {
 }
 
 /// Where a channel's `nx x ny` samples lie in the file: from `offset`, x fastest, rows in file
-/// order (row 0 of the map is the file's last row when `flip_y`); value = sample x `scale`, in
+/// order (row 0 of the map is the file's last row when `flip_y`; column 0 the row's last sample
+/// when `flip_x`); value = sample x `scale`, in
 /// the channel's unit; a sample `invalid` marks, or NaN (float types), is missing.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Raster {
     pub offset: usize,
     pub sample: Sample,
     pub big_endian: bool,
+    pub flip_x: bool,
     pub flip_y: bool,
     pub scale: f64,
     pub invalid: Option<Missing>,
@@ -137,6 +140,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Metropro)
     } else if nc::is_nc(bytes) {
         Some(MapFormat::Netcdf)
+    } else if wsxm::is_wsxm(bytes) {
+        Some(MapFormat::Wsxm)
     } else {
         None
     }
@@ -154,6 +159,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Plu => plu::channels(bytes, origin),
         MapFormat::Metropro => metropro::channels(bytes, origin),
         MapFormat::Netcdf => nc::channels(bytes, origin),
+        MapFormat::Wsxm => wsxm::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }
@@ -296,7 +302,11 @@ pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Res
     for iy in 0..ny {
         let row = if r.flip_y { ny - 1 - iy } else { iy };
         let line = &data[row * nx * size..(row + 1) * nx * size];
+        let start = out.len();
         convert_row(line, r, r.scale * unit, &mut out);
+        if r.flip_x {
+            out[start..].reverse();
+        }
     }
     Ok(out)
 }

@@ -210,6 +210,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 offset: offset as usize,
                 sample,
                 big_endian: false,
+                flip_x: false,
                 flip_y: true,
                 scale: scale * per_lsb,
                 invalid: None,

@@ -201,9 +201,8 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
         vars.push(Var { name, dims: ids, attrs, kind, begin });
     }
     let find = |n: &str| vars.iter().find(|v| v.name == n);
-    let heights = find("heights").ok_or_else(|| {
-        bad("no variable `heights`: not a height map as contact.engineering writes it".into())
-    })?;
+    let heights = find("heights")
+        .ok_or_else(|| bad("no variable `heights`: not a height map as contact.engineering writes it".into()))?;
     if heights.dims.len() != 2 {
         return Err(bad(format!(
             "`heights` has {} dimensions: only a map (x, y) is read, not a line scan",

@@ -42,7 +42,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
     let bad = |m: String| TopographyError::format(origin, 0, m);
     if !is_plu(bytes) {
         return Err(bad(
-            "not a Sensofar PLU file: no date string, calibration grid and first layer grid that agree".into(),
+            "not a Sensofar PLU file: no date string, calibration grid and first layer grid that agree".into()
         ));
     }
     let f = Fields::le(bytes);
@@ -90,6 +90,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 offset,
                 sample: Sample::F32,
                 big_endian: false,
+                flip_x: false,
                 flip_y: false,
                 scale: 1.0,
                 invalid: Some(Missing::Equal(UNDEFINED)),

@@ -106,7 +106,15 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
             unit: uz,
             height_unit_m,
         },
-        values: Values::Raster(Raster { offset, sample, big_endian: false, flip_y: false, scale: dz, invalid }),
+        values: Values::Raster(Raster {
+            offset,
+            sample,
+            big_endian: false,
+            flip_x: false,
+            flip_y: false,
+            scale: dz,
+            invalid,
+        }),
         unreadable: None,
     }])
 }

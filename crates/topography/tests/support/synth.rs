@@ -388,3 +388,18 @@ pub fn netcdf(
     head.extend(body);
     head
 }
+
+/// A WSxM image: the text header (X/Y amplitude in nm, Z amplitude with its unit) and int16 or
+/// double samples as given (little-endian), stored as WSxM stores them (turned by 180 degrees is
+/// the caller's business).
+pub fn wsxm(nx: usize, ny: usize, size_nm: f64, z_amplitude: &str, data_type: &str, samples: &[u8]) -> Vec<u8> {
+    let head = format!(
+        "WSxM file copyright UAM\r\nSxM Image file\r\nImage header size: 0\r\n\r\n[Control]\r\n\r\n    \
+         X Amplitude: {size_nm} nm\r\n    Y Amplitude: {size_nm} nm\r\n\r\n[General Info]\r\n\r\n    \
+         Acquisition channel: Topography\r\n    Image Data Type: {data_type}\r\n    Number of columns: {nx}\r\n    \
+         Number of rows: {ny}\r\n    Z Amplitude: {z_amplitude}\r\n\r\n[Header end]\r\n"
+    );
+    let mut b = head.into_bytes();
+    b.extend_from_slice(samples);
+    b
+}
