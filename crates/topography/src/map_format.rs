@@ -40,6 +40,8 @@ pub enum MapFormat {
     Netcdf,
     /// WSxM `.stp`, `.top` (Nanotec AFMs): a text header and double, float or int16 samples.
     Wsxm,
+    /// Agilent / Keysight PicoView `.mi` (AFMs): int16/int32 buffers with their range and unit.
+    Mi,
 }
 
 impl MapFormat {
@@ -69,6 +71,7 @@ impl MapFormat {
             "plu" => MapFormat::Plu,
             "nc" => MapFormat::Netcdf,
             "stp" | "top" => MapFormat::Wsxm,
+            "mi" => MapFormat::Mi,
             _ => return None,
         })
     }
@@ -95,6 +98,7 @@ impl MapFormat {
             MapFormat::Metropro => "metropro",
             MapFormat::Netcdf => "netcdf",
             MapFormat::Wsxm => "wsxm",
+            MapFormat::Mi => "mi",
         }
     }
 }

@@ -52,8 +52,9 @@ impl FromStr for MapFormat {
             "metropro" => Ok(MapFormat::Metropro),
             "netcdf" => Ok(MapFormat::Netcdf),
             "wsxm" => Ok(MapFormat::Wsxm),
+            "mi" => Ok(MapFormat::Mi),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf or wsxm"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf, wsxm or mi"
             )),
         }
     }

@@ -444,3 +444,20 @@ fn wsxm_int16_scales_by_the_amplitude_over_the_sample_range() {
     assert!(e.contains("ints.stp") && e.contains("no height channel"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn picoview_mi_channels_match_the_reference() {
+    // int32 samples x bufferRange / 2^31 in bufferUnit (um for Topography, V for the others).
+    let path = data("mi-1.mi");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    let names: Vec<&str> = list.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!((format, names), (MapFormat::Mi, vec!["Topography", "Deflection", "Friction", "Friction"]));
+    assert_eq!((list[0].unit.as_str(), list[1].unit.as_str()), ("um", "V"));
+    assert!(list[0].is_height && !list[1].is_height);
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!(info.channel.as_ref().unwrap().name, "Topography");
+    check_against_reference("mi-1.mi", 0, &map, &info, 1.0);
+    // Deflection is in volts: not heights.
+    let e = read_file_channel(&path, None, Some(&ChannelSelector::Index(1)), &none()).unwrap_err().to_string();
+    assert!(e.contains("mi-1.mi") && e.contains("not heights"), "{e}");
+}

@@ -829,6 +829,39 @@ fn wsxm_case(rng: &mut Rng) -> Vec<u8> {
     b
 }
 
+fn mi_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    // Rows last first; 0.01 nm per unit (range 32768 x 1e-5 um).
+    let ints: Vec<i16> = (0..ny)
+        .rev()
+        .flat_map(|iy| (0..nx).map(move |ix| (iy, ix)))
+        .map(|(iy, ix)| {
+            let h = map.at(ix, iy);
+            if h.is_nan() { 0 } else { (h * 1e11).clamp(-32000.0, 32000.0) as i16 }
+        })
+        .collect();
+    let b = synth::mi(nx, ny, nx as f64 * 1e-8, 0.32768, &ints);
+    let at = b.windows(4).position(|w| w == b"data").unwrap_or(0);
+    let mut text = String::from_utf8_lossy(&b[..at]).to_string();
+    for _ in 0..rng.below(3) {
+        let key = *rng.pick(&["xPixels", "yPixels", "xLength", "bufferRange", "bufferUnit", "bufferLabel", "fileType"]);
+        let v = *rng.pick(&["0", "-1", "4294967296", "1e300", "NaN", "", "V", "nm", "Spectroscopy", SECRET]);
+        if let Some(a) = text.find(key) {
+            let from = a + 14;
+            let to = from + text[from..].find('\n').unwrap_or(0);
+            if from <= to {
+                text.replace_range(from..to, v);
+            }
+        }
+    }
+    let mut out = text.into_bytes();
+    out.extend_from_slice(&b[at..]);
+    let from = at.min(out.len());
+    mutate_header(rng, &mut out, &[], &[], &[], from);
+    out
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -882,7 +915,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" | "netcdf" | "wsxm" => {
+                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" | "netcdf" | "wsxm" | "mi" => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -1025,5 +1058,11 @@ fn netcdf_files_keep_the_contract() {
 #[test]
 fn wsxm_files_keep_the_contract() {
     let c = run_format("wsxm", wsxm_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn mi_files_keep_the_contract() {
+    let c = run_format("mi", mi_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }

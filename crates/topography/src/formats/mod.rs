@@ -11,6 +11,7 @@
 mod fields;
 pub(crate) mod ibw;
 pub(crate) mod metropro;
+pub(crate) mod mi;
 pub mod nanoscope;
 pub(crate) mod nc;
 pub(crate) mod opd;
@@ -142,6 +143,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Netcdf)
     } else if wsxm::is_wsxm(bytes) {
         Some(MapFormat::Wsxm)
+    } else if mi::is_mi(bytes) {
+        Some(MapFormat::Mi)
     } else {
         None
     }
@@ -160,6 +163,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Metropro => metropro::channels(bytes, origin),
         MapFormat::Netcdf => nc::channels(bytes, origin),
         MapFormat::Wsxm => wsxm::channels(bytes, origin),
+        MapFormat::Mi => mi::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }

@@ -403,3 +403,28 @@ pub fn wsxm(nx: usize, ny: usize, size_nm: f64, z_amplitude: &str, data_type: &s
     b.extend_from_slice(samples);
     b
 }
+
+/// A PicoView `.mi` image: header lines (14-character keys), one `Topography` buffer in um with
+/// `range_um` and a `Deflection` buffer in V, int16 (`BINARY`) samples, the last row first.
+pub fn mi(nx: usize, ny: usize, length_m: f64, range_um: f64, samples: &[i16]) -> Vec<u8> {
+    let line = |k: &str, v: &str| format!("{k:<14}{v}\n");
+    let mut h = String::new();
+    h += &line("fileType", "Image");
+    h += &line("xPixels", &nx.to_string());
+    h += &line("yPixels", &ny.to_string());
+    h += &line("xLength", &format!("{length_m:e}"));
+    h += &line("yLength", &format!("{length_m:e}"));
+    for (label, unit) in [("Topography", "um"), ("Deflection", "V")] {
+        h += &line("bufferLabel", label);
+        h += &line("bufferRange", &format!("{range_um:e}"));
+        h += &line("bufferUnit", unit);
+    }
+    h += &line("data", "BINARY");
+    let mut b = h.into_bytes();
+    for _ in 0..2 {
+        for s in samples {
+            b.extend_from_slice(&s.to_le_bytes());
+        }
+    }
+    b
+}
