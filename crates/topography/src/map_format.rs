@@ -42,6 +42,8 @@ pub enum MapFormat {
     Wsxm,
     /// Agilent / Keysight PicoView `.mi` (AFMs): int16/int32 buffers with their range and unit.
     Mi,
+    /// Nanosurf `.nid`, `.ezd` (AFMs): an INI header and binary data sets, one channel each.
+    Nid,
 }
 
 impl MapFormat {
@@ -72,6 +74,7 @@ impl MapFormat {
             "nc" => MapFormat::Netcdf,
             "stp" | "top" => MapFormat::Wsxm,
             "mi" => MapFormat::Mi,
+            "nid" | "ezd" => MapFormat::Nid,
             _ => return None,
         })
     }
@@ -99,6 +102,7 @@ impl MapFormat {
             MapFormat::Netcdf => "netcdf",
             MapFormat::Wsxm => "wsxm",
             MapFormat::Mi => "mi",
+            MapFormat::Nid => "nid",
         }
     }
 }

@@ -53,8 +53,9 @@ impl FromStr for MapFormat {
             "netcdf" => Ok(MapFormat::Netcdf),
             "wsxm" => Ok(MapFormat::Wsxm),
             "mi" => Ok(MapFormat::Mi),
+            "nid" => Ok(MapFormat::Nid),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf, wsxm or mi"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf, wsxm, mi or nid"
             )),
         }
     }

@@ -461,3 +461,22 @@ fn picoview_mi_channels_match_the_reference() {
     let e = read_file_channel(&path, None, Some(&ChannelSelector::Index(1)), &none()).unwrap_err().to_string();
     assert!(e.contains("mi-1.mi") && e.contains("not heights"), "{e}");
 }
+
+#[test]
+fn nanosurf_nid_channels_match_the_reference() {
+    // Eight data sets (Deflection in N, Z-Axis in m, Friction force in V, Z-AxisSensor in m, each
+    // forward and backward); SurfaceTopography lists only the four in a length unit, so its
+    // channels 0, 1, 2 are ours 1, 3, 5. value = sample x Dim2Range / 2^32 + Dim2Min + Dim2Range / 2.
+    let path = data("nid-1.nid");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list.len()), (MapFormat::Nid, 8));
+    assert_eq!(list[1].name, "Scan forward (Z-Axis)");
+    assert_eq!((list[0].unit.as_str(), list[0].is_height), ("N", false));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!(info.channel.as_ref().unwrap().index, 1);
+    check_against_reference("nid-1.nid", 0, &map, &info, 1.0);
+    for (ours, theirs) in [(3, 1), (5, 2)] {
+        let (map, info) = read_file_channel(&path, None, Some(&ChannelSelector::Index(ours)), &none()).unwrap();
+        check_against_reference("nid-1.nid", theirs, &map, &info, 1.0);
+    }
+}

@@ -862,6 +862,65 @@ fn mi_case(rng: &mut Rng) -> Vec<u8> {
     out
 }
 
+fn nid_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    // Z range 2^32 x 1e-12 m: 1 pm per unit, rows last first.
+    let ints: Vec<i32> = (0..ny)
+        .rev()
+        .flat_map(|iy| (0..nx).map(move |ix| (ix, iy)))
+        .map(|(ix, iy)| {
+            let h = map.at(ix, iy);
+            if h.is_nan() { 0 } else { (h * 1e12).clamp(-1e9, 1e9) as i32 }
+        })
+        .collect();
+    let b = synth::nid(nx, ny, nx as f64 * 1e-8, 4294967296.0 * 1e-12, &ints);
+    let at = b.windows(2).position(|w| w == b"#!").unwrap_or(0);
+    let mut text = String::from_utf8_lossy(&b[..at]).to_string();
+    for _ in 0..rng.below(3) {
+        let key = *rng.pick(&[
+            "GroupCount=",
+            "Gr0-Count=",
+            "Gr0-Ch0=",
+            "Points=",
+            "Lines=",
+            "Dim0Range=",
+            "Dim2Range=",
+            "Dim2Min=",
+            "Dim2Unit=",
+            "SaveBits=",
+            "SaveSign=",
+            "SaveMode=",
+            "SaveOrder=",
+        ]);
+        let v = *rng.pick(&[
+            "0",
+            "-1",
+            "4294967296",
+            "1e300",
+            "NaN",
+            "",
+            "8",
+            "16",
+            "Unsigned",
+            "Text",
+            "Motorola",
+            "nm",
+            SECRET,
+        ]);
+        if let Some(a) = text.find(key) {
+            let from = a + key.len();
+            let to = from + text[from..].find('\r').unwrap_or(0);
+            text.replace_range(from..to, v);
+        }
+    }
+    let mut out = text.into_bytes();
+    out.extend_from_slice(&b[at..]);
+    let from = at.min(out.len());
+    mutate_header(rng, &mut out, &[], &[], &[], from);
+    out
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -915,7 +974,8 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" | "netcdf" | "wsxm" | "mi" => {
+                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" | "netcdf" | "wsxm" | "mi"
+                | "nid" => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -1064,5 +1124,11 @@ fn wsxm_files_keep_the_contract() {
 #[test]
 fn mi_files_keep_the_contract() {
     let c = run_format("mi", mi_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn nid_files_keep_the_contract() {
+    let c = run_format("nid", nid_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }

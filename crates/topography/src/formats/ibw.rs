@@ -200,6 +200,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 flip_x: false,
                 flip_y: true,
                 scale: 1.0,
+                shift: 0.0,
                 invalid: None,
             }),
             unreadable: None,

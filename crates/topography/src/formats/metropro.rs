@@ -105,6 +105,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
             flip_x: false,
             flip_y: false,
             scale,
+            shift: 0.0,
             invalid: Some(Missing::AtLeast(INVALID_PHASE)),
         }),
         unreadable: None,

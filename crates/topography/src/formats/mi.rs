@@ -127,6 +127,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 flip_x: false,
                 flip_y: true,
                 scale: range.unwrap_or(1.0) / full,
+                shift: 0.0,
                 invalid: None,
             }),
             unreadable,

@@ -14,6 +14,7 @@ pub(crate) mod metropro;
 pub(crate) mod mi;
 pub mod nanoscope;
 pub(crate) mod nc;
+pub(crate) mod nid;
 pub(crate) mod opd;
 pub(crate) mod plu;
 pub(crate) mod sdf;
@@ -84,8 +85,8 @@ pub(crate) enum Missing {
 
 /// Where a channel's `nx x ny` samples lie in the file: from `offset`, x fastest, rows in file
 /// order (row 0 of the map is the file's last row when `flip_y`; column 0 the row's last sample
-/// when `flip_x`); value = sample x `scale`, in
-/// the channel's unit; a sample `invalid` marks, or NaN (float types), is missing.
+/// when `flip_x`); value = sample x `scale` + `shift`, in the channel's unit; a sample `invalid` marks, or NaN
+/// (float types), is missing.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Raster {
     pub offset: usize,
@@ -94,6 +95,7 @@ pub(crate) struct Raster {
     pub flip_x: bool,
     pub flip_y: bool,
     pub scale: f64,
+    pub shift: f64,
     pub invalid: Option<Missing>,
 }
 
@@ -145,6 +147,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Wsxm)
     } else if mi::is_mi(bytes) {
         Some(MapFormat::Mi)
+    } else if nid::is_nid(bytes) {
+        Some(MapFormat::Nid)
     } else {
         None
     }
@@ -164,6 +168,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Netcdf => nc::channels(bytes, origin),
         MapFormat::Wsxm => wsxm::channels(bytes, origin),
         MapFormat::Mi => mi::channels(bytes, origin),
+        MapFormat::Nid => nid::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }
@@ -307,7 +312,7 @@ pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Res
         let row = if r.flip_y { ny - 1 - iy } else { iy };
         let line = &data[row * nx * size..(row + 1) * nx * size];
         let start = out.len();
-        convert_row(line, r, r.scale * unit, &mut out);
+        convert_row(line, r, (r.scale * unit, r.shift * unit), &mut out);
         if r.flip_x {
             out[start..].reverse();
         }
@@ -321,18 +326,18 @@ fn convert<const N: usize, T: Into<f64>>(
     line: &[u8],
     out: &mut Vec<f64>,
     from: fn([u8; N]) -> T,
-    scale: f64,
+    (scale, shift): (f64, f64),
     invalid: Option<Missing>,
 ) {
     let it = line.chunks_exact(N).map(|c| from(c.try_into().unwrap_or([0; N])).into());
     match invalid {
-        Some(Missing::Equal(inv)) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale })),
-        Some(Missing::AtLeast(inv)) => out.extend(it.map(|v: f64| if v >= inv { f64::NAN } else { v * scale })),
-        None => out.extend(it.map(|v: f64| v * scale)),
+        Some(Missing::Equal(inv)) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale + shift })),
+        Some(Missing::AtLeast(inv)) => out.extend(it.map(|v: f64| if v >= inv { f64::NAN } else { v * scale + shift })),
+        None => out.extend(it.map(|v: f64| v * scale + shift)),
     }
 }
 
-fn convert_row(line: &[u8], r: &Raster, scale: f64, out: &mut Vec<f64>) {
+fn convert_row(line: &[u8], r: &Raster, scale: (f64, f64), out: &mut Vec<f64>) {
     let inv = r.invalid;
     let be = r.big_endian;
     match r.sample {

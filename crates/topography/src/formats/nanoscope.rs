@@ -213,6 +213,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 flip_x: false,
                 flip_y: true,
                 scale: scale * per_lsb,
+                shift: 0.0,
                 invalid: None,
             }),
             unreadable,

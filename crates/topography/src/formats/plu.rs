@@ -93,6 +93,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 flip_x: false,
                 flip_y: false,
                 scale: 1.0,
+                shift: 0.0,
                 invalid: Some(Missing::Equal(UNDEFINED)),
             }),
             unreadable: None,

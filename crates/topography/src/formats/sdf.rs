@@ -225,7 +225,15 @@ fn binary(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, TopographyError> {
             ),
         ));
     }
-    let raster =
-        Raster { offset: BINARY_HEADER, sample, big_endian: false, flip_x: false, flip_y: false, scale: h.zs, invalid };
+    let raster = Raster {
+        offset: BINARY_HEADER,
+        sample,
+        big_endian: false,
+        flip_x: false,
+        flip_y: false,
+        scale: h.zs,
+        shift: 0.0,
+        invalid,
+    };
     channel(&h, origin, Values::Raster(raster))
 }

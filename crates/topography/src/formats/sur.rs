@@ -113,6 +113,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
             flip_x: false,
             flip_y: false,
             scale: dz,
+            shift: 0.0,
             invalid,
         }),
         unreadable: None,

@@ -428,3 +428,26 @@ pub fn mi(nx: usize, ny: usize, length_m: f64, range_um: f64, samples: &[i16]) -
     }
     b
 }
+
+/// A Nanosurf `.nid` of one group of two data sets (Z-Axis in m, then Deflection in N), int32
+/// Intel samples (x fastest, the last row first), scan size `length_m`, Z range `range_m`.
+pub fn nid(nx: usize, ny: usize, length_m: f64, range_m: f64, samples: &[i32]) -> Vec<u8> {
+    let mut h = String::from("[DataSet]\r\nVersion=2\r\nGroupCount=1\r\nGr0-Name=Scan forward\r\nGr0-Count=2\r\n");
+    h += "Gr0-Ch0=DataSet-0:0\r\nGr0-Ch1=DataSet-0:1\r\n\r\n";
+    for (k, (name, unit)) in [("Z-Axis", "m"), ("Deflection", "N")].iter().enumerate() {
+        h += &format!(
+            "[DataSet-0:{k}]\r\nPoints={nx}\r\nLines={ny}\r\nFrame=Scan forward\r\nDim0Unit=m\r\nDim0Range={length_m:e}\r\n\
+             Dim1Unit=m\r\nDim1Range={length_m:e}\r\nDim2Name={name}\r\nDim2Unit={unit}\r\nDim2Range={range_m:e}\r\n\
+             Dim2Min={:e}\r\nSaveMode=Binary\r\nSaveBits=32\r\nSaveSign=Signed\r\nSaveOrder=Intel\r\n\r\n",
+            -range_m / 2.0
+        );
+    }
+    h += "#!";
+    let mut b = h.into_bytes();
+    for _ in 0..2 {
+        for s in samples {
+            b.extend_from_slice(&s.to_le_bytes());
+        }
+    }
+    b
+}
