@@ -44,6 +44,8 @@ pub enum MapFormat {
     Mi,
     /// Nanosurf `.nid`, `.ezd` (AFMs): an INI header and binary data sets, one channel each.
     Nid,
+    /// Alicona `.al3d` (focus-variation microscopes): float32 depth in metres, invalid points missing.
+    Al3d,
 }
 
 impl MapFormat {
@@ -75,6 +77,7 @@ impl MapFormat {
             "stp" | "top" => MapFormat::Wsxm,
             "mi" => MapFormat::Mi,
             "nid" | "ezd" => MapFormat::Nid,
+            "al3d" => MapFormat::Al3d,
             _ => return None,
         })
     }
@@ -103,6 +106,7 @@ impl MapFormat {
             MapFormat::Wsxm => "wsxm",
             MapFormat::Mi => "mi",
             MapFormat::Nid => "nid",
+            MapFormat::Al3d => "al3d",
         }
     }
 }

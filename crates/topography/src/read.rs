@@ -54,8 +54,9 @@ impl FromStr for MapFormat {
             "wsxm" => Ok(MapFormat::Wsxm),
             "mi" => Ok(MapFormat::Mi),
             "nid" => Ok(MapFormat::Nid),
+            "al3d" => Ok(MapFormat::Al3d),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf, wsxm, mi or nid"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf, wsxm, mi, nid or al3d"
             )),
         }
     }

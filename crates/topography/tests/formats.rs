@@ -480,3 +480,24 @@ fn nanosurf_nid_channels_match_the_reference() {
         check_against_reference("nid-1.nid", theirs, &map, &info, 1.0);
     }
 }
+
+#[test]
+fn alicona_al3d_matches_the_reference() {
+    let path = data("al3d-1.al3d");
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!((info.format, map.nx(), map.ny()), (MapFormat::Al3d, 200, 296));
+    check_against_reference("al3d-1.al3d", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn alicona_invalid_points_are_missing_and_odd_rows_are_padded() {
+    // A 3 x 2 depth image written here: rows of 3 float32 padded to 16 bytes (a multiple of 8),
+    // one point at InvalidPixelValue.
+    let b = synth::al3d(3, 2, 1e-6, &[1e-6, 2e-6, 3e-6, 4e-6, 3.0e15, 6e-6]);
+    let (dir, p) = write_temp("odd.al3d", &b);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!((map.nx(), map.ny(), info.missing_pixels), (3, 2, 1));
+    assert!(map.at(1, 1).is_nan());
+    assert!(close(map.at(2, 1), 6e-6, 1e-7) && close(map.at(0, 1), 4e-6, 1e-7), "{} {}", map.at(2, 1), map.at(0, 1));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -43,6 +43,10 @@ const SECRET: &str = "SECRET-do-not-echo-this-line-0123456789";
 
 const ORIGIN: &str = "fuzz-map";
 
+/// The instrument formats (read through `read_instrument`); every one has a fuzz test below.
+const INSTRUMENT: &[&str] =
+    &["nanoscope", "ibw", "sdf", "x3p", "sur", "opd", "plu", "metropro", "netcdf", "wsxm", "mi", "nid", "al3d"];
+
 /// SplitMix64, as in the meter's fuzzer.
 struct Rng(u64);
 impl Rng {
@@ -921,6 +925,25 @@ fn nid_case(rng: &mut Rng) -> Vec<u8> {
     out
 }
 
+fn al3d_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let depth: Vec<f32> = map.heights_m().iter().map(|&h| if h.is_nan() { 3.0e15 } else { h as f32 }).collect();
+    let mut b = synth::al3d(map.nx(), map.ny(), 1e-8, &depth);
+    // The tags' values (30 bytes after each 20-byte key) and the key of a tag.
+    let values: Vec<usize> = (0..9).map(|k| 17 + k * 52 + 20).collect();
+    let ints: Vec<(usize, usize)> = values.iter().map(|&at| (at, 4)).collect();
+    if rng.chance(3) {
+        let at = *rng.pick(&values);
+        let v = *rng.pick(&["0", "-1", "4294967296", "1e300", "NaN", "", "99999999999", SECRET]);
+        let n = v.len().min(30);
+        b[at..at + 30].fill(0);
+        b[at..at + n].copy_from_slice(&v.as_bytes()[..n]);
+    }
+    let from = 17 + 9 * 52 + 256;
+    mutate_header(rng, &mut b, &ints, &[], &[17, 17 + 52 * 3], from);
+    b
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -953,6 +976,9 @@ struct Counts {
 }
 
 fn check_error(e: &TopographyError, case: &str) {
+    if std::env::var("FUZZ_SHOW").is_ok() {
+        eprintln!("{case}: {e}");
+    }
     let m = e.to_string();
     assert!(!m.contains(SECRET), "an error echoes the file ({case}): {m}");
     assert!(m.chars().count() <= MAX_ERROR_CHARS, "an error of {} chars ({case}): {m}", m.chars().count());
@@ -974,8 +1000,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" | "plu" | "metropro" | "netcdf" | "wsxm" | "mi"
-                | "nid" => {
+                _ if INSTRUMENT.contains(&name) => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -986,7 +1011,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
                     };
                     read_instrument(&bytes, format, ORIGIN, sel.as_ref(), &m)
                 }
-                _ => {
+                "text" | "xyz" => {
                     // The text readers take what `read_input_text` gives: UTF-8 without a BOM.
                     let text = match std::str::from_utf8(&bytes) {
                         Ok(t) => t.trim_start_matches('\u{feff}').to_string(),
@@ -994,6 +1019,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
                     };
                     if name == "text" { read_text_grid(&text, ORIGIN, &m) } else { read_xyz(&text, ORIGIN, &m) }
                 }
+                other => panic!("no reader for the fuzzed format {other}"),
             };
             let (map, _info) = match read {
                 Ok(x) => x,
@@ -1130,5 +1156,11 @@ fn mi_files_keep_the_contract() {
 #[test]
 fn nid_files_keep_the_contract() {
     let c = run_format("nid", nid_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn al3d_files_keep_the_contract() {
+    let c = run_format("al3d", al3d_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }

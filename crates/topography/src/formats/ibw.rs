@@ -201,6 +201,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 flip_y: true,
                 scale: 1.0,
                 shift: 0.0,
+                row_bytes: None,
                 invalid: None,
             }),
             unreadable: None,

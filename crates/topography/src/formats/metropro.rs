@@ -106,6 +106,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
             flip_y: false,
             scale,
             shift: 0.0,
+            row_bytes: None,
             invalid: Some(Missing::AtLeast(INVALID_PHASE)),
         }),
         unreadable: None,

@@ -128,6 +128,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 flip_y: true,
                 scale: range.unwrap_or(1.0) / full,
                 shift: 0.0,
+                row_bytes: None,
                 invalid: None,
             }),
             unreadable,

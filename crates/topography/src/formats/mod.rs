@@ -8,6 +8,7 @@
 //! and the height scale come from the file; what a file lacks is asked for by name (the crate's
 //! `MapMetadata`), never guessed.
 
+pub(crate) mod al3d;
 mod fields;
 pub(crate) mod ibw;
 pub(crate) mod metropro;
@@ -96,6 +97,8 @@ pub(crate) struct Raster {
     pub flip_y: bool,
     pub scale: f64,
     pub shift: f64,
+    /// Bytes from one row's start to the next's, if rows are padded (else `nx` samples).
+    pub row_bytes: Option<usize>,
     pub invalid: Option<Missing>,
 }
 
@@ -149,6 +152,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Mi)
     } else if nid::is_nid(bytes) {
         Some(MapFormat::Nid)
+    } else if al3d::is_al3d(bytes) {
+        Some(MapFormat::Al3d)
     } else {
         None
     }
@@ -169,6 +174,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Wsxm => wsxm::channels(bytes, origin),
         MapFormat::Mi => mi::channels(bytes, origin),
         MapFormat::Nid => nid::channels(bytes, origin),
+        MapFormat::Al3d => al3d::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }
@@ -291,7 +297,10 @@ pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Res
         Values::Raster(r) => r,
     };
     let size = r.sample.bytes();
-    let end = n.checked_mul(size).and_then(|b| b.checked_add(r.offset));
+    let stride = r.row_bytes.unwrap_or(nx * size).max(nx * size);
+    // The last row ends `nx x size` bytes after its start.
+    let span = if n == 0 { Some(0) } else { stride.checked_mul(ny - 1).and_then(|b| b.checked_add(nx * size)) };
+    let end = span.and_then(|b| b.checked_add(r.offset));
     let data = match end {
         Some(e) if e <= bytes.len() => &bytes[r.offset..e],
         _ => {
@@ -310,7 +319,7 @@ pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Res
     let mut out = Vec::with_capacity(n);
     for iy in 0..ny {
         let row = if r.flip_y { ny - 1 - iy } else { iy };
-        let line = &data[row * nx * size..(row + 1) * nx * size];
+        let line = &data[row * stride..row * stride + nx * size];
         let start = out.len();
         convert_row(line, r, (r.scale * unit, r.shift * unit), &mut out);
         if r.flip_x {

@@ -214,6 +214,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 flip_y: true,
                 scale: scale * per_lsb,
                 shift: 0.0,
+                row_bytes: None,
                 invalid: None,
             }),
             unreadable,

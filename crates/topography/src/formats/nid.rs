@@ -154,6 +154,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                     flip_x: false,
                     flip_y: true,
                     scale: range.unwrap_or(1.0) / full,
+                    row_bytes: None,
                     shift: min + if signed { range.unwrap_or(0.0) / 2.0 } else { 0.0 },
                     invalid: None,
                 }),

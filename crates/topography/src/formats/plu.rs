@@ -94,6 +94,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
                 flip_y: false,
                 scale: 1.0,
                 shift: 0.0,
+                row_bytes: None,
                 invalid: Some(Missing::Equal(UNDEFINED)),
             }),
             unreadable: None,

@@ -233,6 +233,7 @@ fn binary(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, TopographyError> {
         flip_y: false,
         scale: h.zs,
         shift: 0.0,
+        row_bytes: None,
         invalid,
     };
     channel(&h, origin, Values::Raster(raster))

@@ -114,6 +114,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
             flip_y: false,
             scale: dz,
             shift: 0.0,
+            row_bytes: None,
             invalid,
         }),
         unreadable: None,

@@ -122,8 +122,17 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
     let height_unit_m = length_unit(&z_unit);
     let name = get("General Info::Acquisition channel").map(clean).filter(|n| !n.is_empty());
     let offset = data_at;
-    let raster =
-        Raster { offset, sample, big_endian: false, flip_x: true, flip_y: true, scale: 1.0, shift: 0.0, invalid: None };
+    let raster = Raster {
+        offset,
+        sample,
+        big_endian: false,
+        flip_x: true,
+        flip_y: true,
+        scale: 1.0,
+        shift: 0.0,
+        row_bytes: None,
+        invalid: None,
+    };
     let mut ch = Channel {
         info: ChannelInfo {
             index: 0,

@@ -451,3 +451,36 @@ pub fn nid(nx: usize, ny: usize, length_m: f64, range_m: f64, samples: &[i32]) -
     }
     b
 }
+
+/// An Alicona `.al3d` (version 1) with a `Cols x Rows` float32 depth image in metres, rows padded
+/// to a multiple of 8 bytes, InvalidPixelValue 3e15, pixel size in metres.
+pub fn al3d(nx: usize, ny: usize, pixel_m: f64, depth_m: &[f32]) -> Vec<u8> {
+    let tag = |k: &str, v: &str| {
+        let mut t = vec![0u8; 52];
+        t[..k.len()].copy_from_slice(k.as_bytes());
+        t[20..20 + v.len()].copy_from_slice(v.as_bytes());
+        t[50..52].copy_from_slice(b"\r\n");
+        t
+    };
+    let tags = 7;
+    let offset = 17 + (tags + 2) * 52 + 256;
+    let mut b = b"AliconaImaging\x00\r\n".to_vec();
+    b.extend(tag("Version", "1"));
+    b.extend(tag("TagCount", &tags.to_string()));
+    b.extend(tag("Cols", &nx.to_string()));
+    b.extend(tag("Rows", &ny.to_string()));
+    b.extend(tag("PixelSizeXMeter", &format!("{pixel_m:e}")));
+    b.extend(tag("PixelSizeYMeter", &format!("{pixel_m:e}")));
+    b.extend(tag("InvalidPixelValue", "3.000000028082e+15"));
+    b.extend(tag("DepthImageOffset", &offset.to_string()));
+    b.extend(tag("CreatingApplication", "stiction tests"));
+    b.extend(vec![0u8; 256]);
+    let row = (nx * 4).div_ceil(8) * 8;
+    for y in 0..ny {
+        for x in 0..nx {
+            b.extend_from_slice(&depth_m[y * nx + x].to_le_bytes());
+        }
+        b.extend(vec![0u8; row - nx * 4]);
+    }
+    b
+}
