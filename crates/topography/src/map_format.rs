@@ -46,6 +46,8 @@ pub enum MapFormat {
     Nid,
     /// Alicona `.al3d` (focus-variation microscopes): float32 depth in metres, invalid points missing.
     Al3d,
+    /// Park Systems AFM TIFF (`.tiff`, `.tif` with the Park tags): int16/int32/float32 with gain, scale and offset.
+    Park,
 }
 
 impl MapFormat {
@@ -78,6 +80,7 @@ impl MapFormat {
             "mi" => MapFormat::Mi,
             "nid" | "ezd" => MapFormat::Nid,
             "al3d" => MapFormat::Al3d,
+            "tiff" | "tif" => MapFormat::Park,
             _ => return None,
         })
     }
@@ -107,6 +110,7 @@ impl MapFormat {
             MapFormat::Mi => "mi",
             MapFormat::Nid => "nid",
             MapFormat::Al3d => "al3d",
+            MapFormat::Park => "park",
         }
     }
 }

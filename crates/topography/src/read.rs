@@ -55,8 +55,9 @@ impl FromStr for MapFormat {
             "mi" => Ok(MapFormat::Mi),
             "nid" => Ok(MapFormat::Nid),
             "al3d" => Ok(MapFormat::Al3d),
+            "park" => Ok(MapFormat::Park),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf, wsxm, mi, nid or al3d"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf, wsxm, mi, nid, al3d or park"
             )),
         }
     }

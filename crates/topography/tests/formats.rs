@@ -501,3 +501,21 @@ fn alicona_invalid_points_are_missing_and_odd_rows_are_padded() {
     assert!(close(map.at(2, 1), 6e-6, 1e-7) && close(map.at(0, 1), 4e-6, 1e-7), "{} {}", map.at(2, 1), map.at(0, 1));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn park_tiff_matches_the_reference() {
+    // Version 2 header, float32 data: height = (sample x scale + offset) x gain in µm.
+    let path = data("example_ps.tiff");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list[0].name.as_str()), (MapFormat::Park, "Z Height"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    check_against_reference("example_ps.tiff", 0, &map, &info, 1.0);
+    // A TIFF without Park's tags is named as such.
+    let mut b = std::fs::read(&path).unwrap();
+    let tag = b.windows(2).position(|w| w == 50432u16.to_le_bytes()).unwrap();
+    b[tag..tag + 2].copy_from_slice(&50000u16.to_le_bytes());
+    let (dir, p) = write_temp("plain.tiff", &b);
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("plain.tiff") && e.contains("Park"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -45,7 +45,7 @@ const ORIGIN: &str = "fuzz-map";
 
 /// The instrument formats (read through `read_instrument`); every one has a fuzz test below.
 const INSTRUMENT: &[&str] =
-    &["nanoscope", "ibw", "sdf", "x3p", "sur", "opd", "plu", "metropro", "netcdf", "wsxm", "mi", "nid", "al3d"];
+    &["nanoscope", "ibw", "sdf", "x3p", "sur", "opd", "plu", "metropro", "netcdf", "wsxm", "mi", "nid", "al3d", "park"];
 
 /// SplitMix64, as in the meter's fuzzer.
 struct Rng(u64);
@@ -944,6 +944,30 @@ fn al3d_case(rng: &mut Rng) -> Vec<u8> {
     b
 }
 
+fn park_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    let um: Vec<f32> = (0..ny)
+        .rev()
+        .flat_map(|iy| (0..nx).map(move |ix| (ix, iy)))
+        .map(|(ix, iy)| (map.at(ix, iy) * 1e6) as f32)
+        .collect();
+    let mut b = synth::park(nx, ny, nx as f64 * 0.01, &um);
+    // The IFD entries' counts and offsets, and the Park header's fields.
+    let h = b.len() - 352;
+    let mut ints: Vec<(usize, usize)> =
+        (0..4).flat_map(|k| [(10 + 12 * k, 2), (14 + 12 * k, 4), (18 + 12 * k, 4)]).collect();
+    ints.extend([(4, 4), (8, 2), (h, 4), (h + 100, 4), (h + 104, 4), (h + 348, 4)]);
+    let floats: Vec<(usize, bool)> = Vec::new();
+    if rng.chance(4) {
+        let at = *rng.pick(&[h + 140, h + 148, h + 220, h + 228, h + 236]);
+        let v = *rng.pick(&[0.0f64, -1.0, f64::NAN, f64::INFINITY, 1e300, 1e-300]);
+        b[at..at + 8].copy_from_slice(&v.to_le_bytes());
+    }
+    mutate_header(rng, &mut b, &ints, &floats, &[h + 4, h + 244], 58);
+    b
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -1162,5 +1186,11 @@ fn nid_files_keep_the_contract() {
 #[test]
 fn al3d_files_keep_the_contract() {
     let c = run_format("al3d", al3d_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn park_files_keep_the_contract() {
+    let c = run_format("park", park_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }

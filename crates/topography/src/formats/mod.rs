@@ -17,6 +17,7 @@ pub mod nanoscope;
 pub(crate) mod nc;
 pub(crate) mod nid;
 pub(crate) mod opd;
+pub(crate) mod park;
 pub(crate) mod plu;
 pub(crate) mod sdf;
 pub(crate) mod sur;
@@ -154,6 +155,8 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Nid)
     } else if al3d::is_al3d(bytes) {
         Some(MapFormat::Al3d)
+    } else if park::is_park(bytes) {
+        Some(MapFormat::Park)
     } else {
         None
     }
@@ -175,6 +178,7 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::Mi => mi::channels(bytes, origin),
         MapFormat::Nid => nid::channels(bytes, origin),
         MapFormat::Al3d => al3d::channels(bytes, origin),
+        MapFormat::Park => park::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }

@@ -484,3 +484,42 @@ pub fn al3d(nx: usize, ny: usize, pixel_m: f64, depth_m: &[f32]) -> Vec<u8> {
     }
     b
 }
+
+/// A Park Systems TIFF (version 2, float32 data, µm) of one IFD with the four Park tags; scan size
+/// in µm, gain 1, scale 1, offset 0; samples x fastest, the last row first.
+pub fn park(nx: usize, ny: usize, size_um: f64, samples_um: &[f32]) -> Vec<u8> {
+    let mut header = vec![0u8; 352];
+    for (k, c) in "Z Height".encode_utf16().enumerate() {
+        header[4 + 2 * k..6 + 2 * k].copy_from_slice(&c.to_le_bytes());
+    }
+    header[100..104].copy_from_slice(&(nx as u32).to_le_bytes());
+    header[104..108].copy_from_slice(&(ny as u32).to_le_bytes());
+    header[140..148].copy_from_slice(&size_um.to_le_bytes());
+    header[148..156].copy_from_slice(&size_um.to_le_bytes());
+    header[220..228].copy_from_slice(&1.0f64.to_le_bytes());
+    header[228..236].copy_from_slice(&1.0f64.to_le_bytes());
+    header[348..352].copy_from_slice(&2u32.to_le_bytes());
+    let data: Vec<u8> = samples_um.iter().flat_map(|s| s.to_le_bytes()).collect();
+    let ifd_at = 8u32;
+    let entries = 4u32;
+    let data_at = ifd_at + 2 + 12 * entries + 4;
+    let header_at = data_at + data.len() as u32;
+    let mut b = b"II*\0".to_vec();
+    b.extend_from_slice(&ifd_at.to_le_bytes());
+    b.extend_from_slice(&(entries as u16).to_le_bytes());
+    for (tag, kind, count, value) in [
+        (50432u16, 4u16, 1u32, 0x0E03_1301u32),
+        (50433, 4, 1, 0x0100_0002),
+        (50434, 1, data.len() as u32, data_at),
+        (50435, 7, 352, header_at),
+    ] {
+        b.extend_from_slice(&tag.to_le_bytes());
+        b.extend_from_slice(&kind.to_le_bytes());
+        b.extend_from_slice(&count.to_le_bytes());
+        b.extend_from_slice(&value.to_le_bytes());
+    }
+    b.extend_from_slice(&0u32.to_le_bytes());
+    b.extend(data);
+    b.extend(header);
+    b
+}
