@@ -519,3 +519,45 @@ fn park_tiff_matches_the_reference() {
     assert!(e.contains("plain.tiff") && e.contains("Park"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_scenario_height_map_chooses_its_channel() {
+    use stiction_topography::HeightMapSpec;
+    let dir = data("");
+    let spec = |json: &str| -> HeightMapSpec { serde_json::from_str(json).unwrap() };
+    // By name, by index (integer) and by index written as digits: the same data set.
+    let (direct, _) = read_file_channel(&data("nid-1.nid"), None, Some(&ChannelSelector::Index(5)), &none()).unwrap();
+    for json in [
+        r#"{"file": "nid-1.nid", "channel": "Scan backward (Z-Axis)", "level": "none"}"#,
+        r#"{"file": "nid-1.nid", "channel": 5, "level": "none"}"#,
+        r#"{"file": "nid-1.nid", "channel": "5", "level": "none"}"#,
+    ] {
+        let (map, info, _) = spec(json).load(&dir).unwrap();
+        assert_eq!(info.channel.as_ref().unwrap().index, 5, "{json}");
+        assert_eq!(map.heights_m(), direct.heights_m(), "{json}");
+    }
+    // Without `channel`: the first height channel (1, Scan forward (Z-Axis)).
+    let (_, info, _) = spec(r#"{"file": "nid-1.nid", "level": "none"}"#).load(&dir).unwrap();
+    assert_eq!((info.channel.as_ref().unwrap().index, info.channel.as_ref().unwrap().chosen), (1, "default"));
+    // A channel the file lacks names the field and the file's channels.
+    let e = spec(r#"{"file": "nid-1.nid", "channel": 9}"#).load(&dir).unwrap_err().to_string();
+    assert!(e.contains("`channel`") && e.contains("no channel 9") && e.contains("nid-1.nid"), "{e}");
+    let e = serde_json::from_str::<HeightMapSpec>(r#"{"file": "a.nid", "channel": ""}"#).unwrap_err().to_string();
+    assert!(e.contains("channel name or index"), "{e}");
+}
+
+#[test]
+fn a_map_with_its_metadata_is_the_map_read() {
+    // The heights handed over are the map's (metres, row-major), with its pixel sizes, channel
+    // and the file's channel list.
+    let path = data("mi-1.mi");
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    let (heights, m) = stiction_topography::read_map_with_metadata(&path, None, None, &none()).unwrap();
+    assert_eq!(heights, map.heights_m());
+    assert_eq!((m.nx, m.ny, m.pixel_size_x_m, m.pixel_size_y_m, m.unit), (256, 256, map.dx_m(), map.dy_m(), "m"));
+    assert_eq!((m.channel, m.channels.len(), m.file_height_unit_m), (info.channel, 4, 1e-6));
+    let e = stiction_topography::read_map_with_metadata(&path, None, Some(&ChannelSelector::Index(7)), &none())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no channel 7"), "{e}");
+}

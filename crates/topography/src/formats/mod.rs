@@ -183,13 +183,52 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
     }
 }
 
-/// Which channel to read: by index or by name.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// Which channel to read: by index or by name. In a scenario (`surface.height_map.channel`) an
+/// integer (the index) or a string (a name, or an index written as digits).
+#[derive(Debug, Clone, PartialEq, Eq, schemars::JsonSchema)]
+#[schemars(with = "ChannelSelectorInput")]
 pub enum ChannelSelector {
     /// The channel at this index (from 0).
     Index(usize),
     /// The first channel with this name (case-insensitive).
     Name(String),
+}
+
+/// The JSON form of a [`ChannelSelector`]: a channel index or a channel name.
+#[derive(schemars::JsonSchema)]
+#[serde(untagged)]
+#[allow(dead_code)]
+enum ChannelSelectorInput {
+    /// The channel's index in the file, from 0.
+    Index(u32),
+    /// The channel's name (case-insensitive), or its index as digits.
+    Name(String),
+}
+
+impl Serialize for ChannelSelector {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            ChannelSelector::Index(k) => s.serialize_u64(*k as u64),
+            ChannelSelector::Name(n) => s.serialize_str(n),
+        }
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for ChannelSelector {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(serde::Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Index(u64),
+            Name(String),
+        }
+        match Raw::deserialize(d)? {
+            Raw::Index(k) => usize::try_from(k)
+                .map(ChannelSelector::Index)
+                .map_err(|_| serde::de::Error::custom(format!("channel index {k} is too large"))),
+            Raw::Name(n) => n.parse().map_err(serde::de::Error::custom),
+        }
+    }
 }
 
 impl std::str::FromStr for ChannelSelector {
