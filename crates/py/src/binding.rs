@@ -1147,6 +1147,7 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyJson>()?;
     m.add_function(wrap_pyfunction!(run_json, m)?)?;
     m.add_function(wrap_pyfunction!(topography_json, m)?)?;
+    m.add_function(wrap_pyfunction!(crate::read_map::_read_map, m)?)?;
     m.add_function(wrap_pyfunction!(study_json, m)?)?;
     m.add_function(wrap_pyfunction!(gw_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(discrete_json, m)?)?;

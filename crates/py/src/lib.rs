@@ -10,3 +10,5 @@
 
 #[cfg(feature = "python")]
 mod binding;
+#[cfg(feature = "python")]
+mod read_map;
