@@ -5,10 +5,10 @@ use std::path::Path;
 
 use serde::Serialize;
 
+use crate::TopographyError;
 use crate::formats::{ChannelChoice, ChannelInfo, ChannelSelector};
 use crate::map_format::MapFormat;
 use crate::read::{MapInfo, MapMetadata, list_channels, read_file_channel};
-use crate::TopographyError;
 
 /// What a file's map is, beside its heights: sizes in metres, the unit, the channel.
 #[derive(Debug, Clone, PartialEq, Serialize)]

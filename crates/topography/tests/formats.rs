@@ -561,3 +561,21 @@ fn a_map_with_its_metadata_is_the_map_read() {
         .to_string();
     assert!(e.contains("no channel 7"), "{e}");
 }
+
+#[test]
+fn park_offset_is_scaled_by_the_gain() {
+    // The bundled file's data offset is 0; with an offset d (µm) every height rises by d x gain
+    // (height = (sample x scale + offset) x gain, the psia layout).
+    let path = data("example_ps.tiff");
+    let (base, _) = read_file(&path, None, &none()).unwrap();
+    let mut b = std::fs::read(&path).unwrap();
+    let h = 1_050_617; // the Park header (tag 50435's offset in this file)
+    let gain = f64::from_le_bytes(b[h + 220..h + 228].try_into().unwrap());
+    assert!(gain != 1.0, "the test needs a gain other than 1: {gain}");
+    b[h + 236..h + 244].copy_from_slice(&0.5f64.to_le_bytes());
+    let (dir, p) = write_temp("offset.tiff", &b);
+    let (map, _) = read_file(&p, None, &none()).unwrap();
+    let rise = 0.5 * gain * 1e-6;
+    assert!(close(map.at(3, 4) - base.at(3, 4), rise, 1e-6), "{} vs {rise}", map.at(3, 4) - base.at(3, 4));
+    std::fs::remove_dir_all(&dir).ok();
+}
