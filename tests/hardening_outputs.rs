@@ -66,10 +66,8 @@ fn single_file_flag_refuses_special_targets(name: &str, flag: &str, cmd: &dyn Fn
     // A FIFO: refused at once, never opened (a write would block).
     let fifo = dir.join("fifo");
     mkfifo(&fifo);
-    let start = Instant::now();
     let r = run(&cmd(&fifo));
     refused(&r, &format!("{name} {flag} FIFO"), &[flag, "FIFO"]);
-    assert!(start.elapsed() < Duration::from_secs(60));
     {
         use std::os::unix::fs::FileTypeExt;
         assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo(), "{name}: the FIFO was replaced");

@@ -1,12 +1,10 @@
-//! The library half of the `stiction` command: the subcommands' composition of results, shared by
-//! the `stiction` binary (which parses arguments and prints) and the Python module (crates/py).
-//!
-//! [`api`] is the stable surface for other front ends: each function returns the same JSON value
-//! that the matching subcommand prints with `--json`.
+//! The library half of the `stiction` command: each subcommand's flags, their conversion into the
+//! engine's request (`stiction_engine`), the text tables, figures and output folders. The
+//! commands themselves (requests, orchestration, results) are the engine's, which other front
+//! ends (the Python module, crates/py) call directly.
 
-pub mod api;
 // The subcommands, their shared flags and the output layer: the binary's own modules, public so
-// that the binary (src/main.rs) and `api` reach them; not a stable interface.
+// that the binary (src/main.rs) reaches them; not a stable interface.
 #[allow(missing_docs)]
 #[doc(hidden)]
 pub mod charts;
@@ -21,13 +19,4 @@ pub mod figargs;
 pub mod format;
 #[allow(missing_docs)]
 #[doc(hidden)]
-pub mod json_value;
-#[allow(missing_docs)]
-#[doc(hidden)]
 pub mod output;
-#[allow(missing_docs)]
-#[doc(hidden)]
-pub mod rh;
-#[allow(missing_docs)]
-#[doc(hidden)]
-pub mod scenario_source;

@@ -11,7 +11,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
-use stiction_cli::api::ScenarioSource;
+use stiction_engine::ScenarioSource;
 use stiction_scenario::Scenario;
 use stiction_study::{Calibration, Study, StudyConfig};
 use stiction_topography::{
@@ -29,14 +29,14 @@ create_exception!(
 );
 
 /// An error of the engine as a `StictionError` with the command line's message.
-fn err(e: impl std::fmt::Display) -> PyErr {
+pub(crate) fn err(e: impl std::fmt::Display) -> PyErr {
     StictionError::new_err(e.to_string())
 }
 
 /// `message` with each command-line flag that is a Python argument of the call written as that
 /// argument (`--e-star` -> `e_star`, clap's `'--grid <GRID>'` -> `'grid'`), so that an error names
 /// what the caller typed, never a flag it did not; every other word is kept as it is.
-fn python_names(message: &str, names: &[&str]) -> String {
+pub(crate) fn python_names(message: &str, names: &[&str]) -> String {
     let mut out = String::with_capacity(message.len());
     let mut rest = message;
     while let Some(at) = rest.find("--") {
@@ -67,13 +67,13 @@ fn python_names(message: &str, names: &[&str]) -> String {
 
 /// An error of the engine as a `StictionError` with the command line's message, its flags named
 /// as the Python arguments `names` ([`python_names`]).
-fn err_named(names: &'static [&'static str]) -> impl Fn(String) -> PyErr {
+pub(crate) fn err_named(names: &'static [&'static str]) -> impl Fn(String) -> PyErr {
     move |e| StictionError::new_err(python_names(&e, names))
 }
 
 /// A short text of a Python value for a message: its `repr`, at most 60 characters (a 300-digit
 /// integer or a long list is cut, with its length).
-fn short_repr(value: &Bound<'_, PyAny>) -> String {
+pub(crate) fn short_repr(value: &Bound<'_, PyAny>) -> String {
     let text = value.repr().and_then(|r| r.extract::<String>()).unwrap_or_else(|_| "<value>".into());
     let chars = text.chars().count();
     if chars <= 60 {
@@ -85,7 +85,7 @@ fn short_repr(value: &Bound<'_, PyAny>) -> String {
 /// An integer argument `name` of a call: a Python int or a NumPy integer (never a bool, a float or
 /// a string: TypeError naming it), in `lo..=hi` (else StictionError naming it, with its value and
 /// the domain `what`), checked before any work.
-fn count(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: u64, what: &str) -> PyResult<u64> {
+pub(crate) fn count(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: u64, what: &str) -> PyResult<u64> {
     let domain = if hi == u64::MAX { format!("an integer >= {lo}") } else { format!("an integer in {lo}..={hi}") };
     let domain = if what.is_empty() { domain } else { format!("{domain} ({what})") };
     let numpy_bool = value.hasattr("dtype")?
@@ -113,7 +113,7 @@ fn count(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: u64, what: &str) -> 
 /// integer arguments they turn into command-line flags).
 #[pyfunction]
 #[pyo3(signature = (name, value, lo, hi=None, what=""))]
-fn _count(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: Option<u64>, what: &str) -> PyResult<u64> {
+pub(crate) fn _count(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: Option<u64>, what: &str) -> PyResult<u64> {
     count(name, value, lo, hi.unwrap_or(u64::MAX), what)
 }
 
@@ -121,7 +121,7 @@ fn _count(name: &str, value: &Bound<'_, PyAny>, lo: u64, hi: Option<u64>, what: 
 /// checked by `check` BEFORE it is converted or copied (a list of ten million floats is refused
 /// at once), then read as float64 (flat, any shape, when `flat`; else at most one dimension).
 /// Values that are not numbers: StictionError naming the argument.
-fn vector(
+pub(crate) fn vector(
     name: &str,
     obj: &Bound<'_, PyAny>,
     flat: bool,
@@ -161,7 +161,7 @@ fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
 /// cycles; a sweep's thousands of new dicts and lists would otherwise set off collections that
 /// walk them), and each distinct key is made into a Python string once (the points of a sweep
 /// repeat the same keys).
-fn to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
     let gc = py.import("gc")?;
     let was_enabled = gc.call_method0("isenabled")?.is_truthy()?;
     if was_enabled {
@@ -214,7 +214,7 @@ fn to_py_with<'py, 'v>(
 /// are read (`get`), so that a call hands over its result without building every number and
 /// point of it at once (a load sweep's thousands of dicts are built when `points` is read).
 #[pyclass(name = "Json", module = "stiction._stiction", frozen)]
-struct PyJson {
+pub(crate) struct PyJson {
     value: serde_json::Value,
 }
 
@@ -246,7 +246,7 @@ impl PyJson {
 }
 
 /// A result's JSON object as a [`PyJson`].
-fn json_object(py: Python<'_>, value: serde_json::Value) -> PyResult<Bound<'_, PyAny>> {
+pub(crate) fn json_object(py: Python<'_>, value: serde_json::Value) -> PyResult<Bound<'_, PyAny>> {
     Ok(Bound::new(py, PyJson { value })?.into_any())
 }
 
@@ -260,7 +260,7 @@ fn json_object(py: Python<'_>, value: serde_json::Value) -> PyResult<Bound<'_, P
 /// "<scenario>" in them.
 #[pyclass(name = "Scenario", module = "stiction._stiction", from_py_object)]
 #[derive(Clone)]
-struct PyScenario {
+pub(crate) struct PyScenario {
     /// The scenario file, if it came from one.
     path: Option<PathBuf>,
     /// The JSON text of a scenario built from a dict or a string.
@@ -319,7 +319,7 @@ impl PyScenario {
     }
 
     /// The scenario source of a call's argument, checked (StictionError with the CLI's message).
-    fn source_of(obj: &Bound<'_, PyAny>) -> PyResult<ScenarioSource> {
+    pub(crate) fn source_of(obj: &Bound<'_, PyAny>) -> PyResult<ScenarioSource> {
         PyScenario::extract(obj)?.source().map_err(err)
     }
 }
@@ -328,7 +328,7 @@ impl PyScenario {
 /// NumPy's) in decimal, any other number as the `repr` of the Python float it converts to (which
 /// reads back to the same float; NumPy 2's own repr, `np.float64(0.5)`, would not parse),
 /// True/False/None as JSON, lists and dicts as JSON.
-fn flag_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
+pub(crate) fn flag_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
     if let Ok(s) = value.cast::<PyString>() {
         return s.extract::<String>();
     }
@@ -407,7 +407,7 @@ impl PyScenario {
     /// height-map sidewall's map read and prepared as `run` reads it); returns the notes (list of
     /// (code, message)) or raises StictionError with the command line's message.
     fn validate(&self) -> PyResult<Vec<(String, String)>> {
-        let s = stiction_cli::api::check_scenario(&self.source().map_err(err)?).map_err(err)?;
+        let s = stiction_engine::scenario::check(&self.source().map_err(err)?).map_err(err)?;
         Ok(s.notes.iter().map(|n| (n.code.to_string(), n.message.clone())).collect())
     }
 
@@ -468,7 +468,7 @@ impl PyScenario {
 /// meter runs (it is taken back only for the callback).
 #[pyfunction]
 #[pyo3(signature = (scenario, progress=None))]
-fn run_json<'py>(
+pub(crate) fn run_json<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
     progress: Option<Py<PyAny>>,
@@ -482,241 +482,17 @@ fn run_json<'py>(
         let mut on_point = |done: usize, total: usize| {
             report.report(done, total);
         };
-        stiction_cli::api::run_json(&parsed, &name, &source.base, &mut on_point).map_err(|e| e.to_string())
+        stiction_engine::run::run_json(&parsed, &name, &source.base, &mut on_point).map_err(|e| e.to_string())
     })?;
     if let Some(e) = progress.take_error() {
         return Err(e);
     }
     json_object(py, out.map_err(err)?)
-}
-
-/// contact_json(scenario, flags, loads=None, max_sweep_steps=None) -> dict: what `stiction
-/// contact SCENARIO FLAGS --json` prints with the explicit solver; `loads` (N, in order: a list or
-/// an array) is a sweep of those loads, at most `max_sweep_steps` of them (the command line's
-/// `--max-sweep-steps`, default 1,000,000), counted before they are read. Errors name the
-/// Python arguments (`load`, `mode`, `contacts`, ...), never the flags. The GIL is released;
-/// Ctrl-C raises KeyboardInterrupt.
-#[pyfunction]
-#[pyo3(signature = (scenario, flags, loads=None, max_sweep_steps=None))]
-fn contact_json<'py>(
-    py: Python<'py>,
-    scenario: &Bound<'py, PyAny>,
-    flags: Vec<String>,
-    loads: Option<&Bound<'py, PyAny>>,
-    max_sweep_steps: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    const NAMES: &[&str] = &["load", "mode", "contacts", "summits", "model", "max_sweep_steps"];
-    let named = err_named(NAMES);
-    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
-    let max = match max_sweep_steps.filter(|m| !m.is_none()) {
-        Some(m) => count("max_sweep_steps", m, 1, usize::MAX as u64, "loads of one sweep")? as usize,
-        None => DEFAULT_MAX_SWEEP_STEPS,
-    };
-    let loads = match loads.filter(|l| !l.is_none()) {
-        Some(l) => Some(vector("load", l, true, &|n| {
-            check_sweep_len("load", n, max, "raise it with max_sweep_steps=N if you mean it")
-        })?),
-        None => None,
-    };
-    let source = PyScenario::source_of(scenario)?;
-    let mut all = vec![source.name()];
-    all.extend(flags);
-    all.push(format!("--max-sweep-steps={max}"));
-    if let Some(loads) = &loads {
-        if let Some((i, l)) = loads.iter().enumerate().find(|(_, l)| !l.is_finite()) {
-            return Err(err(format!("load[{i}] = {l}: expected a finite load in N")));
-        }
-        all.extend(["--load".to_string(), format!("{:?}", loads[0])]);
-    }
-    all.push("--json".into());
-    let args: stiction_cli::api::ContactArgs = stiction_cli::api::parse_args("contact", &all).map_err(&named)?;
-    let out = interruptible(py, move |_| {
-        stiction_cli::api::contact_json(&args, &source, loads.as_deref()).map_err(|e| e.to_string())
-    })?;
-    json_object(py, out.map_err(named)?)
-}
-
-/// The Python arguments of `bem`, whose command-line flags its errors name by these names.
-const BEM_NAMES: &[&str] = &[
-    "heights",
-    "pressure",
-    "pixel_size",
-    "pixel_size_y",
-    "height_unit",
-    "level",
-    "cutoff",
-    "long_cutoff",
-    "e_star",
-    "sweep",
-    "gap_sweep",
-    "gap_back",
-    "work_of_adhesion",
-    "range",
-    "shear_strength",
-    "tolerance",
-    "compare_asperity",
-    "scenario",
-    "rh",
-    "temperature",
-    "contact_angle",
-    "rh_step",
-    "min_kelvin_radius",
-    "size",
-    "grid",
-    "hurst",
-    "roll_off",
-    "short",
-    "rms_height",
-    "seed",
-];
-
-/// bem_json(heights, flags, pressures=None, scenario=None, rh=None) -> dict: what `stiction bem
-/// --map FILE.npy FLAGS --json` prints for the height map `heights` (a 2-D array, read in place),
-/// its `file` being "<array>"; or, with `heights` None and a scenario (a Scenario, a dict or a
-/// path), what `stiction bem --scenario SCENARIO FLAGS --json` prints; or, with neither, what
-/// `stiction bem FLAGS --json` prints on the generated surface of the generator flags.
-/// `pressures` (Pa, in order; a list or an array of at most 10,000, the limit of --sweep) instead
-/// of --pressure/--sweep; `rh` (fractions, at most 1000) instead of the text of --rh. Every
-/// length and the map's grid are checked before anything is read or copied; errors name the
-/// Python arguments (`pressure`, `rh`, `grid`, `e_star`, ...), never the flags. The GIL is
-/// released; Ctrl-C raises KeyboardInterrupt.
-#[pyfunction]
-#[pyo3(signature = (heights, flags, pressures=None, scenario=None, rh=None))]
-fn bem_json<'py>(
-    py: Python<'py>,
-    heights: &Bound<'py, PyAny>,
-    flags: Vec<String>,
-    pressures: Option<&Bound<'py, PyAny>>,
-    scenario: Option<&Bound<'py, PyAny>>,
-    rh: Option<&Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_cli::api::BemSurface;
-    use stiction_cli::api::limits::{MAX_RH, check_bem_grid, check_pressures_len};
-    let named = err_named(BEM_NAMES);
-    let pressures = match pressures.filter(|p| !p.is_none()) {
-        Some(p) => Some(vector("pressure", p, true, &|n| check_pressures_len("pressure", n))?),
-        None => None,
-    };
-    let rh = match rh.filter(|r| !r.is_none()) {
-        Some(r) => Some(vector("rh", r, false, &|n| {
-            if n > MAX_RH { Err(format!("rh: expected 1 to {MAX_RH} humidities, got {n}")) } else { Ok(()) }
-        })?),
-        None => None,
-    };
-    // A map larger than the solver's grid is refused before it is read (a copy of the array).
-    if !heights.is_none()
-        && let Ok((ny, nx)) = heights.getattr("shape").and_then(|s| s.extract::<(usize, usize)>())
-    {
-        check_bem_grid("heights", nx, ny).map_err(err)?;
-    }
-    let mut flags = flags;
-    if let Some(values) = &rh {
-        // Checked and named here (rh[i]); then the --rh text of the same numbers, which the
-        // command line reads back to the same f64s (Rust's `{:?}` is the shortest round trip).
-        stiction_cli::api::check_rh_values(values).map_err(err)?;
-        flags.push(format!("--rh={}", values.iter().map(|v| format!("{v:?}")).collect::<Vec<_>>().join(",")));
-    }
-    let args: stiction_cli::api::BemArgs = stiction_cli::api::parse_args("bem", &flags).map_err(&named)?;
-    if let Some(scenario) = scenario.filter(|s| !s.is_none()) {
-        if !heights.is_none() {
-            return Err(err("bem: give a height map (heights) or a scenario, not both"));
-        }
-        let source = PyScenario::source_of(scenario)?;
-        let out = interruptible(py, move |_| {
-            stiction_cli::api::bem_json(&args, BemSurface::Scenario(&source), pressures.as_deref())
-                .map_err(|e| e.to_string())
-        })?;
-        return json_object(py, out.map_err(named)?);
-    }
-    if heights.is_none() {
-        let out = interruptible(py, move |_| {
-            stiction_cli::api::bem_json(&args, BemSurface::Generated, pressures.as_deref()).map_err(|e| e.to_string())
-        })?;
-        return json_object(py, out.map_err(named)?);
-    }
-    let (raw, info) = read_heights(heights, &args.map_args.metadata())?;
-    let out = interruptible(py, move |_| {
-        let surface = BemSurface::Map { file: "<array>", raw, info };
-        stiction_cli::api::bem_json(&args, surface, pressures.as_deref()).map_err(|e| e.to_string())
-    })?;
-    json_object(py, out.map_err(named)?)
-}
-
-/// humidity_json(scenario, rh_text=None, rh=None, progress=None) -> dict: what `stiction plot
-/// humidity --scenario SCENARIO --rh RH --json` prints: the friction meter at each relative
-/// humidity, the dry point first. `rh_text` is the text of --rh ("0:0.9:10", "0.1,35 %"); `rh`
-/// the humidities as fractions (each in [0, 1), increasing); neither: the command line's default.
-/// `progress(done, total)` is called after each humidity. The GIL is released; Ctrl-C raises
-/// KeyboardInterrupt.
-#[pyfunction]
-#[pyo3(signature = (scenario, rh_text=None, rh=None, progress=None))]
-fn humidity_json<'py>(
-    py: Python<'py>,
-    scenario: &Bound<'py, PyAny>,
-    rh_text: Option<String>,
-    rh: Option<&Bound<'py, PyAny>>,
-    progress: Option<Py<PyAny>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_cli::api::limits::MAX_RH;
-    let named = err_named(&["rh"]);
-    let rh = match rh.filter(|r| !r.is_none()) {
-        // Counted before it is read: at most the --rh limit of humidities.
-        Some(r) => Some(vector("rh", r, false, &|n| {
-            if n > MAX_RH { Err(format!("rh: expected 1 to {MAX_RH} humidities, got {n}")) } else { Ok(()) }
-        })?),
-        None => None,
-    };
-    let rhs = match (rh_text, rh) {
-        (Some(_), Some(_)) => return Err(err("rh: give the humidities as text or as numbers, not both")),
-        (Some(text), None) => stiction_cli::api::rh_grid(Some(&text)),
-        (None, Some(values)) => stiction_cli::api::rh_grid_of(&values),
-        (None, None) => stiction_cli::api::rh_grid(None),
-    }
-    .map_err(named)?;
-    let source = PyScenario::source_of(scenario)?;
-    let progress = Progress::new(progress);
-    let report = progress.clone();
-    let out = interruptible(py, move |_| {
-        let mut on_point = |done: usize, total: usize| {
-            report.report(done, total);
-        };
-        stiction_cli::api::humidity_json(&source, &rhs, &mut on_point).map_err(|e| e.to_string())
-    })?;
-    if let Some(e) = progress.take_error() {
-        return Err(e);
-    }
-    json_object(py, out.map_err(err)?)
-}
-
-/// fit_json(scenario, flags, data_csv=None, data_name="<data>") -> dict: what `stiction fit [DATA]
-/// --scenario SCENARIO FLAGS --json` prints; `data_csv`, the CSV text of the measured voltages,
-/// instead of a file. The GIL is released; Ctrl-C raises KeyboardInterrupt.
-#[pyfunction]
-#[pyo3(signature = (scenario, flags, data_csv=None, data_name=None))]
-fn fit_json<'py>(
-    py: Python<'py>,
-    scenario: &Bound<'py, PyAny>,
-    flags: Vec<String>,
-    data_csv: Option<String>,
-    data_name: Option<String>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let named = err_named(&["models", "free", "surfaces", "draws", "seed", "data", "scenario"]);
-    let source = PyScenario::source_of(scenario)?;
-    let mut all = flags;
-    all.extend(["--scenario".to_string(), source.name()]);
-    all.push("--json".into());
-    let args: stiction_cli::api::FitArgs = stiction_cli::api::parse_args("fit", &all).map_err(&named)?;
-    let name = data_name.unwrap_or_else(|| "<data>".into());
-    let out = interruptible(py, move |_| {
-        stiction_cli::api::fit_json(&args, &source, data_csv.as_deref().map(|t| (t.as_bytes(), name.as_str())))
-            .map_err(|e| e.to_string())
-    })?;
-    json_object(py, out.map_err(named)?)
 }
 
 /// A length flag value: a unit string ("3.9 um") or an SI number, checked as the command line
 /// checks it (finite, > 0).
-fn length(name: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64>> {
+pub(crate) fn length(name: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64>> {
     match value {
         None => Ok(None),
         Some(v) if v.is_none() => Ok(None),
@@ -733,7 +509,7 @@ fn length(name: &str, value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64>>
 /// (no copy of the array, whatever its order or strides: [`read_array`]) while the GIL is held, so
 /// that no Python code writes the array while it is read. A view that is not contiguous (`a[:, ::2]`)
 /// is read through its strides as well.
-fn read_heights(heights: &Bound<'_, PyAny>, meta: &MapMetadata) -> PyResult<(HeightMap, MapInfo)> {
+pub(crate) fn read_heights(heights: &Bound<'_, PyAny>, meta: &MapMetadata) -> PyResult<(HeightMap, MapInfo)> {
     if let Ok(a) = heights.extract::<PyReadonlyArray2<'_, f64>>() {
         let (data, layout) = in_place(a.as_array());
         return read_array(BorrowedHeights::F64(data), layout, "heights", meta).map_err(err);
@@ -770,7 +546,7 @@ fn in_place<'a, T>(view: numpy::ndarray::ArrayView2<'a, T>) -> (&'a [T], ArrayLa
 #[pyfunction]
 #[pyo3(signature = (heights, pixel_size=None, pixel_size_y=None, height_unit=None, level="plane", cutoff=None, long_cutoff=None, scenario=None))]
 #[allow(clippy::too_many_arguments)]
-fn topography_json<'py>(
+pub(crate) fn topography_json<'py>(
     py: Python<'py>,
     heights: &Bound<'py, PyAny>,
     pixel_size: Option<&Bound<'py, PyAny>>,
@@ -801,8 +577,9 @@ fn topography_json<'py>(
     };
     let (raw, info) = read_heights(heights, &meta)?;
     let out = py.detach(|| -> Result<_, String> {
-        let (json, map, summits) = stiction_cli::api::topography_json("<array>", raw, info, &prep, scenario.as_ref())
-            .map_err(|e| e.to_string())?;
+        let (json, map, summits) =
+            stiction_engine::topography::topography_json("<array>", raw, info, &prep, scenario.as_ref())
+                .map_err(|e| e.to_string())?;
         Ok((json, map, summits))
     });
     let (json, map, s): (serde_json::Value, HeightMap, _) = out.map_err(err)?;
@@ -826,7 +603,7 @@ fn topography_json<'py>(
 /// at most half a second more for the worker and raises; a worker still running then finishes in
 /// the background and its result is dropped (it owns everything it touches, so nothing a caller
 /// holds is left half-written).
-fn interruptible<T: Send + 'static>(
+pub(crate) fn interruptible<T: Send + 'static>(
     py: Python<'_>,
     work: impl FnOnce(&AtomicBool) -> T + Send + 'static,
 ) -> PyResult<T> {
@@ -869,24 +646,24 @@ static LAST_ENGINE_NANOS: std::sync::atomic::AtomicU64 = std::sync::atomic::Atom
 /// _last_engine_seconds() -> float: the engine time of the last long call (run, study, contact,
 /// bem, fit) on its worker thread, without the binding (arguments, thread, JSON to Python).
 #[pyfunction]
-fn _last_engine_seconds() -> f64 {
+pub(crate) fn _last_engine_seconds() -> f64 {
     LAST_ENGINE_NANOS.load(Ordering::Relaxed) as f64 * 1e-9
 }
 
 /// A progress callback for a worker thread: `cb(done, total)` with the GIL taken for the call;
 /// the first exception it raises is kept (and stops a study through `stop`).
 #[derive(Clone)]
-struct Progress {
+pub(crate) struct Progress {
     cb: Option<Arc<Py<PyAny>>>,
     error: Arc<Mutex<Option<PyErr>>>,
 }
 
 impl Progress {
-    fn new(cb: Option<Py<PyAny>>) -> Progress {
+    pub(crate) fn new(cb: Option<Py<PyAny>>) -> Progress {
         Progress { cb: cb.map(Arc::new), error: Arc::new(Mutex::new(None)) }
     }
 
-    fn report(&self, done: usize, total: usize) -> bool {
+    pub(crate) fn report(&self, done: usize, total: usize) -> bool {
         let Some(cb) = &self.cb else { return true };
         let mut error = self.error.lock().unwrap_or_else(|e| e.into_inner());
         if error.is_some() {
@@ -900,7 +677,7 @@ impl Progress {
         error.is_none()
     }
 
-    fn take_error(&self) -> Option<PyErr> {
+    pub(crate) fn take_error(&self) -> Option<PyErr> {
         self.error.lock().unwrap_or_else(|e| e.into_inner()).take()
     }
 }
@@ -912,7 +689,7 @@ impl Progress {
 /// a dict (its relative paths from its base_dir). The GIL is released; Ctrl-C stops the study.
 #[pyfunction]
 #[pyo3(signature = (scenario, samples=None, seed=None, threads=None, fixed_surface=false, progress=None))]
-fn study_json<'py>(
+pub(crate) fn study_json<'py>(
     py: Python<'py>,
     scenario: &Bound<'py, PyAny>,
     samples: Option<&Bound<'py, PyAny>>,
@@ -925,7 +702,7 @@ fn study_json<'py>(
     // named the same way): nothing is read or allocated for a refused call.
     const NAMES: &[&str] = &["samples", "seed", "threads"];
     let named = err_named(NAMES);
-    let max_samples = stiction_cli::api::limits::max_samples() as u64;
+    let max_samples = stiction_engine::limits::max_samples() as u64;
     // None: the command line's defaults (100 samples, seed 1).
     let samples = match samples.filter(|s| !s.is_none()) {
         Some(s) => count(
@@ -942,7 +719,7 @@ fn study_json<'py>(
         Some(s) => count("seed", s, 0, u64::MAX, "")?,
         None => 1,
     };
-    let max_threads = stiction_cli::api::limits::MAX_THREADS as u64;
+    let max_threads = stiction_engine::limits::MAX_THREADS as u64;
     let threads = match threads.filter(|t| !t.is_none()) {
         Some(t) => Some(count("threads", t, 1, max_threads, "worker threads; None: one per core")? as usize),
         None => None,
@@ -957,11 +734,12 @@ fn study_json<'py>(
         shard_count: 1,
     };
     config.validate().map_err(|e| named(e.to_string()))?;
-    let pool = stiction_cli::api::study_pool(threads).map_err(|e| named(e.to_string()))?;
+    let pool =
+        stiction_engine::study::thread_pool(threads, &|f: &str| f.to_string()).map_err(|e| named(e.to_string()))?;
     let source = PyScenario::source_of(scenario)?;
     let value = source.json(&[]).map_err(err)?;
     let study = Study::prepare_value(value, &source.origin, &source.base, &config)
-        .and_then(stiction_cli::api::with_lab_intervals)
+        .and_then(stiction_fit::with_lab_intervals)
         .map_err(err)?;
     let progress = Progress::new(progress);
     let report = progress.clone();
@@ -974,7 +752,7 @@ fn study_json<'py>(
             }
         };
         let mut csv = Vec::new();
-        let summary = stiction_cli::api::study_json_of(&study, &pool, &on_sample, interrupt, Some(&mut csv))
+        let summary = stiction_engine::study::study_json_of(&study, &pool, &on_sample, interrupt, Some(&mut csv))
             .map_err(|e| e.to_string())?;
         Ok::<_, String>((summary, String::from_utf8_lossy(&csv).into_owned()))
     })?;
@@ -991,141 +769,12 @@ fn study_json<'py>(
     }
 }
 
-/// gw(theta, load_star) -> dict of arrays: the stable-branch Greenwood-Williamson + DMT state
-/// (eq. 5-9) at each normalized load L* (as `stiction gw --theta T --load-star L --json`).
-#[pyfunction]
-fn gw_arrays<'py>(py: Python<'py>, theta: Option<f64>, load_star: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
-    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
-    // One CLI call per load: at most the loads of one sweep, counted before they are read.
-    let load_star = vector("load_star", load_star, true, &|n| {
-        if n == 0 {
-            Ok(())
-        } else {
-            check_sweep_len("load_star", n, DEFAULT_MAX_SWEEP_STEPS, "split the loads over several calls")
-        }
-    })?;
-    let theta = theta.filter(|t| !t.is_infinite());
-    let model = stiction_contact::gw::GwModel::new(theta).map_err(err)?;
-    let solve = || {
-        load_star
-            .iter()
-            .enumerate()
-            .map(|(i, &l)| {
-                if !l.is_finite() {
-                    return Err(format!("load_star[{i}] = {l}: expected a finite normalized load"));
-                }
-                model.solve(l).map_err(|e| format!("load_star[{i}] = {l}: {e}"))
-            })
-            .collect::<Result<Vec<_>, String>>()
-    };
-    // A few loads take microseconds: releasing the GIL would cost more than it frees.
-    let states = if load_star.len() < 64 { solve() } else { py.detach(solve) };
-    let states = states.map_err(err)?;
-    let d = PyDict::new(py);
-    let col = |f: &dyn Fn(&stiction_contact::gw::GwState) -> f64| states.iter().map(f).collect::<Vec<f64>>();
-    d.set_item("l_star", PyArray1::from_vec(py, col(&|s| s.l_star)))?;
-    d.set_item("h", PyArray1::from_vec(py, col(&|s| s.h)))?;
-    d.set_item("n_star", PyArray1::from_vec(py, col(&|s| s.n_star)))?;
-    d.set_item("log10_n_star", PyArray1::from_vec(py, col(&|s| s.log10_n_star)))?;
-    d.set_item("a_star", PyArray1::from_vec(py, col(&|s| s.a_star)))?;
-    d.set_item("log10_a_star", PyArray1::from_vec(py, col(&|s| s.log10_a_star)))?;
-    d.set_item("elastic_l_star", PyArray1::from_vec(py, col(&|s| s.elastic_l_star)))?;
-    d.set_item("adhesive_l_star", PyArray1::from_vec(py, col(&|s| s.adhesive_l_star)))?;
-    d.set_item("elastic_pressure_star", PyArray1::from_vec(py, col(&|s| s.elastic_pressure_star)))?;
-    d.set_item("theta", theta)?;
-    d.set_item("pull_off_l_star", model.pull_off().map(|p| p.l_star))?;
-    d.set_item("pull_off_h", model.pull_off().map(|p| p.h))?;
-    Ok(d)
-}
-
-/// A quantity argument: a unit string or an SI number, checked as the command line's flag.
-fn quantity(name: &str, value: &Bound<'_, PyAny>, dim: Dimension, constraint: Constraint) -> PyResult<f64> {
-    let text = flag_text(value)?;
-    parse_quantity_checked(&text, dim, constraint).map_err(|e| err(format!("{name}={text}: {e}")))
-}
-
-/// discrete_json(...) -> list: per load, the object `stiction discrete ... --json` prints.
-#[pyfunction]
-#[pyo3(signature = (contacts, radius, work_of_adhesion, compliance, shear_strength, loads, adhesion="dmt", equilibrium_spacing=None, target_slope=None))]
-#[allow(clippy::too_many_arguments)]
-fn discrete_json<'py>(
-    py: Python<'py>,
-    contacts: &Bound<'_, PyAny>,
-    radius: &Bound<'_, PyAny>,
-    work_of_adhesion: &Bound<'_, PyAny>,
-    compliance: &Bound<'_, PyAny>,
-    shear_strength: &Bound<'_, PyAny>,
-    loads: &Bound<'_, PyAny>,
-    adhesion: &str,
-    equilibrium_spacing: Option<&Bound<'_, PyAny>>,
-    target_slope: Option<f64>,
-) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_cli::api::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
-    use stiction_cli::api::{DiscreteArgs, Law};
-    // The counts first: contacts as the command line's --contacts (u32), the loads (one CLI
-    // call each) at most those of one sweep, counted before they are read.
-    let contacts = count("contacts", contacts, 0, u64::from(u32::MAX), "summits in contact")? as u32;
-    // A NumPy array counted by its size (any shape, read flat), a list by its length.
-    let is_array = loads.is_instance(&py.import("numpy")?.getattr("ndarray")?)?;
-    let n = if is_array { loads.getattr("size")?.extract()? } else { loads.len().unwrap_or(usize::MAX) };
-    if n == usize::MAX {
-        return Err(err(format!("load: expected a force or a list of forces, got {}", short_repr(loads))));
-    }
-    if n > 0 {
-        check_sweep_len("load", n, DEFAULT_MAX_SWEEP_STEPS, "split the loads over several calls").map_err(err)?;
-    }
-    let flat = if is_array { loads.call_method0("ravel")? } else { loads.clone() };
-    let loads: Vec<Bound<'_, PyAny>> = flat.try_iter()?.collect::<PyResult<_>>()?;
-    let law = match adhesion.to_ascii_lowercase().as_str() {
-        "dmt" => Law::Dmt,
-        "jkr" => Law::Jkr,
-        "maugis-dugdale" => Law::MaugisDugdale,
-        "hertz" => Law::Hertz,
-        other => return Err(err(format!("adhesion={other}: expected dmt, jkr, maugis-dugdale or hertz"))),
-    };
-    let template = DiscreteArgs {
-        contacts,
-        radius: quantity("radius", radius, Dimension::Length, Constraint::Positive)?,
-        work_of_adhesion: quantity(
-            "work_of_adhesion",
-            work_of_adhesion,
-            Dimension::SurfaceEnergy,
-            Constraint::NonNegative,
-        )?,
-        compliance: quantity("compliance", compliance, Dimension::Compliance, Constraint::Positive)?,
-        shear_strength: quantity("shear_strength", shear_strength, Dimension::Pressure, Constraint::NonNegative)?,
-        load: 0.0,
-        adhesion: law,
-        equilibrium_spacing: match equilibrium_spacing {
-            Some(v) if !v.is_none() => quantity("equilibrium_spacing", v, Dimension::Length, Constraint::Positive)?,
-            // The command line's default, parsed as it parses it.
-            _ => parse_quantity_checked("0.3 nm", Dimension::Length, Constraint::Positive).map_err(err)?,
-        },
-        target_slope,
-        json: true,
-    };
-    let loads: Vec<f64> = loads
-        .iter()
-        .enumerate()
-        .map(|(i, l)| quantity(&format!("load[{i}]"), l, Dimension::Force, Constraint::Finite))
-        .collect::<PyResult<_>>()?;
-    let out = py.detach(|| {
-        let mut out = Vec::with_capacity(loads.len());
-        for (i, &load) in loads.iter().enumerate() {
-            let args = DiscreteArgs { load, ..template };
-            out.push(stiction_cli::api::discrete_json(&args).map_err(|e| format!("load[{i}] = {load} N: {e}"))?);
-        }
-        Ok::<_, String>(serde_json::Value::Array(out))
-    });
-    to_py(py, &out.map_err(err)?)
-}
-
 /// _limits() -> dict: the command line's limits that the functions apply to their array and
 /// count arguments (the same constants the commands check; `max_samples` as
 /// STICTION_MAX_SAMPLES sets it now).
 #[pyfunction]
-fn _limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-    use stiction_cli::api::limits::*;
+pub(crate) fn _limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    use stiction_engine::limits::*;
     let d = PyDict::new(py);
     d.set_item("max_sweep_steps", DEFAULT_MAX_SWEEP_STEPS)?;
     d.set_item("bem_max_path_steps", BEM_MAX_PATH_STEPS)?;
@@ -1137,31 +786,6 @@ fn _limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("fit_max_draws", MAX_DRAWS)?;
     d.set_item("fit_max_rows", MAX_FIT_ROWS)?;
     Ok(d)
-}
-
-/// The extension module `stiction._stiction`.
-#[pymodule]
-fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add("StictionError", m.py().get_type::<StictionError>())?;
-    m.add_class::<PyScenario>()?;
-    m.add_class::<PyJson>()?;
-    m.add_function(wrap_pyfunction!(run_json, m)?)?;
-    m.add_function(wrap_pyfunction!(topography_json, m)?)?;
-    m.add_function(wrap_pyfunction!(crate::read_map::_read_map, m)?)?;
-    m.add_function(wrap_pyfunction!(study_json, m)?)?;
-    m.add_function(wrap_pyfunction!(gw_arrays, m)?)?;
-    m.add_function(wrap_pyfunction!(discrete_json, m)?)?;
-    m.add_function(wrap_pyfunction!(contact_json, m)?)?;
-    m.add_function(wrap_pyfunction!(bem_json, m)?)?;
-    m.add_function(wrap_pyfunction!(humidity_json, m)?)?;
-    m.add_function(wrap_pyfunction!(fit_json, m)?)?;
-    m.add_function(wrap_pyfunction!(_heap, m)?)?;
-    m.add_function(wrap_pyfunction!(_count, m)?)?;
-    m.add_function(wrap_pyfunction!(_limits, m)?)?;
-    m.add_function(wrap_pyfunction!(_last_engine_seconds, m)?)?;
-    m.add_function(wrap_pyfunction!(_reset_heap_peak, m)?)?;
-    m.add_function(wrap_pyfunction!(_read_heights, m)?)?;
-    Ok(())
 }
 
 /// The Rust heap of the extension, counted: bytes in use and the peak since the last reset, so
@@ -1219,14 +843,14 @@ mod heap {
 
 /// _heap() -> (bytes in use, peak bytes since the last reset) of the extension's Rust heap.
 #[pyfunction]
-fn _heap() -> (usize, usize) {
+pub(crate) fn _heap() -> (usize, usize) {
     use std::sync::atomic::Ordering::Relaxed;
     (heap::IN_USE.load(Relaxed), heap::PEAK.load(Relaxed))
 }
 
 /// _reset_heap_peak(): the peak becomes the bytes in use now.
 #[pyfunction]
-fn _reset_heap_peak() {
+pub(crate) fn _reset_heap_peak() {
     use std::sync::atomic::Ordering::Relaxed;
     heap::PEAK.store(heap::IN_USE.load(Relaxed), Relaxed);
 }
@@ -1234,7 +858,7 @@ fn _reset_heap_peak() {
 /// _read_heights(heights, pixel_size, height_unit) -> (nx, ny): the input step of `topography`
 /// and `bem` alone (the array read into a map in metres), for the memory test.
 #[pyfunction]
-fn _read_heights(heights: &Bound<'_, PyAny>, pixel_size: f64, height_unit: f64) -> PyResult<(usize, usize)> {
+pub(crate) fn _read_heights(heights: &Bound<'_, PyAny>, pixel_size: f64, height_unit: f64) -> PyResult<(usize, usize)> {
     let meta = MapMetadata { pixel_size_x_m: Some(pixel_size), height_unit_m: Some(height_unit), ..Default::default() };
     let (map, _) = read_heights(heights, &meta)?;
     Ok((map.nx(), map.ny()))

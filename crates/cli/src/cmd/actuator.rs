@@ -2,13 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::Serialize;
-use stiction_actuator::{
-    ArraySpec, GapClosingActuator, Sweep, TransientEvent, TransientPhysics, TransientReport, compare_transients,
-    read_measurements, read_transients, switch_effects, transient_switch_effects, validate,
-};
+use stiction_actuator::{GapClosingActuator, Sweep, TransientEvent, TransientReport};
+use stiction_engine::actuator::{ActuatorRequest, ActuatorRun, actuator, model_curves};
 use stiction_plot::{Chart, Series};
-use stiction_scenario::Scenario;
 use stiction_units::{Constraint, Dimension};
 
 use crate::figargs::FigureArgs;
@@ -60,53 +56,19 @@ pub struct Args {
     pub fig: FigureArgs,
 }
 
-#[derive(Serialize)]
-struct Summary {
-    array: String,
-    pull_in_voltage_v: f64,
-    pull_in_travel_m: f64,
-    pull_in_limited_by_stop: bool,
-    release_voltage_v: Option<f64>,
-    hysteresis_v: Option<f64>,
-    conversion_factor_n_per_v2: f64,
-    conversion_factor_travel_m: f64,
-    spring_stiffness_n_per_m: f64,
-    front_gap_m: f64,
-    stop_travel_m: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    sweep: Option<Sweep>,
-    /// With --validate: `points`, `pull_in_mean_abs_rel_error`, `release_mean_abs_rel_error` at the top level.
-    #[serde(flatten)]
-    validation: Option<stiction_actuator::ValidationReport>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    switches: Option<Vec<stiction_actuator::SwitchEffect>>,
-    /// With --transients: `points`, `pull_in_time_mean_abs_rel_error`, `release_time_mean_abs_rel_error`,
-    /// `errors` (per event and finger length) at the top level.
-    #[serde(flatten)]
-    transients: Option<TransientReport>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    transient_switches: Option<Vec<stiction_actuator::TransientSwitchEffect>>,
-}
-
-/// Loads a scenario and picks the named array (or the only one).
-pub fn pick_array(
-    path: &Path,
-    name: Option<&str>,
-    sets: &[String],
-) -> Result<(String, ArraySpec), Box<dyn std::error::Error>> {
-    let scenario = Scenario::load(path, sets)?;
-    let names: Vec<&String> = scenario.actuators.keys().collect();
-    let name = match name {
-        Some(n) => n.to_string(),
-        None if names.len() == 1 => names[0].clone(),
-        None => return Err(format!("{}: choose an array with --array, one of {names:?}", path.display()).into()),
-    };
-    let spec = scenario
-        .actuators
-        .get(&name)
-        .cloned()
-        .ok_or_else(|| format!("{}: no actuator array `{name}`; the scenario has {names:?}", path.display()))?;
-    Ok((name, spec))
+impl Args {
+    /// The engine's request of these flags (the sweep also for the --out figures).
+    pub fn request(&self) -> ActuatorRequest {
+        ActuatorRequest {
+            array: self.array.clone(),
+            sweep: self.sweep || self.out.is_some(),
+            sweep_max_v: self.sweep_max,
+            sweep_steps: self.sweep_steps as usize,
+            validate: self.validate.clone(),
+            transients: self.transients.clone(),
+            switches: self.switches,
+        }
+    }
 }
 
 /// Runs the subcommand.
@@ -116,49 +78,8 @@ pub fn run(args: Args) -> CliResult {
         Some(dir) => Some(OutputSet::begin(dir, "actuator", args.force)?),
         None => None,
     };
-    let (name, spec) = pick_array(&args.scenario, args.array.as_deref(), &args.sets)?;
-    let model = spec.to_model().map_err(|e| format!("actuator `{name}`: {e}"))?;
-    let pull_in = model.pull_in()?;
-    let release =
-        if model.stop_travel_m.is_some() && !pull_in.limited_by_stop { Some(model.release_voltage_v()?) } else { None };
-    let mut summary = Summary {
-        array: name.clone(),
-        pull_in_voltage_v: pull_in.voltage_v,
-        pull_in_travel_m: pull_in.travel_m,
-        pull_in_limited_by_stop: pull_in.limited_by_stop,
-        release_voltage_v: release,
-        hysteresis_v: release.map(|r| pull_in.voltage_v - r),
-        conversion_factor_n_per_v2: model.conversion_factor_n_per_v2(spec.operating_travel),
-        conversion_factor_travel_m: spec.operating_travel,
-        spring_stiffness_n_per_m: model.stiffness_n_per_m(),
-        front_gap_m: model.plates.front_gap_m,
-        stop_travel_m: model.stop_travel_m,
-        sweep: None,
-        validation: None,
-        switches: None,
-        transients: None,
-        transient_switches: None,
-    };
-    if args.sweep || args.out.is_some() {
-        let vmax = args.sweep_max.unwrap_or(1.3 * pull_in.voltage_v);
-        summary.sweep = Some(model.sweep(vmax, args.sweep_steps as usize)?);
-    }
-    if let Some(csv) = &args.validate {
-        let data = read_measurements(csv)?;
-        summary.validation = Some(validate(&spec, &data)?);
-        if args.switches {
-            summary.switches = Some(switch_effects(&spec, &data)?);
-        }
-    }
-    if let Some(csv) = &args.transients {
-        let data = read_transients(csv)?;
-        let physics = TransientPhysics::default();
-        summary.transients =
-            Some(compare_transients(&spec, physics, &data).map_err(|e| format!("{}: {e}", csv.display()))?);
-        if args.switches {
-            summary.transient_switches = Some(transient_switch_effects(&spec, physics, &data)?);
-        }
-    }
+    let ActuatorRun { name, spec, model, summary } = actuator(&args.scenario, &args.sets, &args.request())?;
+    let pull_in_limited_by_stop = summary.pull_in_limited_by_stop;
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("results.json", crate::output::json_text(&summary)?.as_bytes())?;
         if let Some(sweep) = &summary.sweep {
@@ -185,7 +106,7 @@ pub fn run(args: Args) -> CliResult {
                 format!(
                     "{}{}",
                     q(summary.pull_in_travel_m, Dimension::Length),
-                    if pull_in.limited_by_stop { " (stop reached first)" } else { "" }
+                    if pull_in_limited_by_stop { " (stop reached first)" } else { "" }
                 ),
             ),
             ("release voltage", summary.release_voltage_v.map_or("- (no stop)".into(), |v| q(v, Dimension::Voltage))),
@@ -430,15 +351,8 @@ pub fn hysteresis_chart(
     array: Option<&str>,
     sets: &[String],
 ) -> Result<Chart, Box<dyn std::error::Error>> {
-    let name = array.map(str::to_string);
-    let (name, spec) = match pick_array(path, name.as_deref(), sets) {
-        Ok(x) => x,
-        Err(_) if name.is_none() => pick_array(path, Some("clamp"), sets)?,
-        Err(e) => return Err(e),
-    };
-    let model = spec.to_model()?;
-    let vmax = 1.3 * model.pull_in()?.voltage_v;
-    Ok(sweep_chart(&name, &model.sweep(vmax, 300)?, &model))
+    let (name, model, sweep) = stiction_engine::actuator::hysteresis(path, array, sets)?;
+    Ok(sweep_chart(&name, &sweep, &model))
 }
 
 fn print_transients(path: Option<&Path>, r: &TransientReport) {
@@ -568,38 +482,6 @@ fn write_transients(set: &mut OutputSet, r: &TransientReport, curves: &Transient
         set.add_figure(&format!("transients_L{:.2}um", l * 1e6), &fig.apply(transient_chart(r, curves, l))?)?;
     }
     Ok(())
-}
-
-/// The transient model evaluated at 24 voltages evenly over the measured range of each finger
-/// length and event (at the external force of its measurements, when they share one): the model
-/// curves of the figures, not straight segments between the measured voltages.
-fn model_curves(
-    spec: &stiction_actuator::ArraySpec,
-    r: &TransientReport,
-) -> Result<TransientReport, Box<dyn std::error::Error>> {
-    let mut grid = Vec::new();
-    let mut keys: Vec<(u64, TransientEvent)> =
-        r.points.iter().map(|p| (p.finger_length_m.to_bits(), p.event)).collect();
-    keys.dedup();
-    for (bits, event) in keys {
-        let pts: Vec<_> = r.points.iter().filter(|p| p.finger_length_m.to_bits() == bits && p.event == event).collect();
-        let force = pts[0].external_force_n;
-        let (lo, hi) = pts.iter().fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.voltage_v), a.1.max(p.voltage_v)));
-        if pts.iter().any(|p| p.external_force_n != force) || hi <= lo {
-            continue;
-        }
-        grid.extend((0..24).map(|k| stiction_actuator::MeasuredTransient {
-            finger_length_m: f64::from_bits(bits),
-            event,
-            voltage_v: lo + (hi - lo) * f64::from(k) / 23.0,
-            external_force_n: force,
-            times_s: vec![1e-6],
-        }));
-    }
-    if grid.is_empty() {
-        return Ok(TransientReport { points: Vec::new(), ..r.clone() });
-    }
-    Ok(compare_transients(spec, TransientPhysics::default(), &grid)?)
 }
 
 /// Time against voltage at one finger length: measured (mean, SD of repeats) and model.

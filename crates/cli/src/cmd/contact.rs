@@ -4,13 +4,11 @@
 use std::path::PathBuf;
 
 use stiction_contact::explicit::{Detail, Equilibrium, SweepEvent};
-use stiction_contact::single::Branch;
-use stiction_meter::{ContactModel, build_contact_model};
-use stiction_scenario::{ContactModel as ModelKind, MaterialSpec};
-use stiction_units::{Constraint, Dimension, parse_quantity_checked};
+use stiction_engine::ScenarioSource;
+use stiction_engine::contact::{BemRun, ContactOutput, ContactRequest, ContactRun, Mode as EngineMode, contact};
+use stiction_units::{Constraint, Dimension};
 
 use crate::output::{CliResult, TextTable, domain_quantity, print_json, print_table, q};
-use crate::scenario_source::ScenarioSource;
 
 /// Shoe degrees of freedom.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -72,185 +70,120 @@ pub struct Args {
     pub sets: Vec<String>,
 }
 
-/// Default of `--max-sweep-steps`: a million equilibria take minutes and their rows about 100 MB.
-pub const DEFAULT_MAX_SWEEP_STEPS: usize = 1_000_000;
+pub use stiction_engine::contact::{DEFAULT_MAX_SWEEP_STEPS, parse_sweep};
 
-/// Parses FROM:TO:STEPS into the loads, N; at most `max_steps` steps (checked before allocating).
-pub fn parse_sweep(text: &str, max_steps: usize) -> Result<Vec<f64>, String> {
-    let parts: Vec<&str> = text.split(':').collect();
-    if parts.len() != 3 {
-        return Err(format!("--sweep {text:?}: expected FROM:TO:STEPS, like \"0uN:10uN:21\""));
+impl Args {
+    /// The engine's request of these flags (`--sweep` parsed into its loads).
+    pub fn request(&self) -> Result<ContactRequest, String> {
+        Ok(ContactRequest {
+            model: match self.model {
+                Model::Explicit => stiction_engine::contact::Model::Explicit,
+                Model::Bem => stiction_engine::contact::Model::Bem,
+            },
+            load_n: self.load,
+            loads_n: self.sweep.as_deref().map(|s| parse_sweep(s, self.max_sweep_steps)).transpose()?,
+            mode: self.mode.map(|m| match m {
+                Mode::Tilt => EngineMode::Tilt,
+                Mode::Flat => EngineMode::Flat,
+                Mode::Fixed => EngineMode::Fixed,
+            }),
+            contacts: self.contacts,
+            summits: self.summits,
+        })
     }
-    let f = |s: &str, what: &str| {
-        let v = parse_quantity_checked(s, Dimension::Force, Constraint::Finite)
-            .map_err(|e| format!("--sweep {what}: {e}"))?;
-        stiction_scenario::domain::check_value("load", "load", v)
-            .map_err(|e| format!("--sweep {what}: {}", e.message))?;
-        Ok::<f64, String>(v)
-    };
-    let (from, to) = (f(parts[0], "FROM")?, f(parts[1], "TO")?);
-    let steps: usize = parts[2]
-        .trim()
-        .parse()
-        .ok()
-        .filter(|n| *n >= 2)
-        .ok_or_else(|| format!("--sweep STEPS {:?}: expected a whole number >= 2", parts[2]))?;
-    if steps > max_steps {
-        return Err(format!(
-            "--sweep STEPS {steps}: more than the limit of {max_steps} steps (one equilibrium solve and about 100 \
-             bytes of output each: {:.1e} bytes); raise it with --max-sweep-steps if you mean it",
-            steps as f64 * 100.0
-        ));
+}
+
+/// The command line's name of a request field.
+fn flag(field: &str) -> String {
+    match field {
+        "load_n" => "--load",
+        "loads_n" => "--sweep",
+        "mode" => "--mode",
+        "contacts" => "--contacts",
+        "summits" => "--summits",
+        "model" => "--model",
+        other => other,
     }
-    Ok((0..steps).map(|i| from + (to - from) * i as f64 / (steps - 1) as f64).collect())
+    .to_string()
 }
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
-    if args.model == Model::Bem {
-        return run_bem(&args);
-    }
-    let (mut solver, c, material) = explicit_solver(&args, &ScenarioSource::file(&args.scenario, &[])?)?;
+    // The model is checked before the sweep is parsed, as before: a bem run's flags first.
+    let req = args.request()?;
+    let source = ScenarioSource::file(&args.scenario, &args.sets)?;
     // Per-contact detail only where an output shows it: the summit table (--summits) or the JSON
     // (contact indices); the plain table needs the totals only, which the solver's last pass holds.
-    solver.set_detail(if args.summits {
+    let detail = if args.summits {
         Detail::Full
     } else if args.json {
         Detail::Indices
     } else {
         Detail::Summary
-    });
-    if let Some(sweep) = &args.sweep {
-        let loads = parse_sweep(sweep, args.max_sweep_steps)?;
-        let increasing = loads.last() >= loads.first();
-        let result = solver.sweep(&loads, if increasing { Branch::Loading } else { Branch::Unloading })?;
-        if args.json {
-            return print_json(&result);
-        }
-        crate::outln!("Load sweep on {} summits, mode {}, law {}", solver.len(), c.mode, c.law);
-        let mut t = TextTable::new(&[
-            "L (uN)",
-            "d (nm)",
-            "tilt x (rad)",
-            "tilt y (rad)",
-            "N",
-            "A_r (um^2)",
-            "F_cap (uN)",
-            "q0 (GPa)",
-        ]);
-        for e in &result.points {
-            t.row(vec![
-                format!("{:.4}", e.load_n * 1e6),
-                format!("{:.4}", e.separation_m * 1e9),
-                format!("{:.3e}", e.tilt_x_rad),
-                format!("{:.3e}", e.tilt_y_rad),
-                e.contacts.to_string(),
-                format!("{:.5e}", e.real_area_m2 * 1e12),
-                format!("{:.4}", e.friction_capacity_n * 1e6),
-                format!("{:.3}", e.max_pressure_pa * 1e-9),
-            ]);
-        }
-        t.print("  ");
-        if !result.events.is_empty() {
-            crate::outln!("\n  Events:");
-        }
-        for ev in &result.events {
-            crate::outln!("    {}", event_line(ev));
-        }
-        return Ok(());
-    }
-    let load = args.load.ok_or("give --load or --sweep")?;
-    let eq = solver.solve(load)?;
+    };
+    let ContactRun { output, explicit } = contact(&req, &source, detail, &flag)?;
     if args.json {
-        return print_json(&eq);
+        return print_json(&output);
     }
-    print_table(
-        &format!("Explicit contact on {} summits (mode {}, law {})", solver.len(), c.mode, c.law),
-        &rows(&eq, material.hardness),
-    );
-    if args.summits {
-        crate::outln!();
-        let mut t = TextTable::new(&["index", "x (um)", "y (um)", "z (nm)", "P (uN)", "a (nm)", "q0 (GPa)"]);
-        for s in &eq.summits {
-            t.row(vec![
-                s.index.to_string(),
-                format!("{:.4}", s.x_m * 1e6),
-                format!("{:.4}", s.y_m * 1e6),
-                format!("{:.5}", s.interference_m * 1e9),
-                format!("{:.5}", s.load_n * 1e6),
-                format!("{:.3}", s.contact_radius_m * 1e9),
-                format!("{:.3}", s.max_pressure_pa * 1e-9),
+    match (output, explicit) {
+        (ContactOutput::Bem(out), _) => print_bem(&out),
+        (ContactOutput::Sweep(result), Some((summits, c, _))) => {
+            crate::outln!("Load sweep on {} summits, mode {}, law {}", summits, c.mode, c.law);
+            let mut t = TextTable::new(&[
+                "L (uN)",
+                "d (nm)",
+                "tilt x (rad)",
+                "tilt y (rad)",
+                "N",
+                "A_r (um^2)",
+                "F_cap (uN)",
+                "q0 (GPa)",
             ]);
+            for e in &result.points {
+                t.row(vec![
+                    format!("{:.4}", e.load_n * 1e6),
+                    format!("{:.4}", e.separation_m * 1e9),
+                    format!("{:.3e}", e.tilt_x_rad),
+                    format!("{:.3e}", e.tilt_y_rad),
+                    e.contacts.to_string(),
+                    format!("{:.5e}", e.real_area_m2 * 1e12),
+                    format!("{:.4}", e.friction_capacity_n * 1e6),
+                    format!("{:.3}", e.max_pressure_pa * 1e-9),
+                ]);
+            }
+            t.print("  ");
+            if !result.events.is_empty() {
+                crate::outln!("\n  Events:");
+            }
+            for ev in &result.events {
+                crate::outln!("    {}", event_line(ev));
+            }
         }
-        t.print("  ");
+        (ContactOutput::Point(eq), Some((summits, c, material))) => {
+            print_table(
+                &format!("Explicit contact on {} summits (mode {}, law {})", summits, c.mode, c.law),
+                &rows(&eq, material.hardness),
+            );
+            if args.summits {
+                crate::outln!();
+                let mut t = TextTable::new(&["index", "x (um)", "y (um)", "z (nm)", "P (uN)", "a (nm)", "q0 (GPa)"]);
+                for s in &eq.summits {
+                    t.row(vec![
+                        s.index.to_string(),
+                        format!("{:.4}", s.x_m * 1e6),
+                        format!("{:.4}", s.y_m * 1e6),
+                        format!("{:.5}", s.interference_m * 1e9),
+                        format!("{:.5}", s.load_n * 1e6),
+                        format!("{:.3}", s.contact_radius_m * 1e9),
+                        format!("{:.3}", s.max_pressure_pa * 1e-9),
+                    ]);
+                }
+                t.print("  ");
+            }
+        }
+        _ => return Err("the explicit solver's result came without its solver".into()),
     }
     Ok(())
-}
-
-/// The explicit solver of the scenario of `args`, with `--mode` and `--contacts` applied: the
-/// solver, the scenario's contact settings and its material.
-fn explicit_solver(
-    args: &Args,
-    source: &ScenarioSource,
-) -> Result<
-    (Box<stiction_contact::explicit::ExplicitSolver>, stiction_scenario::ContactSpec, MaterialSpec),
-    Box<dyn std::error::Error>,
-> {
-    let mut sets = args.sets.clone();
-    sets.push("contact.model=\"explicit\"".into());
-    match args.mode {
-        Some(Mode::Tilt) => sets.push("contact.mode=\"tilt\"".into()),
-        Some(Mode::Flat) => sets.push("contact.mode=\"flat\"".into()),
-        Some(Mode::Fixed) => sets.push("contact.mode=\"fixed\"".into()),
-        None => {}
-    }
-    if let Some(n) = args.contacts {
-        sets.push(format!("contact.contacts={n}"));
-    }
-    let scenario = source.parse(&sets)?;
-    let name = source.name();
-    let material = scenario.require_material().map_err(|e| format!("{name}: {e}"))?.clone();
-    let c = scenario.contact_or_default();
-    debug_assert_eq!(c.model, ModelKind::Explicit);
-    let model = build_contact_model(&scenario, &material, &source.base).map_err(|e| format!("{name}: {e}"))?;
-    let ContactModel::Explicit(solver) = model else {
-        return Err("the explicit solver could not be built".into());
-    };
-    Ok((solver, c, material))
-}
-
-/// What `stiction contact SCENARIO --json` prints for the scenario `source` (a file or a tree
-/// built in memory; `args.scenario` is not read, `args.sets` apply after the source's own). With
-/// the explicit solver: the equilibrium at `--load`, or for a sweep (the loads given, else
-/// `--sweep`) {"points", "events"}; with `--model bem`: the boundary-element model at those loads
-/// (`model`, `grid`, ..., `points`). Every number checked finite. For front ends other than the
-/// command line (the Python module).
-pub fn contact_json(
-    args: &Args,
-    source: &ScenarioSource,
-    sweep_loads: Option<&[f64]>,
-) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    if args.model == Model::Bem {
-        return Ok(crate::json_value::finite_value(&bem_run(args, source, sweep_loads)?)?);
-    }
-    let (mut solver, _, _) = explicit_solver(args, source)?;
-    solver.set_detail(if args.summits { Detail::Full } else { Detail::Indices });
-    let parsed;
-    let loads = match (sweep_loads, &args.sweep) {
-        (Some(l), _) => Some(l),
-        (None, Some(text)) => {
-            parsed = parse_sweep(text, args.max_sweep_steps)?;
-            Some(&parsed[..])
-        }
-        (None, None) => None,
-    };
-    if let Some(loads) = loads {
-        let increasing = loads.last() >= loads.first();
-        let result = solver.sweep(loads, if increasing { Branch::Loading } else { Branch::Unloading })?;
-        return Ok(crate::json_value::finite_value(&result)?);
-    }
-    let load = args.load.ok_or("give --load or --sweep")?;
-    Ok(crate::json_value::finite_value(&solver.solve(load)?)?)
 }
 
 /// A sweep event as a sentence, named as in the JSON (`jump_in`, `release`, `pull_off`), with the
@@ -294,109 +227,10 @@ fn rows(eq: &Equilibrium, hardness: f64) -> Vec<(&'static str, String)> {
     ]
 }
 
-/// One load of `stiction contact --model bem`.
-#[derive(serde::Serialize)]
-struct BemPoint {
-    load_n: f64,
-    real_area_m2: f64,
-    contact_fraction: f64,
-    patches: usize,
-    mean_gap_m: f64,
-    /// The Dugdale tension over the cohesive zone, N (the contact pressure carries L plus it).
-    adhesive_load_n: f64,
-    cohesive_fraction: f64,
-    /// s A_r with the material's shear strength, N.
-    friction_capacity_n: f64,
-    max_pressure_pa: f64,
-    iterations: usize,
-}
-
-#[derive(serde::Serialize)]
-struct BemRun {
-    model: &'static str,
-    grid: stiction_bem::Grid,
-    /// Block factors (x, y) from the map's pixels to the grid.
-    coarsening: (usize, usize),
-    e_star_pa: f64,
-    dugdale: Option<stiction_bem::Dugdale>,
-    /// Why `dugdale` is null: no adhesion (law "hertz" or no work of adhesion).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    dugdale_note: Option<&'static str>,
-    shear_strength_pa: f64,
-    points: Vec<BemPoint>,
-}
-
-/// The boundary-element model of the scenario `source` (`args.sets` after its own overrides) at
-/// each load of `sweep_loads` when given, else of `--sweep` or `--load` (N, compressive, in order;
-/// the loading branch).
-fn bem_run(
-    args: &Args,
-    source: &ScenarioSource,
-    sweep_loads: Option<&[f64]>,
-) -> Result<BemRun, Box<dyn std::error::Error>> {
-    if args.mode.is_some() || args.contacts.is_some() || args.summits {
-        return Err("--mode, --contacts and --summits belong to the explicit solver; --model bem has a flat shoe and \
-                    reports contact patches"
-            .into());
-    }
-    let mut sets = args.sets.clone();
-    sets.push("contact.model=\"bem\"".into());
-    let scenario = source.parse(&sets)?;
-    let name = source.name();
-    let material = scenario.require_material().map_err(|e| format!("{name}: {e}"))?.clone();
-    let mut bem = stiction_meter::build_bem(&scenario, &material, &source.base).map_err(|e| format!("{name}: {e}"))?;
-    let loads = match (sweep_loads, &args.sweep, args.load) {
-        (Some(l), _, _) => l.to_vec(),
-        (None, Some(sweep), _) => parse_sweep(sweep, args.max_sweep_steps)?,
-        (None, None, Some(l)) => vec![l],
-        (None, None, None) => return Err("give --load or --sweep".into()),
-    };
-    if let Some(l) = loads.iter().find(|l| l.is_nan() || **l <= 0.0) {
-        return Err(format!(
-            "load {}: --model bem follows the loading branch and needs compressive loads > 0",
-            q(*l, Dimension::Force)
-        )
-        .into());
-    }
-    let grid = bem.grid();
-    let stress = bem.law().map_or(0.0, |l| l.stress_pa);
-    let mut points = Vec::with_capacity(loads.len());
-    for &load in &loads {
-        let s = bem.solve(load)?;
-        let max_pressure_pa =
-            s.pressure_pa.iter().zip(&s.contact).filter(|(_, c)| **c).map(|(p, _)| p + stress).fold(0.0, f64::max);
-        points.push(BemPoint {
-            load_n: s.load_n(&grid),
-            real_area_m2: s.contact_area_m2,
-            contact_fraction: s.contact_fraction,
-            patches: s.patches,
-            mean_gap_m: s.mean_gap_m,
-            adhesive_load_n: stress * s.cohesive_fraction * grid.area_m2(),
-            cohesive_fraction: s.cohesive_fraction,
-            friction_capacity_n: s.friction_n(material.shear_strength),
-            max_pressure_pa,
-            iterations: s.iterations,
-        });
-    }
-    Ok(BemRun {
-        model: "bem",
-        grid,
-        coarsening: bem.coarsening,
-        e_star_pa: 0.75 / material.compliance_per_pa(),
-        dugdale: bem.law(),
-        dugdale_note: bem.law().is_none().then_some("no adhesion: law \"hertz\" or no work of adhesion"),
-        shear_strength_pa: material.shear_strength,
-        points,
-    })
-}
-
-/// `--model bem`: the boundary-element model of the meter at each load (loading branch).
-fn run_bem(args: &Args) -> CliResult {
-    let out = bem_run(args, &ScenarioSource::file(&args.scenario, &[])?, None)?;
+/// The table of `--model bem`: the boundary-element model of the meter at each load (loading
+/// branch).
+fn print_bem(out: &BemRun) {
     let grid = out.grid;
-    if args.json {
-        return print_json(&out);
-    }
     crate::outln!(
         "Boundary-element contact on the shoe patch: {} x {} points of {:.4} nm x {:.4} nm (periodic cell = the patch), {}",
         grid.nx,
@@ -433,5 +267,4 @@ fn run_bem(args: &Args) -> CliResult {
             p.max_pressure_pa * 1e-9
         );
     }
-    Ok(())
 }

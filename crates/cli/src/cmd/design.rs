@@ -4,23 +4,13 @@
 use std::path::{Path, PathBuf};
 
 use stiction_plot::{Chart, Marker, Series};
+use stiction_study::StudyConfig;
 use stiction_study::design::{self, DesignRow, RankBy, Vary};
 use stiction_study::summary::digits;
-use stiction_study::{MAX_THREADS, StudyConfig};
 
 use crate::cmd::study_common::{Args, Folder, Outcome, Progress, run_study};
 use crate::output::{CliResult, ensure_dir, print_json};
-
-/// The --json output of a design study.
-#[derive(serde::Serialize)]
-struct DesignReport<'a> {
-    scenario: String,
-    varied: &'a [Vary],
-    rank_by: RankBy,
-    /// Design numbers, best first.
-    ranking: Vec<usize>,
-    designs: &'a [DesignRow],
-}
+use stiction_engine::design::{DesignPlan, DesignReport, DesignRequest, plan, prepare_designs};
 
 /// The folder of design `d` inside the design study's --out.
 pub fn design_folder(out: &Path, d: usize) -> PathBuf {
@@ -157,19 +147,7 @@ fn finish_top(out: &Path, top: &Top, files: &[String], args: &Args) -> CliResult
     Ok(())
 }
 
-/// The scenario's `design` section (with the `--set`s applied), checked field by field; None
-/// when it has none.
-pub fn section(
-    scenario: &Path,
-    sets: &[String],
-) -> Result<Option<stiction_scenario::design::DesignSpec>, Box<dyn std::error::Error>> {
-    let value = stiction_scenario::Scenario::load_json(scenario, sets)?;
-    if value.get("design").is_none_or(serde_json::Value::is_null) {
-        return Ok(None);
-    }
-    let parsed = stiction_scenario::Scenario::from_value_with_sets(value, scenario, sets)?;
-    Ok(parsed.design)
-}
+pub use stiction_engine::design::section;
 
 /// Runs a design study: the study arguments with at least one --vary, or the scenario's `design`
 /// section (`section`); flags override the section, and the program says so.
@@ -179,48 +157,15 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
             crate::errln!("{what}");
         }
     };
-    let (mut varies, design_points) = match &section {
-        Some(sec) if args.vary.is_empty() => {
-            let varies: Vec<Vary> = sec
-                .varied()
-                .map_err(|m| format!("{}: {m}", args.scenario.display()))?
-                .into_iter()
-                .map(|(path, values, range)| Vary::from_section(&path, values, range.as_deref()))
-                .collect::<Result<_, _>>()
-                .map_err(|e| format!("{}: {e}", args.scenario.display()))?;
-            if args.design_points.is_some() && sec.points.is_some() {
-                say("--design-points overrides the scenario's `design.points`");
-            }
-            (varies, args.design_points.or(sec.points))
-        }
-        _ => {
-            if section.as_ref().is_some_and(|s| !s.vary.is_empty() || !s.ranges.is_empty()) {
-                say(
-                    "--vary overrides the scenario's design (`design.vary`, `design.ranges` and `design.points` are not used)",
-                );
-            }
-            (args.vary.iter().map(|v| Vary::parse(v)).collect::<Result<_, _>>()?, args.design_points)
-        }
+    let req = DesignRequest {
+        scenario: &args.scenario,
+        sets: &args.sets,
+        vary: &args.vary,
+        design_points: args.design_points,
+        rank_by: args.rank_by.map(RankBy::from),
+        seed: args.seed,
     };
-    let criterion = section.as_ref().and_then(|s| s.criterion);
-    if args.rank_by.is_some() && criterion.is_some() {
-        say("--rank-by overrides the scenario's `design.criterion`");
-    }
-    let rank_by: RankBy = match (args.rank_by, criterion) {
-        (Some(r), _) => r.into(),
-        (None, Some(c)) => match c {
-            stiction_scenario::design::DesignCriterion::Narrowest => RankBy::Narrowest,
-            stiction_scenario::design::DesignCriterion::LeastBias => RankBy::LeastBias,
-            stiction_scenario::design::DesignCriterion::MostUsable => RankBy::MostUsable,
-        },
-        (None, None) => RankBy::Narrowest,
-    };
-    let points = design::grid(&mut varies, &args.sets, design_points, args.seed, config.vary_surface)?;
-    // Two designs that would run the same study (equal once units are read and ignored fields
-    // dropped) are refused before anything runs.
-    let base = stiction_scenario::Scenario::load_json(&args.scenario, &args.sets)?;
-    design::check_distinct(&base, &varies, &points, config.vary_surface)?;
-    drop(base);
+    let DesignPlan { varies, points, rank_by } = plan(&req, section.as_ref(), &config, &say)?;
     // The --out folder's rule, checked before any work (as every command's): files no stiction
     // run listed are refused unless --force.
     if let Some(out) = &args.out {
@@ -228,24 +173,10 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
         let own: Vec<&str> = own.iter().map(String::as_str).collect();
         crate::output::check_foreign(out, &own, args.force).map_err(|e| format!("--out: {e}"))?;
     }
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(t) = args.threads {
-        if t == 0 || t > MAX_THREADS {
-            return Err(format!("--threads {t}: expected 1 to {MAX_THREADS}").into());
-        }
-        pool = pool.num_threads(t);
-    }
-    let pool = pool.build()?;
+    let pool = design_pool(args.threads)?;
     // Every design is prepared (and so checked) before any runs: a value that makes one design
     // invalid stops the study at once, naming the design.
-    let name = |p: &[String]| design::label(&varies, p);
-    let mut studies = Vec::with_capacity(points.len());
-    for (d, p) in points.iter().enumerate() {
-        let sets = design::sets_for(&args.sets, &varies, p);
-        let study = crate::cmd::study_common::prepare_study(&args.scenario, &sets, &config)
-            .map_err(|e| format!("design {d} ({}): {e}", name(p)))?;
-        studies.push(study);
-    }
+    let studies = prepare_designs(&args.scenario, &args.sets, &varies, &points, &config)?;
     // The folder's and the design folders' rules (and the manifest of the run in progress).
     let top = match &args.out {
         Some(out) => Some(prepare_top(out, &varies, points.len(), &args)?),
@@ -543,4 +474,14 @@ fn unit_name(dim: stiction_units::DimensionVector) -> String {
         .iter()
         .find(|d| d.vector() == dim)
         .map_or(String::new(), |d| d.si_unit().to_string())
+}
+
+/// The worker pool of a design study's `--threads` (its own message: no core count).
+fn design_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Box<dyn std::error::Error>> {
+    if let Some(t) = threads
+        && (t == 0 || t > stiction_study::MAX_THREADS)
+    {
+        return Err(format!("--threads {t}: expected 1 to {}", stiction_study::MAX_THREADS).into());
+    }
+    stiction_engine::study::thread_pool(threads, &crate::cmd::study_common::flag)
 }

@@ -1,10 +1,9 @@
 //! `stiction discrete`: the discrete N-contact model (eq. 12).
 
-use serde::Serialize;
 use stiction_contact::discrete::DiscreteModel;
-use stiction_contact::single::{AdhesionLaw, AsperityParams};
+use stiction_contact::single::AdhesionLaw;
+use stiction_engine::discrete::{DiscreteRequest, Fig7Curve, discrete, fig7_curve};
 use stiction_plot::{Chart, Series};
-use stiction_scenario::MaterialSpec;
 use stiction_units::{Constraint, Dimension};
 
 use crate::output::{CliResult, domain_quantity, print_json, print_table, q, quantity};
@@ -33,9 +32,7 @@ impl From<Law> for AdhesionLaw {
     }
 }
 
-/// The most contacts the discrete model takes: the paper's 1, 2 or 3 (a rigid shoe's degrees of
-/// freedom put it on at most three summits; section 3.4), as the scenario's `contact.contacts`.
-pub const MAX_CONTACTS: u32 = 3;
+pub use stiction_engine::discrete::MAX_CONTACTS;
 
 /// Friction of N equally loaded summits: F_f = s N pi a^2 with a from the single-asperity law at L/N (eq. 12).
 #[derive(clap::Args, Debug)]
@@ -72,80 +69,44 @@ pub struct Args {
     pub json: bool,
 }
 
-#[derive(Serialize)]
-struct Output {
-    contacts: u32,
-    law: AdhesionLaw,
-    load_n: f64,
-    friction_n: f64,
-    /// null where the contact radius is 0 (then `friction_slope_null_reason` says why).
-    friction_slope: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    friction_slope_null_reason: Option<&'static str>,
-    zero_load_friction_n: f64,
-    apparent_adhesion_force_n: Option<f64>,
-    /// Why F_a0 is null (the slope at the load is not positive or not defined).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    apparent_adhesion_force_note: Option<&'static str>,
-    pull_off_load_n: f64,
-    real_area_m2: f64,
-    contact_radius_m: f64,
-    interference_m: f64,
-    max_pressure_pa: f64,
-    tabor_parameter: f64,
-    recommended_law: AdhesionLaw,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    shear_strength_for_target_slope_pa: Option<f64>,
+impl Args {
+    /// The engine's request of these flags.
+    pub fn request(&self) -> DiscreteRequest {
+        DiscreteRequest {
+            contacts: self.contacts,
+            radius_m: self.radius,
+            work_of_adhesion_j_per_m2: self.work_of_adhesion,
+            compliance_per_pa: self.compliance,
+            shear_strength_pa: self.shear_strength,
+            load_n: self.load,
+            law: self.adhesion.into(),
+            equilibrium_spacing_m: self.equilibrium_spacing,
+            target_slope: self.target_slope,
+        }
+    }
 }
 
-/// The JSON object `stiction discrete ... --json` prints for `args`.
-pub fn discrete_json(args: &Args) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    Ok(crate::json_value::finite_value(&compose(args)?)?)
-}
-
-fn compose(args: &Args) -> Result<Output, Box<dyn std::error::Error>> {
-    let params = AsperityParams {
-        radius_m: args.radius,
-        compliance_per_pa: args.compliance,
-        work_of_adhesion_j_per_m2: args.work_of_adhesion,
-        equilibrium_spacing_m: args.equilibrium_spacing,
-    };
-    let model = DiscreteModel::new(args.contacts, args.adhesion.into(), params, args.shear_strength)?;
-    let at = model.at_load(args.load)?;
-    let zero = model.at_load(0.0)?;
-    let rec = params.recommendation();
-    Ok(Output {
-        contacts: args.contacts,
-        law: args.adhesion.into(),
-        load_n: args.load,
-        friction_n: at.friction_n,
-        friction_slope: at.friction_slope,
-        friction_slope_null_reason: at.friction_slope.is_none().then_some(DiscreteModel::SLOPE_NULL_REASON),
-        zero_load_friction_n: zero.friction_n,
-        // Eq. 10 as the paper evaluates it in section 5: F_a0 = F_f(0) / (dF_f/dL at the load).
-        apparent_adhesion_force_n: at.friction_slope.filter(|s| *s > 0.0).map(|s| zero.friction_n / s),
-        apparent_adhesion_force_note: at
-            .friction_slope
-            .filter(|s| *s > 0.0)
-            .is_none()
-            .then_some("F_a0 = F_f(0) / (dF_f/dL) needs a positive friction slope at the load, and it has none there"),
-        pull_off_load_n: model.pull_off_load_n()?,
-        real_area_m2: at.real_area_m2,
-        contact_radius_m: at.contact_radius_m,
-        interference_m: at.interference_m,
-        max_pressure_pa: at.max_pressure_pa,
-        tabor_parameter: params.tabor_parameter(),
-        recommended_law: rec.law,
-        shear_strength_for_target_slope_pa: args
-            .target_slope
-            .map(|t| model.shear_strength_for_slope(t, args.load))
-            .transpose()?,
-    })
+/// The command line's name of a request field.
+fn flag(field: &str) -> String {
+    match field {
+        "radius_m" => "--radius",
+        "work_of_adhesion_j_per_m2" => "--work-of-adhesion",
+        "compliance_per_pa" => "--compliance",
+        "shear_strength_pa" => "--shear-strength",
+        "load_n" => "--load",
+        "equilibrium_spacing_m" => "--equilibrium-spacing",
+        "contacts" => "--contacts",
+        other => other,
+    }
+    .to_string()
 }
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
-    let out = compose(&args)?;
+    let req = args.request();
+    // The flags were checked against their domains as they were parsed (warnings printed there).
+    req.validate(&flag)?;
+    let out = discrete(&req)?;
     if args.json {
         return print_json(&out);
     }
@@ -177,19 +138,6 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
-/// The paper's Fig. 7 curve, N = 3, from the scenario's material and radius, from pull-off to
-/// `max_load_n`: (L, F_f) in uN.
-pub fn friction_curve_n3(
-    material: &MaterialSpec,
-    radius_m: f64,
-    max_load_n: f64,
-) -> Result<Vec<(f64, f64)>, Box<dyn std::error::Error>> {
-    let params = stiction_meter::asperity_params(material, radius_m);
-    let model = DiscreteModel::new(3, AdhesionLaw::Dmt, params, material.shear_strength)?;
-    let pull_off = model.pull_off_load_n()?;
-    Ok(model.friction_curve(pull_off, max_load_n, 200)?.into_iter().map(|(l, f)| (l * 1e6, f * 1e6)).collect())
-}
-
 /// What `plot fig7` draws: a discrete model, where its parameters come from, and the reference
 /// values to show.
 pub struct Fig7Setup {
@@ -218,19 +166,7 @@ impl Fig7Setup {
         s: &stiction_scenario::Scenario,
         base: &std::path::Path,
     ) -> Result<Fig7Setup, Box<dyn std::error::Error>> {
-        let material = s.require_material()?;
-        let radius = stiction_meter::model_summit_radius_m(s.require_surface()?, base)?;
-        let contact = s.contact_or_default();
-        let fixed = contact.model == stiction_scenario::ContactModel::Discrete
-            || contact.mode == stiction_scenario::ShoeMode::Fixed;
-        let n = if fixed { contact.contacts.unwrap_or(3) } else { 3 };
-        let n = u32::try_from(n).map_err(|_| format!("contact.contacts {n}: expected 1, 2 or 3"))?;
-        let model = DiscreteModel::new(
-            n,
-            contact.law,
-            stiction_meter::asperity_params(material, radius),
-            material.shear_strength,
-        )?;
+        let model = stiction_engine::discrete::fig7_model(s, base)?;
         Ok(Fig7Setup { model, reference: s.reference.clone(), origin: "the scenario".into() })
     }
 }
@@ -252,11 +188,8 @@ pub fn fig7_chart(setup: &Fig7Setup) -> Result<Chart, Box<dyn std::error::Error>
     use crate::figargs::reference;
     use crate::format::sig3;
     let model = &setup.model;
-    let pull_off = model.pull_off_load_n()?;
-    let curve: Vec<(f64, f64)> =
-        model.friction_curve(pull_off, 15e-6, 300)?.into_iter().map(|(l, f)| (l * 1e6, f * 1e6)).collect();
-    let mu = model.at_load(3e-6)?.friction_slope.ok_or(DiscreteModel::SLOPE_NULL_REASON)?;
-    let f0 = model.at_load(0.0)?.friction_n;
+    let Fig7Curve { curve_un: curve, slope_at_3un: mu, zero_load_friction_n: f0, pull_off_n: pull_off } =
+        fig7_curve(model)?;
     let fa0 = f0 / mu;
     let line = vec![(-fa0 * 1e6, 0.0), (15.0, (f0 + mu * 15e-6) * 1e6)];
     let p = &model.params;

@@ -4,7 +4,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use stiction_fit::{Dataset, FitOptions, FitReport, Free, ModelKind, read_measured_voltages, synth};
+use stiction_engine::fit::{self, FitData, FitRequest};
+use stiction_fit::{Dataset, FitReport};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
 use stiction_units::io::write_atomic;
@@ -12,7 +13,6 @@ use stiction_units::{Constraint, Dimension};
 
 use crate::figargs::FigureArgs;
 use crate::output::{CliResult, OutputSet, print_json, quantity};
-use crate::scenario_source::ScenarioSource;
 
 /// Fit measured (V_clamp, V_pull) data: eq. 10 with regression and calibration intervals, and the
 /// shear strength s of each contact model by maximum likelihood, ranked by AIC.
@@ -71,10 +71,7 @@ pub struct Args {
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     let scenario = Scenario::load(&args.scenario, &args.sets)?;
-    // One source of truth, as in `run`: a given spring force that contradicts the clamp spring is refused.
-    if let Some(conflict) = scenario.spring_force_conflict() {
-        return Err(format!("{}: {conflict}", args.scenario.display()).into());
-    }
+    fit::check_spring(&scenario, &args.scenario.display().to_string())?;
     let json = Scenario::load_json(&args.scenario, &args.sets)?;
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
     if let Some(out) = &args.synthesize {
@@ -85,13 +82,14 @@ pub fn run(args: Args) -> CliResult {
         crate::output::check_output_flag("--synthesize", out)?;
         return synthesize(&args, &scenario, &base, out);
     }
-    let data = read_measured_voltages(&data_path(&args, &scenario, &base)?)?;
+    let req = args.request();
+    let data = fit::read_data(&req.data, &scenario, &base)?;
     // Check the output folder before the work, so a refusal comes at once.
     let outputs = match &args.out {
         Some(dir) => Some(OutputSet::begin(dir, "fit", args.force)?),
         None => None,
     };
-    let report = stiction_fit::analyse(&data, &scenario, &json, &base, &options(&args)?)?;
+    let report = fit::analyse(&req, &data, &scenario, &json, &base)?;
     if let Some(mut set) = outputs {
         set.add_bytes("report.json", crate::output::json_text(&report)?.as_bytes())?;
         write_figures(&mut set, &data, &report, &args.fig)?;
@@ -111,75 +109,40 @@ pub fn run(args: Args) -> CliResult {
 }
 
 /// The measured-voltage file: DATA, else the scenario's `measured.voltages_csv`.
-fn data_path(args: &Args, scenario: &Scenario, base: &Path) -> Result<PathBuf, Box<dyn std::error::Error>> {
-    match (&args.data, &scenario.measured) {
-        (Some(p), _) => Ok(p.clone()),
-        (None, Some(m)) => Ok(base.join(&m.voltages_csv)),
-        (None, None) => Err("missing DATA.csv (the scenario has no `measured` section either)".into()),
+impl Args {
+    /// The engine's request of these flags.
+    pub fn request(&self) -> FitRequest {
+        FitRequest {
+            data: self.data.clone().map_or(FitData::Scenario, FitData::File),
+            models: self.models.clone(),
+            free: self.free.clone(),
+            surfaces: self.surfaces,
+            draws: self.draws,
+            seed: self.seed,
+        }
     }
-}
-
-/// The fit's options from the flags.
-fn options(args: &Args) -> Result<FitOptions, Box<dyn std::error::Error>> {
-    Ok(FitOptions {
-        models: ModelKind::parse_list(&args.models)?,
-        free: Free::parse(&args.free)?,
-        surfaces: args.surfaces,
-        calibration_draws: args.draws,
-        seed: args.seed,
-        ..FitOptions::default()
-    })
-}
-
-/// What `stiction fit [DATA] --scenario S --json` prints for the scenario `source` (a file or a
-/// tree built in memory; `args.scenario` is not read, `args.sets` apply after the source's own);
-/// `data`, when given, is the CSV text of the measured voltages (with its name in messages)
-/// instead of the file. Every number checked
-/// finite. For front ends other than the command line (the Python module).
-pub fn fit_json(
-    args: &Args,
-    source: &ScenarioSource,
-    data: Option<(&[u8], &str)>,
-) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    let scenario = source.parse(&args.sets)?;
-    if let Some(conflict) = scenario.spring_force_conflict() {
-        return Err(format!("{}: {conflict}", source.name()).into());
-    }
-    let json = source.json(&args.sets)?;
-    let base = &source.base;
-    let data = match data {
-        Some((bytes, name)) => stiction_fit::parse_measured_voltages(bytes, name)?,
-        None => read_measured_voltages(&data_path(args, &scenario, base)?)?,
-    };
-    let report = stiction_fit::analyse(&data, &scenario, &json, base, &options(args)?)?;
-    Ok(crate::json_value::finite_value(&report)?)
 }
 
 fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliResult {
-    let meter = scenario.meter.as_ref().ok_or("the scenario has no `meter` section")?;
-    let voltages = meter.clamp_voltages.voltages();
-    let rows = synth::from_meter(scenario, base, &voltages, args.repeats, args.noise, args.seed)?;
-    let s = scenario.material.as_ref().map_or(f64::NAN, |m| m.shear_strength);
-    let comment = format!(
-        "SYNTHETIC DATA made by stiction itself, not a measurement.\n\
-         Virtual meter of {} (contact model {}, s = {}), {} repeats per clamp voltage,\n\
-         Gaussian noise SD {} V added to each pull voltage (ChaCha8 seed {}).\n\
-         Command: stiction fit --scenario {} --synthesize {} --noise \"{} V\" --repeats {} --seed {}",
-        args.scenario.display(),
-        scenario.contact_or_default().model,
-        stiction_units::format_quantity(s, Dimension::Pressure),
-        args.repeats,
-        args.noise,
-        args.seed,
+    let command = format!(
+        "stiction fit --scenario {} --synthesize {} --noise \"{} V\" --repeats {} --seed {}",
         args.scenario.display(),
         out.display(),
         args.noise,
         args.repeats,
         args.seed
     );
-    let text = synth::to_csv(&rows, &comment)?;
+    let (text, rows) = fit::synthesize(
+        scenario,
+        &args.scenario.display().to_string(),
+        base,
+        args.noise,
+        args.repeats,
+        args.seed,
+        &command,
+    )?;
     write_atomic(out, text.as_bytes())?;
-    crate::outln!("wrote {} ({} rows, synthetic)", out.display(), rows.len());
+    crate::outln!("wrote {} ({rows} rows, synthetic)", out.display());
     Ok(())
 }
 

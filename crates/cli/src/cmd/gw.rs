@@ -1,7 +1,6 @@
 //! `stiction gw`: Greenwood-Williamson with DMT adhesion in normalized form (eq. 5-9).
 
-use serde::Serialize;
-use stiction_contact::gw::GwModel;
+use stiction_engine::gw::{GwRequest, gw};
 
 use crate::output::{CliResult, print_json, print_table};
 
@@ -38,47 +37,9 @@ fn parse_theta(s: &str) -> Result<Theta, String> {
     }
 }
 
-#[derive(Serialize)]
-struct Output {
-    theta: Option<f64>,
-    l_star: f64,
-    h: f64,
-    n_star: f64,
-    log10_n_star: f64,
-    a_star: f64,
-    log10_a_star: f64,
-    elastic_l_star: f64,
-    adhesive_l_star: f64,
-    elastic_pressure_star: f64,
-    pull_off_l_star: Option<f64>,
-    pull_off_h: Option<f64>,
-    /// Why theta and the pull-off are null: plain GW, no adhesion (theta infinite).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    theta_note: Option<&'static str>,
-}
-
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
-    if !args.load_star.is_finite() {
-        return Err(format!("--load-star {}: expected a finite normalized load", args.load_star).into());
-    }
-    let model = GwModel::new(args.theta.0)?;
-    let st = model.solve(args.load_star)?;
-    let out = Output {
-        theta: st.theta,
-        l_star: st.l_star,
-        h: st.h,
-        n_star: st.n_star,
-        log10_n_star: st.log10_n_star,
-        a_star: st.a_star,
-        log10_a_star: st.log10_a_star,
-        elastic_l_star: st.elastic_l_star,
-        adhesive_l_star: st.adhesive_l_star,
-        elastic_pressure_star: st.elastic_pressure_star,
-        pull_off_l_star: model.pull_off().map(|p| p.l_star),
-        pull_off_h: model.pull_off().map(|p| p.h),
-        theta_note: st.theta.is_none().then_some("theta is infinite: plain GW without adhesion, so no pull-off"),
-    };
+    let out = gw(&GwRequest { theta: args.theta.0, load_star: args.load_star }, "--load-star")?;
     if args.json {
         return print_json(&out);
     }

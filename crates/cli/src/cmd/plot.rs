@@ -139,7 +139,7 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
-/// `plot humidity`: the sweep of [`crate::cmd::humidity::sweep`], printed as a table or JSON and
+/// `plot humidity`: the sweep of [`stiction_engine::humidity::sweep`], printed as a table or JSON and
 /// written with its figures to the --out folder.
 fn humidity(args: &Args) -> CliResult {
     use crate::cmd::humidity as h;
@@ -147,7 +147,7 @@ fn humidity(args: &Args) -> CliResult {
     if args.array.is_some() {
         return Err("--array is used only by `plot actuator`; `plot humidity` has no actuator array".into());
     }
-    let rhs = h::rh_grid(args.rh.as_deref())?;
+    let rhs = stiction_engine::humidity::rh_grid(args.rh.as_deref())?;
     let path = args.scenario.as_ref().ok_or("`plot humidity` needs --scenario FILE.json")?;
     let outputs = match &args.out {
         Some(dir) => Some(OutputSet::begin(dir, "plot humidity", args.force)?),
@@ -158,8 +158,8 @@ fn humidity(args: &Args) -> CliResult {
         indicatif::ProgressStyle::with_template("{spinner} humidities {pos}/{len} [{bar:30}] {elapsed_precise}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let source = crate::scenario_source::ScenarioSource::file(path, &args.sets)?;
-    let sweep = h::sweep(&source, &rhs, &mut |done, _| bar.set_position(done as u64))?;
+    let source = stiction_engine::ScenarioSource::file(path, &args.sets)?;
+    let sweep = stiction_engine::humidity::sweep(&source, &rhs, &mut |done, _| bar.set_position(done as u64))?;
     bar.finish_and_clear();
     if let Some(mut set) = outputs {
         let charts: Vec<(&str, Chart)> = h::charts(&sweep)
@@ -228,15 +228,7 @@ fn humidity(args: &Args) -> CliResult {
     Ok(())
 }
 
-/// The adhesion parameter theta (eq. 9) of a scenario's surface and material, or an error saying
-/// what is missing. `None`: no adhesion (theta = infinity).
-fn scenario_theta(s: &Scenario, base: &Path) -> Result<Option<f64>, Box<dyn std::error::Error>> {
-    let surface = s.require_surface()?;
-    let material = s.require_material()?;
-    let sd = surface.summit_sd.ok_or("the scenario's surface has no `summit_sd` (needed for theta, eq. 9)")?;
-    let radius = stiction_meter::model_summit_radius_m(surface, base)?;
-    Ok(gw::adhesion_parameter(sd, radius, material.compliance_per_pa(), material.work_of_adhesion)?)
-}
+use stiction_engine::plot::scenario_theta;
 
 /// Fig. 2: N*(L* = 0) against theta, from 0.5 to 40 (the paper: 1 to 30), on log axes; with a
 /// scenario, its theta marked and the axis extended to it.

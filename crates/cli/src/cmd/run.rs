@@ -3,8 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
-use serde::Serialize;
-use stiction_meter::measured::{Comparison, read_measured_voltages};
+use stiction_engine::run::{Experiment, RunOutput, experiment};
 use stiction_meter::{ContactModel, Meter, MeterResult};
 use stiction_plot::{Chart, Series};
 use stiction_scenario::Scenario;
@@ -33,17 +32,6 @@ pub struct Args {
     /// Figure size and font.
     #[command(flatten)]
     pub fig: FigureArgs,
-}
-
-#[derive(Serialize)]
-struct RunOutput<'a> {
-    scenario: String,
-    description: &'a str,
-    #[serde(flatten)]
-    result: &'a MeterResult,
-    /// The scenario's measured voltages beside the model, when it has a `measured` section.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    measured: Option<Comparison>,
 }
 
 /// Runs the subcommand.
@@ -81,90 +69,6 @@ pub fn run(args: Args) -> CliResult {
         );
     }
     Ok(())
-}
-
-/// A finished friction-meter experiment: the meter (for the figures' curves), its result with the
-/// scenario's notes before the fit's warnings, and the measured voltages beside the model.
-pub struct Experiment {
-    /// The meter that ran (its contact model draws the figures' curves).
-    pub meter: Meter,
-    /// The points and the eq. 10 fit.
-    pub result: MeterResult,
-    /// The scenario's measured voltages beside the model, when it has a `measured` section.
-    pub measured: Option<Comparison>,
-}
-
-/// Runs the friction meter of `scenario` (named `name` in errors; relative paths from `base`):
-/// clamp at each clamp voltage, ramp the pull voltage until slip, fit eq. 10. `progress(done,
-/// total)` after each clamp voltage.
-pub fn experiment(
-    scenario: &Scenario,
-    name: &str,
-    base: &Path,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<Experiment, Box<dyn std::error::Error>> {
-    // One source of truth: a given spring force that contradicts the clamp spring is refused.
-    if let Some(conflict) = scenario.spring_force_conflict() {
-        return Err(format!("{name}: {conflict}").into());
-    }
-    let mut meter = Meter::from_scenario(scenario, base).map_err(|e| format!("{name}: {e}"))?;
-    let mut result = meter.run(progress)?;
-    // What the scenario's loading and calibrations say comes first, then the fit's own warnings.
-    let mut warnings = scenario.notes.clone();
-    for (name, spec) in &scenario.actuators {
-        if let Some(r) = spec.calibration_rederived() {
-            warnings.push(stiction_scenario::Warning::new("calibration_rederived", format!("actuators.{name}: {r}")));
-        }
-    }
-    // A statistical model on a height-map sidewall takes its summit statistics from the whole map
-    // (the numbers `stiction topography` prints): say so, with the numbers.
-    let model = scenario.contact_or_default().model;
-    if matches!(model, stiction_scenario::ContactModel::Gw | stiction_scenario::ContactModel::Discrete)
-        && let Ok(surface) = scenario.require_surface()
-        && surface.source == stiction_surface::SurfaceSource::HeightMap
-    {
-        let st = stiction_surface::map_summit_statistics(surface, base).map_err(|e| format!("{name}: {e}"))?;
-        warnings.push(stiction_scenario::Warning::new(
-            "statistics_from_map",
-            format!(
-                "the {model} model uses {}: {} summits, eta = {:.3} 1/um^2, sigma_s = {:.3} nm, R = {:.3} um; \
-                 not the patch under the shoe",
-                st.source,
-                st.summit_count,
-                st.summit_density_per_m2 * 1e-12,
-                st.summit_sd_m * 1e9,
-                st.summit_radius_m * 1e6,
-            ),
-        ));
-    }
-    warnings.append(&mut result.warnings);
-    result.warnings = warnings;
-    let measured = match &scenario.measured {
-        Some(m) => {
-            let data = read_measured_voltages(&base.join(&m.voltages_csv))?;
-            Some(meter.compare(&data, result.reduction)?)
-        }
-        None => None,
-    };
-    Ok(Experiment { meter, result, measured })
-}
-
-/// The JSON object `stiction run SCENARIO --json` prints for `scenario` named `name` (its
-/// `scenario` field) with relative paths from `base`.
-pub fn run_json(
-    scenario: &Scenario,
-    name: &str,
-    base: &Path,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
-    let e = experiment(scenario, name, base, progress)?;
-    let output = RunOutput {
-        scenario: name.to_string(),
-        description: &scenario.description,
-        result: &e.result,
-        measured: e.measured,
-    };
-    Ok(crate::json_value::finite_value(&output)?)
 }
 
 fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>, calibration_rel_sd: Option<f64>) {
@@ -318,7 +222,7 @@ fn print_humidity(r: &MeterResult, h: &stiction_meter::Humidity) {
         h.relative_humidity * 100.0,
         h.temperature_k - 273.15
     );
-    if let Some(share) = crate::cmd::humidity::capillary_share(r) {
+    if let Some(share) = stiction_engine::humidity::capillary_share(r) {
         crate::outln!(
             "  capillary share of the adhesive load: {:.1} % (summed over the points in contact; per point: \
              `capillary_load_n` in --json)",
@@ -436,8 +340,11 @@ fn fig5_chart(
     let v2_max = r.points.iter().map(|p| p.v_clamp_sq).fold(v2_min, f64::max) * 1.02;
     let material = scenario.require_material()?;
     let radius = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
-    let curve =
-        crate::cmd::discrete::friction_curve_n3(material, radius, red.a_clamp_n_per_v2 * v2_max - red.spring_force_n)?;
+    let curve = stiction_engine::discrete::friction_curve_n3(
+        material,
+        radius,
+        red.a_clamp_n_per_v2 * v2_max - red.spring_force_n,
+    )?;
     let discrete: Vec<(f64, f64)> = curve
         .into_iter()
         .filter(|(l_un, _)| *l_un >= 0.0)
@@ -551,7 +458,7 @@ fn fig7_chart(
             caption.push_str("; line: one loading path (friction depends on the path)");
         }
     }
-    let discrete = crate::cmd::discrete::friction_curve_n3(material, radius, max_load)?;
+    let discrete = stiction_engine::discrete::friction_curve_n3(material, radius, max_load)?;
     chart.series.push(Series::dashed("discrete model N = 3 (eq. 12)", discrete).with_color(2));
     if let Some(c) = &o.measured {
         // Drawn first, so that the virtual meter's points at the same loads stay visible on top.

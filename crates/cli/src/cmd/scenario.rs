@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use stiction_scenario::Scenario;
 
 use crate::output::{CliResult, TextTable, print_json};
-use crate::scenario_source::ScenarioSource;
+use stiction_engine::ScenarioSource;
 
 /// Check a scenario (with overrides) and print it as it is run (readable as input: the file's
 /// units and uncertainties, and every default filled in), explain its quantities, or print the
@@ -35,20 +35,6 @@ pub struct Args {
     pub domains: bool,
 }
 
-/// The checks of `stiction scenario`: the scenario `source` parsed and validated, and a height-map
-/// sidewall checked as `run` reads it: the map is read and prepared (cut-offs no longer than the
-/// map, a map at least as large as the shoe or `tile`), so a scenario that passes here does not
-/// fail there. The parsed scenario comes back.
-pub fn check(source: &ScenarioSource) -> Result<Scenario, Box<dyn std::error::Error>> {
-    let scenario = source.parse(&[])?;
-    if let Ok(surface) = scenario.require_surface()
-        && surface.source == stiction_surface::SurfaceSource::HeightMap
-    {
-        stiction_surface::height_map_patch(surface, &source.base).map_err(|e| format!("{}: {e}", source.name()))?;
-    }
-    Ok(scenario)
-}
-
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     if args.schema {
@@ -60,7 +46,7 @@ pub fn run(args: Args) -> CliResult {
     }
     let path = args.scenario.ok_or("a scenario file is needed")?;
     let source = ScenarioSource::file(&path, &args.sets)?;
-    let scenario = check(&source)?;
+    let scenario = stiction_engine::scenario::check(&source)?;
     if !args.explain {
         for n in &scenario.notes {
             crate::errln!("note [{}]: {}", n.code, n.message);

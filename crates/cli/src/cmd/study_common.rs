@@ -7,12 +7,11 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
-use stiction_fit::with_lab_intervals;
+use stiction_engine::study::{LogOutcome, run_log};
 use stiction_plot::{Chart, Series};
 use stiction_study::design::RankBy;
-use stiction_study::log::LogWriter;
 use stiction_study::summary::FigureData;
-use stiction_study::{Study, StudyConfig, StudySummary};
+use stiction_study::{Study, StudySummary};
 
 use crate::figargs::{FigureArgs, reference};
 use crate::output::{CliResult, print_json};
@@ -109,14 +108,11 @@ pub enum SlipPathArg {
     RigidBody,
 }
 
-pub(crate) fn parse_shard(s: &str) -> Result<(usize, usize), String> {
-    let (k, m) = s.split_once('/').ok_or_else(|| format!("--shard {s:?}: expected K/M, like 0/4"))?;
-    let k: usize = k.trim().parse().map_err(|_| format!("--shard {s:?}: K is not a whole number"))?;
-    let m: usize = m.trim().parse().map_err(|_| format!("--shard {s:?}: M is not a whole number"))?;
-    if m == 0 || k >= m {
-        return Err(format!("--shard {s:?}: expected 0 <= K < M"));
-    }
-    Ok((k, m))
+pub(crate) use stiction_engine::study::{parse_shard, prepare_study};
+
+/// The command line's name of a study request's field (`threads` -> `--threads`).
+pub(crate) fn flag(field: &str) -> String {
+    format!("--{}", field.replace('_', "-"))
 }
 
 /// Progress: a bar on a terminal, a plain line every 5 s elsewhere, nothing with --quiet.
@@ -196,16 +192,6 @@ impl Progress {
     }
 }
 
-/// [`Study::prepare`] with the lab's eq. 10 intervals of every experiment
-/// ([`stiction_fit::with_lab_intervals`]).
-pub(crate) fn prepare_study(
-    scenario: &Path,
-    sets: &[String],
-    config: &StudyConfig,
-) -> Result<Study, stiction_study::StudyError> {
-    with_lab_intervals(Study::prepare(scenario, sets, config)?)
-}
-
 /// Where a study's outputs go.
 pub(crate) enum Folder<'a> {
     /// A temporary folder: only the log, summarised at the end (the caller removes the folder);
@@ -250,17 +236,18 @@ pub(crate) fn run_study(
     progress: &(dyn Fn(usize) + Sync),
     interrupt: &std::sync::atomic::AtomicBool,
 ) -> Result<Outcome, Box<dyn std::error::Error>> {
-    let header = study.header();
-    let (mut log, done) = if resume { LogWriter::resume(dir, &header)? } else { (LogWriter::create(dir, &header)?, 0) };
-    // A manifest says the folder is complete; while the study runs again it is not.
-    let manifest = dir.join(crate::output::MANIFEST);
-    if matches!(folder, Folder::Kept(_)) && manifest.exists() {
-        std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
-    }
-    opened(done, log.path());
-    let logged = pool.install(|| study.run_into_until(&mut log, done, progress, interrupt))?;
-    drop(log);
-    if logged < study.config.shard_len() {
+    // A manifest says the folder is complete; while the study runs again it is not (removed once
+    // the log is open).
+    let kept = matches!(folder, Folder::Kept(_));
+    let on_open = |done: usize, path: &Path| -> Result<(), Box<dyn std::error::Error>> {
+        let manifest = dir.join(crate::output::MANIFEST);
+        if kept && manifest.exists() {
+            std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
+        }
+        opened(done, path);
+        Ok(())
+    };
+    if let LogOutcome::Interrupted { logged } = run_log(study, dir, resume, pool, &on_open, progress, interrupt)? {
         return Ok(Outcome::Interrupted { logged });
     }
     match folder {

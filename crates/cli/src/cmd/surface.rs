@@ -2,9 +2,7 @@
 
 use std::path::PathBuf;
 
-use serde::Serialize;
 use stiction_scenario::Scenario;
-use stiction_surface::SurfaceStats;
 
 use crate::output::{CliResult, print_json, print_table};
 
@@ -30,36 +28,14 @@ pub struct Args {
     pub sets: Vec<String>,
 }
 
-#[derive(Serialize)]
-struct Output {
-    stats: SurfaceStats,
-    requested_summit_density_per_m2: Option<f64>,
-    requested_summit_sd_m: Option<f64>,
-    requested_summit_radius_m: Option<f64>,
-    /// Why a requested value is null: the surface is read (summit list, height map), not generated
-    /// from these fields.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    requested_note: Option<&'static str>,
-    content_hash: String,
-}
-
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     let scenario = Scenario::load(&args.scenario, &args.sets)?;
     if let Some(path) = &args.csv {
         crate::output::check_output_flag("--csv", path)?;
     }
-    let spec = scenario.require_surface().map_err(|e| format!("{}: {e}", args.scenario.display()))?;
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
-    let surface = spec.build(&base).map_err(|e| format!("{}: surface: {e}", args.scenario.display()))?;
-    if surface.is_empty() {
-        return Err(format!(
-            "{}: the surface has no summits (density x apparent area is too small), so it has no height or radius \
-             statistics; raise `surface.summit_density` or the apparent area",
-            args.scenario.display()
-        )
-        .into());
-    }
+    let (surface, out) = stiction_engine::surface::surface(&scenario, &args.scenario.display().to_string(), &base)?;
     if let Some(path) = &args.csv {
         // Again after the build, which read the scenario's own summit CSV, if any.
         crate::output::check_output_flag("--csv", path)?;
@@ -70,15 +46,6 @@ pub fn run(args: Args) -> CliResult {
         surface.write_npy_file(path)?;
         crate::errln!("wrote {} summits to {}", surface.len(), path.display());
     }
-    let out = Output {
-        stats: surface.stats(),
-        requested_summit_density_per_m2: spec.summit_density,
-        requested_summit_sd_m: spec.summit_sd,
-        requested_summit_radius_m: spec.summit_radius,
-        requested_note: (spec.summit_density.is_none() || spec.summit_sd.is_none() || spec.summit_radius.is_none())
-            .then_some("not given: the surface is read (a summit list or a height map), not generated from it"),
-        content_hash: format!("{:016x}", surface.content_hash()),
-    };
     if args.json {
         return print_json(&out);
     }

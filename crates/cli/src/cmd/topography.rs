@@ -2,18 +2,18 @@
 
 use std::path::PathBuf;
 
-use serde::Serialize;
 use stiction_plot::{Chart, ImageMap, Series};
 use stiction_surface::{Radii, Surface};
 use stiction_topography::{
-    ChannelInfo, ChannelSelector, HeightMap, MapFormat, MapInfo, Nayak, Preparation, PreparationReport, PsdWindow,
-    Statistics, Summits, find_summits, list_channels, prepare, radial_psd, read_file_channel, statistics,
+    ChannelSelector, HeightMap, MapInfo, Nayak, PreparationReport, PsdWindow, Summits, list_channels, radial_psd,
+    read_file_channel,
 };
 use stiction_units::io::write_atomic;
 
 use super::map_args::MapArgs;
 use crate::output::{CliResult, OutputSet, print_json, print_table};
-use crate::scenario_source::ScenarioSource;
+use stiction_engine::ScenarioSource;
+use stiction_engine::topography::{self, TopographyOutput};
 
 /// Read a measured height map (AFM, optical profiler): level it, filter it, find its summits
 /// (8-neighbour maxima, curvature -(z_xx + z_yy)/2) and print the statistics beside Nayak's
@@ -63,46 +63,6 @@ pub struct Args {
     pub fig: crate::figargs::FigureArgs,
 }
 
-/// GW parameters of the map and the adhesion parameter.
-#[derive(Serialize)]
-struct Gw {
-    /// eta: the counted summit density, m^-2.
-    summit_density_per_m2: f64,
-    /// sigma: the counted summit height SD, m.
-    summit_sd_m: Option<f64>,
-    /// R: the counted mean summit radius, m.
-    summit_radius_m: Option<f64>,
-    /// theta (eq. 9) with the scenario's material; null with the reason in `theta_note`.
-    adhesion_parameter_theta: Option<f64>,
-    theta_note: String,
-}
-
-#[derive(Serialize)]
-struct Output {
-    file: String,
-    format: MapFormat,
-    read: MapInfo,
-    preparation: PreparationReport,
-    summit_count: usize,
-    summit_density_per_m2: f64,
-    summit_height_sd_m: Option<f64>,
-    summit_height_mean_m: Option<f64>,
-    summit_radius_mean_m: Option<f64>,
-    summit_radius_median_m: Option<f64>,
-    summit_curvature_mean_per_m: Option<f64>,
-    rms_height_m: f64,
-    rms_slope: f64,
-    rms_curvature_per_m: f64,
-    autocorrelation_length_m: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    autocorrelation_length_note: Option<&'static str>,
-    nayak: Option<Nayak>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    nayak_note: Option<&'static str>,
-    gw: Gw,
-    statistics: Statistics,
-}
-
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     // Check the output folder before the work, so a refusal comes at once.
@@ -119,7 +79,7 @@ pub fn run(args: Args) -> CliResult {
     }
     let scenario = args.scenario.as_deref().map(|p| ScenarioSource::file(p, &[])).transpose()?;
     let (out, map, summits) =
-        compose(args.file.display().to_string(), raw, info, &args.map.preparation(), scenario.as_ref())?;
+        topography::compose(args.file.display().to_string(), raw, info, &args.map.preparation(), scenario.as_ref())?;
     let report = out.preparation;
     if let (Some(mut set), Some(dir)) = (outputs, &args.out) {
         set.add_bytes("statistics.json", crate::output::json_text(&out)?.as_bytes())?;
@@ -143,21 +103,12 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
-#[derive(Serialize)]
-struct ChannelList<'a> {
-    file: String,
-    format: MapFormat,
-    /// Index of the channel read by default (the first height channel), if any.
-    default_channel: Option<usize>,
-    channels: &'a [ChannelInfo],
-}
-
 /// `--channels`: the file's channels, as a table or JSON.
 fn print_channels(args: &Args) -> CliResult {
     let (format, list) = list_channels(&args.file, args.map.format, &args.map.metadata())?;
     let default = list.iter().find(|c| c.is_height).map(|c| c.index);
     if args.json {
-        return print_json(&ChannelList {
+        return print_json(&topography::ChannelList {
             file: args.file.display().to_string(),
             format,
             default_channel: default,
@@ -183,88 +134,6 @@ fn print_channels(args: &Args) -> CliResult {
     Ok(())
 }
 
-/// Prepares `raw` (levelling, cut-offs), finds its summits and composes the statistics of the
-/// map named `file`; the prepared map and its summits come back beside them.
-fn compose(
-    file: String,
-    raw: HeightMap,
-    info: MapInfo,
-    prep: &Preparation,
-    scenario: Option<&ScenarioSource>,
-) -> Result<(Output, HeightMap, Summits), Box<dyn std::error::Error>> {
-    let (map, report) = prepare(&raw, prep)?;
-    drop(raw);
-    let summits = find_summits(&map);
-    let st = statistics(&map, &summits);
-    let gw = gw_of(&st, scenario)?;
-    let out = Output {
-        file,
-        format: info.format,
-        read: info,
-        preparation: report,
-        summit_count: st.summits.count,
-        summit_density_per_m2: st.summits.density_per_m2,
-        summit_height_sd_m: st.summits.height_sd_m,
-        summit_height_mean_m: st.summits.height_mean_m,
-        summit_radius_mean_m: st.summits.radius_mean_m,
-        summit_radius_median_m: st.summits.radius_median_m,
-        summit_curvature_mean_per_m: st.summits.curvature_mean_per_m,
-        rms_height_m: st.rms_height_m,
-        rms_slope: st.rms_slope,
-        rms_curvature_per_m: st.rms_curvature_per_m,
-        autocorrelation_length_m: st.autocorrelation_length_m,
-        autocorrelation_length_note: st.autocorrelation_length_note,
-        nayak: st.nayak,
-        nayak_note: st.nayak_note,
-        gw,
-        statistics: st,
-    };
-    Ok((out, map, summits))
-}
-
-/// The JSON object `stiction topography FILE --json` prints for the map `raw` as read (with
-/// `info`) from `file`, prepared with `prep`, with the material of `scenario` (a file or a tree
-/// built in memory) for theta; the
-/// prepared map and its summits beside it.
-pub fn topography_json(
-    file: &str,
-    raw: HeightMap,
-    info: MapInfo,
-    prep: &Preparation,
-    scenario: Option<&ScenarioSource>,
-) -> Result<(serde_json::Value, HeightMap, Summits), Box<dyn std::error::Error>> {
-    let (out, map, summits) = compose(file.to_string(), raw, info, prep, scenario)?;
-    Ok((crate::json_value::finite_value(&out)?, map, summits))
-}
-
-fn gw_of(st: &Statistics, scenario: Option<&ScenarioSource>) -> Result<Gw, Box<dyn std::error::Error>> {
-    let s = &st.summits;
-    let (sd, r) = (s.height_sd_m, s.radius_mean_m);
-    let (theta, note) = match scenario {
-        None => (None, "no --scenario: theta needs a material (compliance, work of adhesion)".to_string()),
-        Some(source) => {
-            let sc = source.parse(&[])?;
-            let m = sc.require_material().map_err(|e| format!("{}: {e}", source.name()))?;
-            match (sd, r) {
-                (Some(sd), Some(r)) if sd > 0.0 => {
-                    match stiction_contact::gw::adhesion_parameter(sd, r, m.compliance_per_pa(), m.work_of_adhesion)? {
-                        Some(t) => (Some(t), format!("material of {}", source.name())),
-                        None => (None, "work of adhesion 0: theta is infinite (no adhesion)".into()),
-                    }
-                }
-                _ => (None, "fewer than 2 summits: no summit height SD".into()),
-            }
-        }
-    };
-    Ok(Gw {
-        summit_density_per_m2: s.density_per_m2,
-        summit_sd_m: sd,
-        summit_radius_m: r,
-        adhesion_parameter_theta: theta,
-        theta_note: note,
-    })
-}
-
 fn channel_text(info: &MapInfo) -> String {
     match &info.channel {
         None => "the file's only map".into(),
@@ -287,7 +156,7 @@ fn opt(v: Option<f64>, scale: f64, unit: &str) -> String {
     v.map_or("n/a".into(), |v| format!("{:.4} {unit}", v * scale))
 }
 
-fn print_table_of(o: &Output) {
+fn print_table_of(o: &TopographyOutput) {
     let st = &o.statistics;
     let n = o.nayak.as_ref();
     let nay = |f: &dyn Fn(&Nayak) -> Option<f64>, scale: f64, unit: &str| {

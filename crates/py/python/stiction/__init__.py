@@ -370,23 +370,6 @@ def _is_vector(x) -> bool:
     return not isinstance(x, (str, bytes, int, float)) and x is not None and _np.ndim(x) >= 1
 
 
-def _flag(name: str, value) -> list:
-    """A keyword argument as the command line's flag: a quantity as given (unit string) or as
-    ``repr`` of the SI float; True as the bare flag; None or False as nothing."""
-    if value is None or value is False:
-        return []
-    flag = "--" + name.replace("_", "-")
-    if value is True:
-        return [flag]
-    # FLAG=VALUE, so that a value starting with "-" ("-3 GPa", -1e-7) is read as the flag's value.
-    if isinstance(value, str):
-        return [f"{flag}={value}"]
-    if isinstance(value, (int, float, _np.floating, _np.integer)) and not isinstance(value, bool):
-        text = repr(float(value)) if isinstance(value, (float, _np.floating)) else str(int(value))
-        return [f"{flag}={text}"]
-    raise TypeError(f"{name}: expected a number or a unit string, got {type(value).__name__}")
-
-
 def _heights(heights):
     """A NumPy array as it is (never copied: the engine reads it in place, any order or
     strides); anything else (nested lists) as a float64 array."""
@@ -436,11 +419,10 @@ def contact(
         raise StictionError("contact: give a load (a force) or a vector of loads")
     if contacts is not None:
         contacts = _stiction._count("contacts", contacts, 1, None, "summits carrying the shoe in mode 'fixed'")
-    flags = _flag("model", model) + _flag("mode", mode) + _flag("contacts", contacts) + _flag("summits", summits)
     if _is_vector(load):
         # The vector as it is: counted against max_sweep_steps, then read, by the engine.
-        return Result(_stiction.contact_json(scenario, flags, load, max_sweep_steps))
-    return Result(_stiction.contact_json(scenario, flags + _flag("load", load), None, max_sweep_steps))
+        return Result(_stiction.contact_json(scenario, None, load, mode, contacts, bool(summits), model, max_sweep_steps))
+    return Result(_stiction.contact_json(scenario, load, None, mode, contacts, bool(summits), model, max_sweep_steps))
 
 
 def bem(
@@ -531,16 +513,15 @@ def bem(
     if rh is None and given_humidity:
         raise StictionError(f"bem: {', '.join(given_humidity)} apply with rh (the adhesion energy against humidity)")
     rh_text, rh_values = _rh(rh) if rh is not None else (None, None)
-    flags = (
-        _flag("pixel_size", pixel_size) + _flag("pixel_size_y", pixel_size_y) + _flag("height_unit", height_unit)
-        + _flag("level", level) + _flag("cutoff", cutoff) + _flag("long_cutoff", long_cutoff)
-        + _flag("e_star", e_star) + _flag("sweep", sweep) + _flag("gap_sweep", gap_sweep)
-        + _flag("gap_back", gap_back) + _flag("work_of_adhesion", work_of_adhesion) + _flag("range", range)
-        + _flag("shear_strength", shear_strength) + _flag("tolerance", tolerance)
-        + _flag("compare_asperity", compare_asperity) + _flag("rh", rh_text)
-        + _flag("temperature", temperature) + _flag("contact_angle", contact_angle) + _flag("rh_step", rh_step)
-        + _flag("min_kelvin_radius", min_kelvin_radius)
-    )
+    # The keyword arguments given, read one by one into the engine's request (errors name them).
+    kw = {
+        "pixel_size": pixel_size, "pixel_size_y": pixel_size_y, "height_unit": height_unit, "level": level,
+        "cutoff": cutoff, "long_cutoff": long_cutoff, "e_star": e_star, "sweep": sweep, "gap_sweep": gap_sweep,
+        "gap_back": bool(gap_back), "work_of_adhesion": work_of_adhesion, "range": range,
+        "shear_strength": shear_strength, "tolerance": tolerance, "compare_asperity": bool(compare_asperity),
+        "rh": rh_text, "temperature": temperature, "contact_angle": contact_angle, "rh_step": rh_step,
+        "min_kelvin_radius": min_kelvin_radius,
+    }
     limits = _stiction._limits()
     if grid is not None:
         # Its type and sign here; its range (2 to 4096) by the command line's own check.
@@ -569,17 +550,17 @@ def bem(
                 + ("with a scenario its surface section prepares the maps" if scenario is not None
                    else "the generated surface (no heights, no scenario) has none")
             )
-        flags = [f for f in flags if not f.startswith("--level=")]
+        del kw["level"]
         if scenario is None:
-            for k, v in generator.items():
-                flags += _flag(k, v)
+            kw.update(generator)
         heights_arg = None
     else:
         heights_arg = _heights(heights)
     if _is_vector(pressure):
         # The vector as it is: counted (at most the 10,000 steps of a sweep), then read, by the engine.
-        return Result(_stiction.bem_json(heights_arg, flags, pressure, scenario, rh_values))
-    return Result(_stiction.bem_json(heights_arg, flags + _flag("pressure", pressure), None, scenario, rh_values))
+        return Result(_stiction.bem_json(heights_arg, kw, pressure, scenario, rh_values))
+    kw["pressure"] = pressure
+    return Result(_stiction.bem_json(heights_arg, kw, None, scenario, rh_values))
 
 
 def _rh(rh) -> tuple:
@@ -655,15 +636,12 @@ def fit(
         draws = _stiction._count("draws", draws, 1, limits["fit_max_draws"], "calibration Monte Carlo draws")
     if seed is not None:
         seed = _stiction._count("seed", seed, 0, 2**64 - 1, "the calibration Monte Carlo's seed")
-    flags = (
-        _flag("models", models) + _flag("free", free) + _flag("surfaces", surfaces) + _flag("draws", draws)
-        + _flag("seed", seed)
-    )
+    options = dict(models=models, free=free, surfaces=surfaces, draws=draws, seed=seed)
     if data is None:
-        return Result(_stiction.fit_json(scenario, flags))
+        return Result(_stiction.fit_json(scenario, **options))
     if isinstance(data, (str, _os.PathLike)):
-        return Result(_stiction.fit_json(scenario, [_os.fspath(data)] + flags))
-    return Result(_stiction.fit_json(scenario, flags, _voltage_csv(data), "<data>"))
+        return Result(_stiction.fit_json(scenario, data_path=_os.fspath(data), **options))
+    return Result(_stiction.fit_json(scenario, data_csv=_voltage_csv(data), data_name="<data>", **options))
 
 
 def _voltage_csv(data) -> str:

@@ -8,7 +8,7 @@ const MAX_RH: usize = 1000;
 
 /// The relative humidities of `--rh`: a comma-separated list or FROM:TO:STEPS, each a fraction
 /// in [0, 1) ("0.35" or "35 %").
-pub(crate) fn parse_rh(text: &str) -> Result<Vec<f64>, String> {
+pub fn parse_rh(text: &str) -> Result<Vec<f64>, String> {
     let one = |s: &str| -> Result<f64, String> {
         let v = parse_quantity_checked(s.trim(), Dimension::Dimensionless, Constraint::NonNegative)
             .map_err(|e| format!("--rh {s:?}: {e}"))?;

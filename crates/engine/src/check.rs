@@ -1,0 +1,27 @@
+//! Checks of a request's fields against the physical domains of `stiction_scenario::domain`,
+//! naming each field as the front end calls it.
+
+use stiction_scenario::Warning;
+
+use crate::Error;
+
+/// How a front end names a request field in a message: the command line gives its flag
+/// (`radius_m` -> `--radius`), Python its keyword argument (`radius`).
+pub type Names<'a> = dyn Fn(&str) -> String + 'a;
+
+/// A request field's own name (for tests and front ends that name fields as the request does).
+pub fn field_names(field: &str) -> String {
+    field.to_string()
+}
+
+/// Checks `value` of the request field `field` against the domain of the scenario quantity
+/// `path`: outside it, an error naming the field; outside the usual range, a warning pushed to
+/// `warnings`.
+pub fn domain(warnings: &mut Vec<Warning>, names: &Names, field: &str, path: &str, value: f64) -> Result<(), Error> {
+    match stiction_scenario::domain::check_value(path, &names(field), value) {
+        Ok(Some(w)) => warnings.push(w),
+        Ok(None) => {}
+        Err(e) => return Err(e.message.into()),
+    }
+    Ok(())
+}

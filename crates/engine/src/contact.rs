@@ -1,0 +1,286 @@
+//! `contact`: the explicit asperity-by-asperity solver (or the boundary-element model) on a
+//! scenario's surface, at a load or over a sweep of loads.
+
+use serde::{Deserialize, Serialize};
+use stiction_contact::explicit::{Detail, Equilibrium, ExplicitSolver, Sweep};
+use stiction_contact::single::Branch;
+use stiction_meter::{ContactModel, build_contact_model};
+use stiction_scenario::{ContactModel as ModelKind, ContactSpec, MaterialSpec};
+use stiction_units::{Constraint, Dimension, parse_quantity_checked};
+
+use crate::Error;
+use crate::check::Names;
+use crate::scenario_source::ScenarioSource;
+
+/// Shoe degrees of freedom.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mode {
+    /// Approach and two tilts free.
+    Tilt,
+    /// Approach only (the GW situation).
+    Flat,
+    /// Only the `contacts` highest summits carry the shoe (eq. 12).
+    Fixed,
+}
+
+/// Which solver runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Model {
+    /// The explicit asperity-by-asperity solver (summits, tilting rigid shoe).
+    #[default]
+    Explicit,
+    /// The FFT boundary-element solver on the height-map patch under the shoe (needs
+    /// `surface.source` = "height_map"; settings from `contact.bem`).
+    Bem,
+}
+
+/// Equilibrium of a rigid shoe on the scenario's rough surface under a normal load, or over a
+/// sweep of loads (each from the previous equilibrium).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactRequest {
+    /// The solver.
+    #[serde(default)]
+    pub model: Model,
+    /// One normal load, N, compressive positive (negative = adhesive pull, down to pull-off).
+    #[serde(default)]
+    pub load_n: Option<f64>,
+    /// A sweep of loads, N, in order (instead of `load_n`).
+    #[serde(default)]
+    pub loads_n: Option<Vec<f64>>,
+    /// Shoe degrees of freedom (default: the scenario's, else tilt).
+    #[serde(default)]
+    pub mode: Option<Mode>,
+    /// Number of contacts for mode fixed.
+    #[serde(default)]
+    pub contacts: Option<usize>,
+    /// Also list every summit in contact (interference, load, contact radius, peak pressure).
+    #[serde(default)]
+    pub summits: bool,
+}
+
+impl ContactRequest {
+    /// Checks the load against the domain of `load` (a sweep's loads are checked as the solver
+    /// meets them), naming the field as `names` calls it; the warnings of a load outside its usual
+    /// range come back.
+    pub fn validate(&self, names: &Names) -> Result<Vec<stiction_scenario::Warning>, Error> {
+        let mut warnings = Vec::new();
+        if let Some(l) = self.load_n {
+            crate::check::domain(&mut warnings, names, "load_n", "load", l)?;
+        }
+        Ok(warnings)
+    }
+}
+
+/// Default of `--max-sweep-steps`: a million equilibria take minutes and their rows about 100 MB.
+pub const DEFAULT_MAX_SWEEP_STEPS: usize = 1_000_000;
+
+/// Parses FROM:TO:STEPS into the loads, N; at most `max_steps` steps (checked before allocating).
+pub fn parse_sweep(text: &str, max_steps: usize) -> Result<Vec<f64>, String> {
+    let parts: Vec<&str> = text.split(':').collect();
+    if parts.len() != 3 {
+        return Err(format!("--sweep {text:?}: expected FROM:TO:STEPS, like \"0uN:10uN:21\""));
+    }
+    let f = |s: &str, what: &str| {
+        let v = parse_quantity_checked(s, Dimension::Force, Constraint::Finite)
+            .map_err(|e| format!("--sweep {what}: {e}"))?;
+        stiction_scenario::domain::check_value("load", "load", v)
+            .map_err(|e| format!("--sweep {what}: {}", e.message))?;
+        Ok::<f64, String>(v)
+    };
+    let (from, to) = (f(parts[0], "FROM")?, f(parts[1], "TO")?);
+    let steps: usize = parts[2]
+        .trim()
+        .parse()
+        .ok()
+        .filter(|n| *n >= 2)
+        .ok_or_else(|| format!("--sweep STEPS {:?}: expected a whole number >= 2", parts[2]))?;
+    if steps > max_steps {
+        return Err(format!(
+            "--sweep STEPS {steps}: more than the limit of {max_steps} steps (one equilibrium solve and about 100 \
+             bytes of output each: {:.1e} bytes); raise it with --max-sweep-steps if you mean it",
+            steps as f64 * 100.0
+        ));
+    }
+    Ok((0..steps).map(|i| from + (to - from) * i as f64 / (steps - 1) as f64).collect())
+}
+
+/// The explicit solver of the scenario `source` with the request's mode and contacts applied: the
+/// solver, the scenario's contact settings and its material.
+pub fn explicit_solver(
+    req: &ContactRequest,
+    source: &ScenarioSource,
+) -> Result<(Box<ExplicitSolver>, ContactSpec, MaterialSpec), Error> {
+    let mut sets = Vec::new();
+    sets.push("contact.model=\"explicit\"".into());
+    match req.mode {
+        Some(Mode::Tilt) => sets.push("contact.mode=\"tilt\"".into()),
+        Some(Mode::Flat) => sets.push("contact.mode=\"flat\"".into()),
+        Some(Mode::Fixed) => sets.push("contact.mode=\"fixed\"".into()),
+        None => {}
+    }
+    if let Some(n) = req.contacts {
+        sets.push(format!("contact.contacts={n}"));
+    }
+    let scenario = source.parse(&sets)?;
+    let name = source.name();
+    let material = scenario.require_material().map_err(|e| format!("{name}: {e}"))?.clone();
+    let c = scenario.contact_or_default();
+    debug_assert_eq!(c.model, ModelKind::Explicit);
+    let model = build_contact_model(&scenario, &material, &source.base).map_err(|e| format!("{name}: {e}"))?;
+    let ContactModel::Explicit(solver) = model else {
+        return Err("the explicit solver could not be built".into());
+    };
+    Ok((solver, c, material))
+}
+
+/// What `contact --json` prints: one equilibrium, a sweep {"points", "events"}, or the
+/// boundary-element model's run.
+#[derive(Serialize)]
+#[serde(untagged)]
+pub enum ContactOutput {
+    /// The equilibrium at one load.
+    Point(Box<Equilibrium>),
+    /// A sweep of loads.
+    Sweep(Sweep),
+    /// The boundary-element model at each load.
+    Bem(BemRun),
+}
+
+/// A finished `contact`: its output and, for the explicit solver, what a text table says of it.
+pub struct ContactRun {
+    /// The result.
+    pub output: ContactOutput,
+    /// The explicit solver's summit count, contact settings and material (None for the BEM).
+    pub explicit: Option<(usize, ContactSpec, MaterialSpec)>,
+}
+
+/// Runs the request on the scenario `source`; `detail` says how much per-contact detail the
+/// solver keeps (the front end's table or JSON needs). `names` names the request's fields in a
+/// refusal.
+pub fn contact(
+    req: &ContactRequest,
+    source: &ScenarioSource,
+    detail: Detail,
+    names: &Names,
+) -> Result<ContactRun, Error> {
+    if req.model == Model::Bem {
+        return Ok(ContactRun { output: ContactOutput::Bem(bem_run(req, source, names)?), explicit: None });
+    }
+    let (mut solver, c, material) = explicit_solver(req, source)?;
+    solver.set_detail(detail);
+    let output = if let Some(loads) = &req.loads_n {
+        let increasing = loads.last() >= loads.first();
+        ContactOutput::Sweep(solver.sweep(loads, if increasing { Branch::Loading } else { Branch::Unloading })?)
+    } else {
+        let load = req.load_n.ok_or_else(|| format!("give {} or {}", names("load_n"), names("loads_n")))?;
+        ContactOutput::Point(Box::new(solver.solve(load)?))
+    };
+    Ok(ContactRun { output, explicit: Some((solver.len(), c, material)) })
+}
+
+/// The result as a JSON value (what `contact --json` prints), every number checked finite:
+/// full per-summit detail with `summits`, else the contact indices.
+pub fn contact_json(req: &ContactRequest, source: &ScenarioSource, names: &Names) -> Result<serde_json::Value, Error> {
+    let detail = if req.summits { Detail::Full } else { Detail::Indices };
+    Ok(crate::json::finite_value(&contact(req, source, detail, names)?.output)?)
+}
+
+/// One load of the boundary-element model.
+#[allow(missing_docs)]
+#[derive(serde::Serialize)]
+pub struct BemPoint {
+    pub load_n: f64,
+    pub real_area_m2: f64,
+    pub contact_fraction: f64,
+    pub patches: usize,
+    pub mean_gap_m: f64,
+    /// The Dugdale tension over the cohesive zone, N (the contact pressure carries L plus it).
+    pub adhesive_load_n: f64,
+    pub cohesive_fraction: f64,
+    /// s A_r with the material's shear strength, N.
+    pub friction_capacity_n: f64,
+    pub max_pressure_pa: f64,
+    pub iterations: usize,
+}
+
+/// The boundary-element model at each load.
+#[allow(missing_docs)]
+#[derive(serde::Serialize)]
+pub struct BemRun {
+    pub model: &'static str,
+    pub grid: stiction_bem::Grid,
+    /// Block factors (x, y) from the map's pixels to the grid.
+    pub coarsening: (usize, usize),
+    pub e_star_pa: f64,
+    pub dugdale: Option<stiction_bem::Dugdale>,
+    /// Why `dugdale` is null: no adhesion (law "hertz" or no work of adhesion).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dugdale_note: Option<&'static str>,
+    pub shear_strength_pa: f64,
+    pub points: Vec<BemPoint>,
+}
+
+/// The boundary-element model of the scenario `source` at each load of the request (N,
+/// compressive, in order; the loading branch).
+pub fn bem_run(req: &ContactRequest, source: &ScenarioSource, names: &Names) -> Result<BemRun, Error> {
+    if req.mode.is_some() || req.contacts.is_some() || req.summits {
+        return Err(format!(
+            "{}, {} and {} belong to the explicit solver; {} bem has a flat shoe and reports contact patches",
+            names("mode"),
+            names("contacts"),
+            names("summits"),
+            names("model")
+        )
+        .into());
+    }
+    let scenario = source.parse(&["contact.model=\"bem\"".into()])?;
+    let name = source.name();
+    let material = scenario.require_material().map_err(|e| format!("{name}: {e}"))?.clone();
+    let mut bem = stiction_meter::build_bem(&scenario, &material, &source.base).map_err(|e| format!("{name}: {e}"))?;
+    let loads = match (&req.loads_n, req.load_n) {
+        (Some(l), _) => l.clone(),
+        (None, Some(l)) => vec![l],
+        (None, None) => return Err(format!("give {} or {}", names("load_n"), names("loads_n")).into()),
+    };
+    if let Some(l) = loads.iter().find(|l| l.is_nan() || **l <= 0.0) {
+        return Err(format!(
+            "load {}: {} bem follows the loading branch and needs compressive loads > 0",
+            stiction_units::format_quantity(*l, Dimension::Force),
+            names("model")
+        )
+        .into());
+    }
+    let grid = bem.grid();
+    let stress = bem.law().map_or(0.0, |l| l.stress_pa);
+    let mut points = Vec::with_capacity(loads.len());
+    for &load in &loads {
+        let s = bem.solve(load)?;
+        let max_pressure_pa =
+            s.pressure_pa.iter().zip(&s.contact).filter(|(_, c)| **c).map(|(p, _)| p + stress).fold(0.0, f64::max);
+        points.push(BemPoint {
+            load_n: s.load_n(&grid),
+            real_area_m2: s.contact_area_m2,
+            contact_fraction: s.contact_fraction,
+            patches: s.patches,
+            mean_gap_m: s.mean_gap_m,
+            adhesive_load_n: stress * s.cohesive_fraction * grid.area_m2(),
+            cohesive_fraction: s.cohesive_fraction,
+            friction_capacity_n: s.friction_n(material.shear_strength),
+            max_pressure_pa,
+            iterations: s.iterations,
+        });
+    }
+    Ok(BemRun {
+        model: "bem",
+        grid,
+        coarsening: bem.coarsening,
+        e_star_pa: 0.75 / material.compliance_per_pa(),
+        dugdale: bem.law(),
+        dugdale_note: bem.law().is_none().then_some("no adhesion: law \"hertz\" or no work of adhesion"),
+        shear_strength_pa: material.shear_strength,
+        points,
+    })
+}

@@ -1,0 +1,137 @@
+//! `fit`: measured friction-meter voltages against physics (eq. 10 with regression and
+//! calibration uncertainty; maximum-likelihood shear strength per contact model; ranked models),
+//! and the synthetic data of a scenario's virtual meter.
+
+use std::path::{Path, PathBuf};
+
+use stiction_fit::{Dataset, FitOptions, FitReport, Free, ModelKind, read_measured_voltages, synth};
+use stiction_scenario::Scenario;
+
+use crate::Error;
+use crate::scenario_source::ScenarioSource;
+
+/// Where the measured voltages come from.
+#[derive(Clone, Debug)]
+pub enum FitData {
+    /// The scenario's `measured.voltages_csv`.
+    Scenario,
+    /// A CSV file (columns v_clamp_v, v_pull_v [, v_pull_sd_v, device]).
+    File(PathBuf),
+    /// CSV text held in memory, named in messages.
+    Text {
+        /// The CSV bytes.
+        bytes: Vec<u8>,
+        /// Its name in messages.
+        name: String,
+    },
+}
+
+/// The fit of measured voltages to a scenario's device.
+#[derive(Clone, Debug)]
+pub struct FitRequest {
+    /// The measured voltages.
+    pub data: FitData,
+    /// Models to fit, comma-separated: discrete-nN, gw-dmt, explicit, explicit-ensemble.
+    pub models: String,
+    /// Free parameters: s, optionally R and F_spring ("s,R,F_spring").
+    pub free: String,
+    /// Surface realisations of the explicit ensemble (its band), 1 to
+    /// `stiction_fit::models::MAX_SURFACES`.
+    pub surfaces: usize,
+    /// Calibration Monte Carlo draws, at most `stiction_fit::MAX_DRAWS`.
+    pub draws: usize,
+    /// Seed of the calibration Monte Carlo.
+    pub seed: u64,
+}
+
+/// The default models of a fit.
+pub const DEFAULT_MODELS: &str = "discrete-n1,discrete-n2,discrete-n3,gw-dmt,explicit,explicit-ensemble";
+
+impl FitRequest {
+    /// The fit's options (models and free parameters parsed).
+    pub fn options(&self) -> Result<FitOptions, Error> {
+        Ok(FitOptions {
+            models: ModelKind::parse_list(&self.models)?,
+            free: Free::parse(&self.free)?,
+            surfaces: self.surfaces,
+            calibration_draws: self.draws,
+            seed: self.seed,
+            ..FitOptions::default()
+        })
+    }
+}
+
+/// One source of truth, as in `run`: a given spring force that contradicts the clamp spring is
+/// refused, naming the scenario `name`.
+pub fn check_spring(scenario: &Scenario, name: &str) -> Result<(), Error> {
+    if let Some(conflict) = scenario.spring_force_conflict() {
+        return Err(format!("{name}: {conflict}").into());
+    }
+    Ok(())
+}
+
+/// Reads the request's measured voltages (relative paths of the scenario from `base`).
+pub fn read_data(data: &FitData, scenario: &Scenario, base: &Path) -> Result<Dataset, Error> {
+    Ok(match data {
+        FitData::File(p) => read_measured_voltages(p)?,
+        FitData::Text { bytes, name } => stiction_fit::parse_measured_voltages(bytes, name)?,
+        FitData::Scenario => match &scenario.measured {
+            Some(m) => read_measured_voltages(&base.join(&m.voltages_csv))?,
+            None => return Err("missing DATA.csv (the scenario has no `measured` section either)".into()),
+        },
+    })
+}
+
+/// The fit of `data` to `scenario` (its JSON tree `json`, relative paths from `base`).
+pub fn analyse(
+    req: &FitRequest,
+    data: &Dataset,
+    scenario: &Scenario,
+    json: &serde_json::Value,
+    base: &Path,
+) -> Result<FitReport, Error> {
+    Ok(stiction_fit::analyse(data, scenario, json, base, &req.options()?)?)
+}
+
+/// What `fit [DATA] --scenario S --json` prints for the scenario `source` (a file or a tree
+/// built in memory, with its overrides). Every number checked finite.
+pub fn fit_json(req: &FitRequest, source: &ScenarioSource) -> Result<serde_json::Value, Error> {
+    let scenario = source.parse(&[])?;
+    check_spring(&scenario, &source.name())?;
+    let json = source.json(&[])?;
+    let data = read_data(&req.data, &scenario, &source.base)?;
+    let report = analyse(req, &data, &scenario, &json, &source.base)?;
+    Ok(crate::json::finite_value(&report)?)
+}
+
+/// A labelled synthetic data file of the scenario's virtual meter (named `name` in its comment):
+/// at its clamp voltages, `repeats` each, Gaussian noise of sd `noise_v` (V) on each pull
+/// voltage, ChaCha8 `seed`; `command` is the command line that made it, for the comment. The
+/// CSV text and its row count.
+pub fn synthesize(
+    scenario: &Scenario,
+    name: &str,
+    base: &Path,
+    noise_v: f64,
+    repeats: usize,
+    seed: u64,
+    command: &str,
+) -> Result<(String, usize), Error> {
+    let meter = scenario.meter.as_ref().ok_or("the scenario has no `meter` section")?;
+    let voltages = meter.clamp_voltages.voltages();
+    let rows = synth::from_meter(scenario, base, &voltages, repeats, noise_v, seed)?;
+    let s = scenario.material.as_ref().map_or(f64::NAN, |m| m.shear_strength);
+    let comment = format!(
+        "SYNTHETIC DATA made by stiction itself, not a measurement.\n\
+         Virtual meter of {} (contact model {}, s = {}), {} repeats per clamp voltage,\n\
+         Gaussian noise SD {} V added to each pull voltage (ChaCha8 seed {}).\n\
+         Command: {command}",
+        name,
+        scenario.contact_or_default().model,
+        stiction_units::format_quantity(s, stiction_units::Dimension::Pressure),
+        repeats,
+        noise_v,
+        seed,
+    );
+    Ok((synth::to_csv(&rows, &comment)?, rows.len()))
+}

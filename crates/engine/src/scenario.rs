@@ -1,0 +1,20 @@
+//! `scenario`: a scenario checked as the commands read it.
+
+use stiction_scenario::Scenario;
+
+use crate::Error;
+use crate::scenario_source::ScenarioSource;
+
+/// The checks of `stiction scenario`: the scenario `source` parsed and validated, and a height-map
+/// sidewall checked as `run` reads it: the map is read and prepared (cut-offs no longer than the
+/// map, a map at least as large as the shoe or `tile`), so a scenario that passes here does not
+/// fail there. The parsed scenario comes back.
+pub fn check(source: &ScenarioSource) -> Result<Scenario, Error> {
+    let scenario = source.parse(&[])?;
+    if let Ok(surface) = scenario.require_surface()
+        && surface.source == stiction_surface::SurfaceSource::HeightMap
+    {
+        stiction_surface::height_map_patch(surface, &source.base).map_err(|e| format!("{}: {e}", source.name()))?;
+    }
+    Ok(scenario)
+}
