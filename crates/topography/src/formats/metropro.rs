@@ -86,7 +86,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
     if f.i16(232) == Some(1) {
         scale = -scale;
     }
-    let size_m = (lateral.is_finite() && lateral > 0.0).then(|| (lateral * nx as f64, lateral * ny as f64));
+    let size_m = (lateral.is_finite() && lateral > 0.0).then_some((lateral * nx as f64, lateral * ny as f64));
     Ok(vec![Channel {
         info: ChannelInfo {
             index: 0,

@@ -291,7 +291,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
             let k = ix * ny + iy;
             let v = raw[k];
             let masked = mask.as_ref().is_some_and(|m| m[k] != 0.0);
-            if masked || fill.iter().any(|f| *f == Some(v)) { f64::NAN } else { v * scale + offset }
+            if masked || fill.contains(&Some(v)) { f64::NAN } else { v * scale + offset }
         }));
     }
     Ok(vec![Channel { info, values: Values::Parsed(values), unreadable: None }])

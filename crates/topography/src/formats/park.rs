@@ -144,7 +144,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
     let get = |at| h.f64(at).unwrap_or(f64::NAN);
     let (sx_um, sy_um) = (get(140), get(148));
     let size_m =
-        (sx_um.is_finite() && sy_um.is_finite() && sx_um > 0.0 && sy_um > 0.0).then(|| (sx_um * 1e-6, sy_um * 1e-6));
+        (sx_um.is_finite() && sy_um.is_finite() && sx_um > 0.0 && sy_um > 0.0).then_some((sx_um * 1e-6, sy_um * 1e-6));
     let (gain, scale, offset) = (get(220), get(228), get(236));
     let scale = if scale == 0.0 { 1.0 } else { scale };
     if !(gain.is_finite() && scale.is_finite() && offset.is_finite() && gain != 0.0) {

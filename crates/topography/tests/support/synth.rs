@@ -311,7 +311,7 @@ pub fn netcdf(
     mask: Option<&[i8]>,
 ) -> Vec<u8> {
     fn pad(b: &mut Vec<u8>) {
-        while b.len() % 4 != 0 {
+        while !b.len().is_multiple_of(4) {
             b.push(0);
         }
     }
@@ -333,7 +333,9 @@ pub fn netcdf(
     let ys: Vec<u8> = (0..ny).flat_map(|k| (k as f64).to_be_bytes()).collect();
     let hs: Vec<u8> = heights.iter().flat_map(|h| h.to_be_bytes()).collect();
     let ms: Vec<u8> = mask.map(|m| m.iter().map(|&v| v as u8).collect()).unwrap_or_default();
-    let mut vars: Vec<(&str, Vec<u32>, Vec<u8>, u32, Vec<u8>)> = Vec::new();
+    // (name, dimension ids, attribute list bytes, type, values)
+    type Var<'a> = (&'a str, Vec<u32>, Vec<u8>, u32, Vec<u8>);
+    let mut vars: Vec<Var> = Vec::new();
     for (n, dim, len, data) in [("x", 0u32, length_x, xs), ("y", 1, length_y, ys)] {
         let mut a = Vec::new();
         a.extend_from_slice(&be32(12));
