@@ -10,6 +10,8 @@
 //! * [`dynamics`]: the slip event in time (rapier rigid body), dynamic pull-in for a step voltage.
 //! * [`protocol`]: pull-in protocol (quasi-static ramp or voltage step), shuttle mass and air
 //!   damping from geometry.
+//! * [`parts`]: the other test structures' actuators: lateral comb drive (side instability),
+//!   plate electrode to the substrate through dielectric layers, a spring set and released.
 //! * [`transients`]: pull-in and release times point by point against measured times.
 //!
 //! SI units and `f64` everywhere.
@@ -21,6 +23,7 @@ pub mod cross_section;
 pub mod dynamics;
 pub mod error;
 pub mod meter;
+pub mod parts;
 pub mod plates;
 pub mod protocol;
 pub mod spec;
@@ -39,6 +42,10 @@ pub use dynamics::{
 };
 pub use error::ActuatorError;
 pub use meter::{ClampForce, SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
+pub use parts::{
+    DielectricLayer, LateralComb, LateralCombSpec, PlateElectrode, PlateElectrodeSpec, ReleasedSpring,
+    ReleasedSpringSpec, ResonanceSpec,
+};
 pub use plates::{BackElectrode, BackPotential, Fringing, PlateArray, VACUUM_PERMITTIVITY};
 pub use protocol::{MassBreakdown, PullInProtocol, Shuttle, ShuttleSpec, StepPullIn, step_pull_in};
 pub use spec::{

@@ -21,7 +21,8 @@ pub fn domain(warnings: &mut Vec<Warning>, names: &Names, field: &str, path: &st
     match stiction_scenario::domain::check_value(path, &names(field), value) {
         Ok(Some(w)) => warnings.push(w),
         Ok(None) => {}
-        Err(e) => return Err(e.message.into()),
+        // The field as the front end names it, then the value, the domain and its reason.
+        Err(e) => return Err(e.to_string().into()),
     }
     Ok(())
 }

@@ -106,10 +106,10 @@ pub fn plan(
         },
         (None, None) => RankBy::Narrowest,
     };
-    let points = design::grid(&mut varies, &req.sets, design_points, req.seed, config.vary_surface)?;
+    let points = design::grid(&mut varies, req.sets, design_points, req.seed, config.vary_surface)?;
     // Two designs that would run the same study (equal once units are read and ignored fields
     // dropped) are refused before anything runs.
-    let base = stiction_scenario::Scenario::load_json(&req.scenario, &req.sets)?;
+    let base = stiction_scenario::Scenario::load_json(req.scenario, req.sets)?;
     design::check_distinct(&base, &varies, &points, config.vary_surface)?;
     drop(base);
     Ok(DesignPlan { varies, points, rank_by })

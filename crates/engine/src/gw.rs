@@ -49,7 +49,7 @@ pub fn gw(req: &GwRequest, name_load: &str) -> Result<GwOutput, Error> {
         return Err(format!("{name_load} {}: expected a finite normalized load", req.load_star).into());
     }
     let model = model(req.theta)?;
-    Ok(state(&model, req.load_star)?)
+    state(&model, req.load_star)
 }
 
 /// The state of `model` at `load_star` as [`GwOutput`].

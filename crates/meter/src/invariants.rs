@@ -10,7 +10,9 @@
 //! * `0 <= contacts <= summits` (the summits the model holds);
 //! * every force and pressure finite, the contacts' elastic load `L + L_adh >= 0` (they can only
 //!   push), the adhesive load `>= 0`, and the capillary load within `[0, L_adh]` (the menisci
-//!   are part of the adhesion).
+//!   are part of the adhesion);
+//! * a structure's friction reading within one protocol step of the contact's capacity
+//!   ([`check_reading`]).
 
 use crate::MeterError;
 use crate::contact_model::ContactState;
@@ -90,6 +92,25 @@ pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_
     }
     if state.max_pressure_pa < 0.0 {
         return Err(broken(format!("a largest pressure of {} Pa", short(state.max_pressure_pa)), v_clamp));
+    }
+    Ok(())
+}
+
+/// A reported friction reading of a structure's protocol lies within one protocol step of the
+/// contact's capacity: a ramp slips at the first step at or above it (`capacity <= F < capacity +
+/// step_n`), a release sticks at the last step below it (`capacity - step_n <= F < capacity`);
+/// `step_n` is the force of one step at that level (`a_t (V^2 - (V - dV)^2)`, `k dx`), N.
+pub fn check_reading(friction_n: f64, capacity_n: f64, step_n: f64, v_normal: f64) -> Result<(), MeterError> {
+    let slack = RELATIVE_SLACK * capacity_n.abs().max(friction_n.abs());
+    if !(friction_n.is_finite() && (friction_n - capacity_n).abs() <= step_n + slack) {
+        return Err(MeterError::Invariant(format!(
+            "the friction reading {} N at the normal voltage {} V lies more than one protocol step ({} N) from \
+             the contact's friction capacity {} N",
+            stiction_scenario::domain::short(friction_n),
+            stiction_scenario::domain::short(v_normal),
+            stiction_scenario::domain::short(step_n),
+            stiction_scenario::domain::short(capacity_n)
+        )));
     }
     Ok(())
 }

@@ -14,7 +14,7 @@ use std::path::Path;
 use serde::Serialize;
 use stiction_actuator::GapClosingActuator;
 use stiction_actuator::meter::{SlipResponse, clamp_force, pull_force_stuck_n, slip_response};
-use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, MeterSpec, Scenario, ShoeMode, SlipCriterion};
+use stiction_scenario::{ContactModel as ModelKind, MaterialSpec, MeterSpec, Scenario, ShoeMode};
 use stiction_surface::SurfaceSpec;
 
 mod contact_model;
@@ -23,6 +23,7 @@ pub mod fit;
 pub mod invariants;
 pub mod measured;
 pub mod slip;
+pub mod structure;
 pub use contact_model::{BemContact, ContactModel, ContactState};
 pub use error::MeterError;
 pub use slip::SlipPath;
@@ -85,6 +86,10 @@ pub struct MeterPoint {
     /// finds an equilibrium before its stop.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub slip_note: Option<String>,
+    /// Release protocol (`structure`): the largest displacement of the released spring that
+    /// sticks, m; the friction is reported as `k` times it. Absent for the other protocols.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub displacement_m: Option<f64>,
     /// Real contact area A_r, m^2.
     pub real_area_m2: f64,
     /// Summits in contact.
@@ -146,6 +151,17 @@ pub struct MeterResult {
     /// stable `code` each.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<stiction_scenario::Warning>,
+    /// The parts of a `structure` scenario (absent for the paper's meter).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub structure: Option<structure::StructureReport>,
+    /// The coefficient by the laboratory's own reduction (`structure.lab_reduction` or
+    /// `meter.lab_reduction`), beside mu_e,a; absent when the scenario states none for the
+    /// paper's meter (its reduction is eq. 10 itself).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lab_coefficient: Option<structure::LabCoefficient>,
+    /// Why there is no pull-array pull-in voltage (a `structure` has no pull array).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pull_array_note: Option<String>,
 }
 
 /// Why a Kelvin radius or meniscus height is null (the meter's humidity, `bem --rh`).
@@ -197,8 +213,10 @@ impl Humidity {
 
 /// The assembled device.
 pub struct Meter {
-    clamp: GapClosingActuator,
-    pull: GapClosingActuator,
+    clamp: Option<GapClosingActuator>,
+    pull: Option<GapClosingActuator>,
+    /// A structure built from parts (scenario `structure`), run instead of the clamp and pull.
+    structure: Option<structure::StructureDevice>,
     contact_travel_m: f64,
     spring_force_n: Option<f64>,
     material: MaterialSpec,
@@ -214,6 +232,9 @@ pub struct Meter {
 impl Meter {
     /// Assembles the meter from a loaded scenario; `base_dir` resolves relative file paths.
     pub fn from_scenario(s: &Scenario, base_dir: &Path) -> Result<Meter, MeterError> {
+        if let Some(st) = &s.structure {
+            return Self::from_structure(s, st, base_dir);
+        }
         let protocol = s.meter.clone().ok_or_else(|| MeterError::Scenario("no `meter` section".into()))?;
         let material = s.require_material().map_err(MeterError::Scenario)?.clone();
         let build = |name: &str| -> Result<GapClosingActuator, MeterError> {
@@ -230,8 +251,9 @@ impl Meter {
         Ok(Meter {
             apparent_area_m2,
             humidity,
-            clamp,
-            pull,
+            clamp: Some(clamp),
+            pull: Some(pull),
+            structure: None,
             contact_travel_m,
             spring_force_n: protocol.spring_force,
             material,
@@ -242,20 +264,82 @@ impl Meter {
         })
     }
 
+    /// A structure built from parts: the contact model of the scenario (dimples: the discrete
+    /// model with one sphere of the dimple radius per dimple), no clamp or pull array.
+    fn from_structure(
+        s: &Scenario,
+        st: &stiction_scenario::structure::StructureSpec,
+        base_dir: &Path,
+    ) -> Result<Meter, MeterError> {
+        let material = s.require_material().map_err(MeterError::Scenario)?.clone();
+        let device = structure::StructureDevice::from_spec(st)?;
+        let contact = match st.geometry {
+            stiction_scenario::structure::GeometrySpec::Dimples { count, radius } => ContactModel::Discrete {
+                contacts: count as usize,
+                law: s.contact_or_default().law,
+                params: asperity_params(&material, radius),
+                capillarity: s.capillarity().map_err(MeterError::Scenario)?,
+            },
+            _ => build_contact_model(s, &material, base_dir)?,
+        };
+        let humidity = Humidity::of(s)?;
+        let surface = s.require_surface().map_err(MeterError::Scenario)?;
+        let protocol = MeterSpec {
+            spring_force: Some(device.normal.spring_force_n()),
+            contact_travel: None,
+            clamp_voltages: st.normal_voltages.clone(),
+            pull_voltage_step: 1.0,
+            pull_voltage_max: 2.0,
+            slip: st.slip,
+            reclamp: true,
+            slip_dynamics: None,
+            max_clamp_voltages: None,
+            lab_reduction: None,
+        };
+        Ok(Meter {
+            apparent_area_m2: surface.apparent_length * surface.apparent_width,
+            humidity,
+            clamp: None,
+            pull: None,
+            structure: Some(device),
+            contact_travel_m: 0.0,
+            spring_force_n: protocol.spring_force,
+            material,
+            protocol,
+            contact,
+            reduction: None,
+            slip_path: SlipPath::default(),
+        })
+    }
+
+    /// The clamp and pull arrays of the paper's meter (an error for a `structure`).
+    fn arrays(&self) -> Result<(&GapClosingActuator, &GapClosingActuator), MeterError> {
+        match (&self.clamp, &self.pull) {
+            (Some(c), Some(p)) => Ok((c, p)),
+            _ => Err(MeterError::Scenario(
+                "this scenario's device is a `structure` built from parts: it has no clamp and pull arrays".into(),
+            )),
+        }
+    }
+
     /// The device's own conversion: its conversion factors at the contact travel (clamp) and at
     /// zero travel (pull, the gap is fixed while the shoe sticks) and its spring force.
     pub fn device_reduction(&self) -> Result<Reduction, MeterError> {
+        if let Some(st) = &self.structure {
+            return Ok(st.reduction());
+        }
+        let (clamp_array, pull_array) = self.arrays()?;
         let spring = match self.spring_force_n {
             Some(f) => f,
             None => {
-                clamp_force(&self.clamp, self.contact_travel_m, 0.0)
+                clamp_force(clamp_array, self.contact_travel_m, 0.0)
                     .map_err(|e| MeterError::Actuator { array: "clamp".into(), message: e.to_string() })?
                     .spring_force_n
             }
         };
         Ok(Reduction {
-            a_clamp_n_per_v2: self.clamp.conversion_factor_n_per_v2(self.contact_travel_m),
-            a_pull_n_per_v2: self.pull.conversion_factor_n_per_v2(0.0),
+            a_clamp_n_per_v2: clamp_array.conversion_factor_n_per_v2(self.contact_travel_m),
+            a_pull_n_per_v2: pull_array.conversion_factor_n_per_v2(0.0),
             spring_force_n: spring,
         })
     }
@@ -288,23 +372,42 @@ impl Meter {
         voltages: &[f64],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<MeterResult, MeterError> {
-        let a_pull = self.pull.conversion_factor_n_per_v2(0.0);
+        if let Some(device) = &self.structure {
+            let mut run = structure::StructureRun {
+                device,
+                contact: &mut self.contact,
+                material: &self.material,
+                apparent_area_m2: self.apparent_area_m2,
+                humid: self.humidity.is_some(),
+            };
+            let points = run.run(voltages, progress)?;
+            let mut result =
+                structure::result(self.contact.name(), points, device, self.apparent_area_m2, self.humidity);
+            if let Some(r) = self.reduction {
+                result.reduction = r;
+            }
+            return Ok(result);
+        }
+        let (Some(clamp_array), Some(pull_array)) = (&self.clamp, &self.pull) else {
+            return Err(self.arrays().err().unwrap_or_else(|| MeterError::Scenario("no clamp and pull arrays".into())));
+        };
+        let a_pull = pull_array.conversion_factor_n_per_v2(0.0);
         let actuator_err = |array: &str, e: stiction_actuator::ActuatorError| MeterError::Actuator {
             array: array.into(),
             message: e.to_string(),
         };
-        let pull_in_v = self.pull.pull_in().ok().map(|p| p.voltage_v);
+        let pull_in_v = pull_array.pull_in().ok().map(|p| p.voltage_v);
         let reduction = match self.reduction {
             Some(r) => r,
             None => self.device_reduction()?,
         };
-        let clamp_pull_in = self.clamp.pull_in().map_err(|e| actuator_err("clamp", e))?;
+        let clamp_pull_in = clamp_array.pull_in().map_err(|e| actuator_err("clamp", e))?;
         let mut points = Vec::with_capacity(voltages.len());
         let mut spring_force_used = f64::NAN;
         let mut previous_in_contact = false;
         for (k, &v_clamp) in voltages.iter().enumerate() {
             let clamp =
-                clamp_force(&self.clamp, self.contact_travel_m, v_clamp).map_err(|e| actuator_err("clamp", e))?;
+                clamp_force(clamp_array, self.contact_travel_m, v_clamp).map_err(|e| actuator_err("clamp", e))?;
             let spring = self.spring_force_n.unwrap_or(clamp.spring_force_n);
             spring_force_used = spring;
             let load_n = clamp.electrostatic_force_n - spring;
@@ -324,6 +427,7 @@ impl Meter {
                 slip_time_to_stop_s: None,
                 slip_impact_velocity_m_per_s: None,
                 slip_note: None,
+                displacement_m: None,
                 real_area_m2: 0.0,
                 contacts: 0.0,
                 adhesive_load_n: 0.0,
@@ -396,7 +500,7 @@ impl Meter {
                 // whatever the step, the capacity or the conversion factor.
                 let step = self.protocol.pull_voltage_step;
                 let n_max = (self.protocol.pull_voltage_max / step).floor().max(1.0);
-                let force = |n: f64| pull_force_stuck_n(&self.pull, n * step).map_err(|e| actuator_err("pull", e));
+                let force = |n: f64| pull_force_stuck_n(pull_array, n * step).map_err(|e| actuator_err("pull", e));
                 let top = force(n_max)?;
                 let n = if !capacity.is_finite() || top.is_nan() || top < capacity {
                     // No slip up to pull_voltage_max (or a capacity that no force reaches).
@@ -452,7 +556,7 @@ impl Meter {
                             let kinetic = dyn_spec.kinetic_friction_coefficient * state.elastic_load_n();
                             let t = slip::slip_outcome(
                                 self.slip_path,
-                                &self.pull,
+                                pull_array,
                                 v_pull,
                                 dyn_spec.shuttle_mass,
                                 dyn_spec.damping,
@@ -474,7 +578,7 @@ impl Meter {
                             // Quasi-static: with kinetic friction taken as zero, does the pull array
                             // find an equilibrium before its stop?
                             let response =
-                                slip_response(&self.pull, v_pull, 0.0).map_err(|e| actuator_err("pull", e))?;
+                                slip_response(pull_array, v_pull, 0.0).map_err(|e| actuator_err("pull", e))?;
                             point.pull_in_at_slip = Some(matches!(response, SlipResponse::RunsAway { .. }));
                         }
                     }
@@ -527,6 +631,8 @@ impl Meter {
                 None => warnings.push(stiction_scenario::Warning::new("coarse_pull_step", refine)),
             }
         }
+        let lab_coefficient =
+            self.protocol.lab_reduction.as_ref().map(|spec| structure::lab_coefficient(spec, &pairs, &eq10));
         Ok(MeterResult {
             contact_model: self.contact.name(),
             points,
@@ -539,20 +645,19 @@ impl Meter {
             reduction,
             environment: self.humidity,
             warnings,
+            structure: None,
+            lab_coefficient,
+            pull_array_note: None,
         })
     }
 
     /// The pull force at which the shoe slips, by the scenario's criterion, N.
+    ///
+    /// Eq. 1 `F_f = s A_r`; the plastic limit `mu_p = s / H` on the total (external plus adhesive)
+    /// load; a pressure-dependent shear strength `sum_i (s0 + alpha p_i) A_i = s0 A_r + alpha sum_i P_i`
+    /// ([`structure::slip_threshold_n`], shared with the structures).
     pub fn slip_threshold_n(&self, state: &ContactState) -> f64 {
-        let s = self.material.shear_strength;
-        match self.protocol.slip {
-            // Eq. 1: F_f = s A_r.
-            SlipCriterion::ShearArea => s * state.real_area_m2,
-            // Plastic limit mu_p = s / H on the total (external plus adhesive) load.
-            SlipCriterion::Plastic => s / self.material.hardness * state.elastic_load_n(),
-            // sum_i (s0 + alpha p_i) A_i = s0 A_r + alpha sum_i P_i (P_i the elastic load of contact i).
-            SlipCriterion::PressureDependent { alpha } => s * state.real_area_m2 + alpha * state.elastic_load_n(),
-        }
+        structure::slip_threshold_n(&self.material, self.protocol.slip, state)
     }
 }
 

@@ -1,5 +1,5 @@
 //! The physical-domain fuzzer: extreme but parseable values of every quantity field of every
-//! bundled scenario, through the code the binary runs (`Scenario::from_str_with_sets` with a
+//! bundled scenario (the paper's meter and the structures built from parts), through the code the binary runs (`Scenario::from_str_with_sets` with a
 //! `--set`, `Meter::from_scenario`, `Meter::run`), checked for what the numbers mean, not only for
 //! crashes:
 //!
@@ -41,9 +41,17 @@ fn scenarios() -> Vec<(String, Value)> {
     paths.sort();
     for p in paths {
         let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
-        let Some(meter) = v.get_mut("meter").and_then(Value::as_object_mut) else { continue };
-        meter.insert("clamp_voltages".into(), serde_json::json!({"from": "18 V", "to": "30 V", "steps": 6}));
-        meter.remove("slip_dynamics");
+        if let Some(meter) = v.get_mut("meter").and_then(Value::as_object_mut) {
+            meter.insert("clamp_voltages".into(), serde_json::json!({"from": "18 V", "to": "30 V", "steps": 6}));
+            meter.remove("slip_dynamics");
+        } else if let Some(structure) = v.get_mut("structure").and_then(Value::as_object_mut) {
+            // A structure built from parts: its own normal voltages, three of them.
+            if let Some(Value::Object(r)) = structure.get_mut("normal_voltages") {
+                r.insert("steps".into(), Value::from(3));
+            }
+        } else {
+            continue;
+        }
         if let Some(s) = v.get_mut("surface").and_then(Value::as_object_mut) {
             s.insert("max_summits".into(), Value::from(20_000));
         }
@@ -109,7 +117,8 @@ fn check_result(r: &stiction_meter::MeterResult, apparent_area_m2: f64) -> Resul
         {
             return Err(format!("point {i}: capillary {c} outside [0, {}]", p.adhesive_load_n));
         }
-        if p.friction_n.is_some() != p.v_pull.is_some() {
+        // A friction with a slip: a pull (tangential) voltage, or a released spring's displacement.
+        if p.friction_n.is_some() != (p.v_pull.is_some() || p.displacement_m.is_some()) {
             return Err(format!("point {i}: a friction without a slip or the reverse"));
         }
         if p.friction_n.is_none() && p.reason.is_none() {

@@ -220,22 +220,26 @@ pub(crate) fn bem_json<'py>(
     let given = |n: &str| kw.get(n).map(|v| v.is_some());
     for (a, b) in [("pressure", "sweep"), ("pressure", "gap_sweep"), ("sweep", "gap_sweep")] {
         if given(a)? && given(b)? || (a == "pressure" && pressures.is_some() && given(b)?) {
-            return Err(err(format!("bem: {a} cannot be used with {b}")));
+            return Err(err(format!("bem: the argument '{a}' cannot be used with '{b}'")));
         }
     }
     if rh_text.is_some() {
         for b in ["sweep", "gap_sweep"] {
             if given(b)? {
-                return Err(err(format!("bem: rh cannot be used with {b}")));
+                return Err(err(format!("bem: the argument 'rh' cannot be used with '{b}'")));
             }
         }
         if kw.flag("compare_asperity")? {
-            return Err(err("bem: rh cannot be used with compare_asperity"));
+            return Err(err("bem: the argument 'rh' cannot be used with 'compare_asperity'"));
         }
     }
     match (given("work_of_adhesion")?, given("range")?) {
-        (true, false) => return Err(err("bem: work_of_adhesion needs range (the Dugdale law's range h0)")),
-        (false, true) => return Err(err("bem: range needs work_of_adhesion (the Dugdale law's work of adhesion)")),
+        (true, false) => {
+            return Err(err("bem: the argument 'work_of_adhesion' needs 'range' (the Dugdale law's range h0)"));
+        }
+        (false, true) => {
+            return Err(err("bem: the argument 'range' needs 'work_of_adhesion' (the Dugdale law's work of adhesion)"));
+        }
         _ => {}
     }
     let level = match kw.text("level")? {

@@ -135,13 +135,30 @@ impl Scenario {
             }
             arrays.insert(name.clone(), v);
         }
-        let device = serde_json::json!({
+        let mut device = serde_json::json!({
             "actuators": arrays,
             "spring_force": self.meter.as_ref().and_then(|m| m.spring_force),
             "contact_travel": self.contact_travel_m(),
             "apparent_length": self.surface.as_ref().map(|s| s.apparent_length),
             "apparent_width": self.surface.as_ref().map(|s| s.apparent_width),
         });
+        // A structure built from parts: its parts (not the voltages or the protocol run on them).
+        if let Some(st) = &self.structure
+            && let Some(o) = device.as_object_mut()
+        {
+            let mut parts = serde_json::json!({
+                "normal": st.normal, "tangential": st.tangential, "geometry": st.geometry
+            });
+            for part in ["normal", "tangential"] {
+                if let Some(p) = parts.get_mut(part).and_then(|v| v.as_object_mut()) {
+                    p.remove("description");
+                    if let Some(c) = p.get_mut("comb").and_then(|v| v.as_object_mut()) {
+                        c.remove("description");
+                    }
+                }
+            }
+            o.insert("structure".into(), parts);
+        }
         format!("fnv1a64:{:016x}", fnv1a64(rounded(device).to_string().as_bytes()))
     }
 
@@ -205,6 +222,134 @@ impl Scenario {
         ))
     }
 
+    /// The quantities of a structure built from parts: the normal part's factor at contact and
+    /// suspension force, its side pull-in (comb), the tangential comb's factor or the released
+    /// spring's stiffness.
+    fn explain_structure(
+        &self,
+        st: &crate::structure::StructureSpec,
+        q: &mut Vec<Quantity>,
+        warnings: &mut Vec<Warning>,
+    ) {
+        use crate::structure::{NormalActuatorSpec, TangentialActuatorSpec};
+        let mut push = |key: &str, name: String, value: f64, unit: &str, uncertainty: Option<f64>, origin: String| {
+            let uncertainty_note = uncertainty.is_none().then_some(
+                "no `sd` given, or a quantity derived from the parts (a Monte Carlo study samples the parts' own sd)",
+            );
+            q.push(Quantity {
+                key: key.into(),
+                name,
+                value,
+                unit: unit.into(),
+                uncertainty,
+                uncertainty_note,
+                origin,
+                flag: None,
+                dim: None,
+            });
+        };
+        let eps0 = stiction_actuator::VACUUM_PERMITTIVITY;
+        match &st.normal {
+            NormalActuatorSpec::LateralComb(c) => match c.comb.to_model() {
+                Ok(m) => {
+                    push(
+                        "a_normal",
+                        "a_normal = alpha N eps0 t / g (structure.normal.comb)".into(),
+                        m.conversion_factor_n_per_v2(),
+                        "N/V^2",
+                        None,
+                        "derived from structure.normal.comb (finger_count, thickness, gap, fringing_factor)".into(),
+                    );
+                    push(
+                        "spring_force",
+                        "F_0 = k_x x_c (structure.normal)".into(),
+                        m.axial_stiffness_n_per_m * c.contact_travel,
+                        "N",
+                        None,
+                        "derived from structure.normal.comb.stiffness times structure.normal.contact_travel".into(),
+                    );
+                    if let Some(v) = m.side_pull_in_voltage_at_v(c.contact_travel) {
+                        push(
+                            "side_pull_in_normal",
+                            "side pull-in voltage of the normal comb at the wall".into(),
+                            v,
+                            "V",
+                            None,
+                            "derived: sqrt(k_y g^3 / (2 N eps0 t (x0 + x_c))) (Legtenberg et al. 1996)".into(),
+                        );
+                    }
+                }
+                Err(e) => warnings.push(Warning::new("actuator_invalid", format!("structure.normal: {e}"))),
+            },
+            NormalActuatorSpec::PlateElectrode(p) => match p.to_model() {
+                Ok(m) => {
+                    push(
+                        "a_normal",
+                        "a_normal = eps0 A / (2 (g_c + sum t_i/eps_r,i)^2) (structure.normal)".into(),
+                        m.conversion_factor_at_contact_n_per_v2(),
+                        "N/V^2",
+                        None,
+                        format!(
+                            "derived from structure.normal (electrode_area, air_gap_at_contact, {} dielectric \
+                             layer(s): {} m of air equivalent); eps0 = {eps0:e} F/m",
+                            m.dielectric.len(),
+                            sig4(m.dielectric_equivalent_gap_m())
+                        ),
+                    );
+                    push(
+                        "spring_force",
+                        "F_0 = k_z g0 (structure.normal)".into(),
+                        m.spring_force_at_contact_n(),
+                        "N",
+                        None,
+                        "derived from structure.normal.stiffness times travel_to_contact".into(),
+                    );
+                    push(
+                        "contact_voltage_normal",
+                        "voltage that brings the plate down from rest".into(),
+                        m.contact_voltage_v(),
+                        "V",
+                        None,
+                        "derived: pull-in sqrt(8 k_z G^3 / (27 eps0 A)) when G/3 lies before contact, else the \
+                         stable branch at contact"
+                            .into(),
+                    );
+                }
+                Err(e) => warnings.push(Warning::new("actuator_invalid", format!("structure.normal: {e}"))),
+            },
+        }
+        match &st.tangential {
+            TangentialActuatorSpec::LateralComb(c) => match c.to_model() {
+                Ok(m) => push(
+                    "a_tangential",
+                    "a_tangential = alpha N eps0 t / g (structure.tangential)".into(),
+                    m.conversion_factor_n_per_v2(),
+                    "N/V^2",
+                    None,
+                    "derived from structure.tangential (finger_count, thickness, gap, fringing_factor); the same \
+                     at every travel"
+                        .into(),
+                ),
+                Err(e) => warnings.push(Warning::new("actuator_invalid", format!("structure.tangential: {e}"))),
+            },
+            TangentialActuatorSpec::ReleasedSpring(sp) => match sp.to_model() {
+                Ok(m) => push(
+                    "k_tangential",
+                    "released spring stiffness k (structure.tangential)".into(),
+                    m.stiffness_n_per_m,
+                    "N/m",
+                    self.given_sd(&["structure", "tangential", "stiffness"], Dimension::Stiffness),
+                    if sp.stiffness.is_some() {
+                        "given: structure.tangential.stiffness".into()
+                    } else {
+                        "derived from structure.tangential.resonance: k = m (2 pi f)^2".into()
+                    },
+                ),
+                Err(e) => warnings.push(Warning::new("actuator_invalid", format!("structure.tangential: {e}"))),
+            },
+        }
+    }
+
     /// Every quantity the meter uses, its value, uncertainty and origin, and the warnings
     /// (re-derived calibrations, disagreements, a dropped reference).
     pub fn explain(&self) -> Explanation {
@@ -222,6 +367,9 @@ impl Scenario {
             let uncertainty_note = uncertainty.is_none().then_some("no `sd` given: the quantity is taken as exact");
             q.push(Quantity { key, name, value, unit: unit.into(), uncertainty, uncertainty_note, origin, flag, dim });
         };
+        if let Some(st) = &self.structure {
+            self.explain_structure(st, &mut q, &mut warnings);
+        }
         for name in ["clamp", "pull"] {
             let Some(spec) = self.actuators.get(name) else { continue };
             let model = match spec.to_model() {

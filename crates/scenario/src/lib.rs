@@ -25,6 +25,7 @@ mod error;
 mod overrides;
 mod scenario;
 mod spec;
+pub mod structure;
 mod text;
 mod warning;
 pub use device::{Explanation, Quantity, SPRING_FORCE_RELATIVE_TOLERANCE};
@@ -175,7 +176,27 @@ impl Scenario {
             e.validate().map_err(|(p, msg)| (format!("environment.{p}"), msg))?;
         }
         if let Some(c) = &self.contact {
-            c.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+            // Dimples give the discrete model its number of contacts (one source of truth).
+            let dimples = self.structure.as_ref().and_then(|st| match st.geometry {
+                structure::GeometrySpec::Dimples { count, .. } => Some(count),
+                _ => None,
+            });
+            if let Some(count) = dimples {
+                if c.contacts.is_some() {
+                    return Err((
+                        "contact.contacts".into(),
+                        format!(
+                            "given beside `structure.geometry` dimples ({count}): the dimples are the contacts; drop \
+                             `contact.contacts`"
+                        ),
+                    ));
+                }
+                let mut with = c.clone();
+                with.contacts = Some(count as usize);
+                with.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+            } else {
+                c.validate().map_err(|(p, msg)| (format!("contact.{p}"), msg))?;
+            }
             let on_map = self.surface.as_ref().is_some_and(|s| s.source == stiction_surface::SurfaceSource::HeightMap);
             if c.model == ContactModel::Bem && !on_map {
                 return Err((
@@ -183,6 +204,34 @@ impl Scenario {
                     "\"bem\" solves on a grid: it needs `surface.source` = \"height_map\" (a measured or generated \
                      `height_map`); summit lists have no surface between the summits"
                         .into(),
+                ));
+            }
+        }
+        if let Some(st) = &self.structure {
+            st.validate().map_err(|(p, msg)| (format!("structure.{p}"), msg))?;
+            if self.meter.is_some() || !self.actuators.is_empty() {
+                return Err((
+                    "structure".into(),
+                    "a scenario describes one device: a `structure` built from parts, or the paper's `actuators` \
+                     and `meter`, not both"
+                        .into(),
+                ));
+            }
+            if self.surface.is_none() {
+                return Err(("surface".into(), "missing: a scenario with a `structure` needs a surface".into()));
+            }
+            if self.material.is_none() {
+                return Err(("material".into(), "missing: a scenario with a `structure` needs a material".into()));
+            }
+            let model = self.contact_or_default().model;
+            let dimples = matches!(st.geometry, structure::GeometrySpec::Dimples { .. });
+            if dimples != (model == ContactModel::Discrete) {
+                return Err((
+                    "structure.geometry.kind".into(),
+                    format!(
+                        "dimples are the discrete model's N spheres and need `contact.model` = \"discrete\" (and a \
+                         discrete model needs dimples here); found {model}"
+                    ),
                 ));
             }
         }

@@ -40,6 +40,10 @@ pub struct Scenario {
     /// The meter: spring force, voltage protocol, slip criterion.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub meter: Option<MeterSpec>,
+    /// A friction test structure built from parts (comb drives, a plate electrode, a released
+    /// spring), instead of the paper's `actuators` and `meter` (docs/experiment.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub structure: Option<crate::structure::StructureSpec>,
     /// Measured data to compare with, if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub measured: Option<MeasuredSpec>,

@@ -480,6 +480,11 @@ pub struct MeterSpec {
     /// for a longer sweep.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_clamp_voltages: Option<u64>,
+    /// How the laboratory turned its forces into a friction coefficient, reported as
+    /// `lab_coefficient` beside mu_e,a (absent: eq. 10 itself, the paper's reduction, and no
+    /// `lab_coefficient`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lab_reduction: Option<crate::structure::LabReductionSpec>,
 }
 
 /// The pull shuttle's dynamics after slip: `m x'' = F_e(x, V) - k x - c x' - F_k`.

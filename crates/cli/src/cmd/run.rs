@@ -63,8 +63,13 @@ pub fn run(args: Args) -> CliResult {
     }
     print_summary(&output, scenario.reference.as_ref(), scenario.mu_calibration_relative_sd());
     if let Some(dir) = &args.out {
+        let fig5 = if output.result.points.iter().any(|p| p.displacement_m.is_some()) {
+            ""
+        } else {
+            "fig5.svg, fig5.png, fig5.csv, "
+        };
         crate::outln!(
-            "\nwrote {}/results.json, results.csv, fig5.svg, fig5.png, fig5.csv, fig7.svg, fig7.png, fig7.csv, manifest.json",
+            "\nwrote {}/results.json, results.csv, {fig5}fig7.svg, fig7.png, fig7.csv, manifest.json",
             dir.display()
         );
     }
@@ -141,6 +146,12 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
             r.fit_note.as_deref().unwrap_or("the fitted slope is not positive, so mu_e,a and F_a0 are undefined")
         ),
     }
+    if let Some(lab) = &r.lab_coefficient {
+        let c =
+            lab.coefficient.map_or_else(|| lab.coefficient_reason.clone().unwrap_or_default(), |c| format!("{c:.3}"));
+        let sd = lab.spread.map_or(String::new(), |s| format!(" (spread {s:.3})"));
+        crate::outln!("  the lab's reduction ({}): {c}{sd} over {} points", lab.kind, lab.points);
+    }
     for w in &r.warnings {
         crate::outln!("  warning [{}]: {}", w.code, w.message);
     }
@@ -188,7 +199,11 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
             "  after slip the pull shuttle reaches its stop in {t0:.1}-{t1:.1} us at {v0:.2}-{v1:.2} m/s (rapier dynamics)"
         );
     }
-    let stuck = r.points.iter().filter(|p| p.in_contact && p.error.is_none() && p.v_pull.is_none()).count();
+    let stuck = r
+        .points
+        .iter()
+        .filter(|p| p.in_contact && p.error.is_none() && p.v_pull.is_none() && p.displacement_m.is_none())
+        .count();
     if stuck > 0 {
         crate::outln!(
             "  {stuck} clamp voltages: no slip up to pull_voltage_max (friction above what the pull array can give)"
@@ -244,7 +259,12 @@ fn write_outputs(
     let measured_name = scenario.measured.as_ref().map(|m| {
         m.voltages_csv.file_name().map_or_else(|| m.voltages_csv.display().to_string(), |n| n.to_string_lossy().into())
     });
-    let fig5 = fig.apply(fig5_chart(o, scenario, base, measured_name.as_deref())?)?;
+    // Fig. 5 is in pull voltages: none for a released spring (a `structure` whose tangential load is k x).
+    let fig5 = if o.result.points.iter().any(|p| p.displacement_m.is_some()) {
+        None
+    } else {
+        Some(fig.apply(fig5_chart(o, scenario, base, measured_name.as_deref())?)?)
+    };
     let (fig7, fig7_notes) = fig7_chart(o, scenario, meter, base, measured_name.as_deref())?;
     let fig7 = fig.apply(fig7)?;
     let mut json = serde_json::to_value(o)?;
@@ -254,7 +274,12 @@ fn write_outputs(
             // What the figure's short caption leaves out.
             f.insert("notes".into(), serde_json::json!(fig7_notes));
         }
-        obj.insert("figures".into(), serde_json::json!({"fig5": fig5.data_json(), "fig7": fig7_json}));
+        let mut figures = serde_json::Map::new();
+        if let Some(f5) = &fig5 {
+            figures.insert("fig5".into(), f5.data_json());
+        }
+        figures.insert("fig7".into(), fig7_json);
+        obj.insert("figures".into(), figures.into());
     }
     set.add_bytes("results.json", crate::output::json_text(&json)?.as_bytes())?;
     let mut w = csv::Writer::from_writer(Vec::new());
@@ -309,7 +334,9 @@ fn write_outputs(
     }
     let csv_bytes = w.into_inner().map_err(|e| format!("results.csv: {e}"))?;
     set.add_bytes("results.csv", &csv_bytes)?;
-    set.add_figure("fig5", &fig5)?;
+    if let Some(f5) = &fig5 {
+        set.add_figure("fig5", f5)?;
+    }
     set.add_figure("fig7", &fig7)?;
     set.commit()
 }
@@ -351,6 +378,8 @@ fn fig5_chart(
         .map(|(l_un, f_un)| {
             ((l_un * 1e-6 + red.spring_force_n) / red.a_clamp_n_per_v2, f_un * 1e-6 / red.a_pull_n_per_v2)
         })
+        // A released spring (a `structure`) has no pull voltage: no curve in pull voltages.
+        .filter(|_| red.a_pull_n_per_v2 > 0.0)
         .collect();
     let mut chart = Chart::new(
         format!("Fig. 5: pull voltage at slip, {}", what(r, measured)),
@@ -370,7 +399,8 @@ fn fig5_chart(
     let eq10 = |fit: &stiction_meter::fit::LineFit, x: f64| {
         (fit.intercept + fit.slope * (red.a_clamp_n_per_v2 * x - red.spring_force_n)) / red.a_pull_n_per_v2
     };
-    if let (Some(fit), Some(fa0)) = (&r.fit, r.apparent_adhesion_force_n) {
+    // (A released spring's fit has no pull voltages to draw it in.)
+    if let (Some(fit), Some(fa0), false) = (&r.fit, r.apparent_adhesion_force_n, pts.is_empty()) {
         let x0 = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min).max(v2_min);
         let x1 = pts.iter().map(|p| p.0).fold(0.0, f64::max);
         chart.series.push(
