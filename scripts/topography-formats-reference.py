@@ -34,6 +34,14 @@ FILES = {
     "x3p-2.x3p": [0],
     "sur-3.sur": [0],
     "opd-1.opd": [0],
+    "plu-1.plu": [0],
+    "metropro-1.dat": [0],
+    "nid-1.nid": [0, 1, 2],
+    "stp-1.stp": [0],
+    "mi-1.mi": [0, 1],
+    "al3d-1.al3d": [0],
+    "example_ps.tiff": [0],
+    "nc-1.nc": [0],
 }
 
 

@@ -13,4 +13,6 @@ mod binding;
 #[cfg(feature = "python")]
 mod module;
 #[cfg(feature = "python")]
+mod read_map;
+#[cfg(feature = "python")]
 mod requests;

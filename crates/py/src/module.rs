@@ -12,6 +12,7 @@ fn _stiction(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<binding::PyJson>()?;
     m.add_function(wrap_pyfunction!(binding::run_json, m)?)?;
     m.add_function(wrap_pyfunction!(binding::topography_json, m)?)?;
+    m.add_function(wrap_pyfunction!(crate::read_map::_read_map, m)?)?;
     m.add_function(wrap_pyfunction!(binding::study_json, m)?)?;
     m.add_function(wrap_pyfunction!(requests::gw_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(requests::discrete_json, m)?)?;

@@ -2,7 +2,8 @@
 //! `std::fs::read` of the same file (the floor: the bytes must come in):
 //!
 //! * `formats/nanoscope_int16_4096` (32 MiB), `formats/sdf_binary_int16_4096` (32 MiB),
-//!   `formats/ibw_float32_4096` (64 MiB): `read_file` (detection, header, decoding into a map of
+//!   `formats/ibw_float32_4096` (64 MiB), `formats/metropro_int32_4096` (Zygo, 64 MiB),
+//!   `formats/plu_float32_4096` (Sensofar, 64 MiB): `read_file` (detection, header, decoding into a map of
 //!   float64 metres, the checks of every height);
 //! * `formats/fs_read_*`: `std::fs::read` of the same file;
 //! * `formats/fs_read_then_widen_int16_4096`: `std::fs::read` and each int16 sample widened into a
@@ -49,6 +50,12 @@ fn bench(c: &mut Criterion) {
                 &["Height"],
                 &ints.iter().map(|&v| v as f32 * 1e-12).collect::<Vec<_>>(),
             ),
+        ),
+        ("metropro_int32_4096", "map.dat", synth::metropro(N, N, 1e-8, &ints)),
+        (
+            "plu_float32_4096",
+            "map.plu",
+            synth::plu(N, N, 0.01, &ints.iter().map(|&v| Some(v as f32 * 1e-6)).collect::<Vec<_>>()),
         ),
     ];
     drop(ints);

@@ -28,6 +28,7 @@ mod read;
 mod spec;
 mod stats;
 mod summits;
+mod with_metadata;
 
 pub use error::TopographyError;
 pub use formats::nanoscope::NANOSCOPE_MAX_HEADER_BYTES;
@@ -48,3 +49,4 @@ pub use stats::{
     summit_stats,
 };
 pub use summits::{Summits, find_summits, find_summits_in};
+pub use with_metadata::{MapMetadataRead, read_map_with_metadata};

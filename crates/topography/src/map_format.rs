@@ -32,6 +32,22 @@ pub enum MapFormat {
     Sur,
     /// Wyko / Bruker Vision `.opd` (white-light interferometers), undefined points missing.
     Opd,
+    /// Sensofar `.plu` (confocal and interferometric profilers): float32 µm heights, non-measured points missing.
+    Plu,
+    /// Zygo MetroPro `.dat` (interferometers): int32 phase with the scale in the header, invalid points missing.
+    Metropro,
+    /// netCDF classic or 64-bit offset `.nc` as contact.engineering writes a map (`heights(x, y)`, `x:length`, `x:unit`, `mask`).
+    Netcdf,
+    /// WSxM `.stp`, `.top` (Nanotec AFMs): a text header and double, float or int16 samples.
+    Wsxm,
+    /// Agilent / Keysight PicoView `.mi` (AFMs): int16/int32 buffers with their range and unit.
+    Mi,
+    /// Nanosurf `.nid`, `.ezd` (AFMs): an INI header and binary data sets, one channel each.
+    Nid,
+    /// Alicona `.al3d` (focus-variation microscopes): float32 depth in metres, invalid points missing.
+    Al3d,
+    /// Park Systems AFM TIFF (`.tiff`, `.tif` with the Park tags): int16/int32/float32 with gain, scale and offset.
+    Park,
 }
 
 impl MapFormat {
@@ -58,6 +74,13 @@ impl MapFormat {
             "x3p" => MapFormat::X3p,
             "sur" => MapFormat::Sur,
             "opd" => MapFormat::Opd,
+            "plu" => MapFormat::Plu,
+            "nc" => MapFormat::Netcdf,
+            "stp" | "top" => MapFormat::Wsxm,
+            "mi" => MapFormat::Mi,
+            "nid" | "ezd" => MapFormat::Nid,
+            "al3d" => MapFormat::Al3d,
+            "tiff" | "tif" => MapFormat::Park,
             _ => return None,
         })
     }
@@ -80,6 +103,14 @@ impl MapFormat {
             MapFormat::X3p => "x3p",
             MapFormat::Sur => "sur",
             MapFormat::Opd => "opd",
+            MapFormat::Plu => "plu",
+            MapFormat::Metropro => "metropro",
+            MapFormat::Netcdf => "netcdf",
+            MapFormat::Wsxm => "wsxm",
+            MapFormat::Mi => "mi",
+            MapFormat::Nid => "nid",
+            MapFormat::Al3d => "al3d",
+            MapFormat::Park => "park",
         }
     }
 }

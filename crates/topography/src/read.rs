@@ -48,8 +48,16 @@ impl FromStr for MapFormat {
             "x3p" => Ok(MapFormat::X3p),
             "sur" => Ok(MapFormat::Sur),
             "opd" => Ok(MapFormat::Opd),
+            "plu" => Ok(MapFormat::Plu),
+            "metropro" => Ok(MapFormat::Metropro),
+            "netcdf" => Ok(MapFormat::Netcdf),
+            "wsxm" => Ok(MapFormat::Wsxm),
+            "mi" => Ok(MapFormat::Mi),
+            "nid" => Ok(MapFormat::Nid),
+            "al3d" => Ok(MapFormat::Al3d),
+            "park" => Ok(MapFormat::Park),
             _ => Err(format!(
-                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur or opd"
+                "unknown height-map format `{s}`: expected npy, text, gsf, xyz, nanoscope, ibw, sdf, x3p, sur, opd, plu, metropro, netcdf, wsxm, mi, nid, al3d or park"
             )),
         }
     }

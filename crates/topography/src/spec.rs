@@ -23,8 +23,8 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::{
-    HeightMap, Levelling, MapFormat, MapInfo, MapMetadata, Preparation, PreparationReport, TopographyError,
-    find_summits_in, parse_length_unit, prepare, read_file,
+    ChannelSelector, HeightMap, Levelling, MapFormat, MapInfo, MapMetadata, Preparation, PreparationReport,
+    TopographyError, find_summits_in, parse_length_unit, prepare, read_file_channel,
 };
 
 /// A height-map file with its metadata and preparation (a scenario's `surface.height_map`).
@@ -40,9 +40,15 @@ pub struct HeightMapSpec {
     /// the statistics a designer assumes, on a grid).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub generated: Option<GeneratedMapSpec>,
-    /// "npy", "text", "gsf" or "xyz"; default: from the file's extension (.npy, .gsf, .xyz, else text).
+    /// The file's format (`nanoscope`, `ibw`, `x3p`, ... or `npy`, `text`, `gsf`, `xyz`); default:
+    /// from the file's content (magic bytes and headers), else its extension (.xyz, else text).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub format: Option<MapFormat>,
+    /// The channel of an instrument file to read: its index (from 0) or its name ("Height",
+    /// "Scan forward (Z-Axis)"); default: the file's first height channel.
+    /// `stiction topography FILE --channels` lists them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub channel: Option<ChannelSelector>,
     /// Pixel size along x \[m\] ("10 nm"), when the file does not state it.
     #[serde(
         default,
@@ -276,7 +282,14 @@ impl HeightMapSpec {
             TopographyError::invalid("file", "absent", "the height-map file (or `generated` for a generated map)")
         })?;
         let path = if file.is_absolute() { file.clone() } else { base_dir.join(file) };
-        let (map, info) = read_file(&path, self.format, &self.metadata()?)?;
+        let (map, info) =
+            read_file_channel(&path, self.format, self.channel.as_ref(), &self.metadata()?).map_err(|e| match e {
+                // A channel the file does not have names the scenario field.
+                TopographyError::Format { origin, line, message } if message.starts_with("no channel") => {
+                    TopographyError::Format { origin, line, message: format!("`channel`: {message}") }
+                }
+                other => other,
+            })?;
         let (prepared, report) = prepare(&map, &self.preparation())?;
         Ok((prepared, info, report))
     }

@@ -51,8 +51,12 @@ fn check_against_reference(file: &str, channel: usize, map: &HeightMap, info: &M
     let sum_sq: f64 = valid.iter().map(|h| h * h).sum();
     let min = valid.iter().copied().fold(f64::INFINITY, f64::min);
     let max = valid.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    // The sum of heights that cancel (a levelled map) is compared to the sum of their magnitudes,
+    // which bounds its rounding: |sum - ref| <= 1e-9 sqrt(n sum of squares).
+    let sum_ref = entry["sum_m"].as_f64().unwrap();
+    let bound = 1e-9 * (valid.len() as f64 * sum_sq).sqrt();
+    assert!((sum - sum_ref).abs() <= bound, "{ctx}: sum {sum:e}, reference {sum_ref:e}");
     for (what, ours, theirs) in [
-        ("sum", sum, entry["sum_m"].as_f64().unwrap()),
         ("sum of squares", sum_sq, entry["sum_sq_m2"].as_f64().unwrap()),
         ("min", min, entry["min_m"].as_f64().unwrap()),
         ("max", max, entry["max_m"].as_f64().unwrap()),
@@ -297,4 +301,281 @@ fn wyko_opd_matches_the_reference_with_its_undefined_points_missing() {
     assert_eq!((info.format, info.missing_pixels), (MapFormat::Opd, 116));
     assert_eq!(info.channel.as_ref().unwrap().name, "Raw");
     check_against_reference("opd-1.opd", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn sensofar_plu_matches_the_reference() {
+    // Heights are float32 in µm; 1000001 marks a non-measured point (none in this file: the
+    // reference counts 0 missing too).
+    let path = data("plu-1.plu");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list.len(), list[0].name.as_str(), list[0].unit.as_str()), (MapFormat::Plu, 1, "layer0", "µm"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!((info.format, info.height_unit_m), (MapFormat::Plu, 1e-6));
+    check_against_reference("plu-1.plu", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn sensofar_non_measured_points_are_missing() {
+    // The real file with two of its heights set to the non-measured marker 1000001.
+    let mut b = std::fs::read(data("plu-1.plu")).unwrap();
+    for k in [0usize, 1000] {
+        let at = 508 + 4 * k;
+        b[at..at + 4].copy_from_slice(&1_000_001f32.to_le_bytes());
+    }
+    let (dir, p) = write_temp("holes.plu", &b);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!(info.missing_pixels, 2);
+    assert!(map.at(0, 0).is_nan() && map.at(1000 % 768, 1000 / 768).is_nan());
+    // A profile (measurement type 1) is refused, named.
+    b[428..432].copy_from_slice(&1u32.to_le_bytes());
+    std::fs::write(&p, &b).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("holes.plu") && e.contains("profile"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn zygo_metropro_matches_the_reference() {
+    // Height = phase x S x O x W / R (MetroPro Reference Guide): S = 0.5, O = 1, W = 570 nm,
+    // R = 32768 (phase resolution 1) in this file.
+    let path = data("metropro-1.dat");
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!((info.format, info.channel.as_ref().unwrap().name.as_str()), (MapFormat::Metropro, "Height"));
+    check_against_reference("metropro-1.dat", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn zygo_invalid_phase_is_missing_and_the_sign_inverts() {
+    let mut b = std::fs::read(data("metropro-1.dat")).unwrap();
+    let phase = 834 + 614_400;
+    let (ref_map, _) = read_file(&data("metropro-1.dat"), None, &none()).unwrap();
+    // Phase values of 2147483640 and above are invalid (the guide's "invalid data" marker).
+    b[phase..phase + 4].copy_from_slice(&2_147_483_640i32.to_be_bytes());
+    b[phase + 8..phase + 12].copy_from_slice(&i32::MAX.to_be_bytes());
+    b[232..234].copy_from_slice(&1i16.to_be_bytes());
+    let (dir, p) = write_temp("holes.dat", &b);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!(info.missing_pixels, 2);
+    assert!(map.at(0, 0).is_nan() && map.at(2, 0).is_nan());
+    assert_eq!(map.at(5, 7), -ref_map.at(5, 7));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn netcdf_as_contact_engineering_writes_it_matches_the_reference() {
+    // heights(x, y) with x the slowest index: pixel (ix, iy) is heights[ix][iy]; x:length and
+    // x:unit give the size (5 x 10 nm).
+    let path = data("nc-1.nc");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list[0].nx, list[0].ny, list[0].unit.as_str()), (MapFormat::Netcdf, 5, 10, "nm"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    check_against_reference("nc-1.nc", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn netcdf_masked_and_fill_points_are_missing_and_netcdf4_is_named() {
+    // A 3 x 2 map written here by the classic-format grammar: heights(x, y) int16 with
+    // scale_factor 0.5 and _FillValue -1, a mask(x, y) marking one point.
+    let heights: Vec<i16> = vec![10, -1, 20, 30, 40, 50];
+    let mask: Vec<i8> = vec![0, 0, 0, 0, 1, 0];
+    let b = synth::netcdf(3, 2, "um", 3.0, 4.0, &heights, 0.5, -1, Some(&mask));
+    let (dir, p) = write_temp("small.nc", &b);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!((map.nx(), map.ny(), map.dx_m(), map.dy_m(), info.missing_pixels), (3, 2, 1e-6, 2e-6, 2));
+    // heights[ix][iy] at ix * ny + iy: (1, 0) is 20 x 0.5 um; (0, 1) the fill; (2, 0) masked.
+    assert!(close(map.at(1, 0), 10e-6, 1e-12), "{}", map.at(1, 0));
+    assert!(map.at(0, 1).is_nan() && map.at(2, 0).is_nan());
+    assert!(close(map.at(2, 1), 25e-6, 1e-12), "{}", map.at(2, 1));
+    // A netCDF-4 file (HDF5) and a CDF-5 file are named, not misread.
+    let mut h = b"\x89HDF\r\n\x1a\n".to_vec();
+    h.extend_from_slice(&b[8..]);
+    std::fs::write(&p, &h).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("small.nc") && e.contains("HDF5"), "{e}");
+    let mut c = b.clone();
+    c[3] = 5;
+    std::fs::write(&p, &c).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("small.nc") && e.contains("CDF-5"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn wsxm_matches_the_reference() {
+    // Double samples are heights in nm (the Z unit), unscaled (Z Amplitude 13.7008 nm is their
+    // range to six digits); the image is stored turned by 180 degrees (Gwyddion's wsxmfile and
+    // SurfaceTopography 1.27.1 agree on both).
+    let path = data("stp-1.stp");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list[0].name.as_str(), list[0].unit.as_str()), (MapFormat::Wsxm, "Topography", "nm"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    check_against_reference("stp-1.stp", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn wsxm_int16_scales_by_the_amplitude_over_the_sample_range() {
+    // int16 samples -100..=100 (range 200) with Z Amplitude 50 nm: 0.25 nm per unit (Gwyddion's
+    // rule); the last stored sample is pixel (0, 0).
+    let (nx, ny) = (4usize, 3usize);
+    let ints: Vec<i16> = (0..12)
+        .map(|k| {
+            if k == 0 {
+                -100
+            } else if k == 11 {
+                100
+            } else {
+                k * 3
+            }
+        })
+        .collect();
+    let raw: Vec<u8> = ints.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let b = synth::wsxm(nx, ny, 400.0, "50 nm", "short", &raw);
+    let (dir, p) = write_temp("ints.stp", &b);
+    let (map, _) = read_file(&p, None, &none()).unwrap();
+    assert_eq!((map.nx(), map.ny()), (4, 3));
+    assert!(close(map.dx_m(), 100e-9, 1e-12), "{}", map.dx_m());
+    assert!(close(map.at(0, 0), 100.0 * 0.25e-9, 1e-12), "{}", map.at(0, 0));
+    assert!(close(map.at(3, 2), -100.0 * 0.25e-9, 1e-12), "{}", map.at(3, 2));
+    assert!(close(map.at(2, 2), 3.0 * 0.25e-9, 1e-12), "{}", map.at(2, 2));
+    // A Z unit that is not a length: listed, not read as heights.
+    std::fs::write(&p, synth::wsxm(nx, ny, 400.0, "2 V", "short", &raw)).unwrap();
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("ints.stp") && e.contains("no height channel"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn picoview_mi_channels_match_the_reference() {
+    // int32 samples x bufferRange / 2^31 in bufferUnit (um for Topography, V for the others).
+    let path = data("mi-1.mi");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    let names: Vec<&str> = list.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!((format, names), (MapFormat::Mi, vec!["Topography", "Deflection", "Friction", "Friction"]));
+    assert_eq!((list[0].unit.as_str(), list[1].unit.as_str()), ("um", "V"));
+    assert!(list[0].is_height && !list[1].is_height);
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!(info.channel.as_ref().unwrap().name, "Topography");
+    check_against_reference("mi-1.mi", 0, &map, &info, 1.0);
+    // Deflection is in volts: not heights.
+    let e = read_file_channel(&path, None, Some(&ChannelSelector::Index(1)), &none()).unwrap_err().to_string();
+    assert!(e.contains("mi-1.mi") && e.contains("not heights"), "{e}");
+}
+
+#[test]
+fn nanosurf_nid_channels_match_the_reference() {
+    // Eight data sets (Deflection in N, Z-Axis in m, Friction force in V, Z-AxisSensor in m, each
+    // forward and backward); SurfaceTopography lists only the four in a length unit, so its
+    // channels 0, 1, 2 are ours 1, 3, 5. value = sample x Dim2Range / 2^32 + Dim2Min + Dim2Range / 2.
+    let path = data("nid-1.nid");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list.len()), (MapFormat::Nid, 8));
+    assert_eq!(list[1].name, "Scan forward (Z-Axis)");
+    assert_eq!((list[0].unit.as_str(), list[0].is_height), ("N", false));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!(info.channel.as_ref().unwrap().index, 1);
+    check_against_reference("nid-1.nid", 0, &map, &info, 1.0);
+    for (ours, theirs) in [(3, 1), (5, 2)] {
+        let (map, info) = read_file_channel(&path, None, Some(&ChannelSelector::Index(ours)), &none()).unwrap();
+        check_against_reference("nid-1.nid", theirs, &map, &info, 1.0);
+    }
+}
+
+#[test]
+fn alicona_al3d_matches_the_reference() {
+    let path = data("al3d-1.al3d");
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    assert_eq!((info.format, map.nx(), map.ny()), (MapFormat::Al3d, 200, 296));
+    check_against_reference("al3d-1.al3d", 0, &map, &info, 1.0);
+}
+
+#[test]
+fn alicona_invalid_points_are_missing_and_odd_rows_are_padded() {
+    // A 3 x 2 depth image written here: rows of 3 float32 padded to 16 bytes (a multiple of 8),
+    // one point at InvalidPixelValue.
+    let b = synth::al3d(3, 2, 1e-6, &[1e-6, 2e-6, 3e-6, 4e-6, 3.0e15, 6e-6]);
+    let (dir, p) = write_temp("odd.al3d", &b);
+    let (map, info) = read_file(&p, None, &none()).unwrap();
+    assert_eq!((map.nx(), map.ny(), info.missing_pixels), (3, 2, 1));
+    assert!(map.at(1, 1).is_nan());
+    assert!(close(map.at(2, 1), 6e-6, 1e-7) && close(map.at(0, 1), 4e-6, 1e-7), "{} {}", map.at(2, 1), map.at(0, 1));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn park_tiff_matches_the_reference() {
+    // Version 2 header, float32 data: height = (sample x scale + offset) x gain in µm.
+    let path = data("example_ps.tiff");
+    let (format, list) = list_channels(&path, None, &none()).unwrap();
+    assert_eq!((format, list[0].name.as_str()), (MapFormat::Park, "Z Height"));
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    check_against_reference("example_ps.tiff", 0, &map, &info, 1.0);
+    // A TIFF without Park's tags is named as such.
+    let mut b = std::fs::read(&path).unwrap();
+    let tag = b.windows(2).position(|w| w == 50432u16.to_le_bytes()).unwrap();
+    b[tag..tag + 2].copy_from_slice(&50000u16.to_le_bytes());
+    let (dir, p) = write_temp("plain.tiff", &b);
+    let e = read_file(&p, None, &none()).unwrap_err().to_string();
+    assert!(e.contains("plain.tiff") && e.contains("Park"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_scenario_height_map_chooses_its_channel() {
+    use stiction_topography::HeightMapSpec;
+    let dir = data("");
+    let spec = |json: &str| -> HeightMapSpec { serde_json::from_str(json).unwrap() };
+    // By name, by index (integer) and by index written as digits: the same data set.
+    let (direct, _) = read_file_channel(&data("nid-1.nid"), None, Some(&ChannelSelector::Index(5)), &none()).unwrap();
+    for json in [
+        r#"{"file": "nid-1.nid", "channel": "Scan backward (Z-Axis)", "level": "none"}"#,
+        r#"{"file": "nid-1.nid", "channel": 5, "level": "none"}"#,
+        r#"{"file": "nid-1.nid", "channel": "5", "level": "none"}"#,
+    ] {
+        let (map, info, _) = spec(json).load(&dir).unwrap();
+        assert_eq!(info.channel.as_ref().unwrap().index, 5, "{json}");
+        assert_eq!(map.heights_m(), direct.heights_m(), "{json}");
+    }
+    // Without `channel`: the first height channel (1, Scan forward (Z-Axis)).
+    let (_, info, _) = spec(r#"{"file": "nid-1.nid", "level": "none"}"#).load(&dir).unwrap();
+    assert_eq!((info.channel.as_ref().unwrap().index, info.channel.as_ref().unwrap().chosen), (1, "default"));
+    // A channel the file lacks names the field and the file's channels.
+    let e = spec(r#"{"file": "nid-1.nid", "channel": 9}"#).load(&dir).unwrap_err().to_string();
+    assert!(e.contains("`channel`") && e.contains("no channel 9") && e.contains("nid-1.nid"), "{e}");
+    let e = serde_json::from_str::<HeightMapSpec>(r#"{"file": "a.nid", "channel": ""}"#).unwrap_err().to_string();
+    assert!(e.contains("channel name or index"), "{e}");
+}
+
+#[test]
+fn a_map_with_its_metadata_is_the_map_read() {
+    // The heights handed over are the map's (metres, row-major), with its pixel sizes, channel
+    // and the file's channel list.
+    let path = data("mi-1.mi");
+    let (map, info) = read_file(&path, None, &none()).unwrap();
+    let (heights, m) = stiction_topography::read_map_with_metadata(&path, None, None, &none()).unwrap();
+    assert_eq!(heights, map.heights_m());
+    assert_eq!((m.nx, m.ny, m.pixel_size_x_m, m.pixel_size_y_m, m.unit), (256, 256, map.dx_m(), map.dy_m(), "m"));
+    assert_eq!((m.channel, m.channels.len(), m.file_height_unit_m), (info.channel, 4, 1e-6));
+    let e = stiction_topography::read_map_with_metadata(&path, None, Some(&ChannelSelector::Index(7)), &none())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no channel 7"), "{e}");
+}
+
+#[test]
+fn park_offset_is_scaled_by_the_gain() {
+    // The bundled file's data offset is 0; with an offset d (µm) every height rises by d x gain
+    // (height = (sample x scale + offset) x gain, the psia layout).
+    let path = data("example_ps.tiff");
+    let (base, _) = read_file(&path, None, &none()).unwrap();
+    let mut b = std::fs::read(&path).unwrap();
+    let h = 1_050_617; // the Park header (tag 50435's offset in this file)
+    let gain = f64::from_le_bytes(b[h + 220..h + 228].try_into().unwrap());
+    assert!(gain != 1.0, "the test needs a gain other than 1: {gain}");
+    b[h + 236..h + 244].copy_from_slice(&0.5f64.to_le_bytes());
+    let (dir, p) = write_temp("offset.tiff", &b);
+    let (map, _) = read_file(&p, None, &none()).unwrap();
+    let rise = 0.5 * gain * 1e-6;
+    assert!(close(map.at(3, 4) - base.at(3, 4), rise, 1e-6), "{} vs {rise}", map.at(3, 4) - base.at(3, 4));
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -43,6 +43,10 @@ const SECRET: &str = "SECRET-do-not-echo-this-line-0123456789";
 
 const ORIGIN: &str = "fuzz-map";
 
+/// The instrument formats (read through `read_instrument`); every one has a fuzz test below.
+const INSTRUMENT: &[&str] =
+    &["nanoscope", "ibw", "sdf", "x3p", "sur", "opd", "plu", "metropro", "netcdf", "wsxm", "mi", "nid", "al3d", "park"];
+
 /// SplitMix64, as in the meter's fuzzer.
 struct Rng(u64);
 impl Rng {
@@ -689,6 +693,281 @@ fn opd_case(rng: &mut Rng) -> Vec<u8> {
     b
 }
 
+/// Structured mutation of a binary file's header and payload: fields at the given offsets set to
+/// extreme integers (`ints`: offset, width) or floats (`floats`: offset, big-endian), the text
+/// `SECRET` written into a name field, the payload truncated, random byte edits.
+fn mutate_header(
+    rng: &mut Rng,
+    b: &mut Vec<u8>,
+    ints: &[(usize, usize)],
+    floats: &[(usize, bool)],
+    names: &[usize],
+    payload_from: usize,
+) {
+    for _ in 0..1 + rng.below(3) {
+        match rng.below(6) {
+            0 | 1 if !ints.is_empty() => {
+                let (at, n) = *rng.pick(ints);
+                poke(rng, b, at, n);
+            }
+            2 if !floats.is_empty() => {
+                let (at, big) = *rng.pick(floats);
+                let v = *rng.pick(&[0.0f32, -1.0, f32::NAN, f32::INFINITY, 1e30, 1e-45]);
+                if at + 4 <= b.len() {
+                    b[at..at + 4].copy_from_slice(&if big { v.to_be_bytes() } else { v.to_le_bytes() });
+                }
+            }
+            3 if !names.is_empty() => {
+                let at = *rng.pick(names);
+                let n = SECRET.len().min(b.len().saturating_sub(at));
+                if n > 0 {
+                    b[at..at + n].copy_from_slice(&SECRET.as_bytes()[..n]);
+                }
+            }
+            4 => {
+                let keep = payload_from + rng.below(b.len().saturating_sub(payload_from) + 1);
+                b.truncate(keep);
+            }
+            _ => byte_noise(rng, b),
+        }
+    }
+}
+
+fn plu_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let h: Vec<Option<f32>> =
+        map.heights_m().iter().map(|&h| if h.is_nan() { None } else { Some((h * 1e6) as f32) }).collect();
+    let mut b = synth::plu(map.nx(), map.ny(), 0.01, &h);
+    let ints = [(388, 4), (392, 4), (428, 4), (489, 1), (500, 4), (504, 4)];
+    mutate_header(rng, &mut b, &ints, &[(404, false), (408, false)], &[0, 500], 500);
+    b
+}
+
+fn metropro_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    // Phase units: 0.5 x 633 nm / 32768 per unit.
+    let unit = 0.5 * 633e-9 / 32768.0;
+    let phase: Vec<i32> = map
+        .heights_m()
+        .iter()
+        .map(|&h| if h.is_nan() { i32::MAX } else { (h / unit).clamp(-1e9, 1e9) as i32 })
+        .collect();
+    let mut b = synth::metropro(map.nx(), map.ny(), 1e-8, &phase);
+    let ints = [(4, 2), (6, 4), (56, 2), (60, 4), (68, 2), (70, 2), (72, 4), (218, 2), (232, 2)];
+    let floats = [(164, true), (168, true), (176, true), (184, true)];
+    mutate_header(rng, &mut b, &ints, &floats, &[], 834);
+    b
+}
+
+fn netcdf_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    // heights(x, y), x slowest, in 0.01 nm steps; -32768 the fill.
+    let h: Vec<i16> = (0..nx * ny)
+        .map(|k| {
+            let v = map.at(k / ny, k % ny);
+            if v.is_nan() { -32768 } else { (v * 1e11).clamp(-32000.0, 32000.0) as i16 }
+        })
+        .collect();
+    let mask: Vec<i8> = (0..nx * ny).map(|k| i8::from(k % 17 == 3)).collect();
+    let with_mask = rng.chance(2);
+    let mut b = synth::netcdf(
+        nx,
+        ny,
+        "nm",
+        nx as f64 * 10.0,
+        ny as f64 * 10.0,
+        &h,
+        0.01,
+        -32768,
+        with_mask.then_some(&mask[..]),
+    );
+    // Every header word (counts, lengths, types, offsets) is a field to set.
+    let header = b.len() - h.len() * 2 - if with_mask { nx * ny } else { 0 };
+    let ints: Vec<(usize, usize)> = (4..header.saturating_sub(4)).step_by(4).map(|at| (at, 4)).collect();
+    let names = [8usize, 16];
+    let from = header.min(b.len());
+    mutate_header(rng, &mut b, &ints, &[], &names, from);
+    b
+}
+
+fn wsxm_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let doubles = rng.chance(2);
+    let raw: Vec<u8> = if doubles {
+        map.heights_m().iter().rev().flat_map(|h| (h * 1e9).to_le_bytes()).collect()
+    } else {
+        samples(&map).iter().rev().flat_map(|&v| (v as i16).to_le_bytes()).collect()
+    };
+    let kind = if doubles { "double" } else { "short" };
+    let mut b = synth::wsxm(map.nx(), map.ny(), map.nx() as f64 * 10.0, "20 nm", kind, &raw);
+    let mut text = String::from_utf8_lossy(&b[..b.len() - raw.len()]).to_string();
+    for _ in 0..1 + rng.below(3) {
+        match rng.below(6) {
+            0 | 1 => {
+                let key = *rng.pick(&[
+                    "Number of columns",
+                    "Number of rows",
+                    "Image Data Type",
+                    "Z Amplitude",
+                    "X Amplitude",
+                    "Y Amplitude",
+                ]);
+                let v =
+                    *rng.pick(&["0", "-1", "4294967296", "1e300", "NaN", "", "2 V", "7 furlongs", "integer", SECRET]);
+                if let Some(a) = text.find(&format!("{key}: ")) {
+                    let from = a + key.len() + 2;
+                    let to = from + text[from..].find('\r').unwrap_or(0);
+                    text.replace_range(from..to, v);
+                }
+            }
+            2 => text = text.replacen("[Header end]", "", 1),
+            3 => text.insert_str(text.len() / 2, SECRET),
+            _ => {}
+        }
+    }
+    let head = text.into_bytes();
+    b = head;
+    b.extend_from_slice(&raw);
+    mutate_header(rng, &mut b, &[], &[], &[], 0);
+    b
+}
+
+fn mi_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    // Rows last first; 0.01 nm per unit (range 32768 x 1e-5 um).
+    let ints: Vec<i16> = (0..ny)
+        .rev()
+        .flat_map(|iy| (0..nx).map(move |ix| (iy, ix)))
+        .map(|(iy, ix)| {
+            let h = map.at(ix, iy);
+            if h.is_nan() { 0 } else { (h * 1e11).clamp(-32000.0, 32000.0) as i16 }
+        })
+        .collect();
+    let b = synth::mi(nx, ny, nx as f64 * 1e-8, 0.32768, &ints);
+    let at = b.windows(4).position(|w| w == b"data").unwrap_or(0);
+    let mut text = String::from_utf8_lossy(&b[..at]).to_string();
+    for _ in 0..rng.below(3) {
+        let key = *rng.pick(&["xPixels", "yPixels", "xLength", "bufferRange", "bufferUnit", "bufferLabel", "fileType"]);
+        let v = *rng.pick(&["0", "-1", "4294967296", "1e300", "NaN", "", "V", "nm", "Spectroscopy", SECRET]);
+        if let Some(a) = text.find(key) {
+            let from = a + 14;
+            let to = from + text[from..].find('\n').unwrap_or(0);
+            if from <= to {
+                text.replace_range(from..to, v);
+            }
+        }
+    }
+    let mut out = text.into_bytes();
+    out.extend_from_slice(&b[at..]);
+    let from = at.min(out.len());
+    mutate_header(rng, &mut out, &[], &[], &[], from);
+    out
+}
+
+fn nid_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    // Z range 2^32 x 1e-12 m: 1 pm per unit, rows last first.
+    let ints: Vec<i32> = (0..ny)
+        .rev()
+        .flat_map(|iy| (0..nx).map(move |ix| (ix, iy)))
+        .map(|(ix, iy)| {
+            let h = map.at(ix, iy);
+            if h.is_nan() { 0 } else { (h * 1e12).clamp(-1e9, 1e9) as i32 }
+        })
+        .collect();
+    let b = synth::nid(nx, ny, nx as f64 * 1e-8, 4294967296.0 * 1e-12, &ints);
+    let at = b.windows(2).position(|w| w == b"#!").unwrap_or(0);
+    let mut text = String::from_utf8_lossy(&b[..at]).to_string();
+    for _ in 0..rng.below(3) {
+        let key = *rng.pick(&[
+            "GroupCount=",
+            "Gr0-Count=",
+            "Gr0-Ch0=",
+            "Points=",
+            "Lines=",
+            "Dim0Range=",
+            "Dim2Range=",
+            "Dim2Min=",
+            "Dim2Unit=",
+            "SaveBits=",
+            "SaveSign=",
+            "SaveMode=",
+            "SaveOrder=",
+        ]);
+        let v = *rng.pick(&[
+            "0",
+            "-1",
+            "4294967296",
+            "1e300",
+            "NaN",
+            "",
+            "8",
+            "16",
+            "Unsigned",
+            "Text",
+            "Motorola",
+            "nm",
+            SECRET,
+        ]);
+        if let Some(a) = text.find(key) {
+            let from = a + key.len();
+            let to = from + text[from..].find('\r').unwrap_or(0);
+            text.replace_range(from..to, v);
+        }
+    }
+    let mut out = text.into_bytes();
+    out.extend_from_slice(&b[at..]);
+    let from = at.min(out.len());
+    mutate_header(rng, &mut out, &[], &[], &[], from);
+    out
+}
+
+fn al3d_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let depth: Vec<f32> = map.heights_m().iter().map(|&h| if h.is_nan() { 3.0e15 } else { h as f32 }).collect();
+    let mut b = synth::al3d(map.nx(), map.ny(), 1e-8, &depth);
+    // The tags' values (30 bytes after each 20-byte key) and the key of a tag.
+    let values: Vec<usize> = (0..9).map(|k| 17 + k * 52 + 20).collect();
+    let ints: Vec<(usize, usize)> = values.iter().map(|&at| (at, 4)).collect();
+    if rng.chance(3) {
+        let at = *rng.pick(&values);
+        let v = *rng.pick(&["0", "-1", "4294967296", "1e300", "NaN", "", "99999999999", SECRET]);
+        let n = v.len().min(30);
+        b[at..at + 30].fill(0);
+        b[at..at + n].copy_from_slice(&v.as_bytes()[..n]);
+    }
+    let from = 17 + 9 * 52 + 256;
+    mutate_header(rng, &mut b, &ints, &[], &[17, 17 + 52 * 3], from);
+    b
+}
+
+fn park_case(rng: &mut Rng) -> Vec<u8> {
+    let map = base_map(rng);
+    let (nx, ny) = (map.nx(), map.ny());
+    let um: Vec<f32> = (0..ny)
+        .rev()
+        .flat_map(|iy| (0..nx).map(move |ix| (ix, iy)))
+        .map(|(ix, iy)| (map.at(ix, iy) * 1e6) as f32)
+        .collect();
+    let mut b = synth::park(nx, ny, nx as f64 * 0.01, &um);
+    // The IFD entries' counts and offsets, and the Park header's fields.
+    let h = b.len() - 352;
+    let mut ints: Vec<(usize, usize)> =
+        (0..4).flat_map(|k| [(10 + 12 * k, 2), (14 + 12 * k, 4), (18 + 12 * k, 4)]).collect();
+    ints.extend([(4, 4), (8, 2), (h, 4), (h + 100, 4), (h + 104, 4), (h + 348, 4)]);
+    let floats: Vec<(usize, bool)> = Vec::new();
+    if rng.chance(4) {
+        let at = *rng.pick(&[h + 140, h + 148, h + 220, h + 228, h + 236]);
+        let v = *rng.pick(&[0.0f64, -1.0, f64::NAN, f64::INFINITY, 1e300, 1e-300]);
+        b[at..at + 8].copy_from_slice(&v.to_le_bytes());
+    }
+    mutate_header(rng, &mut b, &ints, &floats, &[h + 4, h + 244], 58);
+    b
+}
+
 fn preparation(rng: &mut Rng) -> Preparation {
     let cut = [
         None,
@@ -721,6 +1000,9 @@ struct Counts {
 }
 
 fn check_error(e: &TopographyError, case: &str) {
+    if std::env::var("FUZZ_SHOW").is_ok() {
+        eprintln!("{case}: {e}");
+    }
     let m = e.to_string();
     assert!(!m.contains(SECRET), "an error echoes the file ({case}): {m}");
     assert!(m.chars().count() <= MAX_ERROR_CHARS, "an error of {} chars ({case}): {m}", m.chars().count());
@@ -742,7 +1024,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
             let read = match name {
                 "npy" => read_npy(&bytes, ORIGIN, &m),
                 "gsf" => read_gsf(&bytes, ORIGIN, &m),
-                "nanoscope" | "ibw" | "sdf" | "x3p" | "sur" | "opd" => {
+                _ if INSTRUMENT.contains(&name) => {
                     let format: MapFormat = name.parse().unwrap();
                     // Detection never panics and, on an unmutated magic, names the format.
                     let _ = detect(&bytes);
@@ -753,7 +1035,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
                     };
                     read_instrument(&bytes, format, ORIGIN, sel.as_ref(), &m)
                 }
-                _ => {
+                "text" | "xyz" => {
                     // The text readers take what `read_input_text` gives: UTF-8 without a BOM.
                     let text = match std::str::from_utf8(&bytes) {
                         Ok(t) => t.trim_start_matches('\u{feff}').to_string(),
@@ -761,6 +1043,7 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
                     };
                     if name == "text" { read_text_grid(&text, ORIGIN, &m) } else { read_xyz(&text, ORIGIN, &m) }
                 }
+                other => panic!("no reader for the fuzzed format {other}"),
             };
             let (map, _info) = match read {
                 Ok(x) => x,
@@ -861,5 +1144,53 @@ fn sdf_files_keep_the_contract() {
 #[test]
 fn xyz_lists_keep_the_contract() {
     let c = run_format("xyz", xyz_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn plu_files_keep_the_contract() {
+    let c = run_format("plu", plu_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn metropro_files_keep_the_contract() {
+    let c = run_format("metropro", metropro_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn netcdf_files_keep_the_contract() {
+    let c = run_format("netcdf", netcdf_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn wsxm_files_keep_the_contract() {
+    let c = run_format("wsxm", wsxm_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn mi_files_keep_the_contract() {
+    let c = run_format("mi", mi_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn nid_files_keep_the_contract() {
+    let c = run_format("nid", nid_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn al3d_files_keep_the_contract() {
+    let c = run_format("al3d", al3d_case, seed());
+    assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
+}
+
+#[test]
+fn park_files_keep_the_contract() {
+    let c = run_format("park", park_case, seed());
     assert!(c.analysed > 0 && c.refused > 0, "{c:?}");
 }

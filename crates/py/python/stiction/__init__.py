@@ -181,6 +181,35 @@ def topography(
     return Result(data, {"summits": summits})
 
 
+def read_map(
+    path: Union[str, "_os.PathLike[str]"],
+    channel: Union[str, int, None] = None,
+    format: Optional[str] = None,
+    pixel_size: Union[str, float, None] = None,
+    height_unit: Optional[str] = None,
+) -> tuple:
+    """Read a height-map file in any format stiction reads (instrument files by their content:
+    NanoScope, Igor, X3P, SDF, Digital Surf, Wyko, Sensofar, MetroPro, Nanosurf, WSxM, PicoView,
+    Alicona, Park TIFF, netCDF; or npy, gsf, text, xyz) as ``stiction topography FILE`` reads it.
+
+    channel: an instrument file's channel, its index or its name; default: the first height
+    channel. pixel_size, height_unit: only for a file that lacks them (a length or metres; a
+    length unit such as "nm").
+
+    Returns ``(heights, metadata)``: heights a (ny, nx) float64 array in metres, rows = y, NaN
+    where a pixel is missing (handed over without a copy); metadata a dict with ``nx``, ``ny``,
+    ``pixel_size_x_m``, ``pixel_size_y_m``, ``unit`` ("m"), ``file_height_unit_m``,
+    ``missing_pixels``, ``format``, ``channel`` (index, name, of, chosen) and ``channels`` (the
+    file's channel list).
+    """
+    if pixel_size is not None and not isinstance(pixel_size, str):
+        pixel_size = f"{float(pixel_size)!r} m"
+    heights, meta = _stiction._read_map(
+        _os.fspath(path), format, None if channel is None else str(channel), pixel_size, height_unit
+    )
+    return heights, _json.loads(meta)
+
+
 def study(
     scenario: PathOrScenario,
     samples: int = 100,

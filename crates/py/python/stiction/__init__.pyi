@@ -62,6 +62,13 @@ def topography(
     long_cutoff: Quantity = None,
     scenario: Optional[PathOrScenario] = None,
 ) -> Result: ...
+def read_map(
+    path: Union[str, "os.PathLike[str]"],
+    channel: Union[str, int, None] = None,
+    format: Optional[str] = None,
+    pixel_size: Quantity = None,
+    height_unit: Optional[str] = None,
+) -> Tuple[npt.NDArray[np.float64], Dict[str, Any]]: ...
 def study(
     scenario: PathOrScenario,
     samples: int = 100,

@@ -8,11 +8,20 @@
 //! and the height scale come from the file; what a file lacks is asked for by name (the crate's
 //! `MapMetadata`), never guessed.
 
+pub(crate) mod al3d;
+mod fields;
 pub(crate) mod ibw;
+pub(crate) mod metropro;
+pub(crate) mod mi;
 pub mod nanoscope;
+pub(crate) mod nc;
+pub(crate) mod nid;
 pub(crate) mod opd;
+pub(crate) mod park;
+pub(crate) mod plu;
 pub(crate) mod sdf;
 pub(crate) mod sur;
+pub(crate) mod wsxm;
 pub mod x3p;
 
 use serde::Serialize;
@@ -67,17 +76,31 @@ impl Sample {
     }
 }
 
+/// Which stored samples mark a missing pixel (besides NaN in float types, always missing).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Missing {
+    /// A sample equal to this value (e.g. Digital Surf's `zmin - 2`, Sensofar's 1000001).
+    Equal(f64),
+    /// A sample at or above this value (e.g. Zygo MetroPro's 2147483640).
+    AtLeast(f64),
+}
+
 /// Where a channel's `nx x ny` samples lie in the file: from `offset`, x fastest, rows in file
-/// order (row 0 of the map is the file's last row when `flip_y`); value = sample x `scale`, in
-/// the channel's unit; a sample equal to `invalid` (integer types) or NaN (float types) is missing.
+/// order (row 0 of the map is the file's last row when `flip_y`; column 0 the row's last sample
+/// when `flip_x`); value = sample x `scale` + `shift`, in the channel's unit; a sample `invalid` marks, or NaN
+/// (float types), is missing.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Raster {
     pub offset: usize,
     pub sample: Sample,
     pub big_endian: bool,
+    pub flip_x: bool,
     pub flip_y: bool,
     pub scale: f64,
-    pub invalid: Option<i64>,
+    pub shift: f64,
+    /// Bytes from one row's start to the next's, if rows are padded (else `nx` samples).
+    pub row_bytes: Option<usize>,
+    pub invalid: Option<Missing>,
 }
 
 /// How a channel's values are had.
@@ -118,6 +141,22 @@ pub fn detect(bytes: &[u8]) -> Option<MapFormat> {
         Some(MapFormat::Sur)
     } else if x3p::is_zip(bytes) {
         Some(MapFormat::X3p)
+    } else if plu::is_plu(bytes) {
+        Some(MapFormat::Plu)
+    } else if metropro::is_metropro(bytes) {
+        Some(MapFormat::Metropro)
+    } else if nc::is_nc(bytes) {
+        Some(MapFormat::Netcdf)
+    } else if wsxm::is_wsxm(bytes) {
+        Some(MapFormat::Wsxm)
+    } else if mi::is_mi(bytes) {
+        Some(MapFormat::Mi)
+    } else if nid::is_nid(bytes) {
+        Some(MapFormat::Nid)
+    } else if al3d::is_al3d(bytes) {
+        Some(MapFormat::Al3d)
+    } else if park::is_park(bytes) {
+        Some(MapFormat::Park)
     } else {
         None
     }
@@ -132,17 +171,64 @@ pub(crate) fn channels(format: MapFormat, bytes: &[u8], origin: &str) -> Result<
         MapFormat::X3p => x3p::channels(bytes, origin),
         MapFormat::Sur => sur::channels(bytes, origin),
         MapFormat::Opd => opd::channels(bytes, origin),
+        MapFormat::Plu => plu::channels(bytes, origin),
+        MapFormat::Metropro => metropro::channels(bytes, origin),
+        MapFormat::Netcdf => nc::channels(bytes, origin),
+        MapFormat::Wsxm => wsxm::channels(bytes, origin),
+        MapFormat::Mi => mi::channels(bytes, origin),
+        MapFormat::Nid => nid::channels(bytes, origin),
+        MapFormat::Al3d => al3d::channels(bytes, origin),
+        MapFormat::Park => park::channels(bytes, origin),
         other => Err(TopographyError::format(origin, 0, format!("{other} files have no channel list"))),
     }
 }
 
-/// Which channel to read: by index or by name.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// Which channel to read: by index or by name. In a scenario (`surface.height_map.channel`) an
+/// integer (the index) or a string (a name, or an index written as digits).
+#[derive(Debug, Clone, PartialEq, Eq, schemars::JsonSchema)]
+#[schemars(with = "ChannelSelectorInput")]
 pub enum ChannelSelector {
     /// The channel at this index (from 0).
     Index(usize),
     /// The first channel with this name (case-insensitive).
     Name(String),
+}
+
+/// The JSON form of a [`ChannelSelector`]: a channel index or a channel name.
+#[derive(schemars::JsonSchema)]
+#[serde(untagged)]
+#[allow(dead_code)]
+enum ChannelSelectorInput {
+    /// The channel's index in the file, from 0.
+    Index(u32),
+    /// The channel's name (case-insensitive), or its index as digits.
+    Name(String),
+}
+
+impl Serialize for ChannelSelector {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            ChannelSelector::Index(k) => s.serialize_u64(*k as u64),
+            ChannelSelector::Name(n) => s.serialize_str(n),
+        }
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for ChannelSelector {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(serde::Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Index(u64),
+            Name(String),
+        }
+        match Raw::deserialize(d)? {
+            Raw::Index(k) => usize::try_from(k)
+                .map(ChannelSelector::Index)
+                .map_err(|_| serde::de::Error::custom(format!("channel index {k} is too large"))),
+            Raw::Name(n) => n.parse().map_err(serde::de::Error::custom),
+        }
+    }
 }
 
 impl std::str::FromStr for ChannelSelector {
@@ -254,7 +340,10 @@ pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Res
         Values::Raster(r) => r,
     };
     let size = r.sample.bytes();
-    let end = n.checked_mul(size).and_then(|b| b.checked_add(r.offset));
+    let stride = r.row_bytes.unwrap_or(nx * size).max(nx * size);
+    // The last row ends `nx x size` bytes after its start.
+    let span = if n == 0 { Some(0) } else { stride.checked_mul(ny - 1).and_then(|b| b.checked_add(nx * size)) };
+    let end = span.and_then(|b| b.checked_add(r.offset));
     let data = match end {
         Some(e) if e <= bytes.len() => &bytes[r.offset..e],
         _ => {
@@ -273,8 +362,12 @@ pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Res
     let mut out = Vec::with_capacity(n);
     for iy in 0..ny {
         let row = if r.flip_y { ny - 1 - iy } else { iy };
-        let line = &data[row * nx * size..(row + 1) * nx * size];
-        convert_row(line, r, r.scale * unit, &mut out);
+        let line = &data[row * stride..row * stride + nx * size];
+        let start = out.len();
+        convert_row(line, r, (r.scale * unit, r.shift * unit), &mut out);
+        if r.flip_x {
+            out[start..].reverse();
+        }
     }
     Ok(out)
 }
@@ -285,18 +378,19 @@ fn convert<const N: usize, T: Into<f64>>(
     line: &[u8],
     out: &mut Vec<f64>,
     from: fn([u8; N]) -> T,
-    scale: f64,
-    invalid: Option<f64>,
+    (scale, shift): (f64, f64),
+    invalid: Option<Missing>,
 ) {
     let it = line.chunks_exact(N).map(|c| from(c.try_into().unwrap_or([0; N])).into());
     match invalid {
-        Some(inv) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale })),
-        None => out.extend(it.map(|v: f64| v * scale)),
+        Some(Missing::Equal(inv)) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale + shift })),
+        Some(Missing::AtLeast(inv)) => out.extend(it.map(|v: f64| if v >= inv { f64::NAN } else { v * scale + shift })),
+        None => out.extend(it.map(|v: f64| v * scale + shift)),
     }
 }
 
-fn convert_row(line: &[u8], r: &Raster, scale: f64, out: &mut Vec<f64>) {
-    let inv = r.invalid.map(|v| v as f64);
+fn convert_row(line: &[u8], r: &Raster, scale: (f64, f64), out: &mut Vec<f64>) {
+    let inv = r.invalid;
     let be = r.big_endian;
     match r.sample {
         Sample::I8 => convert(line, out, i8::from_le_bytes, scale, inv),
@@ -309,10 +403,10 @@ fn convert_row(line: &[u8], r: &Raster, scale: f64, out: &mut Vec<f64>) {
         Sample::I32 => convert(line, out, i32::from_le_bytes, scale, inv),
         Sample::U32 if be => convert(line, out, u32::from_be_bytes, scale, inv),
         Sample::U32 => convert(line, out, u32::from_le_bytes, scale, inv),
-        Sample::F32 if be => convert(line, out, f32::from_be_bytes, scale, None),
-        Sample::F32 => convert(line, out, f32::from_le_bytes, scale, None),
-        Sample::F64 if be => convert(line, out, f64::from_be_bytes, scale, None),
-        Sample::F64 => convert(line, out, f64::from_le_bytes, scale, None),
+        Sample::F32 if be => convert(line, out, f32::from_be_bytes, scale, inv),
+        Sample::F32 => convert(line, out, f32::from_le_bytes, scale, inv),
+        Sample::F64 if be => convert(line, out, f64::from_be_bytes, scale, inv),
+        Sample::F64 => convert(line, out, f64::from_le_bytes, scale, inv),
     }
 }
 

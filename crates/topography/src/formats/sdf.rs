@@ -14,7 +14,7 @@ use std::collections::HashMap;
 
 use stiction_units::text::{MAX_LINE_BYTES, check_cell, check_line_bytes, excerpt};
 
-use super::{Channel, ChannelInfo, Raster, Sample, Values};
+use super::{Channel, ChannelInfo, Missing, Raster, Sample, Values};
 use crate::{MAX_PIXELS, TopographyError};
 
 const BINARY_HEADER: usize = 81;
@@ -60,10 +60,10 @@ fn channel(h: &Header, origin: &str, values: Values) -> Result<Vec<Channel>, Top
     }])
 }
 
-fn sample_of(data_type: u64, origin: &str) -> Result<(Sample, Option<i64>), TopographyError> {
+fn sample_of(data_type: u64, origin: &str) -> Result<(Sample, Option<Missing>), TopographyError> {
     match data_type {
-        5 => Ok((Sample::I16, Some(i64::from(i16::MIN)))),
-        6 => Ok((Sample::I32, Some(i64::from(i32::MIN)))),
+        5 => Ok((Sample::I16, Some(Missing::Equal(f64::from(i16::MIN))))),
+        6 => Ok((Sample::I32, Some(Missing::Equal(f64::from(i32::MIN))))),
         7 => Ok((Sample::F64, None)),
         t => Err(TopographyError::format(
             origin,
@@ -225,6 +225,16 @@ fn binary(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, TopographyError> {
             ),
         ));
     }
-    let raster = Raster { offset: BINARY_HEADER, sample, big_endian: false, flip_y: false, scale: h.zs, invalid };
+    let raster = Raster {
+        offset: BINARY_HEADER,
+        sample,
+        big_endian: false,
+        flip_x: false,
+        flip_y: false,
+        scale: h.zs,
+        shift: 0.0,
+        row_bytes: None,
+        invalid,
+    };
     channel(&h, origin, Values::Raster(raster))
 }

@@ -13,7 +13,7 @@
 //! several objects, profiles and other object types, inverted or flipped data (inversion flag
 //! other than 0).
 
-use super::{Channel, ChannelInfo, Raster, Sample, Values, clean, latin1, length_unit};
+use super::{Channel, ChannelInfo, Missing, Raster, Sample, Values, clean, latin1, length_unit};
 use crate::TopographyError;
 
 const HEADER: usize = 512;
@@ -94,7 +94,7 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
         return Err(bad(format!("height step {dz:e}: expected a finite value other than 0")));
     }
     let height_unit_m = length_unit(&uz);
-    let invalid = (u16_at(86) == 1).then(|| i64::from(i32_at(100)) - 2);
+    let invalid = (u16_at(86) == 1).then(|| Missing::Equal(f64::from(i32_at(100)) - 2.0));
     Ok(vec![Channel {
         info: ChannelInfo {
             index: 0,
@@ -106,7 +106,17 @@ pub(crate) fn channels(bytes: &[u8], origin: &str) -> Result<Vec<Channel>, Topog
             unit: uz,
             height_unit_m,
         },
-        values: Values::Raster(Raster { offset, sample, big_endian: false, flip_y: false, scale: dz, invalid }),
+        values: Values::Raster(Raster {
+            offset,
+            sample,
+            big_endian: false,
+            flip_x: false,
+            flip_y: false,
+            scale: dz,
+            shift: 0.0,
+            row_bytes: None,
+            invalid,
+        }),
         unreadable: None,
     }])
 }

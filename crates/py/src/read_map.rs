@@ -1,0 +1,42 @@
+//! `read_map(path, ...)`: a height-map file (any format stiction reads) as a NumPy array with its
+//! metadata. The logic is `stiction_topography::read_map_with_metadata`; this file only converts.
+
+use std::path::PathBuf;
+
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use stiction_topography::{ChannelSelector, MapFormat, MapMetadata, parse_length_unit, read_map_with_metadata};
+
+fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// _read_map(path, format, channel, pixel_size, height_unit) -> (heights (ny, nx) float64 in
+/// metres, NaN where missing; metadata JSON text). The heights' buffer is moved into the array,
+/// not copied.
+#[pyfunction]
+#[pyo3(signature = (path, format=None, channel=None, pixel_size=None, height_unit=None))]
+pub(crate) fn _read_map<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    format: Option<&str>,
+    channel: Option<&str>,
+    pixel_size: Option<&str>,
+    height_unit: Option<&str>,
+) -> PyResult<(Bound<'py, PyAny>, String)> {
+    let format: Option<MapFormat> = format.map(str::parse).transpose().map_err(value_error)?;
+    let channel: Option<ChannelSelector> = channel.map(str::parse).transpose().map_err(value_error)?;
+    let height_unit_m = height_unit.map(parse_length_unit).transpose().map_err(value_error)?;
+    let pixel_size_m = pixel_size
+        .map(|p| stiction_units::parse_quantity(p, stiction_units::Dimension::Length))
+        .transpose()
+        .map_err(value_error)?;
+    let meta = MapMetadata { pixel_size_x_m: pixel_size_m, height_unit_m, ..Default::default() };
+    let (heights, m) = py
+        .detach(|| read_map_with_metadata(&path, format, channel.as_ref(), &meta))
+        .map_err(|e| crate::binding::StictionError::new_err(e.to_string()))?;
+    let json = serde_json::to_string(&m).map_err(value_error)?;
+    let array = PyArray1::from_vec(py, heights).reshape([m.ny, m.nx])?;
+    Ok((array.into_any(), json))
+}
