@@ -22,6 +22,7 @@ pub mod design;
 mod device;
 pub mod domain;
 mod error;
+mod lab_reduction;
 mod overrides;
 mod scenario;
 mod spec;

@@ -642,7 +642,7 @@ pub struct MeterSpec {
     /// `lab_coefficient` beside mu_e,a (absent: eq. 10 itself, the paper's reduction, and no
     /// `lab_coefficient`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lab_reduction: Option<crate::structure::LabReductionSpec>,
+    pub lab_reduction: Option<crate::lab_reduction::LabReductionSpec>,
 }
 
 /// The pull shuttle's dynamics after slip: `m x'' = F_e(x, V) - k x - c x' - F_k`.
