@@ -444,3 +444,22 @@ fn bem_rh_follows_the_published_microcantilever_statements() {
     let (coated, _) = gammas("0,0.1,0.9", &["--contact-angle", "110 deg"]);
     assert!(coated.iter().all(|&x| (x / coated[0] - 1.0).abs() < 1e-12), "coated beams: {coated:?}");
 }
+
+/// The generated wall's rms height and Hurst exponent meet the scenario's domains
+/// (`surface.height_map.generated.*`): outside them, exit 2 naming the flag, never a number.
+/// Deliberate bug caught: before the check, `--rms-height "1e30 m"` printed a mean gap of 3.2e18 Tm.
+#[test]
+fn bem_generated_surface_refuses_impossible_walls() {
+    for (flag, value) in [("--rms-height", "1e30 m"), ("--rms-height", "1 m"), ("--hurst", "1.5"), ("--hurst", "0")] {
+        let mut args = vec!["bem", "--size", "0.5um", "--grid", "16", "--pressure", "1 MPa"];
+        if flag != "--rms-height" {
+            args.extend(["--rms-height", "1nm"]);
+        }
+        args.extend([flag, value]);
+        let out = stiction(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(flag) && err.contains("domain"), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}: printed {}", String::from_utf8_lossy(&out.stdout));
+    }
+}

@@ -218,6 +218,19 @@ pub fn generated_surface(args: &BemRequest) -> Result<Surface, Error> {
     if !(2..=MAX_SIDE).contains(&args.grid) {
         return Err(format!("--grid {}: expected 2..={MAX_SIDE} points per side", args.grid).into());
     }
+    // The generated wall's rms height and Hurst exponent in the scenario's domains (a 1e30 m rms
+    // height printed a mean gap of 3e18 Tm); their usual-range notes are the scenario's, not
+    // repeated here.
+    let flag = |f: &str| if f == "rms_height_m" { "--rms-height".to_string() } else { "--hurst".to_string() };
+    let mut unusual = Vec::new();
+    crate::check::domain(
+        &mut unusual,
+        &flag,
+        "rms_height_m",
+        "surface.height_map.generated.rms_height",
+        args.rms_height_m,
+    )?;
+    crate::check::domain(&mut unusual, &flag, "hurst", "surface.height_map.generated.hurst", args.hurst)?;
     let n = args.grid;
     let dx = args.size_m / n as f64;
     let grid = Grid::new(n, n, dx, dx)?;
