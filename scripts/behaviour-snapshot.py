@@ -15,6 +15,10 @@ functions are called on the same inputs and their results hashed as canonical JS
     scripts/behaviour-snapshot.py --check scripts/behaviour-snapshot/manifest.txt [--python PY]
 
 --check lists each case whose hash differs, is missing or is new, and exits 1 when any does.
+Absolute paths of the checkout and of the temporary folder are replaced before hashing, so a
+manifest checks the same on any clone. The bundled manifest is the behaviour of the current main;
+a change that means to alter an output re-records it in the same commit and says which cases
+changed and why.
 """
 
 import argparse
@@ -149,14 +153,15 @@ def run_cli(cases, tmp: Path):
         if argv[0] == "merge":
             pass
         p = subprocess.run([str(BIN), *argv, *extra], cwd=ROOT, capture_output=True, timeout=600)
-        # Paths of the temporary folder are replaced, so the record does not depend on where it ran.
-        stdout = p.stdout.replace(str(tmp).encode(), b"TMP")
-        stderr = p.stderr.replace(str(tmp).encode(), b"TMP")
+        # Paths of the temporary folder and of the checkout are replaced, so the record does not
+        # depend on where it ran (`scenario FILE` prints absolute file paths).
+        stdout = p.stdout.replace(str(tmp).encode(), b"TMP").replace(str(ROOT).encode(), b"ROOT")
+        stderr = p.stderr.replace(str(tmp).encode(), b"TMP").replace(str(ROOT).encode(), b"ROOT")
         rows.append((name, f"exit={p.returncode} stdout={sha(stdout)} stderr={sha(stderr)}"))
         if target is not None:
             for f in sorted(target.rglob("*")):
                 if f.is_file():
-                    data = f.read_bytes().replace(str(tmp).encode(), b"TMP")
+                    data = f.read_bytes().replace(str(tmp).encode(), b"TMP").replace(str(ROOT).encode(), b"ROOT")
                     rows.append((f"{name}/{f.relative_to(target).as_posix()}", sha(data)))
     return rows
 
