@@ -62,12 +62,12 @@ pub struct BemSpec {
     pub range: Option<f64>,
     /// The Green's function: "non_periodic" (default: the shoe face is a finite patch, a rigid
     /// punch of the shoe's size on a wall that goes on beyond it; zero-padded FFT of twice the
-    /// size, `crate::green`) or "periodic" (the face is one periodic cell: its opposite edges meet).
+    /// size; docs/bem.md, "A finite shoe on a wall (the non-periodic Green's function)") or "periodic" (the face is one periodic cell: its opposite edges meet).
     /// With "periodic" the shoe cannot tilt.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub boundary: Option<crate::Boundary>,
     /// Whether the rigid shoe tilts (true: approach and two tilts from the force and moment
-    /// balances about the patch centre, `crate::shoe`; non-periodic only; about 10-60 solves per
+    /// balances about the patch centre, docs/bem.md, "The tilting shoe (`contact.bem.tilt`)"; non-periodic only; about 10-60 solves per
     /// load) or approaches flat (false, the default).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilt: Option<bool>,
