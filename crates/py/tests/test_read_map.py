@@ -26,3 +26,23 @@ def test_read_map_gives_the_channel_in_metres_with_its_metadata(cli_json):
 def test_read_map_names_a_missing_channel():
     with pytest.raises(stiction.StictionError, match="no channel 9"):
         stiction.read_map(NID, channel=9)
+
+
+def test_topography_reads_an_instrument_file_as_the_command_line_does(cli_json):
+    """stiction.topography(path, channel=...) gives the command line's statistics of the same
+    file and channel (plane levelling; the same heights in metres and pixel sizes), to 1e-12."""
+    r = stiction.topography(NID, channel=5)
+    e = cli_json("topography", NID, "--channel", "5")
+    assert r.summit_count == e["summit_count"] > 0
+    for key in ["rms_height_m", "rms_slope", "summit_density_per_m2", "summit_radius_mean_m"]:
+        assert getattr(r, key) == pytest.approx(e[key], rel=1e-12), key
+    assert r.read["channel"]["name"] == "Scan backward (Z-Axis)"
+    # A channel of the file by name is the same map.
+    assert stiction.topography(NID, channel="Scan backward (Z-Axis)").rms_height_m == r.rms_height_m
+
+
+def test_topography_refuses_a_channel_for_an_array_and_a_second_pixel_size_for_a_file():
+    with pytest.raises(stiction.StictionError, match="channel"):
+        stiction.topography(np.zeros((8, 8)), pixel_size="1 um", height_unit="nm", channel=1)
+    with pytest.raises(stiction.StictionError, match="pixel_size_y"):
+        stiction.topography(NID, pixel_size_y="1 um")

@@ -149,7 +149,7 @@ def run(scenario: PathOrScenario, progress: Optional[Callable[[int, int], Any]] 
 
 
 def topography(
-    heights: _np.ndarray,
+    heights: Union[_np.ndarray, str, "_os.PathLike[str]"],
     pixel_size: Union[str, float, None] = None,
     pixel_size_y: Union[str, float, None] = None,
     height_unit: Union[str, float, None] = None,
@@ -157,11 +157,13 @@ def topography(
     cutoff: Union[str, float, None] = None,
     long_cutoff: Union[str, float, None] = None,
     scenario: Optional[PathOrScenario] = None,
+    channel: Union[str, int, None] = None,
 ) -> Result:
     """Analyse a measured height map given as a 2-D NumPy array (rows = y), float32 or float64,
-    C or Fortran order: levelling, cut-offs, summits (8-neighbour maxima, curvature
-    -(z_xx + z_yy)/2) and statistics beside Nayak's predictions, as ``stiction topography
-    FILE.npy --json`` with the same flags.
+    C or Fortran order, or as a file in any format stiction reads (a path: read by ``read_map``,
+    with ``channel`` and, for a file that lacks them, ``pixel_size`` and ``height_unit``):
+    levelling, cut-offs, summits (8-neighbour maxima, curvature -(z_xx + z_yy)/2) and statistics
+    beside Nayak's predictions, as ``stiction topography FILE --json`` with the same flags.
 
     pixel_size, pixel_size_y: pixel size, a length ("3.90625 um") or metres.
     height_unit: the unit of the array's numbers ("nm", "um", "mm") or metres per unit (1e-9).
@@ -174,11 +176,24 @@ def topography(
     "<array>") and whose ``summits`` is a dict of arrays: x_m, y_m (pixel centres, m), height_m (m),
     curvature_per_m (1/m), radius_m (m), ix, iy (pixel indices). Releases the GIL.
     """
+    extra: Dict[str, Any] = {}
+    if isinstance(heights, (str, _os.PathLike)):
+        # A file: its channel in metres with the file's pixel sizes (the file's values win; a
+        # value the file lacks comes from the arguments, as on the command line).
+        if pixel_size_y is not None:
+            raise StictionError("pixel_size_y: a file states its own pixel sizes; give pixel_size only when it lacks them")
+        heights, meta = read_map(heights, channel=channel, pixel_size=pixel_size,
+                                 height_unit=None if height_unit is None else str(height_unit))
+        pixel_size, pixel_size_y, height_unit = meta["pixel_size_x_m"], meta["pixel_size_y_m"], 1.0
+        extra["read"] = meta
+    elif channel is not None:
+        raise StictionError("channel: only a file has channels; heights is an array")
     data, summits = _stiction.topography_json(
         _heights(heights), pixel_size, pixel_size_y, height_unit, level, cutoff, long_cutoff,
         scenario,
     )
-    return Result(data, {"summits": summits})
+    extra["summits"] = summits
+    return Result(data, extra)
 
 
 def read_map(

@@ -53,7 +53,7 @@ class Result:
 
 def run(scenario: PathOrScenario, progress: Optional[Callable[[int, int], Any]] = None) -> Result: ...
 def topography(
-    heights: npt.NDArray[Union[np.float32, np.float64]],
+    heights: Union[npt.NDArray[Union[np.float32, np.float64]], str, "os.PathLike[str]"],
     pixel_size: Quantity = None,
     pixel_size_y: Quantity = None,
     height_unit: Quantity = None,
@@ -61,6 +61,7 @@ def topography(
     cutoff: Quantity = None,
     long_cutoff: Quantity = None,
     scenario: Optional[PathOrScenario] = None,
+    channel: Union[str, int, None] = None,
 ) -> Result: ...
 def read_map(
     path: Union[str, "os.PathLike[str]"],
