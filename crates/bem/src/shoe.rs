@@ -25,9 +25,7 @@
 //! said to tip over (as in the explicit solver).
 
 use crate::BemError;
-use crate::green::Boundary;
 use crate::grid::block_sum;
-use crate::patches;
 use crate::solver::{BemSolver, ContactSolution, Dugdale, SolverOptions};
 
 /// Largest tilt of the shoe, rad: beyond it the small-angle plane is no longer a description of
@@ -129,7 +127,7 @@ impl BemSolver {
             let new_zone: Vec<bool> = s.gap_m.iter().map(|&g| g < law.range_m).collect();
             if new_zone == zone {
                 let pressure: Vec<f64> = s.pressure_pa.iter().zip(&tension).map(|(p, t)| p - t).collect();
-                return Ok(self.summarise(pressure, s.gap_m, s.contact, nz, iterations, update, s.residual));
+                return Ok(self.finish(pressure, s.gap_m, s.contact, nz, iterations, update, s.residual));
             }
             contact_state = s;
             zone = new_zone;
@@ -140,45 +138,6 @@ impl BemSolver {
             residual: f64::NAN,
             tolerance: 0.0,
         })
-    }
-
-    /// A [`ContactSolution`] from its fields (the sums and counts as the solver makes them).
-    #[allow(clippy::too_many_arguments)]
-    fn summarise(
-        &mut self,
-        pressure_pa: Vec<f64>,
-        gap_m: Vec<f64>,
-        contact: Vec<bool>,
-        cohesive_points: usize,
-        iterations: usize,
-        zone_updates: usize,
-        residual: f64,
-    ) -> ContactSolution {
-        let grid = self.grid();
-        let n = grid.len() as f64;
-        let mean_pressure_pa = block_sum(pressure_pa.len(), |r| pressure_pa[r].iter().sum()) / n;
-        let mean_gap_m = block_sum(gap_m.len(), |r| gap_m[r].iter().sum()) / n;
-        let contact_fraction = contact.iter().filter(|&&c| c).count() as f64 / n;
-        let patches = match self.boundary() {
-            Boundary::Periodic => patches::count_patches(&contact, grid.nx, grid.ny),
-            Boundary::NonPeriodic => patches::count_patches_bounded(&contact, grid.nx, grid.ny),
-        };
-        let elastic_energy_j_per_m2 = self.half_space().elastic_energy_j_per_m2(&pressure_pa);
-        ContactSolution {
-            pressure_pa,
-            gap_m,
-            contact,
-            mean_pressure_pa,
-            mean_gap_m,
-            contact_fraction,
-            contact_area_m2: contact_fraction * grid.area_m2(),
-            cohesive_fraction: cohesive_points as f64 / n,
-            patches,
-            elastic_energy_j_per_m2,
-            iterations,
-            zone_updates,
-            residual,
-        }
     }
 
     /// Moments `(sum p (x - x0) dA, sum p (y - y0) dA)` (N m) of the traction about the centre.

@@ -417,31 +417,8 @@ impl Meter {
             let load_n = clamp.electrostatic_force_n - spring;
             let in_contact = clamp.in_contact && load_n > 0.0;
             let mut point = MeterPoint {
-                v_clamp,
-                v_clamp_sq: v_clamp * v_clamp,
-                in_contact,
                 load_n: reduction.a_clamp_n_per_v2 * v_clamp * v_clamp - reduction.spring_force_n,
-                true_load_n: load_n,
-                v_pull: None,
-                v_pull_sq: None,
-                friction_n: None,
-                true_friction_n: None,
-                friction_capacity_n: 0.0,
-                pull_in_at_slip: None,
-                slip_time_to_stop_s: None,
-                slip_impact_velocity_m_per_s: None,
-                slip_note: None,
-                displacement_m: None,
-                real_area_m2: 0.0,
-                contacts: 0.0,
-                adhesive_load_n: 0.0,
-                capillary_load_n: self.humidity.as_ref().map(|_| 0.0),
-                tilt_x_rad: 0.0,
-                tilt_y_rad: 0.0,
-                max_pressure_pa: 0.0,
-                over_elastic_limit: false,
-                error: None,
-                reason: None,
+                ..structure::empty_point(v_clamp, load_n, in_contact, self.humidity.is_some())
             };
             if !clamp.in_contact {
                 let x_c = self.contact_travel_m * 1e6;

@@ -332,7 +332,10 @@ pub struct StructureRun<'a> {
     pub humid: bool,
 }
 
-fn empty_point(v_normal: f64, load_n: f64, in_contact: bool, humid: bool) -> MeterPoint {
+/// A point at normal voltage `v_normal` (V) and load `load_n` (N) before any friction is read: no
+/// pull voltage, no friction, no contact state (the capillary load 0 where the air is humid), no
+/// reason. The paper's meter and every structure protocol start their points from it.
+pub(crate) fn empty_point(v_normal: f64, load_n: f64, in_contact: bool, humid: bool) -> MeterPoint {
     MeterPoint {
         v_clamp: v_normal,
         v_clamp_sq: v_normal * v_normal,
