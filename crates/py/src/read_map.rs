@@ -4,12 +4,12 @@
 use std::path::PathBuf;
 
 use numpy::{PyArray1, PyArrayMethods};
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use stiction_topography::{ChannelSelector, MapFormat, MapMetadata, parse_length_unit, read_map_with_metadata};
 
-fn value_error(e: impl std::fmt::Display) -> PyErr {
-    PyValueError::new_err(e.to_string())
+/// The error of the argument `name` given as `value` (StictionError, as every other bad input).
+fn arg_error<'a>(name: &'a str, value: &'a str) -> impl Fn(String) -> PyErr + 'a {
+    move |e| crate::binding::err(format!("{name}={value:?}: {e}"))
 }
 
 /// _read_map(path, format, channel, pixel_size, height_unit) -> (heights (ny, nx) float64 in
@@ -25,18 +25,24 @@ pub(crate) fn _read_map<'py>(
     pixel_size: Option<&str>,
     height_unit: Option<&str>,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
-    let format: Option<MapFormat> = format.map(str::parse).transpose().map_err(value_error)?;
-    let channel: Option<ChannelSelector> = channel.map(str::parse).transpose().map_err(value_error)?;
-    let height_unit_m = height_unit.map(parse_length_unit).transpose().map_err(value_error)?;
+    let format: Option<MapFormat> =
+        format.map(|f| f.parse().map_err(|e: String| arg_error("format", f)(e))).transpose()?;
+    let channel: Option<ChannelSelector> =
+        channel.map(|c| c.parse().map_err(|e: String| arg_error("channel", c)(e))).transpose()?;
+    let height_unit_m = height_unit
+        .map(|u| parse_length_unit(u).map_err(|e| arg_error("height_unit", u)(e.to_string())))
+        .transpose()?;
     let pixel_size_m = pixel_size
-        .map(|p| stiction_units::parse_quantity(p, stiction_units::Dimension::Length))
-        .transpose()
-        .map_err(value_error)?;
+        .map(|p| {
+            stiction_units::parse_quantity(p, stiction_units::Dimension::Length)
+                .map_err(|e| arg_error("pixel_size", p)(e.to_string()))
+        })
+        .transpose()?;
     let meta = MapMetadata { pixel_size_x_m: pixel_size_m, height_unit_m, ..Default::default() };
     let (heights, m) = py
         .detach(|| read_map_with_metadata(&path, format, channel.as_ref(), &meta))
         .map_err(|e| crate::binding::StictionError::new_err(e.to_string()))?;
-    let json = serde_json::to_string(&m).map_err(value_error)?;
+    let json = serde_json::to_string(&m).map_err(crate::binding::err)?;
     let array = PyArray1::from_vec(py, heights).reshape([m.ny, m.nx])?;
     Ok((array.into_any(), json))
 }

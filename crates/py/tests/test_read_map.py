@@ -46,3 +46,15 @@ def test_topography_refuses_a_channel_for_an_array_and_a_second_pixel_size_for_a
         stiction.topography(np.zeros((8, 8)), pixel_size="1 um", height_unit="nm", channel=1)
     with pytest.raises(stiction.StictionError, match="pixel_size_y"):
         stiction.topography(NID, pixel_size_y="1 um")
+
+
+@pytest.mark.parametrize("kwargs, argument", [
+    ({"channel": ""}, "channel"),
+    ({"format": "tiff2"}, "format"),
+    ({"height_unit": "furlong"}, "height_unit"),
+    ({"pixel_size": "3 kg"}, "pixel_size"),
+])
+def test_read_map_names_a_bad_argument(kwargs, argument):
+    """A bad argument is a StictionError naming it, as everywhere else in the package."""
+    with pytest.raises(stiction.StictionError, match=f"^{argument}="):
+        stiction.read_map(NID, **kwargs)
