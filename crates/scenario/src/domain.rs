@@ -600,6 +600,20 @@ pub static DOMAINS: &[Domain] = &[
         "a relative permittivity is at least 1 (vacuum); silicon nitride about 7.5, silicon dioxide 3.9",
     ),
     d(
+        &[
+            "actuators.*.plate_count",
+            "actuators.*.calibrated_on.plate_count",
+            "structure.normal.comb.finger_count",
+            "structure.tangential.finger_count",
+        ],
+        "",
+        1.0,
+        true,
+        1e5,
+        (2.0, 2000.0),
+        "a count of gap-closing plates or comb fingers: a MEMS array has a few to a few thousand; 1e5 is past any die",
+    ),
+    d(
         &["structure.normal.electrode_area"],
         "m^2",
         0.0,

@@ -128,6 +128,8 @@ fn impossible_values_are_refused_naming_the_field() {
         ("environment={\"relative_humidity\": 0.35, \"temperature\": 186}", "environment.temperature", "273.16"),
         ("actuators.pull.thickness=3 m", "actuators.pull.thickness", "(0, 0.001] m"),
         ("material.compliance=5e-324", "material.compliance", "[1e-13, 1e-5] 1/Pa"),
+        // A count is a quantity too: a billion plates printed a 40 N load before it had a domain.
+        ("actuators.clamp.plate_count=1000000000", "actuators.clamp.plate_count", "[1, 100000]"),
     ] {
         let e = load(&[set]).unwrap_err().to_string();
         assert!(e.contains(&format!("--set {set}")) && e.contains(field) && e.contains(domain_text), "{set}: {e}");
@@ -139,6 +141,10 @@ fn impossible_values_are_refused_naming_the_field() {
     assert!(e.contains("no unit but `%`"), "{e}");
     let s = load(&["material.work_of_adhesion=5 J/m^2"]).unwrap();
     assert!(s.notes.iter().any(|n| n.code == "unusual_value" && n.message.contains("material.work_of_adhesion")));
+    // The comb's finger count, in a structure scenario.
+    let sets = vec!["structure.normal.comb.finger_count=1000000000".to_string()];
+    let e = Scenario::load(&root().join("scenarios/comb-sidewall.json"), &sets).unwrap_err().to_string();
+    assert!(e.contains("structure.normal.comb.finger_count") && e.contains("[1, 100000]"), "{e}");
 }
 
 /// A humidity whose meniscus does not fit the shoe is refused naming the humidity (RH one ulp
