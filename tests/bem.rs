@@ -131,6 +131,38 @@ fn bem_bad_flags_exit_2() {
         (rh(&["0.5", "--rh-step", "1e-30 m"]), "--rh-step"),
         (vec!["bem", "--grid", "8", "--temperature", "25 C", "--pressure", "1MPa"], "--rh"),
         (rh(&["0.5", "--temperature", "35 K"]), "--temperature"),
+        (vec!["bem", "--grid", "16", "--tilt", "--pressure", "1MPa"], "--tilt"),
+        (vec!["bem", "--grid", "16", "--boundary", "non-periodic", "--gap-sweep", "1um:0.5um:2"], "--gap-sweep"),
+        (vec!["bem", "--grid", "16", "--boundary", "sideways", "--pressure", "1MPa"], "--boundary"),
+        (vec!["bem", "--grid", "16", "--hardness", "1e30 Pa", "--pressure", "1MPa"], "--hardness"),
+        (vec!["bem", "--grid", "16", "--hardness", "0 Pa", "--pressure", "1MPa"], "--hardness"),
+        (vec!["bem", "--grid", "16", "--hardness", "5 MPa", "--sweep", "1MPa:10MPa:2"], "--hardness"),
+        (vec!["bem", "--grid", "16", "--hardness", "5 MPa", "--pressure", "5MPa"], "--hardness"),
+        (vec!["bem", "--grid", "16", "--hardness", "5 MPa", "--gap-sweep", "1um:0.5um:2"], "--gap-sweep"),
+        (
+            vec![
+                "bem",
+                "--grid",
+                "16",
+                "--boundary",
+                "non-periodic",
+                "--hardness",
+                "50 MPa",
+                "--work-of-adhesion",
+                "0.1",
+                "--range",
+                "1nm",
+                "--pressure",
+                "1MPa",
+            ],
+            "--work-of-adhesion",
+        ),
+        (
+            vec!["bem", "--grid", "16", "--boundary", "non-periodic", "--tilt", "--hardness", "50 MPa", "--pressure", "1MPa"],
+            "--tilt",
+        ),
+        (rh(&["0.5", "--boundary", "non-periodic"]), "--boundary"),
+        (rh(&["0.5", "--hardness", "1 GPa"]), "--hardness"),
     ] {
         let out = stiction(&args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
@@ -462,4 +494,53 @@ fn bem_generated_surface_refuses_impossible_walls() {
         assert!(err.contains(flag) && err.contains("domain"), "{args:?}: {err}");
         assert!(out.stdout.is_empty(), "{args:?}: printed {}", String::from_utf8_lossy(&out.stdout));
     }
+}
+
+/// `--hardness`, `--boundary`, `--tilt` on a generated surface (64^2, rms slope about 0.1 as the
+/// Tamaas comparison of docs/bem.md, E* 1 GPa). With the pressure capped at H the contact must
+/// carry the load at p <= H, so A_r/A0 >= p_mean/H (a bound that holds for any surface), and it is
+/// larger than the elastic contact's at the same load (the cap moves load to new points); the
+/// plastic area lies within the contact area. A hardness far above every pressure (100 GPa) is
+/// the elastic solve: the same contact fraction. The finite patch (`--boundary non-periodic`)
+/// and the tilting face report their settings and the tilts.
+#[test]
+fn bem_hardness_cap_finite_patch_and_tilt() {
+    let base = ["bem", "--grid", "64", "--size", "100 um", "--rms-height", "0.24 um", "--e-star", "1 GPa", "--json"];
+    let run = |extra: &[&str]| {
+        let mut a: Vec<&str> = base.to_vec();
+        a.extend_from_slice(extra);
+        stiction_json(&a)
+    };
+    let sweep = ["--sweep", "2MPa:40MPa:3"];
+    let elastic = run(&sweep);
+    let mut args = sweep.to_vec();
+    args.extend(["--hardness", "50 MPa"]);
+    let capped = run(&args);
+    assert_eq!(num(&capped, "hardness_pa"), 50e6);
+    assert!(elastic.get("hardness_pa").is_none());
+    let (pe, pc) = (elastic["points"].as_array().unwrap(), capped["points"].as_array().unwrap());
+    for (e, c) in pe.iter().zip(pc) {
+        let (p, a, a_p) = (num(c, "mean_pressure_pa"), num(c, "contact_fraction"), num(c, "plastic_fraction"));
+        eprintln!("p {p:e}: A/A0 elastic {} capped {a}, A_p/A0 {a_p}", num(e, "contact_fraction"));
+        assert!(a >= p / 50e6, "{p}: A/A0 {a} below p/H");
+        assert!(a_p > 0.0 && a_p <= a, "{p}: A_p/A0 {a_p}, A/A0 {a}");
+        assert!(a > num(e, "contact_fraction"), "{p}: the cap should enlarge the contact");
+        assert!(num(c, "plastic_area_m2") > 0.0 && num(c, "max_plastic_depth_m") > 0.0);
+    }
+    let mut args = sweep.to_vec();
+    args.extend(["--hardness", "100 GPa"]);
+    let high = run(&args);
+    for (e, c) in pe.iter().zip(high["points"].as_array().unwrap()) {
+        assert_eq!(num(c, "contact_fraction"), num(e, "contact_fraction"));
+        assert_eq!(num(c, "plastic_fraction"), 0.0);
+    }
+    // The finite patch: the same surface without images (its own state), then tilting.
+    let finite = run(&["--boundary", "non-periodic", "--pressure", "10 MPa"]);
+    assert_eq!(finite["boundary"], "non_periodic");
+    assert!(finite["points"][0].get("tilt_x_rad").is_none());
+    let tilted = run(&["--boundary", "non-periodic", "--tilt", "--pressure", "10 MPa"]);
+    assert_eq!(tilted["tilt"], true);
+    let p = &tilted["points"][0];
+    assert!(num(p, "tilt_x_rad").is_finite() && num(p, "tilt_y_rad").is_finite() && num(p, "pose_solves") >= 1.0);
+    assert!((num(p, "mean_pressure_pa") / 10e6 - 1.0).abs() < 1e-9);
 }

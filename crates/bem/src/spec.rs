@@ -71,6 +71,12 @@ pub struct BemSpec {
     /// load) or approaches flat (false, the default).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilt: Option<bool>,
+    /// Whether the contact pressure is capped at the material's hardness (`material.hardness`):
+    /// perfectly plastic pixels flow at `H` (true; docs/bem.md, "Solvers", the hardness cap) or
+    /// the contact stays elastic whatever its pressure (false, the default). Load control without
+    /// adhesion only (law "hertz" or a work of adhesion 0), a flat shoe.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plastic: Option<bool>,
 }
 
 impl BemSpec {
@@ -92,6 +98,20 @@ impl BemSpec {
         if let Some(t) = self.tolerance.filter(|t| !(t.is_finite() && *t > 0.0 && *t < 1.0)) {
             return Err(("tolerance".into(), format!("{t}: expected a relative tolerance in (0, 1)")));
         }
+        if self.tilt() && self.boundary() == crate::Boundary::Periodic {
+            return Err((
+                "tilt".into(),
+                "a tilting shoe needs the finite patch (`boundary` = \"non_periodic\"); a periodic cell has no edge \
+                 to tilt about"
+                    .into(),
+            ));
+        }
+        if self.tilt() && self.plastic() {
+            return Err((
+                "plastic".into(),
+                "the hardness cap is solved for a flat shoe only: give `plastic` or `tilt`, not both".into(),
+            ));
+        }
         Ok(())
     }
 
@@ -111,6 +131,11 @@ impl BemSpec {
     /// Whether the shoe tilts (default false).
     pub fn tilt(&self) -> bool {
         self.tilt.unwrap_or(false)
+    }
+
+    /// Whether the pressure is capped at the material's hardness (default false).
+    pub fn plastic(&self) -> bool {
+        self.plastic.unwrap_or(false)
     }
 
     /// The tolerance in use.

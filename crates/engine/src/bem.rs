@@ -4,6 +4,8 @@
 //! adhesion energy against relative humidity.
 
 use serde::Serialize;
+/// The Green's function of a request (re-exported for the front ends).
+pub use stiction_bem::Boundary;
 use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, SolverOptions, synth};
 use stiction_topography::{HeightMap, MapInfo, Patch, Preparation, PreparationReport, prepare};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
@@ -63,6 +65,15 @@ pub struct BemRequest {
     pub tolerance: f64,
     /// Also solve the summit (asperity) model on the same grid at the same loads.
     pub compare_asperity: bool,
+    /// The Green's function: the grid is one periodic cell (the command's default) or a finite
+    /// patch on a half-space that goes on (zero-padded; load control only).
+    pub boundary: Boundary,
+    /// A rigid face that tilts until its moments about the grid's centre balance (non-periodic,
+    /// load control; with or without adhesion).
+    pub tilt: bool,
+    /// The hardness the contact pressure is capped at (perfectly plastic points), Pa; load
+    /// control without adhesion.
+    pub hardness_pa: Option<f64>,
 }
 
 /// The humidity settings of `bem`.
@@ -97,6 +108,24 @@ pub struct Point {
     pub residual: f64,
     pub asperity_contact_fraction: Option<f64>,
     pub area_ratio_bem_over_asperity: Option<f64>,
+    /// With --tilt: the face's slope along x, dw/dx, rad (absent for a flat face).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tilt_x_rad: Option<f64>,
+    /// With --tilt: the face's slope along y, dw/dy, rad.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tilt_y_rad: Option<f64>,
+    /// With --tilt: solves spent on the force and moment balance (the Jacobian's included).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pose_solves: Option<usize>,
+    /// With --hardness: the fraction of the grid at the hardness, A_p/A0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plastic_fraction: Option<f64>,
+    /// With --hardness: the plastic area A_p, m^2.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plastic_area_m2: Option<f64>,
+    /// With --hardness: the largest plastic depth (overlap at a point at the hardness), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_plastic_depth_m: Option<f64>,
     /// Why a value of the point is null: no --shear-strength (no friction), no
     /// --compare-asperity (no asperity model beside it), or no asperity contact to divide by.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -143,6 +172,15 @@ pub struct BemOutput {
     /// The generator's seed (null for a map or a scenario).
     pub seed: Option<u64>,
     pub dugdale: Option<Dugdale>,
+    /// The Green's function (absent: the periodic cell).
+    #[serde(skip_serializing_if = "is_periodic")]
+    pub boundary: Boundary,
+    /// Whether the face tilts (absent: flat).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub tilt: bool,
+    /// The hardness the pressure is capped at, Pa (absent: elastic).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hardness_pa: Option<f64>,
     pub tolerance: f64,
     pub points: Vec<Point>,
     /// Most tensile load on the path, N (the pull-off under load control), when adhesive.
@@ -150,6 +188,10 @@ pub struct BemOutput {
     /// Why the seed, the Dugdale law or the pull-off is null.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub note: Option<&'static str>,
+}
+
+fn is_periodic(b: &Boundary) -> bool {
+    *b == Boundary::Periodic
 }
 
 /// The values of a FROM:TO:STEPS path of quantities of `dim` (each > 0), named `flag` in errors;
@@ -287,11 +329,65 @@ pub fn check_path_args(args: &BemRequest) -> Result<(), Error> {
     if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
         return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
     }
+    check_shoe_args(args)?;
     if args.humidity.rh.is_some() {
         return Ok(());
     }
     if args.gap_sweep.is_none() && args.sweep.is_none() && args.pressure_pa.is_none() {
         return Err("give --pressure, --sweep, --gap-sweep or --rh".into());
+    }
+    Ok(())
+}
+
+/// The checks of --boundary, --tilt and --hardness against each other and the path (before any
+/// work): the finite patch and the tilting face are solved under load control, the hardness cap
+/// under load control without adhesion on a flat face; the hardness in its domain.
+pub fn check_shoe_args(args: &BemRequest) -> Result<(), Error> {
+    let non_periodic = args.boundary == Boundary::NonPeriodic;
+    if args.tilt && !non_periodic {
+        return Err("--tilt needs --boundary non-periodic: a periodic cell has no edge to tilt about".into());
+    }
+    if args.humidity.rh.is_some() {
+        for (given, flag) in
+            [(non_periodic, "--boundary non-periodic"), (args.tilt, "--tilt"), (args.hardness_pa.is_some(), "--hardness")]
+        {
+            if given {
+                return Err(format!(
+                    "--rh cannot be used with {flag}: the retraction to separation is a mean-gap path on the periodic \
+                     cell"
+                )
+                .into());
+            }
+        }
+    }
+    if non_periodic && args.gap_sweep.is_some() {
+        return Err("--gap-sweep needs --boundary periodic: mean-gap control needs the periodic Green's function; on \
+                    the finite patch give --pressure or --sweep"
+            .into());
+    }
+    if let Some(h) = args.hardness_pa {
+        let mut unusual = Vec::new();
+        let flag = |_: &str| "--hardness".to_string();
+        crate::check::domain(&mut unusual, &flag, "hardness_pa", "material.hardness", h)?;
+        if args.gap_sweep.is_some() {
+            return Err("--hardness caps the pressure under load control: give --pressure or --sweep, not --gap-sweep"
+                .into());
+        }
+        if args.work_of_adhesion_j_per_m2.is_some() {
+            return Err("--hardness cannot be used with --work-of-adhesion: the hardness cap is solved without \
+                        adhesion only (a plastic cohesive zone is not implemented)"
+                .into());
+        }
+        if args.tilt {
+            return Err("--hardness cannot be used with --tilt: the hardness cap is solved for a flat face".into());
+        }
+        if let Some(p) = args.pressure_pa.filter(|&p| p >= h) {
+            return Err(format!(
+                "--pressure {p:e} Pa: with --hardness {h:e} Pa the mean pressure must lie below the hardness (at \
+                 it the whole face flows)"
+            )
+            .into());
+        }
     }
     Ok(())
 }
@@ -309,7 +405,9 @@ pub fn solve(
         SurfaceSource::Generated { seed, .. } => Some(seed),
         _ => None,
     };
-    let mut solver = BemSolver::new(grid.nx, grid.ny, grid.dx_m, grid.dy_m, &heights, e_star_pa)?;
+    check_shoe_args(args)?;
+    let mut solver =
+        BemSolver::with_boundary(grid.nx, grid.ny, grid.dx_m, grid.dy_m, &heights, e_star_pa, args.boundary)?;
     let rms_slope = solver.slope_rms();
     let opts = SolverOptions { tolerance: args.tolerance, ..Default::default() };
     let law = match (args.work_of_adhesion_j_per_m2, args.range_m) {
@@ -317,6 +415,9 @@ pub fn solve(
         _ => None,
     };
     let mut states: Vec<ContactSolution> = Vec::new();
+    // Per state: the tilts and pose solves of a tilting face, the plastic state of a capped one.
+    let mut poses: Vec<Option<(f64, f64, usize)>> = Vec::new();
+    let mut plastic: Vec<Option<(f64, f64, f64)>> = Vec::new();
     if let Some(text) = &args.gap_sweep {
         let mut gaps = parse_path(text, Dimension::Length, "--gap-sweep")?;
         if args.gap_back {
@@ -332,7 +433,7 @@ pub fn solve(
             states.push(s);
         }
     } else {
-        if law.is_some() {
+        if law.is_some() && args.boundary == Boundary::Periodic {
             return Err("adhesion (--work-of-adhesion, --range) needs a mean-gap path (--gap-sweep): \
                         load control cannot pass the load minimum to pull-off"
                 .into());
@@ -343,15 +444,51 @@ pub fn solve(
             (None, None, Some(p)) => vec![p],
             (None, None, None) => return Err("give --pressure, --sweep or --gap-sweep".into()),
         };
+        if let Some(h) = args.hardness_pa
+            && let Some(p) = loads.iter().find(|&&p| p >= h)
+        {
+            return Err(format!(
+                "--sweep: the mean pressure {p:e} Pa is not below --hardness {h:e} Pa (at the hardness the whole face \
+                 flows)"
+            )
+            .into());
+        }
+        let mut last_tilt: Option<stiction_bem::TiltedShoe> = None;
         for p in loads {
-            let s = solver.solve_load(p, &opts, states.last())?;
+            // Each state continues the path from the one before while the load rises (the
+            // loading branch under adhesion), and starts afresh below it.
+            let warm = states.last().filter(|s| law.is_none() || s.mean_pressure_pa <= p);
+            let (s, pose, pl) = if args.tilt {
+                let w = last_tilt.as_ref().filter(|t| t.solution.mean_pressure_pa <= p);
+                let t = solver.tilting_at_load(p, law.as_ref(), &opts, w)?;
+                let pose = (t.tilt_x_rad, t.tilt_y_rad, t.solves);
+                let s = t.solution.clone();
+                last_tilt = Some(t);
+                (s, Some(pose), None)
+            } else if let Some(h) = args.hardness_pa {
+                // Each load cold: a warm start from the previous plastic state can stall the
+                // plastic iteration (seen on a sweep of 1-40 MPa at H = 50 MPa, residual 0.08 after
+                // 10,000 iterations, where every cold solve converges in 23-48).
+                let st = solver.solve_load_plastic(p, h, &opts, None)?;
+                let pl = (st.plastic_fraction, st.plastic_area_m2, st.max_plastic_depth_m);
+                (st.solution, None, Some(pl))
+            } else if let Some(l) = &law {
+                (solver.adhesive_at_load(p, l, &opts, warm)?, None, None)
+            } else {
+                (solver.solve_load(p, &opts, states.last())?, None, None)
+            };
             states.push(s);
+            poses.push(pose);
+            plastic.push(pl);
         }
     }
+    poses.resize(states.len(), None);
+    plastic.resize(states.len(), None);
     let summits = if args.compare_asperity { stiction_bem::asperity::summits(&heights, grid) } else { Vec::new() };
     let mut points: Vec<Point> = states
         .iter()
-        .map(|s| Point {
+        .zip(poses.iter().zip(&plastic))
+        .map(|(s, (pose, pl))| Point {
             mean_pressure_pa: s.mean_pressure_pa,
             load_n: s.load_n(&grid),
             mean_gap_m: s.mean_gap_m,
@@ -365,6 +502,12 @@ pub fn solve(
             residual: s.residual,
             asperity_contact_fraction: None,
             area_ratio_bem_over_asperity: None,
+            tilt_x_rad: pose.map(|p| p.0),
+            tilt_y_rad: pose.map(|p| p.1),
+            pose_solves: pose.map(|p| p.2),
+            plastic_fraction: pl.map(|p| p.0),
+            plastic_area_m2: pl.map(|p| p.1),
+            max_plastic_depth_m: pl.map(|p| p.2),
             note: None,
         })
         .collect();
@@ -397,6 +540,9 @@ pub fn solve(
         rms_slope,
         seed,
         dugdale: law,
+        boundary: args.boundary,
+        tilt: args.tilt,
+        hardness_pa: args.hardness_pa,
         tolerance: args.tolerance,
         points,
         pull_off_n,

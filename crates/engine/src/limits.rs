@@ -98,6 +98,9 @@ mod tests {
             shear_strength_pa: None,
             tolerance: 1e-6,
             compare_asperity: false,
+            boundary: stiction_bem::Boundary::Periodic,
+            tilt: false,
+            hardness_pa: None,
         }
     }
 

@@ -30,6 +30,10 @@ pub struct ContactState {
     pub tilt_y_rad: f64,
     /// Largest peak Hertz pressure q0 over the contacts (eq. 11), Pa.
     pub max_pressure_pa: f64,
+    /// The part of the real area flowing at the hardness (the `bem` model with
+    /// `contact.bem.plastic`), m^2; None (and not written) for an elastic model.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plastic_area_m2: Option<f64>,
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -109,6 +113,7 @@ impl ContactModel {
                     tilt_x_rad: eq.tilt_x_rad,
                     tilt_y_rad: eq.tilt_y_rad,
                     max_pressure_pa: eq.max_pressure_pa,
+                    plastic_area_m2: None,
                 })
             }
             ContactModel::Gw(surface, capillarity) => {
@@ -126,6 +131,7 @@ impl ContactModel {
                     // GW has no largest pressure (the Gaussian tail is unbounded); report the mean
                     // real elastic pressure p_e of eq. 7, the quantity of the paper's elastic limit.
                     max_pressure_pa: c.mean_elastic_pressure_pa,
+                    plastic_area_m2: None,
                 })
             }
             ContactModel::Bem(bem) => bem.state_at_load(load_n),
@@ -147,6 +153,7 @@ impl ContactModel {
                     tilt_x_rad: 0.0,
                     tilt_y_rad: 0.0,
                     max_pressure_pa: p.max_pressure_pa,
+                    plastic_area_m2: None,
                 })
             }
         }
@@ -172,17 +179,20 @@ pub struct BemContact {
     last: Option<stiction_bem::ContactSolution>,
     tilting: bool,
     last_tilt: Option<stiction_bem::TiltedShoe>,
+    hardness_pa: Option<f64>,
     /// Block factors (x, y) that coarsened the map's pixels into the grid.
     pub coarsening: (usize, usize),
 }
 
 /// The shoe of a [`BemContact`]: its Green's function and whether it tilts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BemShoe {
     /// Periodic cell or finite patch on the wall.
     pub boundary: stiction_bem::Boundary,
     /// Whether the shoe tilts (force and moment balance) or approaches flat.
     pub tilting: bool,
+    /// The hardness the contact pressure is capped at (perfectly plastic pixels), Pa; None: elastic.
+    pub hardness_pa: Option<f64>,
 }
 
 impl BemContact {
@@ -203,6 +213,16 @@ impl BemContact {
                  periodic cell has no edge to tilt about"
                     .into(),
             ));
+        }
+        if shoe.hardness_pa.is_some() && (shoe.tilting || law.is_some()) {
+            return Err(MeterError::Scenario(
+                "contact.bem.plastic: the hardness cap is solved for a flat shoe without adhesion only (not with \
+                 contact.bem.tilt, nor with an adhesive contact.law and material.work_of_adhesion > 0)"
+                    .into(),
+            ));
+        }
+        if let Some(h) = shoe.hardness_pa.filter(|h| !(h.is_finite() && *h > 0.0)) {
+            return Err(MeterError::Scenario(format!("material.hardness {h:e} Pa: expected a finite hardness > 0")));
         }
         let solver = stiction_bem::BemSolver::with_boundary(
             grid.nx,
@@ -226,6 +246,7 @@ impl BemContact {
             last: None,
             tilting: shoe.tilting,
             last_tilt: None,
+            hardness_pa: shoe.hardness_pa,
             coarsening,
         })
     }
@@ -248,6 +269,19 @@ impl BemContact {
 
     /// The solution and the tilts `(dw/dx, dw/dy)` (rad; zero for a flat shoe).
     pub fn solve_pose(&mut self, load_n: f64) -> Result<(stiction_bem::ContactSolution, (f64, f64)), MeterError> {
+        self.solve_full(load_n).map(|(s, t, _)| (s, t))
+    }
+
+    /// The hardness the pressure is capped at, Pa (None: elastic).
+    pub fn hardness_pa(&self) -> Option<f64> {
+        self.hardness_pa
+    }
+
+    /// The solution, the tilts and, with the hardness cap, the plastic area `A_p` (m^2).
+    fn solve_full(
+        &mut self,
+        load_n: f64,
+    ) -> Result<(stiction_bem::ContactSolution, (f64, f64), Option<f64>), MeterError> {
         if !(load_n.is_finite() && load_n > 0.0) {
             return Err(MeterError::Contact(format!(
                 "bem: load {load_n:e} N: the loading branch needs a compressive load > 0 (below, the shoe is not in \
@@ -260,9 +294,19 @@ impl BemContact {
             // Continue the path from the last pose while the load rises; start afresh below it.
             let warm = self.last_tilt.as_ref().filter(|t| t.solution.mean_pressure_pa <= p);
             let t = self.solver.tilting_at_load(p, self.law.as_ref(), &self.options, warm).map_err(err)?;
-            let out = (t.solution.clone(), (t.tilt_x_rad, t.tilt_y_rad));
+            let out = (t.solution.clone(), (t.tilt_x_rad, t.tilt_y_rad), None);
             self.last_tilt = Some(t);
             return Ok(out);
+        }
+        if let Some(h) = self.hardness_pa {
+            // The hardness cap (no adhesion, flat shoe: checked in `new`); at a mean pressure at
+            // or above the hardness the whole face flows and no state exists (the solver's error).
+            // Each load solved cold: a warm start from the previous plastic state can stall the
+            // plastic iteration where the cold solve converges (stiction_engine::bem, the sweep).
+            let st = self.solver.solve_load_plastic(p, h, &self.options, None).map_err(|e| {
+                MeterError::Contact(format!("bem (hardness cap, material.hardness = {h:e} Pa): {e}"))
+            })?;
+            return Ok((st.solution, (0.0, 0.0), Some(st.plastic_area_m2)));
         }
         let s = match (&self.law, self.solver.boundary()) {
             (None, _) => self.solver.solve_load(p, &self.options, self.last.as_ref()),
@@ -278,14 +322,14 @@ impl BemContact {
         if self.law.is_none() || self.solver.boundary() == stiction_bem::Boundary::NonPeriodic {
             self.last = Some(s.clone());
         }
-        Ok((s, (0.0, 0.0)))
+        Ok((s, (0.0, 0.0), None))
     }
 
     /// The contact state at external load `load_n` (N): real area (contact points times the pixel
     /// area), contact patches as "contacts", adhesive load = the Dugdale tension over the cohesive
     /// zone (the contact pressure carries `L` plus it), largest contact pressure.
     pub fn state_at_load(&mut self, load_n: f64) -> Result<ContactState, MeterError> {
-        let (s, (tilt_x_rad, tilt_y_rad)) = self.solve_pose(load_n)?;
+        let (s, (tilt_x_rad, tilt_y_rad), plastic_area_m2) = self.solve_full(load_n)?;
         let stress = self.law.map_or(0.0, |l| l.stress_pa);
         // Net traction p = p_c - sigma0 in the zone: the contact pressure is p + sigma0 there.
         let max_pressure_pa =
@@ -300,6 +344,7 @@ impl BemContact {
             tilt_x_rad,
             tilt_y_rad,
             max_pressure_pa,
+            plastic_area_m2,
         })
     }
 }

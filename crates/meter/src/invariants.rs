@@ -11,6 +11,7 @@
 //! * every force and pressure finite, the contacts' elastic load `L + L_adh >= 0` (they can only
 //!   push), the adhesive load `>= 0`, and the capillary load within `[0, L_adh]` (the menisci
 //!   are part of the adhesion);
+//! * with the hardness cap, `0 <= A_p <= A_r` (the plastic area is part of the real one);
 //! * a structure's friction reading within one protocol step of the contact's capacity
 //!   ([`check_reading`]).
 
@@ -90,6 +91,19 @@ pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_
             v_clamp,
         ));
     }
+    if let Some(a_p) = state.plastic_area_m2 {
+        if !(a_p.is_finite() && a_p >= 0.0 && a_p <= state.real_area_m2 * (1.0 + RELATIVE_SLACK)) {
+            return Err(broken(
+                format!(
+                    "a plastic area of {} m^2 outside [0, the real area {} m^2] (the points at the hardness are \
+                     part of the contact)",
+                    short(a_p),
+                    short(state.real_area_m2)
+                ),
+                v_clamp,
+            ));
+        }
+    }
     if state.max_pressure_pa < 0.0 {
         return Err(broken(format!("a largest pressure of {} Pa", short(state.max_pressure_pa)), v_clamp));
     }
@@ -129,6 +143,7 @@ mod tests {
             tilt_x_rad: 1e-4,
             tilt_y_rad: 0.0,
             max_pressure_pa: 5e9,
+            plastic_area_m2: Some(0.4e-14),
         }
     }
 
@@ -138,13 +153,15 @@ mod tests {
         let a_a = 20e-6 * 5e-6;
         assert!(check_state(&state(), a_a, 108.0, 20.0).is_ok());
         type Break = fn(&mut ContactState);
-        let cases: [(&str, Break); 6] = [
+        let cases: [(&str, Break); 8] = [
             ("times the apparent area", |s| s.real_area_m2 = 9.5e-6),
             ("summits in contact", |s| s.contacts = 109.0),
             ("contacts only push", |s| s.adhesive_load_n = -1e-6),
             ("capillary load", |s| s.capillary_load_n = 3e-6),
             ("not a finite number", |s| s.max_pressure_pa = f64::NAN),
             ("largest pressure", |s| s.max_pressure_pa = -1.0),
+            ("plastic area", |s| s.plastic_area_m2 = Some(1.1e-14)),
+            ("plastic area", |s| s.plastic_area_m2 = Some(-1e-20)),
         ];
         for (needle, breaks) in cases {
             let mut s = state();

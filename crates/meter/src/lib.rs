@@ -107,8 +107,17 @@ pub struct MeterPoint {
     pub tilt_y_rad: f64,
     /// Largest peak Hertz pressure (eq. 11), Pa.
     pub max_pressure_pa: f64,
-    /// Whether that pressure exceeds the hardness (plastic deformation would start).
+    /// Whether that pressure exceeds the hardness (plastic deformation would start), or, with the
+    /// hardness cap (`contact.bem.plastic`), whether any point flows at the hardness.
     pub over_elastic_limit: bool,
+    /// With the hardness cap (`contact.bem.plastic`): the part of the real area at the hardness
+    /// (perfectly plastic pixels), m^2; absent for an elastic model.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plastic_area_m2: Option<f64>,
+    /// With the hardness cap: what the plastic area means when points flow (absent when none
+    /// does, or for an elastic model).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plastic_note: Option<String>,
     /// Why the contact model found no state at this load (e.g. the shoe tips over), if it did
     /// not; the point then has no slip and is left out of the fit, and the run goes on.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -162,6 +171,25 @@ pub struct MeterResult {
     /// Why there is no pull-array pull-in voltage (a `structure` has no pull array).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pull_array_note: Option<String>,
+}
+
+/// The pressure fields of a point from its contact state: the largest pressure, whether it
+/// passes the hardness `hardness_pa` (Pa), and with the hardness cap the plastic area and a note
+/// when points flow.
+pub(crate) fn fill_pressure(point: &mut MeterPoint, state: &ContactState, hardness_pa: f64) {
+    point.max_pressure_pa = state.max_pressure_pa;
+    let plastic = state.plastic_area_m2.unwrap_or(0.0);
+    point.over_elastic_limit = state.max_pressure_pa > hardness_pa || plastic > 0.0;
+    point.plastic_area_m2 = state.plastic_area_m2;
+    point.plastic_note = (plastic > 0.0).then(|| {
+        format!(
+            "the contact pressure is capped at the hardness {} Pa (contact.bem.plastic): {} m^2, {} % of the real \
+             area, flows plastically",
+            stiction_scenario::domain::short(hardness_pa),
+            stiction_scenario::domain::short(plastic),
+            stiction_scenario::domain::short(100.0 * plastic / state.real_area_m2.max(f64::MIN_POSITIVE))
+        )
+    });
 }
 
 /// Why a Kelvin radius or meniscus height is null (the meter's humidity, `bem --rh`).
@@ -470,8 +498,7 @@ impl Meter {
                 }
                 point.tilt_x_rad = state.tilt_x_rad;
                 point.tilt_y_rad = state.tilt_y_rad;
-                point.max_pressure_pa = state.max_pressure_pa;
-                point.over_elastic_limit = state.max_pressure_pa > self.material.hardness;
+                fill_pressure(&mut point, &state, self.material.hardness);
                 // The pull ramp: V_n = n * step, n = 1..=n_max with n_max = floor(V_max / step)
                 // (at most MAX_PULL_RAMP_STEPS, checked when the scenario is loaded, so every n is
                 // exact in f64). While the shoe sticks the pull gap is fixed, so F_pull(V_n) rises
@@ -796,6 +823,10 @@ pub fn build_bem(s: &Scenario, material: &MaterialSpec, base_dir: &Path) -> Resu
             l.stress_pa, material.work_of_adhesion, l.range_m
         )));
     }
-    let shoe = BemShoe { boundary: spec.boundary(), tilting: spec.tilt() };
+    let shoe = BemShoe {
+        boundary: spec.boundary(),
+        tilting: spec.tilt(),
+        hardness_pa: spec.plastic().then_some(material.hardness),
+    };
     BemContact::new(grid, &heights, e_star, law, spec.tolerance(), (kx, ky), shoe)
 }

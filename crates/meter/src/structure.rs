@@ -360,6 +360,8 @@ pub(crate) fn empty_point(v_normal: f64, load_n: f64, in_contact: bool, humid: b
         tilt_y_rad: 0.0,
         max_pressure_pa: 0.0,
         over_elastic_limit: false,
+        plastic_area_m2: None,
+        plastic_note: None,
         error: None,
         reason: None,
     }
@@ -376,8 +378,7 @@ impl StructureRun<'_> {
         }
         point.tilt_x_rad = state.tilt_x_rad;
         point.tilt_y_rad = state.tilt_y_rad;
-        point.max_pressure_pa = state.max_pressure_pa;
-        point.over_elastic_limit = state.max_pressure_pa > self.material.hardness;
+        crate::fill_pressure(point, state, self.material.hardness);
     }
 
     /// The contact at a normal voltage: the load, or the reason there is none.

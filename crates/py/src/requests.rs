@@ -133,6 +133,9 @@ const BEM_NAMES: &[&str] = &[
     "short",
     "rms_height",
     "seed",
+    "boundary",
+    "tilt",
+    "hardness",
 ];
 
 /// The keyword arguments of a call, read one by one into an engine request; each error names
@@ -297,6 +300,15 @@ pub(crate) fn bem_json<'py>(
         shear_strength_pa: kw.quantity("shear_strength", Dimension::Pressure, Constraint::NonNegative)?,
         tolerance: kw.number("tolerance")?.unwrap_or(1e-6),
         compare_asperity: kw.flag("compare_asperity")?,
+        boundary: match kw.text("boundary")?.as_deref() {
+            None | Some("periodic") => stiction_engine::bem::Boundary::Periodic,
+            Some("non_periodic" | "non-periodic") => stiction_engine::bem::Boundary::NonPeriodic,
+            Some(other) => {
+                return Err(err(format!("boundary={other:?}: expected \"periodic\" or \"non_periodic\"")));
+            }
+        },
+        tilt: kw.flag("tilt")?,
+        hardness_pa: kw.quantity("hardness", Dimension::Pressure, Constraint::Positive)?,
     };
     if let Some(scenario) = scenario.filter(|s| !s.is_none()) {
         if !heights.is_none() {

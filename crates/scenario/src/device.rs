@@ -555,6 +555,14 @@ impl Scenario {
                 ("equilibrium spacing z0", "equilibrium_spacing", m.equilibrium_spacing, Some(Dimension::Length), "m"),
             ] {
                 let sd_dim = dim.unwrap_or(Dimension::SurfaceEnergy);
+                let mut origin = format!("given: material.{field}");
+                if field == "hardness" {
+                    let plastic =
+                        self.contact.as_ref().and_then(|c| c.bem.as_ref()).is_some_and(|b| b.plastic());
+                    if plastic {
+                        origin.push_str("; caps the contact pressure of the bem model (contact.bem.plastic)");
+                    }
+                }
                 push(
                     &mut q,
                     field.to_string(),
@@ -563,7 +571,7 @@ impl Scenario {
                     dim,
                     unit,
                     p(field, sd_dim),
-                    format!("given: material.{field}"),
+                    origin,
                     None,
                 );
             }

@@ -75,7 +75,8 @@ pub struct Args {
     /// With --gap-sweep: go back to FROM after reaching TO (a loading-unloading cycle; pull-off on the way back).
     #[arg(long)]
     pub gap_back: bool,
-    /// Work of adhesion of the Dugdale law ("0.1 J/m^2"); needs --range and --gap-sweep.
+    /// Work of adhesion of the Dugdale law ("0.1 J/m^2"); needs --range, and --gap-sweep (periodic) or
+    /// --boundary non-periodic with --pressure or --sweep (the loading branch under load control).
     #[arg(long, value_parser = quantity(Dimension::SurfaceEnergy, Constraint::Positive), requires = "range")]
     pub work_of_adhesion: Option<f64>,
     /// Range h0 of the Dugdale law ("1 nm"); the Dugdale stress is w/h0.
@@ -94,6 +95,19 @@ pub struct Args {
     /// no elastic interaction; adds its contact fraction and the ratio A_BEM/A_asperity to the curve.
     #[arg(long)]
     pub compare_asperity: bool,
+    /// The Green's function: "periodic" (the grid is one cell of a periodic interface) or
+    /// "non-periodic" (a finite patch, a rigid face of the grid's size, on a half-space that goes on:
+    /// zero-padded, no images; load control: --pressure or --sweep, with or without adhesion).
+    #[arg(long, value_enum, default_value_t = BoundaryArg::Periodic)]
+    pub boundary: BoundaryArg,
+    /// A rigid face that tilts until its moments about the grid's centre balance (approach and two
+    /// tilts from the force and moment balance); needs --boundary non-periodic and a load path.
+    #[arg(long)]
+    pub tilt: bool,
+    /// Cap the contact pressure at this hardness ("9 GPa"): perfectly plastic points flow at it,
+    /// and the plastic area is reported; load control without adhesion, flat face.
+    #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::Positive))]
+    pub hardness: Option<f64>,
     /// Folder for the fields (CSV, PNG heat maps of the last state), the curves (CSV, PNG) and
     /// results.json, with a manifest.json, swapped in whole.
     #[arg(long)]
@@ -108,6 +122,25 @@ pub struct Args {
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `--boundary`: the Green's function of the grid.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoundaryArg {
+    /// One cell of a periodic interface.
+    Periodic,
+    /// A finite patch on a half-space that goes on (zero-padded).
+    #[value(alias = "non_periodic")]
+    NonPeriodic,
+}
+
+impl From<BoundaryArg> for stiction_bem::Boundary {
+    fn from(b: BoundaryArg) -> Self {
+        match b {
+            BoundaryArg::Periodic => stiction_bem::Boundary::Periodic,
+            BoundaryArg::NonPeriodic => stiction_bem::Boundary::NonPeriodic,
+        }
+    }
 }
 
 /// The `--rh` flags of `stiction bem`.
@@ -170,6 +203,9 @@ impl Args {
             shear_strength_pa: self.shear_strength,
             tolerance: self.tolerance,
             compare_asperity: self.compare_asperity,
+            boundary: self.boundary.into(),
+            tilt: self.tilt,
+            hardness_pa: self.hardness,
         }
     }
 }
@@ -211,11 +247,13 @@ pub fn run(args: Args) -> CliResult {
     if args.json {
         return print_json(&out);
     }
-    print_table(
-        "BEM rough contact (periodic half-space, rigid flat)",
-        &[
-            (
-                "grid",
+    let title = match (out.boundary, out.tilt) {
+        (stiction_bem::Boundary::Periodic, _) => "BEM rough contact (periodic half-space, rigid flat)",
+        (_, false) => "BEM rough contact (finite patch on a half-space, rigid flat)",
+        (_, true) => "BEM rough contact (finite patch on a half-space, tilting rigid face)",
+    };
+    let mut rows = vec![(
+        "grid",
                 if grid.dx_m == grid.dy_m {
                     format!("{} x {}, pixel {}", grid.nx, grid.ny, q(grid.dx_m, Dimension::Length))
                 } else {
@@ -253,12 +291,21 @@ pub fn run(args: Args) -> CliResult {
                     )
                 }),
             ),
-        ],
-    );
+    ];
+    if let Some(h) = out.hardness_pa {
+        rows.push(("hardness cap", q(h, Dimension::Pressure)));
+    }
+    print_table(title, &rows);
     let compared = out.points.iter().any(|p| p.area_ratio_bem_over_asperity.is_some());
     let mut header = vec!["p_mean", "load", "mean gap", "A/A0", "patches", "friction", "iterations"];
     if compared {
         header.push("A(BEM)/A(asperity)");
+    }
+    if out.tilt {
+        header.extend(["tilt x (rad)", "tilt y (rad)"]);
+    }
+    if out.hardness_pa.is_some() {
+        header.push("A_p/A0");
     }
     let mut t = TextTable::new(&header);
     for p in &out.points {
@@ -273,6 +320,13 @@ pub fn run(args: Args) -> CliResult {
         ];
         if compared {
             row.push(p.area_ratio_bem_over_asperity.map_or("-".into(), |r| format!("{r:.3}")));
+        }
+        if out.tilt {
+            row.push(p.tilt_x_rad.map_or("-".into(), |v| format!("{v:.3e}")));
+            row.push(p.tilt_y_rad.map_or("-".into(), |v| format!("{v:.3e}")));
+        }
+        if out.hardness_pa.is_some() {
+            row.push(p.plastic_fraction.map_or("-".into(), |v| format!("{v:.5}")));
         }
         t.row(row);
     }

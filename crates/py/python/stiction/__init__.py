@@ -471,6 +471,9 @@ def bem(
     short: Union[str, float, None] = None,
     rms_height: Union[str, float, None] = None,
     seed: Optional[int] = None,
+    boundary: Optional[str] = None,
+    tilt: bool = False,
+    hardness: Union[str, float, None] = None,
 ) -> Result:
     """FFT boundary-element contact of a rigid flat on the height map ``heights`` (a 2-D NumPy
     array, rows = y, float32 or float64, any order; read in place, as ``topography`` reads it),
@@ -512,6 +515,14 @@ def bem(
     meniscus_height_m m, adhesion_energy_j_per_m2 J/m^2, adhesion_energy_mj_per_m2,
     pull_off_pressure_pa Pa, steps).
 
+    boundary: "periodic" (default: the grid is one cell of a periodic interface) or
+    "non_periodic" (a finite patch, a rigid face of the grid's size, on a half-space that goes on;
+    load control: pressure or sweep, with or without adhesion), as ``--boundary``. tilt: the face
+    tilts until its moments balance (non_periodic only; the points get tilt_x_rad, tilt_y_rad,
+    pose_solves), as ``--tilt``. hardness: cap the contact pressure at this hardness ("9 GPa" or
+    Pa; load control without adhesion, flat face; the points get plastic_fraction,
+    plastic_area_m2 m^2, max_plastic_depth_m m), as ``--hardness``.
+
     Returns a ``Result``: grid, e_star_pa, rms_height_m, rms_slope, points (mean_pressure_pa Pa,
     load_n N, mean_gap_m m, contact_fraction, contact_area_m2 m^2, friction_n N, ...; also as
     NumPy ``columns``), pull_off_n. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
@@ -535,7 +546,7 @@ def bem(
         "gap_back": bool(gap_back), "work_of_adhesion": work_of_adhesion, "range": range,
         "shear_strength": shear_strength, "tolerance": tolerance, "compare_asperity": bool(compare_asperity),
         "rh": rh_text, "temperature": temperature, "contact_angle": contact_angle, "rh_step": rh_step,
-        "min_kelvin_radius": min_kelvin_radius,
+        "min_kelvin_radius": min_kelvin_radius, "boundary": boundary, "tilt": bool(tilt), "hardness": hardness,
     }
     limits = _stiction._limits()
     if grid is not None:

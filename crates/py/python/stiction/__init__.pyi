@@ -151,6 +151,9 @@ def bem(
     short: Quantity = None,
     rms_height: Quantity = None,
     seed: Optional[int] = None,
+    boundary: Optional[str] = None,
+    tilt: bool = False,
+    hardness: Quantity = None,
 ) -> Result:
     """Boundary-element contact on a height-map array, a scenario's patch or a generated surface;
     pressures in Pa, E* in Pa, lengths in m; with rh, the adhesion energy (J/m^2) against humidity."""

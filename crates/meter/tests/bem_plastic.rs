@@ -1,0 +1,88 @@
+//! The hardness cap of the meter's `bem` model (`contact.bem.plastic`, the hardness being
+//! `material.hardness`) on the bundled boundary-element scenario without adhesion (law "hertz"),
+//! the patch coarsened to at most 8000 points so the test runs in seconds.
+
+use std::path::Path;
+
+use stiction_meter::Meter;
+use stiction_scenario::Scenario;
+
+mod common;
+use common::root;
+
+fn run(sets: &[&str]) -> stiction_meter::MeterResult {
+    let text = std::fs::read_to_string(root().join("scenarios/tas2000-bem.json")).unwrap();
+    let mut all: Vec<String> =
+        ["contact.law=\"hertz\"", "contact.bem.points=8000"].iter().map(|s| s.to_string()).collect();
+    all.extend(sets.iter().map(|s| s.to_string()));
+    let s = Scenario::from_str_with_sets(&text, Path::new("tas2000-bem.json"), &all).unwrap();
+    Meter::from_scenario(&s, &root().join("scenarios")).unwrap().run(&mut |_, _| {}).unwrap()
+}
+
+/// With the pressure capped at H the contacts carry the load at p <= H, so the real area is at
+/// least L/H (a bound of any capped contact, whatever the surface): with H = 1 MPa and loads of
+/// 0.4-4.8 uN on a 100 um^2 shoe it is 0.4-4.8 % of the apparent area, far above the elastic
+/// contact's (tens of pixels of 160 nm). Every point in contact reports a plastic area within its
+/// real area, a note, and `over_elastic_limit`; no pressure above H. A hardness far above every
+/// pressure (150 GPa, the domain's end) leaves the elastic solution: the same real areas as the
+/// model without the cap, and no plastic area.
+#[test]
+fn hardness_cap_bounds_the_real_area_and_reports_the_plastic_area() {
+    let elastic = run(&[]);
+    let h = 1e6;
+    let capped = run(&["contact.bem.plastic=true", "material.hardness=1 MPa"]);
+    let mut checked = 0;
+    for (e, c) in elastic.points.iter().zip(&capped.points) {
+        assert!(e.plastic_area_m2.is_none() && e.plastic_note.is_none());
+        if !c.in_contact || c.error.is_some() {
+            continue;
+        }
+        let a_p = c.plastic_area_m2.expect("plastic area");
+        eprintln!(
+            "L {:.3e} N: A_r elastic {:.3e}, capped {:.3e} (L/H {:.3e}), A_p {:.3e}",
+            c.true_load_n,
+            e.real_area_m2,
+            c.real_area_m2,
+            c.true_load_n / h,
+            a_p
+        );
+        assert!(c.real_area_m2 >= c.true_load_n / h * (1.0 - 1e-9), "A_r below L/H");
+        assert!(c.real_area_m2 > e.real_area_m2, "the cap should enlarge the contact");
+        assert!(a_p > 0.0 && a_p <= c.real_area_m2);
+        assert!(c.over_elastic_limit && c.plastic_note.as_deref().is_some_and(|n| n.contains("contact.bem.plastic")));
+        assert!(c.max_pressure_pa <= h * (1.0 + 1e-12), "{}", c.max_pressure_pa);
+        checked += 1;
+    }
+    assert!(checked >= 5, "{checked}");
+    let high = run(&["contact.bem.plastic=true", "material.hardness=150 GPa"]);
+    for (e, c) in elastic.points.iter().zip(&high.points) {
+        assert_eq!(e.real_area_m2, c.real_area_m2);
+        if c.in_contact && c.error.is_none() {
+            assert_eq!(c.plastic_area_m2, Some(0.0));
+            assert!(c.plastic_note.is_none());
+        }
+    }
+}
+
+/// The cap is solved without adhesion and for a flat shoe: an adhesive law with a work of
+/// adhesion, or a tilting shoe, beside `contact.bem.plastic` is refused naming the fields.
+#[test]
+fn hardness_cap_with_adhesion_or_tilt_is_refused_naming_the_fields() {
+    let text = std::fs::read_to_string(root().join("scenarios/tas2000-bem.json")).unwrap();
+    let refuse = |sets: &[&str], needles: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let e = Scenario::from_str_with_sets(&text, Path::new("x.json"), &sets).unwrap_err().to_string();
+        for n in needles {
+            assert!(e.contains(n), "{sets:?}: {e}");
+        }
+    };
+    refuse(&["contact.bem.plastic=true"], &["contact.bem.plastic", "material.work_of_adhesion", "contact.law"]);
+    refuse(&["contact.law=\"hertz\"", "contact.bem.plastic=true", "contact.bem.tilt=true"], &["contact.bem.plastic"]);
+    refuse(&["contact.bem.tilt=true", "contact.bem.boundary=\"periodic\""], &["contact.bem.tilt"]);
+    // No adhesion through a zero work of adhesion is accepted with the DMT law.
+    let sets: Vec<String> = ["contact.bem.plastic=true", "material.work_of_adhesion=0 J/m^2"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    assert!(Scenario::from_str_with_sets(&text, Path::new("x.json"), &sets).is_ok());
+}
