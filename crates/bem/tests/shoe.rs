@@ -213,3 +213,42 @@ fn merging_contacts_show_what_the_summit_model_misses() {
         }
     }
 }
+
+/// A wall that is a tilted plane, `h = a x + b y` (a = 2e-3, b = -1e-3, a 32 x 24 patch of 1 um
+/// pixels, E* = 1 GPa, 1 MPa): the face that balances its moments is the plane itself,
+/// `t = (a, b)`, on which the patch is a flat rigid punch in full contact, loaded symmetrically
+/// about the centre (Boussinesq's punch: zero moment). Closed form: the tilts equal (a, b); the
+/// tolerance, 1e-3 of the slope, is the moment tolerance (1e-4 of F L/2) over the punch's
+/// rotational stiffness, which a uniform rotation of the full contact puts at about a tenth of
+/// F L/2 per tilt of the height range over the half-diagonal. The whole patch is in contact. With
+/// a Dugdale law beside it the same plane is found (the zone is the whole patch, uniform tension).
+#[test]
+fn tilted_plane_wall_is_met_by_the_face_at_its_slope() {
+    let (nx, ny, dx) = (32usize, 24usize, 1e-6);
+    let (a, b) = (2e-3, -1e-3);
+    let h: Vec<f64> = (0..nx * ny)
+        .map(|i| {
+            let (x, y) = centre(i, nx, dx);
+            a * x + b * y
+        })
+        .collect();
+    let mut s = BemSolver::with_boundary(nx, ny, dx, dx, &h, 1e9, Boundary::NonPeriodic).unwrap();
+    let opts = SolverOptions { tolerance: 1e-8, ..Default::default() };
+    let p = 1e6;
+    let law = Dugdale::from_work_and_range(0.1, 1e-9).unwrap();
+    for dugdale in [None, Some(&law)] {
+        let shoe = s.tilting_at_load(p, dugdale, &opts, None).unwrap();
+        eprintln!(
+            "adhesive {}: tilts {:e} {:e} ({} solves), contact fraction {}",
+            dugdale.is_some(),
+            shoe.tilt_x_rad,
+            shoe.tilt_y_rad,
+            shoe.solves,
+            shoe.solution.contact_fraction
+        );
+        assert!((shoe.tilt_x_rad / a - 1.0).abs() < 1e-3, "{}", shoe.tilt_x_rad);
+        assert!((shoe.tilt_y_rad / b - 1.0).abs() < 1e-3, "{}", shoe.tilt_y_rad);
+        assert_eq!(shoe.solution.contact_fraction, 1.0);
+        assert_eq!(s.heights_m(), &h[..]);
+    }
+}

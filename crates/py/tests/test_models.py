@@ -156,6 +156,60 @@ def test_bem_errors(cli):
         stiction.bem(heights, "1 MPa", height_unit="nm")
 
 
+def test_bem_boundary_tilt_and_hardness_equal_cli(tmp_path, cli_json):
+    """boundary, tilt and hardness as --boundary, --tilt and --hardness: the same JSON."""
+    heights = _smooth_map(32, 32)
+    path = tmp_path / "map.npy"
+    np.save(path, heights)
+    flags = ["--pixel-size", "0.5 um", "--height-unit", "nm", "--e-star", "1 GPa"]
+    for cli_flags, kw in [
+        (["--hardness", "20 MPa", "--sweep", "1MPa:10MPa:2"], dict(hardness="20 MPa", sweep="1MPa:10MPa:2")),
+        (["--boundary", "non-periodic", "--pressure", "5 MPa"], dict(boundary="non_periodic", pressure="5 MPa")),
+        (["--boundary", "non-periodic", "--tilt", "--pressure", "5 MPa"],
+         dict(boundary="non_periodic", tilt=True, pressure="5 MPa")),
+    ]:
+        e = cli_json("bem", "--map", path, *flags, *cli_flags)
+        got = stiction.bem(heights, pixel_size="0.5 um", height_unit="nm", e_star="1 GPa", **kw).to_dict()
+        got["surface"]["file"] = e["surface"]["file"]
+        assert got == e, kw
+    assert got["boundary"] == "non_periodic" and got["tilt"] is True
+    assert np.isfinite(got["points"][0]["tilt_x_rad"])
+
+
+def test_bem_tilting_face_meets_a_tilted_plane_at_its_slope():
+    """A height map that is a plane of slopes (2e-3, -1e-3) (not levelled): the balanced face is
+    the plane itself, a flat punch in full contact (Boussinesq: no moment about the centre);
+    closed form t = (a, b), within 1e-3 of the slope (the moment tolerance)."""
+    ny, nx, dx = 24, 32, 1e-6
+    y, x = np.mgrid[0:ny, 0:nx]
+    heights = 2e-3 * (x + 0.5) * dx - 1e-3 * (y + 0.5) * dx
+    r = stiction.bem(heights, pixel_size=dx, height_unit=1.0, level="none", e_star="1 GPa",
+                     boundary="non_periodic", tilt=True, pressure="1 MPa", tolerance=1e-8).to_dict()
+    p = r["points"][0]
+    assert abs(p["tilt_x_rad"] / 2e-3 - 1) < 1e-3 and abs(p["tilt_y_rad"] / -1e-3 - 1) < 1e-3, p
+    assert p["contact_fraction"] == 1.0
+
+
+def test_bem_boundary_tilt_hardness_refuse_bad_input_naming_the_argument():
+    heights = _smooth_map(16, 16)
+    kw = dict(pixel_size="0.5 um", height_unit="nm")
+    cases = [
+        (dict(boundary="sideways", pressure="1 MPa"), "boundary"),
+        (dict(tilt=True, pressure="1 MPa"), "tilt"),
+        (dict(boundary="non_periodic", gap_sweep="50nm:10nm:2"), "gap_sweep"),
+        (dict(hardness="1e30 Pa", pressure="1 MPa"), "hardness"),
+        (dict(hardness="-1 GPa", pressure="1 MPa"), "hardness"),
+        (dict(hardness="1 MPa", pressure="5 MPa"), "hardness"),
+        (dict(hardness="50 MPa", boundary="non_periodic", work_of_adhesion=0.1, range="1 nm", pressure="1 MPa"),
+         "work_of_adhesion"),
+        (dict(hardness="50 MPa", boundary="non_periodic", tilt=True, pressure="1 MPa"), "tilt"),
+    ]
+    for extra, name in cases:
+        with pytest.raises(stiction.StictionError) as e:
+            stiction.bem(heights, **kw, **extra)
+        assert name in str(e.value) and "--" not in str(e.value), (extra, str(e.value))
+
+
 # ---------------------------------------------------------------------------------------------
 # single asperity, fit, study
 
