@@ -233,7 +233,7 @@ fn tilted_plane_wall_is_met_by_the_face_at_its_slope() {
         })
         .collect();
     let mut s = BemSolver::with_boundary(nx, ny, dx, dx, &h, 1e9, Boundary::NonPeriodic).unwrap();
-    let opts = SolverOptions { tolerance: 1e-8, ..Default::default() };
+    let opts = SolverOptions { tolerance: 1e-6, ..Default::default() };
     let p = 1e6;
     let law = Dugdale::from_work_and_range(0.1, 1e-9).unwrap();
     for dugdale in [None, Some(&law)] {
