@@ -2,7 +2,7 @@
 //! scenario (scenarios/tas2000-bem.json, kept small: six clamp voltages, no slip dynamics, the
 //! patch coarsened to at most 4000 points) with each of its quantity fields at the ends of its
 //! physical domain and beyond them, on the finite patch (default) and the periodic cell, flat and
-//! tilting:
+//! tilting, and with the hardness cap (`contact.bem.plastic`, the hardness `material.hardness`):
 //!
 //! * a value outside its domain is refused naming the field (a generated rms height of 1e30 m and
 //!   a clamp thickness of 9e18 m are two of them: before the domains, they kept the meter busy
@@ -112,14 +112,31 @@ fn every_bem_input_is_refused_or_runs_to_a_bounded_result() {
             }
         }
     }
-    // A tilting shoe on the periodic cell is refused naming the field.
+    // A tilting shoe on the periodic cell is refused naming the field (when the scenario is read).
     let sets = vec!["contact.bem.boundary=\"periodic\"".to_string(), "contact.bem.tilt=true".to_string()];
-    let s = Scenario::from_str_with_sets(&text, Path::new("x.json"), &sets).unwrap();
-    let Err(e) = Meter::from_scenario(&s, &root().join("scenarios")) else {
-        panic!("a tilting periodic shoe was built")
-    };
-    let e = e.to_string();
+    let e = Scenario::from_str_with_sets(&text, Path::new("x.json"), &sets).unwrap_err().to_string();
     assert!(e.contains("contact.bem.tilt"), "{e}");
+    // The hardness cap (without adhesion): the hardness at the ends of its domain and beyond, a
+    // hardness below every mean pressure (each point a null with its reason), and beside an
+    // adhesive law or a tilting shoe (refused naming the fields).
+    let d = domain::lookup("material.hardness").unwrap();
+    for (value, inside) in [(d.max * 1e-12, true), (1.0, true), (d.max, true), (d.max * 10.0, false), (-1.0, false)] {
+        let sets: Vec<String> = ["contact.law=\"hertz\"".to_string(), "contact.bem.plastic=true".to_string()]
+            .into_iter()
+            .chain([format!("material.hardness={value:e} Pa")])
+            .collect();
+        let outcome = run(&text, &sets).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
+        eprintln!("{sets:?}: {}", if outcome { "ran" } else { "refused" });
+        assert_eq!(outcome, inside, "{sets:?}");
+    }
+    for sets in [
+        vec!["contact.bem.plastic=true"],
+        vec!["contact.law=\"hertz\"", "contact.bem.plastic=true", "contact.bem.tilt=true"],
+    ] {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let e = Scenario::from_str_with_sets(&text, Path::new("x.json"), &sets).unwrap_err().to_string();
+        assert!(e.contains("contact.bem.plastic"), "{sets:?}: {e}");
+    }
     eprintln!("{ran} ran, {refused} refused, {:.1} s in all", start.elapsed().as_secs_f64());
     assert!(ran > 10, "{ran}");
 }

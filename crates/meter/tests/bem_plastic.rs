@@ -12,25 +12,33 @@ use common::root;
 
 fn run(sets: &[&str]) -> stiction_meter::MeterResult {
     let text = std::fs::read_to_string(root().join("scenarios/tas2000-bem.json")).unwrap();
-    let mut all: Vec<String> =
-        ["contact.law=\"hertz\"", "contact.bem.points=8000"].iter().map(|s| s.to_string()).collect();
+    // Clamp voltages of 200-600 V: loads of 0.55-5 mN, mean pressures of 5.5-50 MPa, contacts of
+    // tens to hundreds of the 120 nm pixels with elastic peaks of 1.6-3.0 GPa.
+    let mut all: Vec<String> = [
+        "contact.law=\"hertz\"",
+        "contact.bem.points=8000",
+        "meter.clamp_voltages={\"from\": \"200 V\", \"to\": \"600 V\", \"steps\": 5}",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
     all.extend(sets.iter().map(|s| s.to_string()));
     let s = Scenario::from_str_with_sets(&text, Path::new("tas2000-bem.json"), &all).unwrap();
     Meter::from_scenario(&s, &root().join("scenarios")).unwrap().run(&mut |_, _| {}).unwrap()
 }
 
 /// With the pressure capped at H the contacts carry the load at p <= H, so the real area is at
-/// least L/H (a bound of any capped contact, whatever the surface): with H = 1 MPa and loads of
-/// 0.4-4.8 uN on a 100 um^2 shoe it is 0.4-4.8 % of the apparent area, far above the elastic
-/// contact's (tens of pixels of 160 nm). Every point in contact reports a plastic area within its
+/// least L/H (a bound of any capped contact, whatever the surface). At H = 1.5 GPa, below the
+/// elastic peak of every load, each point has pixels at the hardness and no less contact than
+/// the elastic model's (the cap moves load to new points; at the lowest load none enters). Every point in contact reports a plastic area within its
 /// real area, a note, and `over_elastic_limit`; no pressure above H. A hardness far above every
 /// pressure (150 GPa, the domain's end) leaves the elastic solution: the same real areas as the
 /// model without the cap, and no plastic area.
 #[test]
 fn hardness_cap_bounds_the_real_area_and_reports_the_plastic_area() {
     let elastic = run(&[]);
-    let h = 1e6;
-    let capped = run(&["contact.bem.plastic=true", "material.hardness=1 MPa"]);
+    let h = 1.5e9;
+    let capped = run(&["contact.bem.plastic=true", "material.hardness=1.5 GPa"]);
     let mut checked = 0;
     for (e, c) in elastic.points.iter().zip(&capped.points) {
         assert!(e.plastic_area_m2.is_none() && e.plastic_note.is_none());
@@ -47,13 +55,13 @@ fn hardness_cap_bounds_the_real_area_and_reports_the_plastic_area() {
             a_p
         );
         assert!(c.real_area_m2 >= c.true_load_n / h * (1.0 - 1e-9), "A_r below L/H");
-        assert!(c.real_area_m2 > e.real_area_m2, "the cap should enlarge the contact");
+        assert!(c.real_area_m2 >= e.real_area_m2, "the cap should not shrink the contact");
         assert!(a_p > 0.0 && a_p <= c.real_area_m2);
         assert!(c.over_elastic_limit && c.plastic_note.as_deref().is_some_and(|n| n.contains("contact.bem.plastic")));
         assert!(c.max_pressure_pa <= h * (1.0 + 1e-12), "{}", c.max_pressure_pa);
         checked += 1;
     }
-    assert!(checked >= 5, "{checked}");
+    assert!(checked == 5, "{checked}");
     let high = run(&["contact.bem.plastic=true", "material.hardness=150 GPa"]);
     for (e, c) in elastic.points.iter().zip(&high.points) {
         assert_eq!(e.real_area_m2, c.real_area_m2);
