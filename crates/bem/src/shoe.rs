@@ -20,9 +20,14 @@
 //! `M(t)` is the gradient of the concave dual energy, so its Jacobian is negative semi-definite: a
 //! Newton iteration on `t` with the Jacobian from finite differences, in a trust region, falling
 //! back to the ascent step along `M` where the Jacobian is singular (one contact: no tilt is
-//! resisted until a second summit touches). Converged when `|M| < MOMENT_TOLERANCE F L/2` (`L`
-//! the half-diagonal of the patch). Tilts are small angles; above [`MAX_TILT_RAD`] the shoe is
-//! said to tip over (as in the explicit solver).
+//! resisted until a second summit touches). Every trial pose is a candidate and the iteration
+//! moves only to a better one (smaller `|M|`). Converged when `|M| < MOMENT_TOLERANCE F L/2` (`L`
+//! the half-diagonal of the patch). Contacts and cohesive zones change by whole pixels, so `M` is
+//! not continuous in the tilt: when `|M|` has not halved over [`STALL_ITERATIONS`] outer steps
+//! (or after [`MAX_POSE_SOLVES`] solves) a pose whose centre of pressure lies within one pixel of
+//! the clamp point (`|M|/F <= max(dx, dy)`) is returned as the balance the grid resolves, and
+//! anything further is a non-convergence error. Tilts are small angles; above [`MAX_TILT_RAD`]
+//! the shoe is said to tip over (as in the explicit solver).
 
 use crate::BemError;
 use crate::grid::block_sum;
