@@ -186,16 +186,9 @@ impl TextTable {
     }
 }
 
-/// Creates an output folder (and its parents); errors name the folder.
-pub fn ensure_dir(dir: &Path) -> CliResult {
-    if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
-        return Err(
-            format!("output folder {} is a symbolic link; outputs never go through a link", dir.display()).into()
-        );
-    }
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create output folder {}: {e}", dir.display()))?;
-    Ok(())
-}
+/// Creates an output folder (and its parents); errors name the folder (the engine's rule: no
+/// symbolic link).
+pub use stiction_engine::study_folder::ensure_dir;
 
 /// Formats an SI value with a prefix and unit.
 pub fn q(value: f64, dim: Dimension) -> String {

@@ -1,6 +1,7 @@
 //! `scenario`: a scenario checked as the commands read it.
 
-use stiction_scenario::Scenario;
+// The scenario and its reference section (the paper's measured values), which front ends print.
+pub use stiction_scenario::{ReferenceSpec, Scenario};
 
 use crate::Error;
 use crate::scenario_source::ScenarioSource;
