@@ -74,7 +74,7 @@ pub fn quantity(
 }
 
 /// A quantity flag in the physical domain of the scenario quantity `path`
-/// (`stiction_scenario::domain`: the one table for the file, `--set`, flags and Python): outside
+/// (`stiction_engine::check::domain_value`: the one table for the file, `--set`, flags and Python): outside
 /// it the flag is refused with the domain and its reason; outside the usual range it runs with a
 /// warning on standard error naming `flag`.
 pub fn domain_quantity(
@@ -85,14 +85,10 @@ pub fn domain_quantity(
 ) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
     move |s: &str| {
         let v = parse_quantity_checked(s, dim, constraint).map_err(|e| e.to_string())?;
-        match stiction_scenario::domain::check_value(path, flag, v) {
-            Ok(Some(w)) => {
-                crate::errln!("warning [{}]: {}", w.code, w.message);
-                Ok(v)
-            }
-            Ok(None) => Ok(v),
-            Err(e) => Err(e.message),
+        if let Some(w) = stiction_engine::check::domain_value(path, flag, v)? {
+            crate::errln!("warning [{}]: {}", w.code, w.message);
         }
+        Ok(v)
     }
 }
 

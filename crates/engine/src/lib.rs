@@ -28,6 +28,7 @@ pub mod json;
 pub mod limits;
 pub mod merge;
 pub mod plot;
+pub mod range;
 pub mod rh;
 pub mod run;
 pub mod scenario;

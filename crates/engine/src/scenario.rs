@@ -19,3 +19,23 @@ pub fn check(source: &ScenarioSource) -> Result<Scenario, Error> {
     }
     Ok(scenario)
 }
+
+/// The JSON Schema of a scenario file (`stiction scenario --schema`), generated from the types
+/// that parse it.
+pub fn schema() -> serde_json::Value {
+    Scenario::json_schema()
+}
+
+/// The table of every scenario quantity's physical domain, as Markdown (`stiction scenario
+/// --domains`; docs/reliability.md holds the same table).
+pub fn domains_table() -> String {
+    stiction_scenario::domain::markdown_table()
+}
+
+/// The scenario as an input file with every default written out and its file paths absolute
+/// (from `base`), so that the printed scenario runs from wherever it is saved.
+pub fn input_json(scenario: &Scenario, base: &std::path::Path) -> serde_json::Value {
+    let mut printed = scenario.to_input_json();
+    stiction_scenario::absolutize_file_paths(&mut printed, base);
+    printed
+}
