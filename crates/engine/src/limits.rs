@@ -16,9 +16,8 @@ pub use stiction_study::MAX_THREADS;
 pub use stiction_study::max_samples;
 
 /// Most steps of a `stiction bem --sweep` or `--gap-sweep` path (FROM:TO:STEPS), so also most
-/// pressures of a front end's vector of pressures. The check is the typed ranges' own
-/// (`crate::range`); the test `bem_limits_are_the_engines` fails if the two ever differ.
-pub const BEM_MAX_PATH_STEPS: usize = 10_000;
+/// pressures of a front end's vector of pressures: the typed ranges' own limit (`crate::range`).
+pub use crate::range::MAX_PATH_STEPS as BEM_MAX_PATH_STEPS;
 /// Most grid points per side of `stiction bem --grid` (checked by `bem` itself; same test).
 pub const BEM_MAX_GRID_SIDE: usize = 4096;
 /// Most relative humidities of `--rh` (`stiction bem`, `stiction plot humidity`), checked by

@@ -5,8 +5,8 @@
 
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
-/// Most steps of one path.
-pub const MAX_PATH_STEPS: usize = crate::limits::BEM_MAX_PATH_STEPS;
+/// Most steps of one path (`limits::BEM_MAX_PATH_STEPS`).
+pub const MAX_PATH_STEPS: usize = 10_000;
 
 /// The values of a path from `from` to `to` in `steps` (>= 1) evenly spaced steps, both ends
 /// included; one step is `from` alone.
@@ -117,8 +117,12 @@ mod tests {
         let g = GapRange::parse("20nm:1nm:4", "--gap-sweep").unwrap();
         let v = g.values_m();
         assert_eq!(v.len(), 4);
-        assert!((v[0] - 20e-9).abs() < 1e-24 && (v[3] - 1e-9).abs() < 1e-24);
-        assert!((v[1] - v[0] - (v[3] - v[2])).abs() < 1e-22, "evenly spaced: {v:?}");
+        // The ends are the parsed quantities (a unit conversion: a few ulps, 1e-12 relative).
+        assert!((v[0] / 20e-9 - 1.0).abs() < 1e-12 && (v[3] / 1e-9 - 1.0).abs() < 1e-12, "{v:?}");
+        // Equal steps of (1 - 20) / 3 nm, to rounding (1e-12 relative).
+        for w in v.windows(2) {
+            assert!(((w[1] - w[0]) / (-19e-9 / 3.0) - 1.0).abs() < 1e-12, "evenly spaced: {v:?}");
+        }
         assert_eq!(GapRange::parse("5nm:9nm:1", "gap_sweep").unwrap().values_m(), vec![5e-9]);
     }
 
