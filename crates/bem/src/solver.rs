@@ -161,11 +161,14 @@ pub struct SolverOptions {
     pub max_iterations: usize,
     /// Cap on the cohesive-zone updates of an adhesive solve; default 500.
     pub max_zone_updates: usize,
+    /// Hardness `H` (Pa) at which the compressive traction is capped (perfectly plastic pixels),
+    /// read by [`BemSolver::plastic_at_load`]; `None` (the default): elastic.
+    pub hardness_pa: Option<f64>,
 }
 
 impl Default for SolverOptions {
     fn default() -> Self {
-        SolverOptions { tolerance: 1e-8, max_iterations: 10_000, max_zone_updates: 500 }
+        SolverOptions { tolerance: 1e-8, max_iterations: 10_000, max_zone_updates: 500, hardness_pa: None }
     }
 }
 
@@ -180,6 +183,9 @@ impl SolverOptions {
         }
         if self.max_iterations == 0 || self.max_zone_updates == 0 {
             return Err(BemError::Value { name: "max_iterations", value: 0.0, expected: "iteration caps >= 1" });
+        }
+        if let Some(h) = self.hardness_pa {
+            check_positive("hardness_pa", h, "a finite hardness > 0 (Pa)")?;
         }
         Ok(())
     }
