@@ -51,8 +51,6 @@ pub const STALL_ITERATIONS: usize = 4;
 /// Most Illinois steps of one line search.
 const MAX_BRACKET_STEPS: usize = 8;
 
-
-
 /// Relative slack with which a state counts as below a target load when it warm-starts the
 /// adhesive solve: a state solved at the same load carries it to rounding, either side.
 const SAME_LOAD_SLACK: f64 = 1e-9;

@@ -73,8 +73,8 @@ pub struct BemSpec {
     pub tilt: Option<bool>,
     /// Whether the contact pressure is capped at the material's hardness (`material.hardness`):
     /// perfectly plastic pixels flow at `H` (true; docs/bem.md, "Solvers", the hardness cap) or
-    /// the contact stays elastic whatever its pressure (false, the default). Load control without
-    /// adhesion only (law "hertz" or a work of adhesion 0), a flat shoe.
+    /// the contact stays elastic whatever its pressure (false, the default). With adhesion the net
+    /// traction is capped (`p_c - sigma0 <= H`); a flat shoe only.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub plastic: Option<bool>,
 }

@@ -354,9 +354,11 @@ pub fn check_shoe_args(args: &BemRequest) -> Result<(), Error> {
         return Err("--tilt needs --boundary non-periodic: a periodic cell has no edge to tilt about".into());
     }
     if args.humidity.rh.is_some() {
-        for (given, flag) in
-            [(non_periodic, "--boundary non-periodic"), (args.tilt, "--tilt"), (args.hardness_pa.is_some(), "--hardness")]
-        {
+        for (given, flag) in [
+            (non_periodic, "--boundary non-periodic"),
+            (args.tilt, "--tilt"),
+            (args.hardness_pa.is_some(), "--hardness"),
+        ] {
             if given {
                 return Err(format!(
                     "--rh cannot be used with {flag}: the retraction to separation is a mean-gap path on the periodic \
@@ -376,13 +378,9 @@ pub fn check_shoe_args(args: &BemRequest) -> Result<(), Error> {
         let flag = |_: &str| "--hardness".to_string();
         crate::check::domain(&mut unusual, &flag, "hardness_pa", "material.hardness", h)?;
         if args.gap_sweep.is_some() {
-            return Err("--hardness caps the pressure under load control: give --pressure or --sweep, not --gap-sweep"
-                .into());
-        }
-        if args.work_of_adhesion_j_per_m2.is_some() {
-            return Err("--hardness cannot be used with --work-of-adhesion: the hardness cap is solved without \
-                        adhesion only (a plastic cohesive zone is not implemented)"
-                .into());
+            return Err(
+                "--hardness caps the pressure under load control: give --pressure or --sweep, not --gap-sweep".into()
+            );
         }
         if args.tilt {
             return Err("--hardness cannot be used with --tilt: the hardness cap is solved for a flat face".into());
@@ -439,7 +437,7 @@ pub fn solve(
             states.push(s);
         }
     } else {
-        if law.is_some() && args.boundary == Boundary::Periodic {
+        if law.is_some() && args.boundary == Boundary::Periodic && args.hardness_pa.is_none() {
             return Err("adhesion (--work-of-adhesion, --range) needs a mean-gap path (--gap-sweep): \
                         load control cannot pass the load minimum to pull-off"
                 .into());
@@ -460,6 +458,7 @@ pub fn solve(
             .into());
         }
         let mut last_tilt: Option<stiction_bem::TiltedShoe> = None;
+        let mut last_plastic: Option<stiction_bem::PlasticSolution> = None;
         for p in loads {
             // Each state continues the path from the one before while the load rises (the
             // loading branch under adhesion), and starts afresh below it.
@@ -472,12 +471,18 @@ pub fn solve(
                 last_tilt = Some(t);
                 (s, Some(pose), None)
             } else if let Some(h) = args.hardness_pa {
-                // Each load cold: a warm start from the previous plastic state can stall the
-                // plastic iteration (seen on a sweep of 1-40 MPa at H = 50 MPa, residual 0.08 after
-                // 10,000 iterations, where every cold solve converges in 23-48).
-                let st = solver.solve_load_plastic(p, h, &opts, None)?;
+                // Without adhesion each load cold: a warm start from the previous plastic state
+                // can stall the plastic iteration (seen on a sweep of 1-40 MPa at H = 50 MPa,
+                // residual 0.08 after 10,000 iterations, where every cold solve converges in
+                // 23-48). With adhesion the net traction is capped and the cohesive zone grows on
+                // the loading branch, continued from the lower load's state.
+                let capped = SolverOptions { hardness_pa: Some(h), ..opts };
+                let w = last_plastic.as_ref().filter(|s| law.is_some() && s.solution.mean_pressure_pa <= p);
+                let st = solver.plastic_at_load(p, law.as_ref(), &capped, w)?;
                 let pl = (st.plastic_fraction, st.plastic_area_m2, st.max_plastic_depth_m);
-                (st.solution, None, Some(pl))
+                let s = st.solution.clone();
+                last_plastic = Some(st);
+                (s, None, Some(pl))
             } else if let Some(l) = &law {
                 (solver.adhesive_at_load(p, l, &opts, warm)?, None, None)
             } else {

@@ -180,6 +180,7 @@ pub struct BemContact {
     tilting: bool,
     last_tilt: Option<stiction_bem::TiltedShoe>,
     hardness_pa: Option<f64>,
+    last_plastic: Option<stiction_bem::PlasticSolution>,
     /// Block factors (x, y) that coarsened the map's pixels into the grid.
     pub coarsening: (usize, usize),
 }
@@ -214,10 +215,9 @@ impl BemContact {
                     .into(),
             ));
         }
-        if shoe.hardness_pa.is_some() && (shoe.tilting || law.is_some()) {
+        if shoe.hardness_pa.is_some() && shoe.tilting {
             return Err(MeterError::Scenario(
-                "contact.bem.plastic: the hardness cap is solved for a flat shoe without adhesion only (not with \
-                 contact.bem.tilt, nor with an adhesive contact.law and material.work_of_adhesion > 0)"
+                "contact.bem.plastic: the hardness cap is solved for a flat shoe only (not with contact.bem.tilt)"
                     .into(),
             ));
         }
@@ -247,6 +247,7 @@ impl BemContact {
             tilting: shoe.tilting,
             last_tilt: None,
             hardness_pa: shoe.hardness_pa,
+            last_plastic: None,
             coarsening,
         })
     }
@@ -299,14 +300,21 @@ impl BemContact {
             return Ok(out);
         }
         if let Some(h) = self.hardness_pa {
-            // The hardness cap (no adhesion, flat shoe: checked in `new`); at a mean pressure at
-            // or above the hardness the whole face flows and no state exists (the solver's error).
-            // Each load solved cold: a warm start from the previous plastic state can stall the
-            // plastic iteration where the cold solve converges (stiction_engine::bem, the sweep).
-            let st = self.solver.solve_load_plastic(p, h, &self.options, None).map_err(|e| {
-                MeterError::Contact(format!("bem (hardness cap, material.hardness = {h:e} Pa): {e}"))
-            })?;
-            return Ok((st.solution, (0.0, 0.0), Some(st.plastic_area_m2)));
+            // The hardness cap (flat shoe: checked in `new`); at a mean pressure at or above the
+            // hardness the whole face flows and no state exists (the solver's error). With
+            // adhesion the net traction is capped and the zone is grown on the loading branch,
+            // continued from the lower load's state; without, each load is solved cold (a warm
+            // start from the previous plastic state could stall the iteration where the cold
+            // solve converges: stiction_engine::bem, the sweep).
+            let opts = stiction_bem::SolverOptions { hardness_pa: Some(h), ..self.options };
+            let warm = self.last_plastic.as_ref().filter(|s| self.law.is_some() && s.solution.mean_pressure_pa <= p);
+            let st = self
+                .solver
+                .plastic_at_load(p, self.law.as_ref(), &opts, warm)
+                .map_err(|e| MeterError::Contact(format!("bem (hardness cap, material.hardness = {h:e} Pa): {e}")))?;
+            let out = (st.solution.clone(), (0.0, 0.0), Some(st.plastic_area_m2));
+            self.last_plastic = Some(st);
+            return Ok(out);
         }
         let s = match (&self.law, self.solver.boundary()) {
             (None, _) => self.solver.solve_load(p, &self.options, self.last.as_ref()),

@@ -116,23 +116,22 @@ fn every_bem_input_is_refused_or_runs_to_a_bounded_result() {
     let sets = vec!["contact.bem.boundary=\"periodic\"".to_string(), "contact.bem.tilt=true".to_string()];
     let e = Scenario::from_str_with_sets(&text, Path::new("x.json"), &sets).unwrap_err().to_string();
     assert!(e.contains("contact.bem.tilt"), "{e}");
-    // The hardness cap (without adhesion): the hardness at the ends of its domain and beyond, a
-    // hardness below every mean pressure (each point a null with its reason), and beside an
-    // adhesive law or a tilting shoe (refused naming the fields).
+    // The hardness cap: the hardness at the ends of its domain and beyond, a hardness below every
+    // mean pressure (each point a null with its reason), with and without adhesion, and beside a
+    // tilting shoe (refused naming the fields).
     let d = domain::lookup("material.hardness").unwrap();
     for (value, inside) in [(d.max * 1e-12, true), (1.0, true), (d.max, true), (d.max * 10.0, false), (-1.0, false)] {
-        let sets: Vec<String> = ["contact.law=\"hertz\"".to_string(), "contact.bem.plastic=true".to_string()]
-            .into_iter()
-            .chain([format!("material.hardness={value:e} Pa")])
-            .collect();
-        let outcome = run(&text, &sets).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
-        eprintln!("{sets:?}: {}", if outcome { "ran" } else { "refused" });
-        assert_eq!(outcome, inside, "{sets:?}");
+        for law in ["contact.law=\"hertz\"", "contact.law=\"dmt\""] {
+            let sets: Vec<String> = [law.to_string(), "contact.bem.plastic=true".to_string()]
+                .into_iter()
+                .chain([format!("material.hardness={value:e} Pa")])
+                .collect();
+            let outcome = run(&text, &sets).unwrap_or_else(|e| panic!("{sets:?}: {e}"));
+            eprintln!("{sets:?}: {}", if outcome { "ran" } else { "refused" });
+            assert_eq!(outcome, inside, "{sets:?}");
+        }
     }
-    for sets in [
-        vec!["contact.bem.plastic=true"],
-        vec!["contact.law=\"hertz\"", "contact.bem.plastic=true", "contact.bem.tilt=true"],
-    ] {
+    for sets in [vec!["contact.law=\"hertz\"", "contact.bem.plastic=true", "contact.bem.tilt=true"]] {
         let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
         let e = Scenario::from_str_with_sets(&text, Path::new("x.json"), &sets).unwrap_err().to_string();
         assert!(e.contains("contact.bem.plastic"), "{sets:?}: {e}");

@@ -200,8 +200,6 @@ def test_bem_boundary_tilt_hardness_refuse_bad_input_naming_the_argument():
         (dict(hardness="1e30 Pa", pressure="1 MPa"), "hardness"),
         (dict(hardness="-1 GPa", pressure="1 MPa"), "hardness"),
         (dict(hardness="1 MPa", pressure="5 MPa"), "hardness"),
-        (dict(hardness="50 MPa", boundary="non_periodic", work_of_adhesion=0.1, range="1 nm", pressure="1 MPa"),
-         "work_of_adhesion"),
         (dict(hardness="50 MPa", boundary="non_periodic", tilt=True, pressure="1 MPa"), "tilt"),
     ]
     for extra, name in cases:

@@ -557,8 +557,7 @@ impl Scenario {
                 let sd_dim = dim.unwrap_or(Dimension::SurfaceEnergy);
                 let mut origin = format!("given: material.{field}");
                 if field == "hardness" {
-                    let plastic =
-                        self.contact.as_ref().and_then(|c| c.bem.as_ref()).is_some_and(|b| b.plastic());
+                    let plastic = self.contact.as_ref().and_then(|c| c.bem.as_ref()).is_some_and(|b| b.plastic());
                     if plastic {
                         origin.push_str("; caps the contact pressure of the bem model (contact.bem.plastic)");
                     }

@@ -224,20 +224,6 @@ impl Scenario {
                         .into(),
                 ));
             }
-            // The hardness cap is the Polonsky-Keer solve with the pressure bounded by the
-            // material's hardness; a plastic cohesive zone is not solved: refused, never a number
-            // from a model that drops one of the two.
-            let plastic = c.bem.as_ref().is_some_and(|b| b.plastic());
-            let work = self.material.as_ref().map_or(0.0, |m| m.work_of_adhesion);
-            if plastic && c.law != stiction_contact::single::AdhesionLaw::Hertz && work > 0.0 {
-                return Err((
-                    "contact.bem.plastic".into(),
-                    format!(
-                        "the hardness cap (material.hardness) is solved without adhesion only, and                          material.work_of_adhesion = {work:e} J/m^2 with contact.law = \"{}\" is adhesive: give                          contact.law = \"hertz\" (or a work of adhesion 0), or drop contact.bem.plastic",
-                        c.law
-                    ),
-                ));
-            }
         }
         if let Some(st) = &self.structure {
             st.validate().map_err(|(p, msg)| (format!("structure.{p}"), msg))?;

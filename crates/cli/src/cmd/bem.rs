@@ -106,7 +106,8 @@ pub struct Args {
     #[arg(long)]
     pub tilt: bool,
     /// Cap the contact pressure at this hardness ("9 GPa"): perfectly plastic points flow at it,
-    /// and the plastic area is reported; load control without adhesion, flat face.
+    /// and the plastic area is reported; load control (--pressure, --sweep), flat face; with
+    /// adhesion the net traction is capped, on either boundary (the loading branch).
     #[arg(long, value_parser = quantity(Dimension::Pressure, Constraint::Positive))]
     pub hardness: Option<f64>,
     /// Folder for the fields (CSV, PNG heat maps of the last state), the curves (CSV, PNG) and
@@ -254,45 +255,46 @@ pub fn run(args: Args) -> CliResult {
         (_, false) => "BEM rough contact (finite patch on a half-space, rigid flat)",
         (_, true) => "BEM rough contact (finite patch on a half-space, tilting rigid face)",
     };
-    let mut rows = vec![(
-        "grid",
-                if grid.dx_m == grid.dy_m {
-                    format!("{} x {}, pixel {}", grid.nx, grid.ny, q(grid.dx_m, Dimension::Length))
-                } else {
-                    format!(
-                        "{} x {}, pixel {} x {}",
-                        grid.nx,
-                        grid.ny,
-                        q(grid.dx_m, Dimension::Length),
-                        q(grid.dy_m, Dimension::Length)
-                    )
-                },
-            ),
-            (
-                "surface",
+    let mut rows = vec![
+        (
+            "grid",
+            if grid.dx_m == grid.dy_m {
+                format!("{} x {}, pixel {}", grid.nx, grid.ny, q(grid.dx_m, Dimension::Length))
+            } else {
                 format!(
-                    "{}, rms height {}, rms slope {:.4}",
-                    match &out.surface {
-                        SurfaceSource::Generated { hurst, seed, .. } =>
-                            format!("generated self-affine H {hurst}, seed {seed}"),
-                        SurfaceSource::HeightMap { file, .. } => format!("height map {file}"),
-                        SurfaceSource::Scenario { file, .. } => format!("shoe patch of {file}"),
-                    },
-                    q(out.rms_height_m, Dimension::Length),
-                    rms_slope
-                ),
+                    "{} x {}, pixel {} x {}",
+                    grid.nx,
+                    grid.ny,
+                    q(grid.dx_m, Dimension::Length),
+                    q(grid.dy_m, Dimension::Length)
+                )
+            },
+        ),
+        (
+            "surface",
+            format!(
+                "{}, rms height {}, rms slope {:.4}",
+                match &out.surface {
+                    SurfaceSource::Generated { hurst, seed, .. } =>
+                        format!("generated self-affine H {hurst}, seed {seed}"),
+                    SurfaceSource::HeightMap { file, .. } => format!("height map {file}"),
+                    SurfaceSource::Scenario { file, .. } => format!("shoe patch of {file}"),
+                },
+                q(out.rms_height_m, Dimension::Length),
+                rms_slope
             ),
-            ("E*", q(e_star_pa, Dimension::Pressure)),
-            (
-                "adhesion",
-                law.map_or("none".into(), |l| {
-                    format!(
-                        "Dugdale, sigma0 {}, range {}",
-                        q(l.stress_pa, Dimension::Pressure),
-                        q(l.range_m, Dimension::Length)
-                    )
-                }),
-            ),
+        ),
+        ("E*", q(e_star_pa, Dimension::Pressure)),
+        (
+            "adhesion",
+            law.map_or("none".into(), |l| {
+                format!(
+                    "Dugdale, sigma0 {}, range {}",
+                    q(l.stress_pa, Dimension::Pressure),
+                    q(l.range_m, Dimension::Length)
+                )
+            }),
+        ),
     ];
     if let Some(h) = out.hardness_pa {
         rows.push(("hardness cap", q(h, Dimension::Pressure)));
