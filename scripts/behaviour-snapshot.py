@@ -129,9 +129,9 @@ def cli_cases():
     add("bem/non-periodic", "bem", "--grid", "32", "--boundary", "non-periodic", "--pressure", "1 MPa", "--json")
     add("bem/tilt", "bem", "--grid", "32", "--boundary", "non-periodic", "--tilt", "--pressure", "1 MPa", "--json")
     add("bem/err-tilt-periodic", "bem", "--grid", "32", "--tilt", "--pressure", "1 MPa", "--json")
-    add("bem/hardness-adhesion", "bem", "--grid", "32", "--size", "20 um", "--rms-height", "50 nm", "--e-star",
-        "1 GPa", "--boundary", "non-periodic", "--hardness", "10 MPa", "--work-of-adhesion", "0.1", "--range",
-        "100nm", "--sweep", "1MPa:5MPa:2", "--json")
+    add("bem/hardness-adhesion", "bem", "--grid", "64", "--size", "100 um", "--rms-height", "0.24 um", "--e-star",
+        "1 GPa", "--boundary", "non-periodic", "--hardness", "50 MPa", "--work-of-adhesion", "1", "--range",
+        "100nm", "--sweep", "2MPa:20MPa:2", "--json")
     add("topography/wall", "topography", "data/topography-example/wall.gsf", "--json")
     add("topography/wall-scenario", "topography", "data/topography-example/wall.gsf", "--scenario", t, "--cutoff",
         "2 um", "--json")

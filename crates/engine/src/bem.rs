@@ -538,12 +538,24 @@ pub fn solve(
              model beside it)",
         );
     }
-    let pull_off_n = law.map(|_| points.iter().map(|p| p.load_n).fold(0.0, f64::min));
-    let out = BemOutput {
-        note: (seed.is_none() || law.is_none()).then_some(
+    // The pull-off is the most tensile load of a mean-gap path; a load path (the finite patch or
+    // the hardness cap under load control) stays compressive and has none.
+    let load_path = args.gap_sweep.is_none();
+    let pull_off_n = law.filter(|_| !load_path).map(|_| points.iter().map(|p| p.load_n).fold(0.0, f64::min));
+    let note = if law.is_some() && load_path {
+        Some(
+            "seed is null for a map or a scenario's patch (not generated); pull_off_n is null on a load path \
+             (--pressure, --sweep: the loading branch stays compressive; a mean-gap path, --gap-sweep, passes the \
+             load minimum)",
+        )
+    } else {
+        (seed.is_none() || law.is_none()).then_some(
             "seed is null for a map or a scenario's patch (not generated); dugdale and pull_off_n are null without \
              adhesion (no --work-of-adhesion and --range)",
-        ),
+        )
+    };
+    let out = BemOutput {
+        note,
         surface: source,
         grid,
         e_star_pa,
