@@ -184,7 +184,7 @@ def test_bem_tilting_face_meets_a_tilted_plane_at_its_slope():
     y, x = np.mgrid[0:ny, 0:nx]
     heights = 2e-3 * (x + 0.5) * dx - 1e-3 * (y + 0.5) * dx
     r = stiction.bem(heights, pixel_size=dx, height_unit=1.0, level="none", e_star="1 GPa",
-                     boundary="non_periodic", tilt=True, pressure="1 MPa", tolerance=1e-8).to_dict()
+                     boundary="non_periodic", tilt=True, pressure="1 MPa").to_dict()
     p = r["points"][0]
     assert abs(p["tilt_x_rad"] / 2e-3 - 1) < 1e-3 and abs(p["tilt_y_rad"] / -1e-3 - 1) < 1e-3, p
     assert p["contact_fraction"] == 1.0
