@@ -185,6 +185,9 @@ pub struct BemContact {
     pub coarsening: (usize, usize),
 }
 
+/// A solved state, the shoe's tilts (rad) and, with the hardness cap, the plastic area (m^2).
+type Pose = (stiction_bem::ContactSolution, (f64, f64), Option<f64>);
+
 /// The shoe of a [`BemContact`]: its Green's function and whether it tilts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BemShoe {
@@ -279,10 +282,7 @@ impl BemContact {
     }
 
     /// The solution, the tilts and, with the hardness cap, the plastic area `A_p` (m^2).
-    fn solve_full(
-        &mut self,
-        load_n: f64,
-    ) -> Result<(stiction_bem::ContactSolution, (f64, f64), Option<f64>), MeterError> {
+    fn solve_full(&mut self, load_n: f64) -> Result<Pose, MeterError> {
         if !(load_n.is_finite() && load_n > 0.0) {
             return Err(MeterError::Contact(format!(
                 "bem: load {load_n:e} N: the loading branch needs a compressive load > 0 (below, the shoe is not in \

@@ -91,18 +91,18 @@ pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_
             v_clamp,
         ));
     }
-    if let Some(a_p) = state.plastic_area_m2 {
-        if !(a_p.is_finite() && a_p >= 0.0 && a_p <= state.real_area_m2 * (1.0 + RELATIVE_SLACK)) {
-            return Err(broken(
-                format!(
-                    "a plastic area of {} m^2 outside [0, the real area {} m^2] (the points at the hardness are \
-                     part of the contact)",
-                    short(a_p),
-                    short(state.real_area_m2)
-                ),
-                v_clamp,
-            ));
-        }
+    if let Some(a_p) = state.plastic_area_m2
+        && !(a_p.is_finite() && a_p >= 0.0 && a_p <= state.real_area_m2 * (1.0 + RELATIVE_SLACK))
+    {
+        return Err(broken(
+            format!(
+                "a plastic area of {} m^2 outside [0, the real area {} m^2] (the points at the hardness are part \
+                 of the contact)",
+                short(a_p),
+                short(state.real_area_m2)
+            ),
+            v_clamp,
+        ));
     }
     if state.max_pressure_pa < 0.0 {
         return Err(broken(format!("a largest pressure of {} Pa", short(state.max_pressure_pa)), v_clamp));
