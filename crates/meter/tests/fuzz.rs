@@ -129,11 +129,16 @@ fn tame(v: &mut Value) {
     if let Some(s) = v.get_mut("surface").and_then(Value::as_object_mut) {
         s.insert("max_summits".into(), Value::from(20_000));
     }
-    // The boundary-element model on a coarse grid (at most 2048 points, milliseconds per solve).
+    // The boundary-element model on a coarse grid (at most 2048 points, milliseconds per solve),
+    // with its shoe and hardness-cap settings written out so that they are leaves the mutations
+    // replace (a tilting periodic shoe, a cap beside a tilt: refused naming the field).
     if let Some(c) = v.get_mut("contact").and_then(Value::as_object_mut)
         && c.get("model").and_then(Value::as_str) == Some("bem")
     {
-        c.insert("bem".into(), serde_json::json!({"points": 2048}));
+        c.insert(
+            "bem".into(),
+            serde_json::json!({"points": 2048, "boundary": "non_periodic", "tilt": false, "plastic": false}),
+        );
     }
 }
 

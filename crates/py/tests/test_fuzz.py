@@ -211,6 +211,13 @@ GENERATOR = {
     "short": ["1 um", 1e-300, 1e300],
     "seed": [0, 1, -1, 2**64, 2**70, 2.5],
 }
+# The face's boundary, tilt and hardness cap (with rh refused; a tilt on the periodic cell
+# refused), each given in one case in eight.
+FACE = {
+    "boundary": ["periodic", "non_periodic", "non-periodic", "sideways", "", 3],
+    "tilt": [True, False, 1, "yes"],
+    "hardness": ["9 GPa", "1 kPa", 1e30, -1.0, 0.0, float("nan"), "5 kg", "1e-300 Pa"],
+}
 
 
 def _check(call, counts, case):
@@ -247,6 +254,8 @@ def test_hostile_rh_and_generator_arguments_raise_stiction_errors(in_root, cli):
         kwargs = {name: values[int(rng.integers(len(values)))] for name, values in GENERATOR.items()
                   if rng.random() < 0.4}
         kwargs.setdefault("grid", 32)
+        kwargs.update({name: values[int(rng.integers(len(values)))] for name, values in FACE.items()
+                       if rng.random() < 0.125})
         if rng.random() < 0.5:
             kwargs["rh"] = rh
         else:
