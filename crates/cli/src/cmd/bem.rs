@@ -76,8 +76,9 @@ pub struct Args {
     /// With --gap-sweep: go back to FROM after reaching TO (a loading-unloading cycle; pull-off on the way back).
     #[arg(long)]
     pub gap_back: bool,
-    /// Work of adhesion of the Dugdale law ("0.1 J/m^2"); needs --range, and --gap-sweep (periodic) or
-    /// --boundary non-periodic with --pressure or --sweep (the loading branch under load control).
+    /// Work of adhesion of the Dugdale law ("0.1 J/m^2"); needs --range, and --gap-sweep (periodic), or
+    /// --pressure or --sweep (the loading branch under load control) with --boundary non-periodic or
+    /// --hardness.
     #[arg(long, value_parser = quantity(Dimension::SurfaceEnergy, Constraint::Positive), requires = "range")]
     pub work_of_adhesion: Option<f64>,
     /// Range h0 of the Dugdale law ("1 nm"); the Dugdale stress is w/h0.
