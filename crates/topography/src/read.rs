@@ -440,7 +440,7 @@ fn read_in_parts<S: ByteSource + ?Sized>(
     let prefix = prefix.min(size);
     src.read_at(0, &mut bytes[..prefix])?;
     let find = |bytes: &[u8]| -> Option<(MapFormat, Channel, ChannelChoice, (usize, usize))> {
-        let format = detect(bytes).ok()?;
+        let format = detect(bytes).ok().filter(|&f| crate::formats::listed_without_samples(f))?;
         let list = crate::formats::channels(format, bytes, origin).ok()?;
         let (ch, choice) = crate::formats::choose(&list, channel, origin).ok()?;
         Some((format, ch.clone(), choice, raster_span(ch, size)?))
@@ -469,7 +469,8 @@ fn read_in_parts<S: ByteSource + ?Sized>(
 
 /// [`read_instrument`] by the route [`read_file_channel`] takes for a large file (the header
 /// from the first `prefix` bytes, then the channel's samples decoded in parts); the same result,
-/// bit for bit. For the tests that hold the two routes equal.
+/// bit for bit; with whether the samples were read in parts (else the whole bytes were read and
+/// [`read_instrument`] read them). For the tests that hold the two routes equal.
 #[doc(hidden)]
 pub fn read_instrument_in_parts(
     bytes: &[u8],
@@ -478,10 +479,11 @@ pub fn read_instrument_in_parts(
     origin: &str,
     channel: Option<&ChannelSelector>,
     meta: &MapMetadata,
-) -> Result<(HeightMap, MapInfo), TopographyError> {
-    match read_in_parts(bytes, prefix, |_| Ok(format), channel, meta, origin)? {
-        Parts::Read(result) => result,
-        Parts::Whole(all) => read_instrument(&all, format, origin, channel, meta),
+) -> (Result<(HeightMap, MapInfo), TopographyError>, bool) {
+    match read_in_parts(bytes, prefix, |_| Ok(format), channel, meta, origin) {
+        Err(e) => (Err(e), false),
+        Ok(Parts::Read(result)) => (result, true),
+        Ok(Parts::Whole(all)) => (read_instrument(&all, format, origin, channel, meta), false),
     }
 }
 

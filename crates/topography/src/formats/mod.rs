@@ -320,6 +320,14 @@ pub(crate) fn choose<'a>(
     Ok((ch, choice))
 }
 
+/// Whether the channels of a `format` file are listed from bytes other than their samples, so
+/// that the route in parts ([`parts`]) may read them. Not WSxM: its samples start after the line
+/// end that follows `[Header end]`, whatever bytes come there, and an int16 image's scale is the
+/// Z amplitude over the samples' range; a WSxM file is read whole.
+pub(crate) fn listed_without_samples(format: MapFormat) -> bool {
+    format != MapFormat::Wsxm
+}
+
 /// Whether a channel name reads as a height channel.
 pub(crate) fn height_like(name: &str) -> bool {
     let n = name.to_ascii_lowercase();
