@@ -22,17 +22,30 @@ mod synth;
 fn fingerprint(r: &Result<(HeightMap, MapInfo), TopographyError>) -> String {
     match r {
         Ok((m, info)) => {
-            let h = m.heights_m().iter().fold(0xcbf2_9ce4_8422_2325u64, |a, x| {
-                (a ^ x.to_bits()).wrapping_mul(0x0100_0000_01b3)
-            });
-            format!("{} x {} dx {:x} dy {:x} heights {h:x} {info:?}", m.nx(), m.ny(), m.dx_m().to_bits(), m.dy_m().to_bits())
+            let h = m
+                .heights_m()
+                .iter()
+                .fold(0xcbf2_9ce4_8422_2325u64, |a, x| (a ^ x.to_bits()).wrapping_mul(0x0100_0000_01b3));
+            format!(
+                "{} x {} dx {:x} dy {:x} heights {h:x} {info:?}",
+                m.nx(),
+                m.ny(),
+                m.dx_m().to_bits(),
+                m.dy_m().to_bits()
+            )
         }
         Err(e) => format!("error: {e}"),
     }
 }
 
 /// Both routes on `bytes`, each prefix; returns how many prefixes read the samples in parts.
-fn same_both_ways(bytes: &[u8], format: MapFormat, ch: Option<&ChannelSelector>, meta: &MapMetadata, what: &str) -> usize {
+fn same_both_ways(
+    bytes: &[u8],
+    format: MapFormat,
+    ch: Option<&ChannelSelector>,
+    meta: &MapMetadata,
+    what: &str,
+) -> usize {
     let whole = fingerprint(&read_instrument(bytes, format, "f", ch, meta));
     let mut in_parts = 0;
     for prefix in [16, 512, 4096, 1 << 16, 1 << 20] {
@@ -108,7 +121,7 @@ fn each_branch_of_the_decoder_reads_the_same_in_parts() {
     // with invalid pixels.
     for (ax, ay) in [(40_001, 2), (301, 50)] {
         let d: Vec<f32> =
-            (0..ax * ay).map(|k| if k % 31 == 0 { 3.000000028082e15 } else { (k % 211) as f32 * 1e-9 }).collect();
+            (0..ax * ay).map(|k| if k % 31 == 0 { 3.0e15_f32 } else { (k % 211) as f32 * 1e-9 }).collect();
         let al3d = synth::al3d(ax, ay, 1e-6, &d);
         assert!(same_both_ways(&al3d, MapFormat::Al3d, None, &meta, "al3d") >= 2);
     }
@@ -123,7 +136,19 @@ fn read_file_takes_the_route_in_parts_and_gives_the_whole_route_s_map() {
     let files = [
         ("map.spm", synth::nanoscope(nx, ny, 40960.0, 20.0, 10.0, 2, &v)),
         ("map.sdf", synth::sdf_binary(nx, ny, 1e-8, 1e-8, 1e-11, &v.iter().map(|&x| x as i16).collect::<Vec<_>>())),
-        ("map.ibw", synth::ibw(nx, ny, 1, 1e-8, "m", "m", &["Height"], &v.iter().map(|&x| x as f32 * 1e-12).collect::<Vec<_>>())),
+        (
+            "map.ibw",
+            synth::ibw(
+                nx,
+                ny,
+                1,
+                1e-8,
+                "m",
+                "m",
+                &["Height"],
+                &v.iter().map(|&x| x as f32 * 1e-12).collect::<Vec<_>>(),
+            ),
+        ),
         ("map.dat", synth::metropro(nx, ny, 1e-8, &v)),
     ];
     for (name, bytes) in files {

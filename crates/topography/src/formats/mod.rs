@@ -28,8 +28,8 @@ pub mod x3p;
 use serde::Serialize;
 use stiction_units::text::excerpt;
 
-use crate::map_format::MapFormat;
 use crate::TopographyError;
+use crate::map_format::MapFormat;
 
 /// One channel of a file as listed by `stiction topography FILE --channels`.
 #[derive(Debug, Clone, PartialEq, Serialize)]

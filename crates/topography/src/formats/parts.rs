@@ -94,24 +94,26 @@ pub(crate) struct HeightTally {
 
 impl HeightTally {
     /// Adds `h`: eight independent lanes, so the loop vectorises; a count and a maximum do not
-    /// depend on the order, so the result is the one-by-one fold's exactly.
+    /// depend on the order, so the result is the one-by-one fold's exactly. The count is kept in
+    /// float64 lanes (exact below 2^53, and a map has at most 2^25 pixels) so that it vectorises
+    /// with the rest.
     pub(crate) fn add(&mut self, h: &[f64]) {
-        let mut n = [0usize; 8];
+        let mut n = [0.0f64; 8];
         let mut m = [0.0f64; 8];
         let mut it = h.chunks_exact(8);
         for c in &mut it {
             for j in 0..8 {
                 let a = c[j].abs();
-                n[j] += usize::from(a.is_nan());
+                n[j] += if a.is_nan() { 1.0 } else { 0.0 };
                 // `a > m` is false for NaN: NaN is left out, as `f64::max` leaves it out.
                 m[j] = if a > m[j] { a } else { m[j] };
             }
         }
         for &x in it.remainder() {
-            n[0] += usize::from(x.is_nan());
+            n[0] += if x.is_nan() { 1.0 } else { 0.0 };
             m[0] = m[0].max(x.abs());
         }
-        self.nan += n.iter().sum::<usize>();
+        self.nan += n.iter().sum::<f64>() as usize;
         self.largest = m.iter().fold(self.largest, |a, &b| a.max(b));
     }
 }
@@ -206,12 +208,13 @@ pub(crate) fn decode_channel<S: ByteSource + ?Sized>(
             let rows = rows_per.min(ny - iy);
             let lo = file_row(iy).min(file_row(iy + rows - 1));
             let bytes = src.bytes_at(r.offset + lo * stride, (rows - 1) * stride + line, &mut buf)?;
-            let start = out.len();
             for j in iy..iy + rows {
                 let at = (file_row(j) - lo) * stride;
+                let start = out.len();
                 convert_row(&bytes[at..at + line], r, k, r.flip_x, &mut out);
+                // Tallied while the row is in the level-1 cache.
+                tally.add(&out[start..]);
             }
-            tally.add(&out[start..]);
             iy += rows;
         }
     } else {
@@ -237,11 +240,12 @@ pub(crate) fn decode_channel<S: ByteSource + ?Sized>(
 }
 
 /// Appends samples as values, in reverse when `reverse`: a tight loop per sample type and byte
-/// order (the branch on the missing-value marker only where the format has one).
-fn convert<const N: usize, T: Into<f64>>(
+/// order (`from` a function item, inlined, not a function pointer called per sample; the branch on
+/// the missing-value marker only where the format has one).
+fn convert<const N: usize, T: Into<f64>, F: Fn([u8; N]) -> T>(
     line: &[u8],
     out: &mut Vec<f64>,
-    from: fn([u8; N]) -> T,
+    from: F,
     (scale, shift, post): (f64, f64, f64),
     invalid: Option<Missing>,
     reverse: bool,
@@ -255,14 +259,24 @@ fn convert<const N: usize, T: Into<f64>>(
 }
 
 #[inline(always)]
-fn push(it: impl Iterator<Item = f64>, out: &mut Vec<f64>, scale: f64, shift: f64, post: f64, invalid: Option<Missing>) {
+fn push(
+    it: impl Iterator<Item = f64>,
+    out: &mut Vec<f64>,
+    scale: f64,
+    shift: f64,
+    post: f64,
+    invalid: Option<Missing>,
+) {
     match invalid {
-        Some(Missing::Equal(inv)) => {
-            out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { (v * scale + shift) * post }))
-        }
-        Some(Missing::AtLeast(inv)) => {
-            out.extend(it.map(|v: f64| if v >= inv { f64::NAN } else { (v * scale + shift) * post }))
-        }
+        // The value computed for every sample, then chosen: a select, not a branch, so it vectorises.
+        Some(Missing::Equal(inv)) => out.extend(it.map(|v: f64| {
+            let h = (v * scale + shift) * post;
+            if v == inv { f64::NAN } else { h }
+        })),
+        Some(Missing::AtLeast(inv)) => out.extend(it.map(|v: f64| {
+            let h = (v * scale + shift) * post;
+            if v >= inv { f64::NAN } else { h }
+        })),
         None => out.extend(it.map(|v: f64| (v * scale + shift) * post)),
     }
 }
