@@ -35,7 +35,16 @@ fn synthetic(which: &str) -> (&'static str, Vec<u8>) {
         }
         "ibw" => (
             "map.ibw",
-            synth::ibw(N, N, 1, 1e-8, "m", "m", &["Height"], &ints.iter().map(|&v| v as f32 * 1e-12).collect::<Vec<_>>()),
+            synth::ibw(
+                N,
+                N,
+                1,
+                1e-8,
+                "m",
+                "m",
+                &["Height"],
+                &ints.iter().map(|&v| v as f32 * 1e-12).collect::<Vec<_>>(),
+            ),
         ),
         "metropro" => ("map.dat", synth::metropro(N, N, 1e-8, &ints)),
         "plu" => ("map.plu", synth::plu(N, N, 0.01, &ints.iter().map(|&v| Some(v as f32 * 1e-6)).collect::<Vec<_>>())),
@@ -85,7 +94,10 @@ fn main() {
                 b.push(time_reads(&path, 1, false));
             }
             let (ra, rb) = (median(a), median(b));
-            println!("{which}: read_file {ra:.1} ms, std::fs::read {rb:.1} ms, ratio {:.2} (medians of {reads})", ra / rb);
+            println!(
+                "{which}: read_file {ra:.1} ms, std::fs::read {rb:.1} ms, ratio {:.2} (medians of {reads})",
+                ra / rb
+            );
             std::fs::remove_dir_all(&dir).ok();
         }
     }

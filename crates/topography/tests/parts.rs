@@ -113,6 +113,16 @@ fn each_branch_of_the_decoder_reads_the_same_in_parts() {
     let samples: Vec<u8> = (0..wx * wy).flat_map(|k| ((k % 1013) as f64 * 0.25 - 100.0).to_le_bytes()).collect();
     let stp = synth::wsxm(wx, wy, 2000.0, "1 nm", "double", &samples);
     assert_eq!(same_both_ways(&stp, MapFormat::Wsxm, None, &nm, "wsxm wide"), 0);
+    // Each height of the wide map is its sample in nm (double, Z amplitude in nm: scale 1), the
+    // map turned by 180 degrees: pixel (ix, iy) is the file's sample (nx-1-ix, ny-1-iy). Exact.
+    let (m, _) = read_instrument(&stp, MapFormat::Wsxm, "f", None, &nm).unwrap();
+    for iy in 0..wy {
+        for ix in 0..wx {
+            let k = (wy - 1 - iy) * wx + (wx - 1 - ix);
+            let want = ((k % 1013) as f64 * 0.25 - 100.0) * 1e-9;
+            assert_eq!(m.at(ix, iy).to_bits(), want.to_bits(), "wsxm wide ({ix}, {iy})");
+        }
+    }
     let (sx, sy) = (101, 40);
     let samples: Vec<u8> = (0..sx * sy).flat_map(|k| ((k % 17) as i16 - 8).to_le_bytes()).collect();
     let stp = synth::wsxm(sx, sy, 2000.0, "10 nm", "short", &samples);
@@ -124,6 +134,13 @@ fn each_branch_of_the_decoder_reads_the_same_in_parts() {
             (0..ax * ay).map(|k| if k % 31 == 0 { 3.0e15_f32 } else { (k % 211) as f32 * 1e-9 }).collect();
         let al3d = synth::al3d(ax, ay, 1e-6, &d);
         assert!(same_both_ways(&al3d, MapFormat::Al3d, None, &meta, "al3d") >= 2);
+        // Each height is its float32 depth in metres, NaN where invalid; row 0 first. Exact.
+        let (parts, _) = read_instrument_in_parts(&al3d, 4096, MapFormat::Al3d, "f", None, &meta);
+        let (m, _) = parts.unwrap();
+        for (k, (&h, &want)) in m.heights_m().iter().zip(&d).enumerate() {
+            let want = if want == 3.0e15 { f64::NAN } else { f64::from(want) };
+            assert_eq!(h.to_bits(), want.to_bits(), "al3d {ax} x {ay}, pixel {k}");
+        }
     }
 }
 

@@ -419,6 +419,53 @@ mod tests {
     }
 
     #[test]
+    fn an_input_read_in_parts_is_bounded_by_its_size_when_opened() {
+        let d = tmpdir("parts");
+        let p = d.join("in.bin");
+        std::fs::write(&p, b"0123456789").unwrap();
+        // The rules of read_input: a regular file within the limit, recorded as an input.
+        assert!(matches!(open_input(&p, 9), Err(FileError::TooLarge { size_bytes: 10, limit_bytes: 9, .. })));
+        assert!(matches!(open_input(&d, 100), Err(FileError::NotRegular { .. })));
+        #[cfg(unix)]
+        assert!(matches!(open_input(Path::new("/dev/zero"), 100), Err(FileError::NotRegular { .. })));
+        let f = open_input(&p, 10).unwrap();
+        assert_eq!(f.size_bytes(), 10);
+        assert!(input_at(&p).is_some());
+        let mut buf = [0u8; 4];
+        f.read_at(3, &mut buf).unwrap();
+        assert_eq!(&buf, b"3456");
+        f.read_at(6, &mut buf).unwrap();
+        assert_eq!(&buf, b"6789");
+        // Past the size it was opened with: refused before a read, even after the file grows.
+        std::fs::write(&p, b"0123456789abcdef").unwrap();
+        assert!(matches!(f.read_at(7, &mut buf), Err(FileError::Io { .. })));
+        assert!(matches!(f.read_at(u64::MAX, &mut buf), Err(FileError::Io { .. })));
+        assert_eq!(f.read_all().unwrap(), b"0123456789");
+        // A file that shrank while read: an error, never zeros.
+        std::fs::write(&p, b"01").unwrap();
+        let e = f.read_at(4, &mut buf).unwrap_err();
+        assert!(e.to_string().contains("shorter"), "{e}");
+        assert!(f.read_all().unwrap_err().to_string().contains("shorter"));
+    }
+
+    #[test]
+    fn huge_page_advice_changes_no_value() {
+        // 8 MiB written, advised (as a buffer already in use would be), then read back; and the
+        // spare capacity of a new vector advised before it is filled, as the readers do.
+        let n = (8 << 20) / 8;
+        let mut v: Vec<f64> = (0..n).map(|k| k as f64 * 0.5).collect();
+        advise_huge_pages(&mut v);
+        assert!(v.iter().enumerate().all(|(k, &x)| x == k as f64 * 0.5));
+        let mut w: Vec<u64> = Vec::with_capacity(n);
+        advise_huge_pages(w.spare_capacity_mut());
+        w.extend(0..n as u64);
+        assert!(w.iter().enumerate().all(|(k, &x)| x == k as u64));
+        let mut small = vec![1u8; 100];
+        advise_huge_pages(&mut small);
+        assert_eq!(small, vec![1u8; 100]);
+    }
+
+    #[test]
     fn atomic_write_replaces_and_refuses_symlinks() {
         let d = tmpdir("atomic");
         let p = d.join("out.txt");
