@@ -34,6 +34,7 @@ import csv
 import json
 import os
 import re
+import resource
 import subprocess
 import sys
 import tempfile
@@ -54,11 +55,14 @@ EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "adhesive_path")
 def run_stiction(n, slope, w, points, tol, threads, heights_path="", range_m=RANGE_M, mode="solve"):
     args = [EXAMPLE, str(n), repr(slope), str(points), repr(tol), repr(w), heights_path or "-", repr(range_m), mode]
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     out = subprocess.run(args, env=env, capture_output=True, text=True, check=True)
     wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
     states = [json.loads(line) for line in out.stdout.splitlines()]
-    return states, wall, out.stderr.strip()
+    return states, wall, out.stderr.strip() + f"; CPU (user + system) {cpu:.3f} s"
 
 
 class CaptureStderr:
@@ -111,14 +115,15 @@ def run_tamaas(h, gaps, w, tol, range_m, max_iter):
     adhesion = tm.MaugisAdhesionFunctional(h)
     adhesion.parameters = {"rho": range_m, "surface_energy": w}
     solver.addFunctionalTerm(adhesion)
-    states, solve_s = [], 0.0
+    states, solve_s, cpu_s = [], 0.0, 0.0
     for branch, g in gaps:
         # Tamaas writes its iteration log to the standard error (file descriptor 2).
         with CaptureStderr() as log:
-            t0 = time.perf_counter()
+            t0, c0 = time.perf_counter(), time.process_time()
             err = solver.solve(g)
-            dt = time.perf_counter() - t0
+            dt, dc = time.perf_counter() - t0, time.process_time() - c0
         solve_s += dt
+        cpu_s += dc
         gap = np.array(model["gap"])
         p = np.array(model.traction)
         u = np.array(model.displacement)
@@ -132,6 +137,7 @@ def run_tamaas(h, gaps, w, tol, range_m, max_iter):
                 "energy_j_per_m2": float(energy(p, u, gap, w, range_m)),
                 "iterations": last_iteration(log.text),
                 "seconds": dt,
+                "cpu_seconds": dc,
                 "error": float(err),
             }
         )

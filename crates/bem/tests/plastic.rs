@@ -6,17 +6,6 @@ use std::f64::consts::PI;
 
 use stiction_bem::{BemSolver, Boundary, Dugdale, Grid, SolverOptions, synth};
 
-/// A paraboloid `h = -r^2/(2R)` centred on grid point (n/2, n/2) of an `n x n` cell of side `l`.
-fn paraboloid(n: usize, l: f64, radius: f64) -> Vec<f64> {
-    let dx = l / n as f64;
-    (0..n * n)
-        .map(|i| {
-            let (x, y) = ((i % n) as f64 - (n / 2) as f64, (i / n) as f64 - (n / 2) as f64);
-            -(x * x + y * y) * dx * dx / (2.0 * radius)
-        })
-        .collect()
-}
-
 /// Westergaard's sinusoid `h = Delta cos(2 pi x/lambda)` in full contact (Johnson 1985, sec.
 /// 13.2: above `p* = pi E* Delta/lambda` the traction is `p = p_mean + p* cos(2 pi x/lambda)`)
 /// with a Dugdale law (w = 0.1 J/m^2 over 1 nm: sigma0 = 100 MPa). In full contact every point is
