@@ -86,3 +86,32 @@ pub fn merge(
     files.extend(written);
     Ok(Some(Merged { scenario: PathBuf::from(&header.scenario), summary, files }))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A design study's folder (a `design-NNN` folder or designs.json, no log) is refused before
+    /// anything is written, with how to merge it; a folder that only looks alike (`design-1`,
+    /// `design-abc`) is not a design study's.
+    #[test]
+    fn a_design_study_folder_is_refused_with_how_to_merge_it() {
+        let root = std::env::temp_dir().join(format!("stiction-engine-merge-test-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        let (design, plain, json) = (root.join("design"), root.join("plain"), root.join("json"));
+        std::fs::create_dir_all(design.join("design-000")).unwrap();
+        std::fs::create_dir_all(plain.join("design-1")).unwrap();
+        std::fs::create_dir_all(plain.join("design-abc")).unwrap();
+        std::fs::create_dir_all(&json).unwrap();
+        std::fs::write(json.join("designs.json"), "{}").unwrap();
+        for d in [&design, &json] {
+            let dirs = vec![d.clone()];
+            let e = MergeRequest { dirs: &dirs }.check().unwrap_err().to_string();
+            assert!(e.starts_with(&format!("{} is a design study's folder", d.display())), "{e}");
+            assert!(e.contains("stiction merge A/design-000 B/design-000"), "{e}");
+        }
+        let dirs = vec![plain.clone()];
+        MergeRequest { dirs: &dirs }.check().unwrap();
+        let _ = std::fs::remove_dir_all(&root);
+    }
+}

@@ -3,7 +3,7 @@
 //! sensitivity.csv, then the figures, which the front end draws). Shared by `study`, design
 //! studies ([`crate::design::run_designs`]) and `merge` ([`crate::merge`]).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use stiction_study::log::LOG_NAME;
 use stiction_study::summary::FigureData;
@@ -166,9 +166,4 @@ pub fn sensitivity_csv(summary: &StudySummary) -> Result<Vec<u8>, Error> {
         ])?;
     }
     Ok(w.into_inner().map_err(|e| e.to_string())?)
-}
-
-/// The path of the sample log in a study folder.
-pub fn log_path(dir: &Path) -> PathBuf {
-    dir.join(LOG_NAME)
 }
