@@ -24,6 +24,7 @@ pub mod invariants;
 pub mod measured;
 pub mod slip;
 pub mod structure;
+pub mod structure_measured;
 pub use contact_model::{BemContact, BemShoe, ContactModel, ContactState};
 pub use error::MeterError;
 pub use slip::SlipPath;
