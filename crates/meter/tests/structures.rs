@@ -284,3 +284,33 @@ fn the_paper_meter_reports_the_lab_reduction_it_is_given() {
     assert!(lab.coefficient.unwrap() > mu);
     assert!((lab.coefficient.unwrap() - closed).abs() < 0.02 * closed, "{} vs {closed}", lab.coefficient.unwrap());
 }
+
+fn bundled(name: &str) -> Value {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios").join(name);
+    serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
+/// One device per scenario: the paper's `actuators` or `meter` beside a `structure` (even an empty
+/// `"actuators": {}`, which used to be accepted and ignored) is refused naming both fields; and a
+/// normal comb driven at or past its side pull-in voltage at the wall (80.3 V on the bundled comb
+/// tester: `V_s^2 = k_y g^3 / (2 N eps0 t (x0 + x_c))` with 100 N/m, 2 um, 100 fingers, 10 um,
+/// 5 um + 2 um) is refused naming `structure.normal_voltages`, instead of printing a point whose
+/// load `a_n V^2 - F_0` the comb does not apply.
+#[test]
+fn a_structure_refuses_the_paper_sections_and_voltages_past_side_pull_in() {
+    for (field, value) in [("actuators", json!({})), ("meter", json!({"clamp_voltages": ["25 V"]}))] {
+        let mut v = bundled("comb-sidewall.json");
+        v[field] = value;
+        let e = Scenario::from_value(v, Path::new("c.json")).unwrap_err().to_string();
+        assert!(e.contains(&format!("`{field}`")) && e.contains("beside `structure`"), "{e}");
+    }
+    let v_side = (100.0 * 8e-18 / (2.0 * 100.0 * EPS0 * 10e-6 * 7e-6)).sqrt();
+    assert!((v_side - 80.3).abs() < 0.05, "{v_side}");
+    let mut v = bundled("comb-sidewall.json");
+    v["structure"]["normal_voltages"] = json!(["30 V", "80.4 V"]);
+    let e = Scenario::from_value(v, Path::new("c.json")).unwrap_err().to_string();
+    assert!(e.contains("structure.normal_voltages") && e.contains("side pull-in") && e.contains("80.3"), "{e}");
+    let mut v = bundled("comb-sidewall.json");
+    v["structure"]["normal_voltages"] = json!(["30 V", "80.2 V"]);
+    Scenario::from_value(v, Path::new("c.json")).unwrap();
+}
