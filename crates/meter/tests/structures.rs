@@ -314,3 +314,30 @@ fn a_structure_refuses_the_paper_sections_and_voltages_past_side_pull_in() {
     v["structure"]["normal_voltages"] = json!(["30 V", "80.2 V"]);
     Scenario::from_value(v, Path::new("c.json")).unwrap();
 }
+
+/// A Monte Carlo sample whose released spring is 10 % stiffer than its nominal value (the
+/// resonance mass drawn 10 % high, `k = m (2 pi f)^2`) sticks at displacements about 1/1.1 of the
+/// nominal device's; the lab reduces them with its nominal k, so its mu_e,a is the device's own
+/// divided by 1.1 (to the 5 nm displacement step, 1 %), while `true_friction_n` keeps `k' x`.
+#[test]
+fn a_structure_sample_is_reduced_with_the_lab_s_nominal_parts() {
+    let nominal = bundled("plate-released-spring.json");
+    let mut drawn = nominal.clone();
+    drawn["structure"]["tangential"]["resonance"]["mass"] = json!("13.2 ng");
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios");
+    let scen = |v: &Value| Scenario::from_value(v.clone(), &base.join("p.json")).unwrap();
+    let own = Meter::from_scenario(&scen(&drawn), &base).unwrap().run(&mut |_, _| {}).unwrap();
+    let mut m = Meter::from_scenario(&scen(&drawn), &base).unwrap();
+    let lab_parts = stiction_meter::structure::StructureDevice::from_spec(scen(&nominal).structure.as_ref().unwrap())
+        .unwrap();
+    m.set_lab_structure(lab_parts);
+    let lab = m.run(&mut |_, _| {}).unwrap();
+    let (mu_own, mu_lab) = (own.mu_apparent.unwrap(), lab.mu_apparent.unwrap());
+    assert!((mu_lab * 1.1 / mu_own - 1.0).abs() < 0.01, "lab {mu_lab}, device {mu_own}");
+    for (p, q) in lab.points.iter().zip(&own.points) {
+        assert_eq!(p.true_friction_n, q.friction_n);
+        if let (Some(f), Some(t)) = (p.friction_n, p.true_friction_n) {
+            assert!((t / f - 1.1).abs() < 1e-12, "{f} {t}");
+        }
+    }
+}

@@ -378,6 +378,11 @@ impl Study {
             };
             let mut m = Meter::from_scenario(&scenario, &self.base_dir).map_err(|e| e.to_string())?;
             m.set_reduction(reduction);
+            // A structure's readings are reduced with the nominal parts, as the lab reduces them.
+            if let Some(spec) = &self.nominal.structure {
+                let parts = stiction_meter::structure::StructureDevice::from_spec(spec).map_err(|e| e.to_string())?;
+                m.set_lab_structure(parts);
+            }
             m.set_slip_path(self.config.slip_path);
             m.run(&mut |_, _| {}).map_err(|e| e.to_string()).map(|r| (r, reduction))
         })();

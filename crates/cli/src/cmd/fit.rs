@@ -207,7 +207,12 @@ fn structure_fit_chart(r: &stiction_fit::StructureFitReport) -> Chart {
     let pts: Vec<(f64, f64)> = r.points.iter().map(|p| (p.load_n * 1e6, p.friction_n * 1e6)).collect();
     let (l0, l1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
     let mut chart = Chart::new(
-        format!("Friction against load: {file}, {} and {} ({})", r.structure.normal, r.structure.tangential, r.structure.protocol),
+        format!(
+            "Friction against load: {file}; normal: {}, tangential: {} ({} protocol)",
+            r.structure.normal.replace('_', " "),
+            r.structure.tangential.replace('_', " "),
+            r.structure.protocol.replace('_', " ")
+        ),
         normal,
         tangential,
     )
