@@ -38,11 +38,11 @@ pub use eq10::{CalibrationSource, Eq10Fit, Eq10Point, Estimate, VarianceShares};
 pub use error::FitError;
 pub use mle::{Free, ModelFit, Noise, ShearStrength};
 pub use models::{ModelContext, ModelKind};
-pub use stiction_meter::structure_measured::{ThresholdData, parse_thresholds, read_thresholds};
-pub use structure::{StructureFitReport, analyse_structure};
 pub use stiction_meter::measured::{
     Dataset, Rejected, Row, VoltageCsvError, parse_measured_voltages, read_measured_voltages, select_rows,
 };
+pub use stiction_meter::structure_measured::{ThresholdData, parse_thresholds, read_thresholds};
+pub use structure::{StructureFitReport, analyse_structure};
 
 /// Settings of a fit.
 #[derive(Debug, Clone)]
@@ -583,7 +583,8 @@ pub fn with_lab_intervals(study: stiction_study::Study) -> Result<stiction_study
     // ([`structure::release_interval_widths`]), with the uncertain quantities under `structure`.
     let structure = match &study.nominal().structure {
         Some(spec) => Some(
-            stiction_meter::structure::StructureDevice::from_spec(spec).map_err(|e| setting(format!("structure: {e}")))?,
+            stiction_meter::structure::StructureDevice::from_spec(spec)
+                .map_err(|e| setting(format!("structure: {e}")))?,
         ),
         None => None,
     };
@@ -594,8 +595,8 @@ pub fn with_lab_intervals(study: stiction_study::Study) -> Result<stiction_study
         fa0_ci95_width_n: w.fa0_n,
         fa0_ci95_width_with_calibration_n: w.fa0_with_calibration_n,
     };
-    let intervals = move |slips: stiction_study::Slips<'_>, reduction: &stiction_meter::Reduction, seed: u64| {
-        match slips {
+    let intervals =
+        move |slips: stiction_study::Slips<'_>, reduction: &stiction_meter::Reduction, seed: u64| match slips {
             stiction_study::Slips::Voltages(slips) => {
                 let points: Vec<Eq10Point> = slips
                     .iter()
@@ -612,7 +613,6 @@ pub fn with_lab_intervals(study: stiction_study::Study) -> Result<stiction_study
                 })
                 .map(to_widths)
                 .unwrap_or_default(),
-        }
-    };
+        };
     Ok(study.with_intervals(std::sync::Arc::new(intervals), eq10::LAB_WIDTH_DRAWS))
 }

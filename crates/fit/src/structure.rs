@@ -107,7 +107,8 @@ percentiles)";
 
 /// The structure's parts from the scenario, or an error naming what is missing.
 pub fn device_of(scenario: &Scenario) -> Result<StructureDevice, FitError> {
-    let spec = scenario.structure.as_ref().ok_or_else(|| FitError::Setting("the scenario has no `structure`".into()))?;
+    let spec =
+        scenario.structure.as_ref().ok_or_else(|| FitError::Setting("the scenario has no `structure`".into()))?;
     Ok(StructureDevice::from_spec(spec)?)
 }
 
@@ -201,7 +202,8 @@ pub fn analyse_structure(
         )));
     }
     let pairs: Vec<(f64, f64)> = points.iter().map(|p| (p.load_n, p.friction_n)).collect();
-    let spec = scenario.structure.as_ref().ok_or_else(|| FitError::Setting("the scenario has no `structure`".into()))?;
+    let spec =
+        scenario.structure.as_ref().ok_or_else(|| FitError::Setting("the scenario has no `structure`".into()))?;
     let lab = lab_coefficient(&spec.lab_reduction, &pairs, &stiction_meter::fit::eq10(&pairs));
     let StructureEq10 { mu_apparent: mu, apparent_adhesion_force_n: fa0, fit: line, fit_note, calibration } =
         structure_eq10(&data.rows, &device, json, draws, seed)?;
@@ -414,7 +416,9 @@ fn calibrate(
 fn load_friction(r: &ThresholdRow, device: &StructureDevice) -> Option<(f64, f64)> {
     use stiction_meter::structure_measured::{NormalReading, TangentialReading};
     let load = match r.normal {
-        NormalReading::VoltageV(v) => device.normal.conversion_factor_n_per_v2() * v * v - device.normal.spring_force_n(),
+        NormalReading::VoltageV(v) => {
+            device.normal.conversion_factor_n_per_v2() * v * v - device.normal.spring_force_n()
+        }
         NormalReading::LoadN(l) => l,
     };
     let friction = match (r.tangential, device.tangential) {

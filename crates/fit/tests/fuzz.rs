@@ -170,7 +170,10 @@ fn mutated_structure_thresholds_give_finite_results_or_bounded_errors() {
             "# release\nv_normal_v,displacement_m\n0.5,3e-8\n0.7,1.1e-7\n0.9,2.2e-7\n1.1,3.5e-7\n1.3,5e-7\n",
         ),
         ("comb-sidewall.json", "v_normal_v,v_tangential_v\n30,20.1\n40,24\n50,27.9\n60,31.2\n70,34\n"),
-        ("pad-uniform-pressure.json", "tangential_load_n,normal_load_n\n1e-6,2e-6\n2e-6,5e-6\n3e-6,8e-6\n4e-6,1.1e-5\n"),
+        (
+            "pad-uniform-pressure.json",
+            "tangential_load_n,normal_load_n\n1e-6,2e-6\n2e-6,5e-6\n3e-6,8e-6\n4e-6,1.1e-5\n",
+        ),
     ];
     let extra = [
         "v_normal_v,normal_load_n,displacement_m",
@@ -195,7 +198,9 @@ fn mutated_structure_thresholds_give_finite_results_or_bounded_errors() {
         }
         let outcome = std::panic::catch_unwind(|| match stiction_fit::parse_thresholds(text.as_bytes(), "fuzz.csv") {
             Err(e) => Err((true, e.to_string())),
-            Ok(data) => stiction_fit::analyse_structure(&data, &scenario, &json, 20, 1).map_err(|e| (false, e.to_string())),
+            Ok(data) => {
+                stiction_fit::analyse_structure(&data, &scenario, &json, 20, 1).map_err(|e| (false, e.to_string()))
+            }
         });
         match outcome {
             Err(_) => panic!("structure case {case} (seed {:#x}, {name}) panicked", 0x57C + case),
@@ -220,7 +225,9 @@ fn mutated_structure_thresholds_give_finite_results_or_bounded_errors() {
             }
         }
     }
-    eprintln!("{cases} structure cases: {fitted} fitted, {read_errors} refused by the reader, {fit_errors} refused by the fit");
+    eprintln!(
+        "{cases} structure cases: {fitted} fitted, {read_errors} refused by the reader, {fit_errors} refused by the fit"
+    );
     assert_eq!(fitted + read_errors + fit_errors, cases);
     assert!(fitted > 0 && read_errors > 0, "the mutations must reach both the reader's errors and the fit");
 }

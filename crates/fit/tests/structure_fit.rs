@@ -241,7 +241,8 @@ fn a_release_study_reports_the_lab_interval() {
         calibration: stiction_study::Calibration::Nominal,
         slip_path: stiction_meter::SlipPath::Light,
     };
-    let study = stiction_fit::with_lab_intervals(stiction_study::Study::prepare(&path, &sets, &config).unwrap()).unwrap();
+    let study =
+        stiction_fit::with_lab_intervals(stiction_study::Study::prepare(&path, &sets, &config).unwrap()).unwrap();
     let s = study.run_sample(0);
     assert!(s.mu_apparent.is_some(), "{s:?}");
     let i = s.intervals;

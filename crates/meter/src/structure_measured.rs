@@ -152,7 +152,11 @@ pub fn parse_thresholds(bytes: &[u8], source: &str) -> Result<ThresholdData, Vol
                 return Err(at(
                     header_line,
                     None,
-                    format!("column `{name}` appears twice (columns {} and {}); each column may appear once", first + 1, k + 1),
+                    format!(
+                        "column `{name}` appears twice (columns {} and {}); each column may appear once",
+                        first + 1,
+                        k + 1
+                    ),
                 ));
             }
             col[which] = Some(k);
@@ -215,7 +219,11 @@ pub fn parse_thresholds(bytes: &[u8], source: &str) -> Result<ThresholdData, Vol
         }
         let number = |k: usize, name: &str| -> Result<f64, VoltageCsvError> {
             let raw = record.get(k).ok_or_else(|| {
-                at(line, Some(name), format!("missing: the row has {} field(s), the header {}", record.len(), names.len()))
+                at(
+                    line,
+                    Some(name),
+                    format!("missing: the row has {} field(s), the header {}", record.len(), names.len()),
+                )
             })?;
             let text = std::str::from_utf8(raw).unwrap_or("");
             let unit = unit_word(name);
@@ -365,13 +373,17 @@ mod tests {
 
     #[test]
     fn reads_each_pair_of_columns() {
-        let d = parse_thresholds(b"\xEF\xBB\xBF# release\r\nv_normal_v;displacement_m;note\r\n1.1;2.5e-7;a\r\n", "t.csv")
-            .unwrap();
-        assert_eq!(d.rows, vec![ThresholdRow {
-            line: 3,
-            normal: NormalReading::VoltageV(1.1),
-            tangential: TangentialReading::DisplacementM(2.5e-7)
-        }]);
+        let d =
+            parse_thresholds(b"\xEF\xBB\xBF# release\r\nv_normal_v;displacement_m;note\r\n1.1;2.5e-7;a\r\n", "t.csv")
+                .unwrap();
+        assert_eq!(
+            d.rows,
+            vec![ThresholdRow {
+                line: 3,
+                normal: NormalReading::VoltageV(1.1),
+                tangential: TangentialReading::DisplacementM(2.5e-7)
+            }]
+        );
         let d = parse_thresholds(b"tangential_load_n,normal_load_n\n1e-6,3e-6\n", "t.csv").unwrap();
         assert_eq!((d.normal_column, d.tangential_column), ("normal_load_n", "tangential_load_n"));
         assert_eq!(d.rows[0].normal, NormalReading::LoadN(3e-6));

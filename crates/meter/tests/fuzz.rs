@@ -148,7 +148,8 @@ fn scenarios() -> Vec<(String, String)> {
     // is mutated (ramp and release are the bundled ones').
     if let Some((_, text)) = out.iter().find(|(n, _)| n == "comb-sidewall.json") {
         let mut v: Value = serde_json::from_str(text).unwrap();
-        v["structure"]["protocol"] = serde_json::json!({"kind": "lower_normal", "tangential_voltages": ["20 V", "30 V"]});
+        v["structure"]["protocol"] =
+            serde_json::json!({"kind": "lower_normal", "tangential_voltages": ["20 V", "30 V"]});
         out.push(("comb-sidewall-lower-normal.json".into(), serde_json::to_string_pretty(&v).unwrap()));
     }
     out.sort();

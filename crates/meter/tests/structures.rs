@@ -328,8 +328,8 @@ fn a_structure_sample_is_reduced_with_the_lab_s_nominal_parts() {
     let scen = |v: &Value| Scenario::from_value(v.clone(), &base.join("p.json")).unwrap();
     let own = Meter::from_scenario(&scen(&drawn), &base).unwrap().run(&mut |_, _| {}).unwrap();
     let mut m = Meter::from_scenario(&scen(&drawn), &base).unwrap();
-    let lab_parts = stiction_meter::structure::StructureDevice::from_spec(scen(&nominal).structure.as_ref().unwrap())
-        .unwrap();
+    let lab_parts =
+        stiction_meter::structure::StructureDevice::from_spec(scen(&nominal).structure.as_ref().unwrap()).unwrap();
     m.set_lab_structure(lab_parts);
     let lab = m.run(&mut |_, _| {}).unwrap();
     let (mu_own, mu_lab) = (own.mu_apparent.unwrap(), lab.mu_apparent.unwrap());

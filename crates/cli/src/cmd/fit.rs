@@ -139,7 +139,11 @@ fn run_structure(args: &Args, scenario: &Scenario, json: &serde_json::Value) -> 
     for rej in r.rows_rejected.iter().take(10) {
         crate::outln!("  rejected line {}: {}", rej.line, rej.reason);
     }
-    crate::outln!("\neq. 10 on the forces the structure's parts imply ({} + {}):", r.structure.normal, r.structure.tangential);
+    crate::outln!(
+        "\neq. 10 on the forces the structure's parts imply ({} + {}):",
+        r.structure.normal,
+        r.structure.tangential
+    );
     let (mu, fa) = (&r.mu_apparent, &r.apparent_adhesion_force_n);
     match mu.value {
         Some(v) => crate::outln!(
@@ -166,7 +170,11 @@ fn run_structure(args: &Args, scenario: &Scenario, json: &serde_json::Value) -> 
     let lab = &r.lab_coefficient;
     match lab.coefficient {
         Some(c) => crate::outln!("  the lab's reduction ({}): {c:.3} over {} points", lab.kind, lab.points),
-        None => crate::outln!("  the lab's reduction ({}): n/a: {}", lab.kind, lab.coefficient_reason.as_deref().unwrap_or("")),
+        None => crate::outln!(
+            "  the lab's reduction ({}): n/a: {}",
+            lab.kind,
+            lab.coefficient_reason.as_deref().unwrap_or("")
+        ),
     }
     if let Some(note) = &r.resolution_note {
         crate::outln!("  {note}");
@@ -197,8 +205,11 @@ fn tangential_axis(tangential: &str) -> &'static str {
 /// the eq. 10 line when it is determined.
 fn structure_fit_chart(r: &stiction_fit::StructureFitReport) -> Chart {
     let file = Path::new(&r.data).file_name().map_or_else(|| r.data.clone(), |n| n.to_string_lossy().into_owned());
-    let normal =
-        if r.normal_column == "normal_load_n" { "normal load L as measured (µN)" } else { normal_axis(r.structure.normal) };
+    let normal = if r.normal_column == "normal_load_n" {
+        "normal load L as measured (µN)"
+    } else {
+        normal_axis(r.structure.normal)
+    };
     let tangential = if r.tangential_column == "tangential_load_n" {
         "friction F_f, tangential load at slip as measured (µN)"
     } else {
