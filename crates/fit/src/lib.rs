@@ -42,7 +42,7 @@ pub use stiction_meter::measured::{
     Dataset, Rejected, Row, VoltageCsvError, parse_measured_voltages, read_measured_voltages, select_rows,
 };
 pub use stiction_meter::structure_measured::{ThresholdData, parse_thresholds, read_thresholds};
-pub use structure::{StructureFitReport, analyse_structure};
+pub use structure::StructureFitReport;
 
 /// Settings of a fit.
 #[derive(Debug, Clone)]
@@ -458,6 +458,29 @@ pub fn analyse(
         summit_statistics,
         surface_notes,
     })
+}
+
+/// Fits eq. 10 to a structure's measured thresholds ([`structure::analyse`]) after checking the
+/// counts against the limits of every fit: `draws` calibration draws (1 to [`MAX_DRAWS`]) and at
+/// most [`MAX_FIT_ROWS`] rows.
+pub fn analyse_structure(
+    data: &ThresholdData,
+    scenario: &Scenario,
+    json: &Value,
+    draws: usize,
+    seed: u64,
+) -> Result<StructureFitReport, FitError> {
+    if draws == 0 || draws > MAX_DRAWS {
+        return Err(FitError::Setting(format!("calibration draws {draws}: expected 1 to {MAX_DRAWS}")));
+    }
+    if data.rows.len() > MAX_FIT_ROWS {
+        return Err(FitError::TooFewRows(format!(
+            "{}: {} rows; `stiction fit` takes at most {MAX_FIT_ROWS} rows",
+            data.source,
+            data.rows.len()
+        )));
+    }
+    structure::analyse(data, scenario, json, draws, seed)
 }
 
 /// The first number of a model fit that is not finite, by name (None: all are finite).

@@ -168,25 +168,14 @@ fn apparent_area_m2(scenario: &Scenario) -> f64 {
 }
 
 /// Fits eq. 10 to a structure's measured thresholds (`json`: the scenario's JSON tree, for the
-/// uncertain quantities of its parts).
-pub fn analyse_structure(
+/// uncertain quantities of its parts); the counts are checked by [`crate::analyse_structure`].
+pub fn analyse(
     data: &ThresholdData,
     scenario: &Scenario,
     json: &Value,
     draws: usize,
     seed: u64,
 ) -> Result<StructureFitReport, FitError> {
-    if draws == 0 || draws > crate::MAX_DRAWS {
-        return Err(FitError::Setting(format!("calibration draws {draws}: expected 1 to {}", crate::MAX_DRAWS)));
-    }
-    if data.rows.len() > crate::MAX_FIT_ROWS {
-        return Err(FitError::TooFewRows(format!(
-            "{}: {} rows; `stiction fit` takes at most {} rows",
-            data.source,
-            data.rows.len(),
-            crate::MAX_FIT_ROWS
-        )));
-    }
     let device = device_of(scenario)?;
     check_columns(data, &device).map_err(FitError::Setting)?;
     let (points, rows_rejected) = select_thresholds(data, &device);

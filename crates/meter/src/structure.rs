@@ -184,6 +184,12 @@ pub fn lab_coefficient(spec: &LabReductionSpec, pairs: &[(f64, f64)], eq10: &fit
             let why = "no point with a load above zero and a slip".to_string();
             return (None, None, Some(why.clone()), Some(why));
         }
+        let mean_ok = r.iter().sum::<f64>().is_finite() && r.iter().map(|x| x * x).sum::<f64>().is_finite();
+        if r.iter().any(|x| !x.is_finite()) || !mean_ok {
+            let why = "a ratio of friction to load, or their sum, is not a finite number (a load too close to zero)"
+                .to_string();
+            return (None, None, Some(why.clone()), Some(why));
+        }
         let n = r.len() as f64;
         let mean = r.iter().sum::<f64>() / n;
         if r.len() < 2 {
