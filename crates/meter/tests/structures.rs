@@ -341,3 +341,17 @@ fn a_structure_sample_is_reduced_with_the_lab_s_nominal_parts() {
         }
     }
 }
+
+/// The lab's friction over load with a load too close to zero to divide by (5e-324 N: the ratio
+/// is infinite) is null with the reason, never `inf` (the structure-threshold fuzzer's find).
+#[test]
+fn friction_over_load_of_a_vanishing_load_is_null_with_a_reason() {
+    use stiction_meter::structure::lab_coefficient;
+    use stiction_scenario::structure::LabReductionSpec;
+    let pairs = [(5e-324, 1e-6), (2e-6, 2e-6), (3e-6, 2.5e-6)];
+    let eq10 = stiction_meter::fit::eq10(&pairs);
+    let c = lab_coefficient(&LabReductionSpec::FrictionOverLoad, &pairs, &eq10);
+    assert!(c.coefficient.is_none() && c.coefficient_reason.as_deref().unwrap().contains("not a finite"), "{c:?}");
+    let ok = lab_coefficient(&LabReductionSpec::FrictionOverLoad, &pairs[1..], &eq10);
+    assert!((ok.coefficient.unwrap() - (1.0 + 2.5 / 3.0) / 2.0).abs() < 1e-12);
+}
