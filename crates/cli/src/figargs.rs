@@ -236,7 +236,7 @@ mod tests {
 /// The reference values of a scenario as figure labels and text lines (shown only when the
 /// scenario has a `reference` section).
 pub mod reference {
-    use stiction_scenario::ReferenceSpec;
+    use stiction_engine::scenario::ReferenceSpec;
 
     /// Trims the float noise of a value converted to µN: 2.0000000000000004 -> 2.
     fn r6(v: f64) -> f64 {

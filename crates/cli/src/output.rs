@@ -74,7 +74,7 @@ pub fn quantity(
 }
 
 /// A quantity flag in the physical domain of the scenario quantity `path`
-/// (`stiction_scenario::domain`: the one table for the file, `--set`, flags and Python): outside
+/// (`stiction_engine::check::domain_value`: the one table for the file, `--set`, flags and Python): outside
 /// it the flag is refused with the domain and its reason; outside the usual range it runs with a
 /// warning on standard error naming `flag`.
 pub fn domain_quantity(
@@ -85,14 +85,10 @@ pub fn domain_quantity(
 ) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
     move |s: &str| {
         let v = parse_quantity_checked(s, dim, constraint).map_err(|e| e.to_string())?;
-        match stiction_scenario::domain::check_value(path, flag, v) {
-            Ok(Some(w)) => {
-                crate::errln!("warning [{}]: {}", w.code, w.message);
-                Ok(v)
-            }
-            Ok(None) => Ok(v),
-            Err(e) => Err(e.message),
+        if let Some(w) = stiction_engine::check::domain_value(path, flag, v)? {
+            crate::errln!("warning [{}]: {}", w.code, w.message);
         }
+        Ok(v)
     }
 }
 
@@ -186,16 +182,9 @@ impl TextTable {
     }
 }
 
-/// Creates an output folder (and its parents); errors name the folder.
-pub fn ensure_dir(dir: &Path) -> CliResult {
-    if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
-        return Err(
-            format!("output folder {} is a symbolic link; outputs never go through a link", dir.display()).into()
-        );
-    }
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create output folder {}: {e}", dir.display()))?;
-    Ok(())
-}
+/// Creates an output folder (and its parents); errors name the folder (the engine's rule: no
+/// symbolic link).
+pub use stiction_engine::study_folder::ensure_dir;
 
 /// Formats an SI value with a prefix and unit.
 pub fn q(value: f64, dim: Dimension) -> String {

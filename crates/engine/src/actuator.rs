@@ -5,10 +5,17 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 use stiction_actuator::{
-    ArraySpec, GapClosingActuator, Sweep, TransientEvent, TransientPhysics, TransientReport, compare_transients,
-    read_measurements, read_transients, switch_effects, transient_switch_effects, validate,
+    TransientPhysics, compare_transients, read_measurements, read_transients, switch_effects, transient_switch_effects,
+    validate,
 };
 use stiction_scenario::Scenario;
+
+// The actuator's types that a front end names or prints: the array's section and model, a sweep
+// and its points, the validation and transient reports and their points.
+pub use stiction_actuator::{
+    ArraySpec, GapClosingActuator, Sweep, SweepPoint, TransientComparison, TransientEvent, TransientReport,
+    ValidationPoint, ValidationReport,
+};
 
 use crate::Error;
 
@@ -162,7 +169,7 @@ pub fn actuator(scenario: &Path, sets: &[String], req: &ActuatorRequest) -> Resu
 /// The transient model evaluated at 24 voltages evenly over the measured range of each finger
 /// length and event (at the external force of its measurements, when they share one): the model
 /// curves of the figures, not straight segments between the measured voltages.
-pub fn model_curves(spec: &stiction_actuator::ArraySpec, r: &TransientReport) -> Result<TransientReport, Error> {
+pub fn model_curves(spec: &ArraySpec, r: &TransientReport) -> Result<TransientReport, Error> {
     let mut grid = Vec::new();
     let mut keys: Vec<(u64, TransientEvent)> =
         r.points.iter().map(|p| (p.finger_length_m.to_bits(), p.event)).collect();
@@ -206,4 +213,22 @@ pub fn hysteresis(
     let vmax = 1.3 * model.pull_in()?.voltage_v;
     let sweep = model.sweep(vmax, 300)?;
     Ok((name, model, sweep))
+}
+
+/// The pull-in and release model of a validation report evaluated at 24 finger lengths spread
+/// evenly over its measured range (one where all lengths are equal): the model curves of the
+/// validation figure, the same model as the report's points, not straight segments between the
+/// measured lengths.
+pub fn validation_curves(spec: &ArraySpec, r: &ValidationReport) -> Result<ValidationReport, Error> {
+    let lo = r.points.iter().map(|p| p.finger_length_m).fold(f64::INFINITY, f64::min);
+    let hi = r.points.iter().map(|p| p.finger_length_m).fold(f64::NEG_INFINITY, f64::max);
+    let n = if hi > lo { 24 } else { 1 };
+    let grid: Vec<stiction_actuator::MeasuredPoint> = (0..n)
+        .map(|k| stiction_actuator::MeasuredPoint {
+            finger_length_m: if n == 1 { lo } else { lo + (hi - lo) * k as f64 / (n - 1) as f64 },
+            pull_in_v: vec![1.0],
+            release_v: vec![1.0],
+        })
+        .collect();
+    Ok(validate(spec, &grid)?)
 }

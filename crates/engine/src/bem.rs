@@ -3,13 +3,18 @@
 //! the shoe; at one load, over a load sweep or (with adhesion) over a mean-gap path; and the
 //! adhesion energy against relative humidity.
 
+use std::path::Path;
+
 use serde::Serialize;
-use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, SolverOptions, synth};
-use stiction_topography::{HeightMap, MapInfo, Patch, Preparation, PreparationReport, prepare};
-use stiction_units::{Constraint, Dimension, parse_quantity_checked};
+use stiction_bem::{BemSolver, Dugdale, SolverOptions, synth};
+use stiction_topography::{HeightMap, MapFormat, MapInfo, MapMetadata, Patch, Preparation, PreparationReport, prepare};
 
 use crate::Error;
+use crate::range::{GapRange, PressureRange};
 use crate::scenario_source::ScenarioSource;
+
+// The solver's types that a front end names or prints: a solved state and its grid.
+pub use stiction_bem::{ContactSolution, Grid};
 
 /// The default side of a generated surface's cell, as the command line writes it (parsed with
 /// `stiction_units`, so that every front end gets the same f64).
@@ -20,9 +25,9 @@ pub const DEFAULT_RMS_HEIGHT: &str = "0.5 um";
 /// Largest grid side of a generated surface (the solver's own limit is 4096 x 4096 points).
 pub const MAX_SIDE: usize = 4096;
 
-/// Boundary-element contact of a rigid flat on a rough surface. The path texts (`sweep`,
-/// `gap_sweep`, `humidity.rh`) are FROM:TO:STEPS (or a list for `rh`), parsed by the engine and
-/// named by their flags in errors.
+/// Boundary-element contact of a rigid flat on a rough surface. The paths (`sweep`, `gap_sweep`)
+/// are typed ranges and the humidities a list of fractions, parsed by the front end from its own
+/// inputs (`crate::range`, `crate::rh::parse_rh_as`), naming its flag or argument.
 #[derive(Clone, Debug)]
 pub struct BemRequest {
     /// The preparation of a height map (levelling and cut-offs).
@@ -45,10 +50,10 @@ pub struct BemRequest {
     pub e_star_pa: Option<f64>,
     /// One mean (nominal) pressure, compressive, Pa.
     pub pressure_pa: Option<f64>,
-    /// A sweep of mean pressures, FROM:TO:STEPS text.
-    pub sweep: Option<String>,
-    /// A path of mean gaps, FROM:TO:STEPS text.
-    pub gap_sweep: Option<String>,
+    /// A sweep of mean pressures (each from the previous state).
+    pub sweep: Option<PressureRange>,
+    /// A path of mean gaps (each from the previous state).
+    pub gap_sweep: Option<GapRange>,
     /// With `gap_sweep`: back to FROM after TO.
     pub gap_back: bool,
     /// Work of adhesion of the Dugdale law, J/m^2 (with `range_m`).
@@ -68,8 +73,9 @@ pub struct BemRequest {
 /// The humidity settings of `bem`.
 #[derive(Clone, Debug)]
 pub struct BemHumidity {
-    /// The relative humidities: a list or FROM:TO:STEPS text (None: no humidity run).
-    pub rh: Option<String>,
+    /// The relative humidities, fractions in [0, 1), 1 to `limits::MAX_RH` of them (None: no
+    /// humidity run).
+    pub rh: Option<Vec<f64>>,
     /// Temperature text ("25 C", "298.15 K", a bare number in kelvin).
     pub temperature: String,
     /// Contact angle of water on both faces, rad.
@@ -150,27 +156,6 @@ pub struct BemOutput {
     /// Why the seed, the Dugdale law or the pull-off is null.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub note: Option<&'static str>,
-}
-
-/// The values of a FROM:TO:STEPS path of quantities of `dim` (each > 0), named `flag` in errors;
-/// 1 to 10,000 steps.
-pub fn parse_path(text: &str, dim: Dimension, flag: &str) -> Result<Vec<f64>, String> {
-    let parts: Vec<&str> = text.split(':').collect();
-    if parts.len() != 3 {
-        return Err(format!("{flag} {text:?}: expected FROM:TO:STEPS"));
-    }
-    let f = |s: &str| parse_quantity_checked(s, dim, Constraint::Positive).map_err(|e| format!("{flag}: {e}"));
-    let (a, b) = (f(parts[0])?, f(parts[1])?);
-    let steps: usize = parts[2]
-        .trim()
-        .parse()
-        .ok()
-        .filter(|&s| (1..=10_000).contains(&s))
-        .ok_or_else(|| format!("{flag} {text:?}: STEPS {:?} must be an integer in 1..=10000", parts[2]))?;
-    if steps == 1 {
-        return Ok(vec![a]);
-    }
-    Ok((0..steps).map(|k| a + (b - a) * k as f64 / (steps - 1) as f64).collect())
 }
 
 /// The surface of a height map read as `file` (`raw`, `info` from the reader), prepared with the
@@ -269,6 +254,16 @@ pub enum BemSurface<'a> {
     /// The patch under the shoe of a scenario's height-map face(s) (`stiction bem --scenario S`;
     /// `args.sets` apply after the source's own).
     Scenario(&'a ScenarioSource),
+    /// A height-map file, read in `format` (None: from its extension) with `metadata` for what
+    /// the file does not say (`stiction bem --map FILE`).
+    File {
+        /// The file.
+        path: &'a Path,
+        /// Its format.
+        format: Option<MapFormat>,
+        /// Pixel sizes and height unit the file does not give.
+        metadata: &'a MapMetadata,
+    },
 }
 
 impl BemSurface<'_> {
@@ -278,6 +273,10 @@ impl BemSurface<'_> {
             BemSurface::Generated => generated_surface(args),
             BemSurface::Map { file, raw, info } => map_surface(args, file, raw, info),
             BemSurface::Scenario(source) => scenario_surface(args, source),
+            BemSurface::File { path, format, metadata } => {
+                let (raw, info) = stiction_topography::read_file(path, format, metadata)?;
+                map_surface(args, &path.display().to_string(), raw, info)
+            }
         }
     }
 }
@@ -287,8 +286,15 @@ pub fn check_path_args(args: &BemRequest) -> Result<(), Error> {
     if !(args.tolerance.is_finite() && args.tolerance > 0.0 && args.tolerance < 1.0) {
         return Err(format!("--tolerance {}: expected a relative tolerance in (0, 1)", args.tolerance).into());
     }
-    if args.humidity.rh.is_some() {
+    if let Some(rh) = &args.humidity.rh {
+        crate::rh::check_rh_values(rh)?;
         return Ok(());
+    }
+    if let Some(r) = &args.sweep {
+        r.check("sweep")?;
+    }
+    if let Some(r) = &args.gap_sweep {
+        r.check("gap_sweep")?;
     }
     if args.gap_sweep.is_none() && args.sweep.is_none() && args.pressure_pa.is_none() {
         return Err("give --pressure, --sweep, --gap-sweep or --rh".into());
@@ -317,8 +323,8 @@ pub fn solve(
         _ => None,
     };
     let mut states: Vec<ContactSolution> = Vec::new();
-    if let Some(text) = &args.gap_sweep {
-        let mut gaps = parse_path(text, Dimension::Length, "--gap-sweep")?;
+    if let Some(range) = &args.gap_sweep {
+        let mut gaps = range.values_m();
         if args.gap_back {
             let back: Vec<f64> = gaps.iter().rev().skip(1).copied().collect();
             gaps.extend(back);
@@ -339,7 +345,7 @@ pub fn solve(
         }
         let loads = match (pressures, &args.sweep, args.pressure_pa) {
             (Some(p), _, _) => p.to_vec(),
-            (None, Some(text), _) => parse_path(text, Dimension::Pressure, "--sweep")?,
+            (None, Some(range), _) => range.values_pa(),
             (None, None, Some(p)) => vec![p],
             (None, None, None) => return Err("give --pressure, --sweep or --gap-sweep".into()),
         };
@@ -452,7 +458,6 @@ pub mod humidity {
 
     use super::{BemRequest, SurfaceSource};
     use crate::Error;
-    use crate::rh::parse_rh;
 
     /// `--temperature`: "25 C", "298.15 K" or a bare number in kelvin, in the domain of the water
     /// correlations: the one rule of the scenario's `environment.temperature`
@@ -518,7 +523,8 @@ pub mod humidity {
         surface: impl FnOnce() -> Result<super::Surface, Error>,
     ) -> Result<HumidityOutput, Error> {
         let h = &args.humidity;
-        let rhs = parse_rh(h.rh.as_deref().unwrap_or_default())?;
+        let rhs = h.rh.clone().unwrap_or_default();
+        crate::rh::check_rh_values(&rhs)?;
         let temperature_k = parse_temperature(&h.temperature)?;
         let angle = h.contact_angle_rad;
         if !(0.0..=std::f64::consts::PI).contains(&angle) {

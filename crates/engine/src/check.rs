@@ -1,7 +1,8 @@
 //! Checks of a request's fields against the physical domains of `stiction_scenario::domain`,
 //! naming each field as the front end calls it.
 
-use stiction_scenario::Warning;
+/// A value outside its usual range: a code and a message naming the field.
+pub use stiction_scenario::Warning;
 
 use crate::Error;
 
@@ -25,4 +26,11 @@ pub fn domain(warnings: &mut Vec<Warning>, names: &Names, field: &str, path: &st
         Err(e) => return Err(e.to_string().into()),
     }
     Ok(())
+}
+
+/// Checks `value` of the scenario quantity `path`, given as `name` (a flag, an argument), against
+/// its domain (`stiction_scenario::domain`): outside it, the message naming `name` with the domain
+/// and its reason; outside the usual range, the warning.
+pub fn domain_value(path: &str, name: &str, value: f64) -> Result<Option<Warning>, String> {
+    stiction_scenario::domain::check_value(path, name, value).map_err(|e| e.message)
 }

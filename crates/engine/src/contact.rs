@@ -2,7 +2,7 @@
 //! scenario's surface, at a load or over a sweep of loads.
 
 use serde::{Deserialize, Serialize};
-use stiction_contact::explicit::{Detail, Equilibrium, ExplicitSolver, Sweep};
+use stiction_contact::explicit::{ExplicitSolver, Sweep};
 use stiction_contact::single::Branch;
 use stiction_meter::{ContactModel, build_contact_model};
 use stiction_scenario::{ContactModel as ModelKind, ContactSpec, MaterialSpec};
@@ -11,6 +11,10 @@ use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 use crate::Error;
 use crate::check::Names;
 use crate::scenario_source::ScenarioSource;
+
+// The explicit solver's types that a front end names or prints: how much of a state to report,
+// an equilibrium, an event of a load sweep.
+pub use stiction_contact::explicit::{Detail, Equilibrium, SweepEvent};
 
 /// Shoe degrees of freedom.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]

@@ -1,12 +1,16 @@
 //! `discrete`: the discrete N-contact model (eq. 12), and the paper's Fig. 7 model of a scenario.
 
 use serde::{Deserialize, Serialize};
-use stiction_contact::discrete::DiscreteModel;
-use stiction_contact::single::{AdhesionLaw, AsperityParams};
+use stiction_contact::single::AsperityParams;
 use stiction_scenario::MaterialSpec;
 
 use crate::Error;
 use crate::check::{Names, domain};
+
+// The model's types that a front end names or prints: the discrete model (its parameters, and the
+// paper's Fig. 7 model, `DiscreteModel::fig7`) and the single-asperity laws.
+pub use stiction_contact::discrete::DiscreteModel;
+pub use stiction_contact::single::AdhesionLaw;
 
 /// The most contacts the discrete model takes: the paper's 1, 2 or 3 (a rigid shoe's degrees of
 /// freedom put it on at most three summits; section 3.4), as the scenario's `contact.contacts`.

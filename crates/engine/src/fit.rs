@@ -4,11 +4,15 @@
 
 use std::path::{Path, PathBuf};
 
-use stiction_fit::{Dataset, FitOptions, FitReport, Free, ModelKind, read_measured_voltages, synth};
+use stiction_fit::{FitOptions, Free, ModelKind, read_measured_voltages, synth};
 use stiction_scenario::Scenario;
 
 use crate::Error;
 use crate::scenario_source::ScenarioSource;
+
+// The fit's types that a front end names or prints: the measured data and the report (what
+// `fit --json` prints).
+pub use stiction_fit::{Dataset, FitReport};
 
 /// Where the measured voltages come from.
 #[derive(Clone, Debug)]

@@ -26,12 +26,15 @@ pub mod gw;
 pub mod humidity;
 pub mod json;
 pub mod limits;
+pub mod merge;
 pub mod plot;
+pub mod range;
 pub mod rh;
 pub mod run;
 pub mod scenario;
 pub mod scenario_source;
 pub mod study;
+pub mod study_folder;
 pub mod surface;
 pub mod topography;
 

@@ -16,9 +16,8 @@ pub use stiction_study::MAX_THREADS;
 pub use stiction_study::max_samples;
 
 /// Most steps of a `stiction bem --sweep` or `--gap-sweep` path (FROM:TO:STEPS), so also most
-/// pressures of a front end's vector of pressures. The check is `bem`'s own (`parse_path`);
-/// the test `bem_limits_are_the_commands` fails if the two ever differ.
-pub const BEM_MAX_PATH_STEPS: usize = 10_000;
+/// pressures of a front end's vector of pressures: the typed ranges' own limit (`crate::range`).
+pub use crate::range::MAX_PATH_STEPS as BEM_MAX_PATH_STEPS;
 /// Most grid points per side of `stiction bem --grid` (checked by `bem` itself; same test).
 pub const BEM_MAX_GRID_SIDE: usize = 4096;
 /// Most relative humidities of `--rh` (`stiction bem`, `stiction plot humidity`), checked by
@@ -105,12 +104,20 @@ mod tests {
     /// engine's own parser with a message that names it, the limit itself is taken.
     #[test]
     fn bem_limits_are_the_engines() {
+        use crate::range::{GapRange, PressureRange};
         let bem = |req: BemRequest| bem_json(&req, BemSurface::Generated, None).map(|_| ()).map_err(|e| e.to_string());
         let over = format!("1MPa:2MPa:{}", BEM_MAX_PATH_STEPS + 1);
-        let e = bem(BemRequest { sweep: Some(over.clone()), ..request(32) }).unwrap_err();
+        let e = PressureRange::parse(&over, "--sweep").unwrap_err();
         assert!(e.contains(&format!("1..={BEM_MAX_PATH_STEPS}")), "{e}");
-        let e = bem(BemRequest { gap_sweep: Some(over.replace("MPa", "um")), ..request(32) }).unwrap_err();
+        let e = GapRange::parse(&over.replace("MPa", "um"), "--gap-sweep").unwrap_err();
         assert!(e.contains(&format!("1..={BEM_MAX_PATH_STEPS}")), "{e}");
+        // A typed range built past the limit is refused by the engine, naming the field.
+        let sweep = Some(PressureRange { from_pa: 1e6, to_pa: 2e6, steps: BEM_MAX_PATH_STEPS + 1 });
+        let e = bem(BemRequest { sweep, ..request(32) }).unwrap_err();
+        assert!(e.starts_with("sweep: ") && e.contains(&format!("1 to {BEM_MAX_PATH_STEPS}")), "{e}");
+        let gap_sweep = Some(GapRange { from_m: 1e-6, to_m: 2e-6, steps: BEM_MAX_PATH_STEPS + 1 });
+        let e = bem(BemRequest { gap_sweep, ..request(32) }).unwrap_err();
+        assert!(e.starts_with("gap_sweep: ") && e.contains(&format!("1 to {BEM_MAX_PATH_STEPS}")), "{e}");
         let e = bem(BemRequest { pressure_pa: Some(1e6), ..request(BEM_MAX_GRID_SIDE + 1) }).unwrap_err();
         assert!(e.contains(&format!("2..={BEM_MAX_GRID_SIDE}")), "{e}");
         let e = crate::rh::check_rh_values(&[0.5; MAX_RH + 1]).unwrap_err();

@@ -3,9 +3,14 @@
 use std::path::Path;
 
 use serde::Serialize;
-use stiction_meter::measured::{Comparison, read_measured_voltages};
-use stiction_meter::{Meter, MeterResult};
+use stiction_meter::measured::read_measured_voltages;
 use stiction_scenario::Scenario;
+
+// The meter's types that a front end names or prints: the meter that ran, its result, the
+// humidity of a humid run, an eq. 10 line, the measured voltages beside the model.
+pub use stiction_meter::fit::LineFit;
+pub use stiction_meter::measured::Comparison;
+pub use stiction_meter::{Humidity, Meter, MeterResult};
 
 use crate::Error;
 use crate::scenario_source::ScenarioSource;
@@ -120,4 +125,25 @@ pub struct RunRequest {
 pub fn run(req: &RunRequest, progress: &mut dyn FnMut(usize, usize)) -> Result<serde_json::Value, Error> {
     let parsed = req.scenario.parse(&[])?;
     run_json(&parsed, &req.scenario.name(), &req.scenario.base, progress)
+}
+
+/// The discrete model's friction curve with N = 3 contacts (eq. 12, DMT), the paper's own
+/// analysis, for the scenario's material and model summit radius (relative paths from `base`),
+/// from its pull-off up to `max_load_n`: (load in uN, friction in uN). Figures 5 and 7 of `run`.
+pub fn discrete_curve_n3(scenario: &Scenario, base: &Path, max_load_n: f64) -> Result<Vec<(f64, f64)>, Error> {
+    let material = scenario.require_material()?;
+    let radius_m = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
+    crate::discrete::friction_curve_n3(material, radius_m, max_load_n)
+}
+
+/// The explicit solver's own curve of a meter that ran: one shoe loaded up from its pull-off to
+/// `max_load_n` in 120 steps, (load in uN, friction capacity s A_r in uN). None for the other
+/// contact models, or where the path cannot be followed. (A shoe loaded this way may rest on
+/// another set of summits than the meter's points, clamped anew at each load: static friction
+/// depends on the load path.) Fig. 7 of `run`.
+pub fn loading_curve_un(meter: &mut Meter, max_load_n: f64) -> Option<Vec<(f64, f64)>> {
+    let stiction_meter::ContactModel::Explicit(solver) = meter.contact_model() else { return None };
+    solver.reset();
+    let sweep = solver.loading_curve(max_load_n, 120).ok()?;
+    Some(sweep.points.iter().map(|e| (e.load_n * 1e6, e.friction_capacity_n * 1e6)).collect())
 }

@@ -1,6 +1,7 @@
 //! `scenario`: a scenario checked as the commands read it.
 
-use stiction_scenario::Scenario;
+// The scenario and its reference section (the paper's measured values), which front ends print.
+pub use stiction_scenario::{ReferenceSpec, Scenario};
 
 use crate::Error;
 use crate::scenario_source::ScenarioSource;
@@ -17,4 +18,24 @@ pub fn check(source: &ScenarioSource) -> Result<Scenario, Error> {
         stiction_surface::height_map_patch(surface, &source.base).map_err(|e| format!("{}: {e}", source.name()))?;
     }
     Ok(scenario)
+}
+
+/// The JSON Schema of a scenario file (`stiction scenario --schema`), generated from the types
+/// that parse it.
+pub fn schema() -> serde_json::Value {
+    Scenario::json_schema()
+}
+
+/// The table of every scenario quantity's physical domain, as Markdown (`stiction scenario
+/// --domains`; docs/reliability.md holds the same table).
+pub fn domains_table() -> String {
+    stiction_scenario::domain::markdown_table()
+}
+
+/// The scenario as an input file with every default written out and its file paths absolute
+/// (from `base`), so that the printed scenario runs from wherever it is saved.
+pub fn input_json(scenario: &Scenario, base: &std::path::Path) -> serde_json::Value {
+    let mut printed = scenario.to_input_json();
+    stiction_scenario::absolutize_file_paths(&mut printed, base);
+    printed
 }

@@ -5,9 +5,16 @@
 use std::path::{Path, PathBuf};
 
 use stiction_fit::with_lab_intervals;
-use stiction_meter::SlipPath;
 use stiction_study::log::LogWriter;
-use stiction_study::{Calibration, MAX_THREADS, Study, StudyConfig, StudySummary};
+
+// The study's types that a front end names or prints: the lab's options, the configuration, the
+// summary (the result: what `study --json` prints) and its parts, the sample log's name, and the
+// digits rule of the summary's printed values.
+pub use stiction_meter::SlipPath;
+pub use stiction_study::log::LOG_NAME;
+pub use stiction_study::sensitivity::InputShare;
+pub use stiction_study::summary::{FigureData, REASONS, digits};
+pub use stiction_study::{Calibration, MAX_THREADS, Spread, Study, StudyConfig, StudySummary};
 
 use crate::Error;
 use crate::check::Names;

@@ -1,14 +1,21 @@
 //! `topography`: a measured height map in, its summits and statistics (beside Nayak's
 //! random-process predictions and the GW parameters) out.
 
+use std::path::Path;
+
 use serde::Serialize;
-use stiction_topography::{
-    ChannelInfo, HeightMap, MapFormat, MapInfo, Nayak, Preparation, PreparationReport, Statistics, Summits,
-    find_summits, prepare, statistics,
-};
+use stiction_topography::{ChannelInfo, Statistics, find_summits, prepare, statistics};
 
 use crate::Error;
 use crate::scenario_source::ScenarioSource;
+
+// The height map's types that a front end names, parses from its flags or prints: the map and
+// how it was read (format, channel, metadata and where each came from), its preparation, its
+// summits, Nayak's predictions and its spectrum.
+pub use stiction_topography::{
+    ChannelSelector, HeightMap, Levelling, MapFormat, MapInfo, MapMetadata, MetaSource, Nayak, Preparation,
+    PreparationReport, Psd, Summits, parse_length_unit,
+};
 
 /// GW parameters of the map and the adhesion parameter.
 #[derive(Serialize)]
@@ -145,4 +152,50 @@ pub fn gw_of(st: &Statistics, scenario: Option<&ScenarioSource>) -> Result<Gw, E
         adhesion_parameter_theta: theta,
         theta_note: note,
     })
+}
+
+/// Reads the height map `path` (in `format`, None: from its extension; channel `channel`, None:
+/// the first height channel) with `meta` for what the file does not say: the heights as read and
+/// what the reader found.
+pub fn read(
+    path: &Path,
+    format: Option<MapFormat>,
+    channel: Option<&ChannelSelector>,
+    meta: &MapMetadata,
+) -> Result<(HeightMap, MapInfo), Error> {
+    Ok(stiction_topography::read_file_channel(path, format, channel, meta)?)
+}
+
+/// The channels of the height-map file `path` (`stiction topography --channels`): the format
+/// read and each channel's name, size, unit and whether it holds heights.
+pub fn channels(
+    path: &Path,
+    format: Option<MapFormat>,
+    meta: &MapMetadata,
+) -> Result<(MapFormat, Vec<ChannelInfo>), Error> {
+    Ok(stiction_topography::list_channels(path, format, meta)?)
+}
+
+/// The radially averaged PSD of a prepared map, with a 2-D Hann window (measured maps are not
+/// periodic): spatial frequency 1/m against C in m^4.
+pub fn psd(map: &HeightMap) -> Psd {
+    stiction_topography::radial_psd(map, stiction_topography::PsdWindow::Hann)
+}
+
+/// A map's summits as the summit files scenarios read: the CSV (x_m, y_m, height_m, radius_m
+/// over the map's area), or with `npy` the N x 4 float64 array of `stiction surface --npy`.
+/// Each summit sits at its pixel's centre.
+pub fn summit_file_bytes(map: &HeightMap, s: &Summits, npy: bool) -> Result<Vec<u8>, Error> {
+    use stiction_surface::{Radii, Surface};
+    let (lx, ly) = (map.length_x_m(), map.length_y_m());
+    let xs = s.ix.iter().map(|&i| ((f64::from(i) + 0.5) * map.dx_m()) as f32).collect();
+    let ys = s.iy.iter().map(|&i| ((f64::from(i) + 0.5) * map.dy_m()) as f32).collect();
+    let radii = (0..s.len()).map(|i| s.radius_m(i)).collect();
+    let surface = Surface::new(lx, ly, xs, ys, s.height_m.clone(), Radii::PerSummit(radii))?;
+    if npy {
+        return Ok(surface.to_npy_bytes());
+    }
+    let mut bytes = Vec::new();
+    surface.write_csv(&mut bytes)?;
+    Ok(bytes)
 }

@@ -191,6 +191,7 @@ pub(crate) fn bem_json<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     use stiction_engine::bem::{BemHumidity, BemRequest, BemSurface};
     use stiction_engine::limits::{MAX_RH, check_bem_grid, check_pressures_len};
+    use stiction_engine::range::{GapRange, PressureRange};
     let named = err_named(BEM_NAMES);
     let pressures = match pressures.filter(|p| !p.is_none()) {
         Some(p) => Some(vector("pressure", p, true, &|n| check_pressures_len("pressure", n))?),
@@ -209,13 +210,12 @@ pub(crate) fn bem_json<'py>(
         check_bem_grid("heights", nx, ny).map_err(err)?;
     }
     let kw = Kw(kw);
-    let mut rh_text = kw.text("rh")?;
+    let rh_text = kw.text("rh")?;
     if let Some(values) = &rh {
-        // Checked and named here (rh[i]); then the text of the same numbers, which the engine
-        // reads back to the same f64s (Rust's `{:?}` is the shortest round trip).
+        // Checked and named here (rh[i]).
         stiction_engine::rh::check_rh_values(values).map_err(err)?;
-        rh_text = Some(values.iter().map(|v| format!("{v:?}")).collect::<Vec<_>>().join(","));
     }
+    let rh_given = rh.is_some() || rh_text.is_some();
     // The argument rules of the command line's flags, named as the Python arguments.
     let given = |n: &str| kw.get(n).map(|v| v.is_some());
     for (a, b) in [("pressure", "sweep"), ("pressure", "gap_sweep"), ("sweep", "gap_sweep")] {
@@ -223,7 +223,7 @@ pub(crate) fn bem_json<'py>(
             return Err(err(format!("bem: the argument '{a}' cannot be used with '{b}'")));
         }
     }
-    if rh_text.is_some() {
+    if rh_given {
         for b in ["sweep", "gap_sweep"] {
             if given(b)? {
                 return Err(err(format!("bem: the argument 'rh' cannot be used with '{b}'")));
@@ -282,13 +282,18 @@ pub(crate) fn bem_json<'py>(
         seed,
         e_star_pa: kw.quantity("e_star", Dimension::Pressure, Constraint::Positive)?,
         pressure_pa: kw.quantity("pressure", Dimension::Pressure, Constraint::Positive)?,
-        sweep: kw.text("sweep")?,
-        gap_sweep: kw.text("gap_sweep")?,
+        sweep: kw.text("sweep")?.map(|t| PressureRange::parse(&t, "sweep")).transpose().map_err(err)?,
+        gap_sweep: kw.text("gap_sweep")?.map(|t| GapRange::parse(&t, "gap_sweep")).transpose().map_err(err)?,
         gap_back: kw.flag("gap_back")?,
         work_of_adhesion_j_per_m2: kw.quantity("work_of_adhesion", Dimension::SurfaceEnergy, Constraint::Positive)?,
         range_m: length("range")?,
         humidity: BemHumidity {
-            rh: rh_text,
+            // The humidities as numbers, or as the text of --rh (a list or FROM:TO:STEPS) named `rh`.
+            rh: match (rh, rh_text) {
+                (Some(values), _) => Some(values),
+                (None, Some(text)) => Some(stiction_engine::rh::parse_rh_as(&text, "rh").map_err(err)?),
+                (None, None) => None,
+            },
             temperature: kw.text("temperature")?.unwrap_or_else(|| "25 C".into()),
             contact_angle_rad: kw.quantity("contact_angle", Dimension::Angle, Constraint::NonNegative)?.unwrap_or(0.0),
             rh_step_m: length("rh_step")?,

@@ -651,7 +651,8 @@ impl Scenario {
                     "surface_tension".into(),
                     format!("surface tension gamma of {liquid}"),
                     l.surface_tension_n_per_m,
-                    Some(Dimension::SurfaceEnergy),
+                    // A tension, so printed in N/m, not as an energy per area (same number).
+                    None,
                     "N/m",
                     None,
                     origin("handbook surface tension"),

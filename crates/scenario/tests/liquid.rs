@@ -83,6 +83,9 @@ fn a_given_liquid_follows_the_kelvin_equation() {
     let q = |k: &str| e.quantities.iter().find(|q| q.key == k).unwrap_or_else(|| panic!("no {k}")).value;
     assert!((q("partial_pressure") - 3935.0).abs() < 1e-9);
     assert!((q("molar_volume") - 58.68e-6).abs() < 1e-18);
+    // a surface tension is a force per length: printed in N/m (it is numerically J/m^2)
+    let tension = e.quantities.iter().find(|q| q.key == "surface_tension").unwrap();
+    assert_eq!(tension.value_text(), "0.02197 N/m");
     // the contact angle in two places is refused, naming the liquid's field
     let err = humid_with(env, Some("0 deg")).unwrap_err();
     assert!(err.contains("environment.liquid.contact_angle"), "{err}");

@@ -2,8 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use stiction_actuator::{GapClosingActuator, Sweep, TransientEvent, TransientReport};
-use stiction_engine::actuator::{ActuatorRequest, ActuatorRun, actuator, model_curves};
+use stiction_engine::actuator::{
+    ActuatorRequest, ActuatorRun, ArraySpec, GapClosingActuator, Sweep, SweepPoint, TransientComparison,
+    TransientEvent, TransientReport, ValidationPoint, ValidationReport, actuator, model_curves, validation_curves,
+};
 use stiction_plot::{Chart, Series};
 use stiction_units::{Constraint, Dimension};
 
@@ -213,7 +215,7 @@ pub fn run(args: Args) -> CliResult {
 /// collapsed on unloading (no finite travel to draw): the note says so instead of listing an
 /// empty curve.
 fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
-    let finite = |v: &[stiction_actuator::SweepPoint]| -> Vec<(f64, f64)> {
+    let finite = |v: &[SweepPoint]| -> Vec<(f64, f64)> {
         v.iter().filter(|p| p.travel_m.is_finite()).map(|p| (p.voltage_v, p.travel_m * 1e6)).collect()
     };
     let (mut up, down) = (finite(&sweep.loading), finite(&sweep.unloading));
@@ -293,25 +295,11 @@ fn sweep_chart(name: &str, sweep: &Sweep, model: &GapClosingActuator) -> Chart {
 /// Measured pull-in and release (mean, with the spread of repeats) against finger length, with the
 /// model curves evaluated at 24 finger lengths spread evenly over the measured range (the same model
 /// as the report's points, not straight segments between the measured lengths).
-pub fn validation_chart(
-    spec: &stiction_actuator::ArraySpec,
-    r: &stiction_actuator::ValidationReport,
-) -> Result<Chart, Box<dyn std::error::Error>> {
-    let um = |p: &stiction_actuator::ValidationPoint| p.finger_length_m * 1e6;
-    let lo = r.points.iter().map(|p| p.finger_length_m).fold(f64::INFINITY, f64::min);
-    let hi = r.points.iter().map(|p| p.finger_length_m).fold(f64::NEG_INFINITY, f64::max);
-    let n = if hi > lo { 24 } else { 1 };
-    let grid: Vec<stiction_actuator::MeasuredPoint> = (0..n)
-        .map(|k| stiction_actuator::MeasuredPoint {
-            finger_length_m: if n == 1 { lo } else { lo + (hi - lo) * k as f64 / (n - 1) as f64 },
-            pull_in_v: vec![1.0],
-            release_v: vec![1.0],
-        })
-        .collect();
-    let model = stiction_actuator::validate(spec, &grid)?;
-    let curve = |f: fn(&stiction_actuator::ValidationPoint) -> f64| -> Vec<(f64, f64)> {
-        model.points.iter().map(|p| (um(p), f(p))).collect()
-    };
+pub fn validation_chart(spec: &ArraySpec, r: &ValidationReport) -> Result<Chart, Box<dyn std::error::Error>> {
+    let um = |p: &ValidationPoint| p.finger_length_m * 1e6;
+    let model = validation_curves(spec, r)?;
+    let curve =
+        |f: fn(&ValidationPoint) -> f64| -> Vec<(f64, f64)> { model.points.iter().map(|p| (um(p), f(p))).collect() };
     let n_rep = r.points.len();
     let mut chart = Chart::new(
         format!(
@@ -505,7 +493,7 @@ fn transient_chart(r: &TransientReport, curves: &TransientReport, length_m: f64)
     )
     .keys("voltage_v", "time_us");
     for (event, label) in [(TransientEvent::PullIn, "pull-in"), (TransientEvent::Release, "release")] {
-        let pts: Vec<&stiction_actuator::TransientComparison> =
+        let pts: Vec<&TransientComparison> =
             r.points.iter().filter(|p| p.event == event && p.finger_length_m == length_m).collect();
         if pts.is_empty() {
             continue;
@@ -521,7 +509,7 @@ fn transient_chart(r: &TransientReport, curves: &TransientReport, length_m: f64)
             )
             .with({
                 // The model curve where there is one, else the model at the measured voltages.
-                let on_curve: Vec<&stiction_actuator::TransientComparison> =
+                let on_curve: Vec<&TransientComparison> =
                     curves.points.iter().filter(|p| p.event == event && p.finger_length_m == length_m).collect();
                 let src = if on_curve.is_empty() { &pts } else { &on_curve };
                 let line: Vec<(f64, f64)> =

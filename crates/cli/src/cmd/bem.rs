@@ -6,12 +6,13 @@
 use std::path::PathBuf;
 
 use serde::Serialize;
-use stiction_bem::{ContactSolution, Grid};
 use stiction_engine::bem::{
-    BemHumidity, BemOutput, BemRequest, BemSurface, Surface, SurfaceSource, check_path_args, humidity, solve,
+    BemHumidity, BemOutput, BemRequest, BemSurface, ContactSolution, Grid, Surface, SurfaceSource, check_path_args,
+    humidity, solve,
 };
+use stiction_engine::range::{GapRange, PressureRange};
+use stiction_engine::rh::parse_rh;
 use stiction_plot::{Chart, ImageMap, Series};
-use stiction_topography::read_file;
 use stiction_units::{Constraint, Dimension};
 
 use super::map_args::MapArgs;
@@ -141,10 +142,11 @@ pub struct HumidityArgs {
 }
 
 impl Args {
-    /// The engine's request of these flags.
-    pub fn request(&self) -> BemRequest {
+    /// The engine's request of these flags: the paths and humidities parsed here, named by their
+    /// flags in errors.
+    pub fn request(&self) -> Result<BemRequest, String> {
         let h = &self.humidity;
-        BemRequest {
+        Ok(BemRequest {
             preparation: self.map_args.preparation(),
             size_m: self.size,
             grid: self.grid,
@@ -155,13 +157,13 @@ impl Args {
             seed: self.seed,
             e_star_pa: self.e_star,
             pressure_pa: self.pressure,
-            sweep: self.sweep.clone(),
-            gap_sweep: self.gap_sweep.clone(),
+            sweep: self.sweep.as_deref().map(|t| PressureRange::parse(t, "--sweep")).transpose()?,
+            gap_sweep: self.gap_sweep.as_deref().map(|t| GapRange::parse(t, "--gap-sweep")).transpose()?,
             gap_back: self.gap_back,
             work_of_adhesion_j_per_m2: self.work_of_adhesion,
             range_m: self.range,
             humidity: BemHumidity {
-                rh: h.rh.clone(),
+                rh: h.rh.as_deref().map(parse_rh).transpose()?,
                 temperature: h.temperature.clone(),
                 contact_angle_rad: h.contact_angle,
                 rh_step_m: h.rh_step,
@@ -170,15 +172,15 @@ impl Args {
             shear_strength_pa: self.shear_strength,
             tolerance: self.tolerance,
             compare_asperity: self.compare_asperity,
-        }
+        })
     }
 }
 
 /// The surface of the command line: generated, a map file, or a scenario's patch.
 fn build_surface(args: &Args, req: &BemRequest) -> Result<Surface, Box<dyn std::error::Error>> {
     if let Some(file) = &args.map {
-        let (raw, info) = read_file(file, args.map_args.format, &args.map_args.metadata())?;
-        return BemSurface::Map { file: &file.display().to_string(), raw, info }.build(req);
+        let metadata = args.map_args.metadata();
+        return BemSurface::File { path: file, format: args.map_args.format, metadata: &metadata }.build(req);
     }
     if let Some(file) = &args.scenario {
         return BemSurface::Scenario(&ScenarioSource::file(file, &args.sets)?).build(req);
@@ -193,7 +195,7 @@ pub fn run(args: Args) -> CliResult {
     if let (Some(set), None) = (args.sets.first(), &args.scenario) {
         return Err(format!("--set {set:?} needs --scenario (it overrides a field of the scenario)").into());
     }
-    let req = args.request();
+    let req = args.request()?;
     check_path_args(&req)?;
     if args.humidity.rh.is_some() {
         return humidity_run(&args, &req);

@@ -3,9 +3,10 @@
 
 use std::path::PathBuf;
 
-use stiction_contact::explicit::{Detail, Equilibrium, SweepEvent};
 use stiction_engine::ScenarioSource;
-use stiction_engine::contact::{BemRun, ContactOutput, ContactRequest, ContactRun, Mode as EngineMode, contact};
+use stiction_engine::contact::{
+    BemRun, ContactOutput, ContactRequest, ContactRun, Detail, Equilibrium, Mode as EngineMode, SweepEvent, contact,
+};
 use stiction_units::{Constraint, Dimension};
 
 use crate::output::{CliResult, TextTable, domain_quantity, print_json, print_table, q};

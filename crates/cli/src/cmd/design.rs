@@ -1,31 +1,19 @@
 //! `stiction study SCENARIO --vary PATH=V1,V2,...`: a design study, one complete Monte Carlo study
-//! per design point (stiction_study::design), a design table, a ranking and design charts.
+//! per design point: the flags to the engine's plan (`stiction_engine::design`, which also runs
+//! each design into its folder), the --out folder's rules and manifest, the design table and the
+//! design charts.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
+use stiction_engine::design::{
+    DesignPlan, DesignReport, DesignRequest, DesignRow, DesignSpec, DesignsOutcome, RankBy, Vary, design_folder,
+    design_name, is_design_name, plan, prepare_designs, run_designs, write_tables,
+};
+use stiction_engine::study::{LOG_NAME, Spread, StudyConfig, digits};
 use stiction_plot::{Chart, Marker, Series};
-use stiction_study::StudyConfig;
-use stiction_study::design::{self, DesignRow, RankBy, Vary};
-use stiction_study::summary::digits;
 
-use crate::cmd::study_common::{Args, Folder, Outcome, Progress, run_study};
+use crate::cmd::study_common::{Args, Progress, StudyFolder};
 use crate::output::{CliResult, ensure_dir, print_json};
-use stiction_engine::design::{DesignPlan, DesignReport, DesignRequest, plan, prepare_designs};
-
-/// The folder of design `d` inside the design study's --out.
-pub fn design_folder(out: &Path, d: usize) -> PathBuf {
-    out.join(design_name(d))
-}
-
-/// The name of design `d`'s folder: `design-NNN`.
-fn design_name(d: usize) -> String {
-    format!("design-{d:03}")
-}
-
-/// Whether a name is a design folder's (`design-` and at least three digits).
-fn is_design_name(n: &str) -> bool {
-    n.strip_prefix("design-").is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
-}
 
 /// The stem of a varied field's design chart.
 fn chart_stem(v: &Vary) -> String {
@@ -48,7 +36,6 @@ struct Top {
 /// rewritten at once to list this run's design folders beside the earlier ones, so an
 /// interrupted run leaves nothing unaccounted for.
 fn prepare_top(out: &Path, varies: &[Vary], n: usize, args: &Args) -> Result<Top, Box<dyn std::error::Error>> {
-    use stiction_study::log::LOG_NAME;
     ensure_dir(out)?;
     let own: Vec<String> = (0..n).map(design_name).collect();
     let own_refs: Vec<&str> = own.iter().map(String::as_str).collect();
@@ -107,7 +94,6 @@ fn prepare_top(out: &Path, varies: &[Vary], n: usize, args: &Args) -> Result<Top
 /// listed; inside a stale design folder only the files its own manifest lists and its log), says
 /// what it removed, and writes the manifest of this run's `files`.
 fn finish_top(out: &Path, top: &Top, files: &[String], args: &Args) -> CliResult {
-    use stiction_study::log::LOG_NAME;
     let mut removed = Vec::new();
     let mut kept = Vec::new();
     for name in &top.stale {
@@ -151,7 +137,7 @@ pub use stiction_engine::design::section;
 
 /// Runs a design study: the study arguments with at least one --vary, or the scenario's `design`
 /// section (`section`); flags override the section, and the program says so.
-pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::design::DesignSpec>) -> CliResult {
+pub fn run(args: Args, config: StudyConfig, section: Option<DesignSpec>) -> CliResult {
     let say = |what: &str| {
         if !args.quiet && !args.json {
             crate::errln!("{what}");
@@ -165,7 +151,9 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
         rank_by: args.rank_by.map(RankBy::from),
         seed: args.seed,
     };
-    let DesignPlan { varies, points, rank_by } = plan(&req, section.as_ref(), &config, &say)?;
+    let design_plan = plan(&req, section.as_ref(), &config, &say)?;
+    let DesignPlan { varies, points, rank_by } = &design_plan;
+    let rank_by = *rank_by;
     // The --out folder's rule, checked before any work (as every command's): files no stiction
     // run listed are refused unless --force.
     if let Some(out) = &args.out {
@@ -173,13 +161,13 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
         let own: Vec<&str> = own.iter().map(String::as_str).collect();
         crate::output::check_foreign(out, &own, args.force).map_err(|e| format!("--out: {e}"))?;
     }
-    let pool = design_pool(args.threads)?;
+    let pool = stiction_engine::design::thread_pool(args.threads, &crate::cmd::study_common::flag)?;
     // Every design is prepared (and so checked) before any runs: a value that makes one design
     // invalid stops the study at once, naming the design.
-    let studies = prepare_designs(&args.scenario, &args.sets, &varies, &points, &config)?;
+    let studies = prepare_designs(&args.scenario, &args.sets, varies, points, &config)?;
     // The folder's and the design folders' rules (and the manifest of the run in progress).
     let top = match &args.out {
-        Some(out) => Some(prepare_top(out, &varies, points.len(), &args)?),
+        Some(out) => Some(prepare_top(out, varies, points.len(), &args)?),
         None => None,
     };
     let temporary = args.out.is_none();
@@ -193,61 +181,43 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
     ensure_dir(&root)?;
     let per = config.shard_len();
     let progress = Progress::new(per * points.len(), 0, args.quiet || args.json);
-    let mut rows = Vec::with_capacity(points.len());
     crate::output::stop_cleanly();
-    let result = (|| -> CliResult {
-        for (d, (p, study)) in points.iter().zip(&studies).enumerate() {
-            let dir = design_folder(&root, d);
-            ensure_dir(&dir)?;
-            let offset = d * per;
-            let folder = if temporary { Folder::Temporary(None) } else { Folder::Kept(&args.fig) };
-            let ran = run_study(
-                study,
-                &dir,
-                args.resume,
-                folder,
-                &pool,
-                &|done, _| progress.update(offset + done),
-                &|n| progress.update(offset + n),
-                &crate::output::INTERRUPT,
-            )?;
-            let summary = match ran {
-                Outcome::Finished { summary, .. } => *summary,
-                Outcome::Interrupted { logged } => {
-                    return Err(Box::new(crate::cmd::study_common::interrupted(
-                        offset + logged,
-                        per * points.len(),
-                        &dir,
-                        temporary,
-                    )));
-                }
-            };
-            rows.push(DesignRow::new(d, &varies, p, &summary));
+    let hooks = StudyFolder { fig: &args.fig, manifest: true };
+    let kept: Option<&dyn stiction_engine::study_folder::FolderHooks> = if temporary { None } else { Some(&hooks) };
+    let ran = run_designs(
+        &design_plan,
+        &studies,
+        &root,
+        args.resume,
+        kept,
+        &pool,
+        &|n| progress.update(n),
+        &crate::output::INTERRUPT,
+    );
+    let result: Result<Vec<DesignRow>, Box<dyn std::error::Error>> = match ran {
+        Ok(DesignsOutcome::Finished(rows)) => Ok(rows),
+        Ok(DesignsOutcome::Interrupted { logged, dir }) => {
+            Err(Box::new(crate::cmd::study_common::interrupted(logged, per * points.len(), &dir, temporary)))
         }
-        Ok(())
-    })();
+        Err(e) => Err(e),
+    };
     progress.finish(if result.is_ok() { per * points.len() } else { 0 });
     if temporary {
         let _ = std::fs::remove_dir_all(&root);
     }
-    result?;
+    let rows = result?;
     let ranking = rank_by.rank(&rows);
     if let (Some(out), Some(top)) = (&args.out, &top) {
-        let write = |name: &str, bytes: &[u8]| stiction_units::io::write_atomic(&out.join(name), bytes);
-        let mut files = Vec::new();
-        write("designs.csv", &design::designs_csv(&varies, &rows)?)?;
-        files.push("designs.csv".to_string());
         let report = DesignReport {
             scenario: args.scenario.display().to_string(),
-            varied: &varies,
+            varied: varies,
             rank_by,
             ranking: ranking.clone(),
             designs: &rows,
         };
-        write("designs.json", (serde_json::to_string_pretty(&report)? + "\n").as_bytes())?;
-        files.push("designs.json".to_string());
+        let mut files = write_tables(out, &report)?;
         for (k, v) in varies.iter().enumerate() {
-            let chart = args.fig.apply(design_chart(&varies, &rows, k, rank_by))?;
+            let chart = args.fig.apply(design_chart(varies, &rows, k, rank_by))?;
             files.extend(crate::output::write_chart_files(out, &chart_stem(v), &chart)?);
         }
         files.extend((0..points.len()).map(design_name));
@@ -256,13 +226,13 @@ pub fn run(args: Args, config: StudyConfig, section: Option<stiction_scenario::d
     if args.json {
         return print_json(&DesignReport {
             scenario: args.scenario.display().to_string(),
-            varied: &varies,
+            varied: varies,
             rank_by,
             ranking,
             designs: &rows,
         });
     }
-    report(&args, &varies, &rows, &ranking, rank_by, &config);
+    report(&args, varies, &rows, &ranking, rank_by, &config);
     Ok(())
 }
 
@@ -333,7 +303,7 @@ fn report(args: &Args, varies: &[Vary], rows: &[DesignRow], ranking: &[usize], b
             None => format!("~{}", digits(w, Some(10f64.powf(w.abs().log10().floor() - 1.0)))),
         }));
         // The median width of a lab interval, to the digit its order-statistic interval allows.
-        let median = |s: Option<&stiction_study::Spread>, scale: f64| {
+        let median = |s: Option<&Spread>, scale: f64| {
             s.map(|s| digits(s.median * scale, s.median_ci.map(|[a, b]| (b - a) / 3.92 * scale)))
         };
         let pair = |a: Option<String>, b: Option<String>| match (a, b) {
@@ -474,14 +444,4 @@ fn unit_name(dim: stiction_units::DimensionVector) -> String {
         .iter()
         .find(|d| d.vector() == dim)
         .map_or(String::new(), |d| d.si_unit().to_string())
-}
-
-/// The worker pool of a design study's `--threads` (its own message: no core count).
-fn design_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Box<dyn std::error::Error>> {
-    if let Some(t) = threads
-        && (t == 0 || t > stiction_study::MAX_THREADS)
-    {
-        return Err(format!("--threads {t}: expected 1 to {}", stiction_study::MAX_THREADS).into());
-    }
-    stiction_engine::study::thread_pool(threads, &crate::cmd::study_common::flag)
 }

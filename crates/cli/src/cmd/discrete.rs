@@ -1,8 +1,7 @@
 //! `stiction discrete`: the discrete N-contact model (eq. 12).
 
-use stiction_contact::discrete::DiscreteModel;
-use stiction_contact::single::AdhesionLaw;
-use stiction_engine::discrete::{DiscreteRequest, Fig7Curve, discrete, fig7_curve};
+use stiction_engine::discrete::{AdhesionLaw, DiscreteModel, DiscreteRequest, Fig7Curve, discrete, fig7_curve};
+use stiction_engine::scenario::{ReferenceSpec, Scenario};
 use stiction_plot::{Chart, Series};
 use stiction_units::{Constraint, Dimension};
 
@@ -144,7 +143,7 @@ pub struct Fig7Setup {
     /// The model (N, law, summit, s).
     pub model: DiscreteModel,
     /// Measured values to draw (the F_a0 band), if any.
-    pub reference: Option<stiction_scenario::ReferenceSpec>,
+    pub reference: Option<ReferenceSpec>,
     /// Where the parameters come from, for the note.
     pub origin: String,
 }
@@ -162,10 +161,7 @@ impl Fig7Setup {
     /// A scenario's material, model summit radius, contact law and number of contacts (the
     /// scenario's `contact.contacts` for the discrete model or a fixed shoe, else the paper's 3),
     /// with its `reference` section if it has one.
-    pub fn of_scenario(
-        s: &stiction_scenario::Scenario,
-        base: &std::path::Path,
-    ) -> Result<Fig7Setup, Box<dyn std::error::Error>> {
+    pub fn of_scenario(s: &Scenario, base: &std::path::Path) -> Result<Fig7Setup, Box<dyn std::error::Error>> {
         let model = stiction_engine::discrete::fig7_model(s, base)?;
         Ok(Fig7Setup { model, reference: s.reference.clone(), origin: "the scenario".into() })
     }

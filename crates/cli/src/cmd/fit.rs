@@ -4,10 +4,9 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use stiction_engine::fit::{self, FitData, FitRequest};
-use stiction_fit::{Dataset, FitReport};
+use stiction_engine::fit::{self, Dataset, FitData, FitReport, FitRequest};
+use stiction_engine::scenario::Scenario;
 use stiction_plot::{Chart, Series};
-use stiction_scenario::Scenario;
 use stiction_units::io::write_atomic;
 use stiction_units::{Constraint, Dimension};
 

@@ -54,7 +54,7 @@ pub fn charts(s: &HumiditySweep) -> Vec<(&'static str, Chart)> {
     );
     let mut notes: [Vec<String>; 2] = [Vec::new(), Vec::new()];
     if let Some(r) = &s.reference {
-        let rf = stiction_scenario::ReferenceSpec {
+        let rf = stiction_engine::scenario::ReferenceSpec {
             device: None,
             source: r.source.clone(),
             mu_apparent: r.mu_apparent,

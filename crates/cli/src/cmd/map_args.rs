@@ -1,8 +1,9 @@
 //! The height-map flags shared by `stiction topography` and `stiction bem`: the file's metadata
 //! (when the file does not state it) and the preparation (levelling and cut-offs). The reading
-//! and the preparation themselves are `stiction_topography::read_file` and `prepare`.
+//! and the preparation themselves are the engine's (`stiction_engine::topography::read`,
+//! `compose`).
 
-use stiction_topography::{Levelling, MapFormat, MapMetadata, Preparation, parse_length_unit};
+use stiction_engine::topography::{Levelling, MapFormat, MapMetadata, Preparation, parse_length_unit};
 use stiction_units::{Constraint, Dimension};
 
 use crate::output::quantity;

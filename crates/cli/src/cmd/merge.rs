@@ -1,9 +1,12 @@
-//! `stiction merge`: combine the folders of a study's shards into the folder one run would have written.
+//! `stiction merge`: combine the folders of a study's shards into the folder one run would have
+//! written. The merge is the engine's (`stiction_engine::merge`); here: the flags, the staged
+//! output folder, the figures and the printed summary.
 
 use std::path::PathBuf;
 
-use stiction_study::log;
+use stiction_engine::merge::{MergeRequest, merge};
 
+use crate::cmd::study_common::StudyFolder;
 use crate::output::{CliResult, OutputSet};
 
 /// Combine the output folders of a study's shards (`stiction study ... --shard K/M --out DIR`, one
@@ -35,46 +38,22 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
-    // A design study's folder holds one study folder per design, not a log: say how to merge it.
-    for d in &args.dirs {
-        if !d.join(log::LOG_NAME).exists() && is_design_study(d) {
-            return Err(format!(
-                "{} is a design study's folder (designs.json, design-NNN): merge each design's shard folders on \
-                 their own (stiction merge A/design-000 B/design-000 --out M/design-000, and so on), then run the \
-                 design study with --out M --resume for its table",
-                d.display()
-            )
-            .into());
-        }
-    }
-    // The shards' logs are this command's inputs: no output may replace them.
-    for d in &args.dirs {
-        stiction_units::io::declare_input(&d.join(log::LOG_NAME));
-    }
+    let req = MergeRequest { dirs: &args.dirs };
+    // A design study's folder is refused (with how to merge it), and the shards' logs become
+    // this command's inputs (no output may replace them), before the output folder is touched.
+    req.check()?;
     let mut set = OutputSet::begin(&args.out, "merge", args.force)?;
-    let header = log::merge(&args.dirs, set.staging_dir())?;
-    let (summary, _) = crate::cmd::study_common::finish_folder(set.staging_dir(), &args.fig)?;
+    // The staged folder's manifest is the output set's; Ctrl-C removes the staging folder.
+    let hooks = StudyFolder { fig: &args.fig, manifest: false };
+    let Some(merged) = merge(&req, set.staging_dir(), &hooks, &|_| {}, &crate::output::INTERRUPT)? else {
+        return Err(Box::new(crate::output::Interrupted("interrupted: nothing was merged".into())));
+    };
     set.adopt_staged()?;
     let files = set.file_names();
     set.commit()?;
-    crate::cmd::study_common::report(&summary, args.json, std::path::Path::new(&header.scenario))?;
+    crate::cmd::study_common::report(&merged.summary, args.json, &merged.scenario)?;
     if !args.json {
         crate::outln!("\nwrote {}/{}, {}", args.out.display(), files.join(", "), crate::output::MANIFEST);
     }
     Ok(())
-}
-
-/// Whether `dir` is a design study's --out: it holds designs.json or a `design-NNN` folder.
-fn is_design_study(dir: &std::path::Path) -> bool {
-    dir.join("designs.json").is_file()
-        || std::fs::read_dir(dir).is_ok_and(|mut e| {
-            e.any(|e| {
-                e.is_ok_and(|e| {
-                    let n = e.file_name().to_string_lossy().into_owned();
-                    e.path().is_dir()
-                        && n.strip_prefix("design-")
-                            .is_some_and(|d| d.len() >= 3 && d.bytes().all(|b| b.is_ascii_digit()))
-                })
-            })
-        })
 }

@@ -2,9 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
-use stiction_contact::gw;
+use stiction_engine::plot::{Fig2Curves, fig2_curves, fig3_curve};
+use stiction_engine::scenario::Scenario;
 use stiction_plot::{Chart, LegendPosition, Series};
-use stiction_scenario::Scenario;
 
 use crate::figargs::FigureArgs;
 use crate::format::sig3;
@@ -241,13 +241,7 @@ pub fn fig2(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
         None => None,
     };
     // N* of the scenario, as log10 (it underflows f64 for theta above about 10^3).
-    let state = theta.map(|t| gw::GwModel::new(Some(t)).and_then(|m| m.solve(0.0))).transpose()?;
-    let drawable = state.as_ref().is_some_and(|st| st.log10_n_star > -250.0);
-    let top = match (theta, drawable) {
-        (Some(t), true) => (t * 1.5).max(40.0),
-        _ => 40.0,
-    };
-    let pts = gw::fig2_series(0.5, top, if top > 40.0 { 160 } else { 80 })?;
+    let Fig2Curves { curve: pts, scenario: state, drawable } = fig2_curves(theta)?;
     let mut chart = Chart::new(
         "Fig. 2: summits in contact at zero load (GW + DMT, eq. 5a, 8)",
         "adhesion parameter θ (eq. 9)",
@@ -255,7 +249,7 @@ pub fn fig2(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
     )
     .keys("theta", "n_star")
     .with(Series::line("N* = F₀(h) at L* = 0", pts));
-    if let (Some(t), Some(st)) = (theta, &state) {
+    if let Some((t, st)) = state {
         let n_text = if st.n_star > 0.0 && st.log10_n_star > -300.0 {
             sig3(st.n_star)
         } else {
@@ -304,13 +298,9 @@ pub fn fig3(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
     }
     for (label, theta) in thetas {
         // Loads spaced evenly in the symmetric-log coordinate, so both branches get points.
-        let model = gw::GwModel::new(theta)?;
-        let start = match (theta, model.pull_off()) {
-            (Some(_), Some(po)) => po.l_star,
-            _ => 1e-6,
-        };
-        let pts = symlog_series(&model, start, 1.0, 240)?;
-        if let (Some(t), Some(po)) = (theta, model.pull_off()) {
+        let curve = fig3_curve(theta)?;
+        let pts = curve.points;
+        if let (Some(t), Some(po)) = (theta, curve.pull_off) {
             if po.a_star >= A_STAR_FLOOR {
                 pull_offs.push((po.l_star, po.a_star));
             } else {
@@ -340,28 +330,3 @@ pub fn fig3(scenario: Option<(&Scenario, &Path)>) -> Result<Chart, Box<dyn std::
 
 /// Lowest A* drawn in Fig. 3.
 const A_STAR_FLOOR: f64 = 1e-6;
-
-/// `n` points of A*(L*) from `from` to `to`, evenly spaced in sign(L*) log10(1 + |L*|/1e-6).
-fn symlog_series(
-    model: &gw::GwModel,
-    from: f64,
-    to: f64,
-    n: usize,
-) -> Result<Vec<(f64, f64)>, Box<dyn std::error::Error>> {
-    let c = 1e-6;
-    let f = |v: f64| v.signum() * (v.abs() / c).ln_1p();
-    let g = |t: f64| t.signum() * c * t.abs().exp_m1();
-    let (a, b) = (f(from), f(to));
-    let mut out = Vec::with_capacity(n);
-    for i in 0..n {
-        let l = if i == 0 {
-            from
-        } else if i + 1 == n {
-            to
-        } else {
-            g(a + (b - a) * i as f64 / (n - 1) as f64)
-        };
-        out.push((l, model.solve(l)?.a_star));
-    }
-    Ok(out)
-}

@@ -3,10 +3,11 @@
 use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
-use stiction_engine::run::{Experiment, RunOutput, experiment};
-use stiction_meter::{ContactModel, Meter, MeterResult};
+use stiction_engine::run::{
+    Experiment, Humidity, LineFit, Meter, MeterResult, RunOutput, discrete_curve_n3, experiment, loading_curve_un,
+};
+use stiction_engine::scenario::{ReferenceSpec, Scenario};
 use stiction_plot::{Chart, Series};
-use stiction_scenario::Scenario;
 
 use crate::figargs::{FigureArgs, reference};
 use crate::output::{CliResult, OutputSet, print_json};
@@ -76,7 +77,7 @@ pub fn run(args: Args) -> CliResult {
     Ok(())
 }
 
-fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceSpec>, calibration_rel_sd: Option<f64>) {
+fn print_summary(o: &RunOutput, reference: Option<&ReferenceSpec>, calibration_rel_sd: Option<f64>) {
     let r = o.result;
     crate::outln!("stiction run {}", o.scenario);
     if !o.description.is_empty() {
@@ -213,7 +214,7 @@ fn print_summary(o: &RunOutput, reference: Option<&stiction_scenario::ReferenceS
 
 /// The humidity line of the summary and the capillary share of the adhesive load over the
 /// points in contact.
-fn print_humidity(r: &MeterResult, h: &stiction_meter::Humidity) {
+fn print_humidity(r: &MeterResult, h: &Humidity) {
     let (a1, a2) = h.contact_angles_rad;
     let angles = if a1 == a2 {
         format!("{:.0} deg", a1.to_degrees())
@@ -436,13 +437,7 @@ fn fig5_chart(
     let red = r.reduction;
     let v2_min = red.spring_force_n / red.a_clamp_n_per_v2;
     let v2_max = r.points.iter().map(|p| p.v_clamp_sq).fold(v2_min, f64::max) * 1.02;
-    let material = scenario.require_material()?;
-    let radius = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
-    let curve = stiction_engine::discrete::friction_curve_n3(
-        material,
-        radius,
-        red.a_clamp_n_per_v2 * v2_max - red.spring_force_n,
-    )?;
+    let curve = discrete_curve_n3(scenario, base, red.a_clamp_n_per_v2 * v2_max - red.spring_force_n)?;
     let discrete: Vec<(f64, f64)> = curve
         .into_iter()
         .filter(|(l_un, _)| *l_un >= 0.0)
@@ -472,7 +467,7 @@ fn fig5_chart(
     .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete).with_color(1));
     // eq. 10 in voltages: V_pull^2 = (intercept + slope (a_clamp V_clamp^2 - F_spring)) / a_pull,
     // over the virtual meter's slips.
-    let eq10 = |fit: &stiction_meter::fit::LineFit, x: f64| {
+    let eq10 = |fit: &LineFit, x: f64| {
         (fit.intercept + fit.slope * (red.a_clamp_n_per_v2 * x - red.spring_force_n)) / red.a_pull_n_per_v2
     };
     // (A released spring's fit has no pull voltages to draw it in.)
@@ -530,8 +525,6 @@ fn fig7_chart(
     measured: Option<&str>,
 ) -> Result<(Chart, Vec<String>), Box<dyn std::error::Error>> {
     let r = o.result;
-    let material = scenario.require_material()?;
-    let radius = stiction_meter::model_summit_radius_m(scenario.require_surface()?, base)?;
     let mut max_load = r.points.iter().map(|p| p.load_n).fold(0.0, f64::max).max(1e-6) * 1.1;
     if let Some(c) = &o.measured {
         max_load = c.points.iter().map(|p| p.load_measured_n * 1.05).fold(max_load, f64::max);
@@ -549,20 +542,16 @@ fn fig7_chart(
     let mut notes = vec![labels.points_note.to_string()];
     let mut caption = format!("points: {}", labels.points);
     // The contact model's own curve s A_r(L), from its pull-off where it has one.
-    if let ContactModel::Explicit(solver) = meter.contact_model() {
-        solver.reset();
-        if let Ok(sweep) = solver.loading_curve(max_load, 120) {
-            let pts = sweep.points.iter().map(|e| (e.load_n * 1e6, e.friction_capacity_n * 1e6)).collect();
-            chart.series.push(Series::line("explicit solver, one loading path from pull-off", pts).with_color(1));
-            notes.push(
-                "Solid line: one shoe loaded up from pull-off may rest on another set of summits (below the points) \
-                 and jumps where it changes set: static friction depends on the load path (docs/experiment.md)."
-                    .into(),
-            );
-            caption.push_str("; line: one loading path (friction depends on the path)");
-        }
+    if let Some(pts) = loading_curve_un(meter, max_load) {
+        chart.series.push(Series::line("explicit solver, one loading path from pull-off", pts).with_color(1));
+        notes.push(
+            "Solid line: one shoe loaded up from pull-off may rest on another set of summits (below the points) \
+             and jumps where it changes set: static friction depends on the load path (docs/experiment.md)."
+                .into(),
+        );
+        caption.push_str("; line: one loading path (friction depends on the path)");
     }
-    let discrete = stiction_engine::discrete::friction_curve_n3(material, radius, max_load)?;
+    let discrete = discrete_curve_n3(scenario, base, max_load)?;
     chart.series.push(Series::dashed("discrete model N = 3 (eq. 12)", discrete).with_color(2));
     if let Some(c) = &o.measured {
         // Drawn first, so that the virtual meter's points at the same loads stay visible on top.

@@ -3,8 +3,6 @@
 
 use std::path::PathBuf;
 
-use stiction_scenario::Scenario;
-
 use crate::output::{CliResult, TextTable, print_json};
 use stiction_engine::ScenarioSource;
 
@@ -42,12 +40,12 @@ pub fn run(args: Args) -> CliResult {
         // Schema's own keyword (a field that defaults to absent), so the result rule (every null
         // beside its reason) does not apply to it. It is a `serde_json` value: no float in it can
         // be a NaN or an infinity.
-        let schema = serde_json::to_string_pretty(&Scenario::json_schema())?;
+        let schema = serde_json::to_string_pretty(&stiction_engine::scenario::schema())?;
         crate::outln!("{schema}");
         return Ok(());
     }
     if args.domains {
-        crate::outln!("{}", stiction_scenario::domain::markdown_table().trim_end());
+        crate::outln!("{}", stiction_engine::scenario::domains_table().trim_end());
         return Ok(());
     }
     let path = args.scenario.ok_or("a scenario file is needed")?;
@@ -58,9 +56,7 @@ pub fn run(args: Args) -> CliResult {
             crate::errln!("note [{}]: {}", n.code, n.message);
         }
         // File paths absolute, so that the printed scenario runs from wherever it is saved.
-        let mut printed = scenario.to_input_json();
-        stiction_scenario::absolutize_file_paths(&mut printed, &source.base);
-        return print_json(&printed);
+        return print_json(&stiction_engine::scenario::input_json(&scenario, &source.base));
     }
     let e = scenario.explain();
     if args.json {

@@ -2,16 +2,13 @@
 
 use std::path::Path;
 
-use stiction_engine::study::{StudyRequest, temporary_log_dir, thread_pool};
-use stiction_meter::SlipPath;
-use stiction_study::Calibration;
+use stiction_engine::study::{Calibration, LOG_NAME, SlipPath, StudyRequest, temporary_log_dir, thread_pool};
+use stiction_engine::study_folder::{Folder, Outcome, run_study};
 
 use crate::output::{CliResult, ensure_dir};
 
 pub use crate::cmd::study_common::{Args, CalibrationArg, SlipPathArg};
-use crate::cmd::study_common::{
-    Folder, Outcome, Progress, flag, interrupted, parse_shard, prepare_study, report, run_study,
-};
+use crate::cmd::study_common::{Progress, StudyFolder, flag, interrupted, parse_shard, prepare_study, report};
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
@@ -48,7 +45,8 @@ pub fn run(args: Args) -> CliResult {
     let progress = Progress::new(total, 0, args.quiet || args.json);
     let found = std::cell::Cell::new(0);
     crate::output::stop_cleanly();
-    let folder = if temporary { Folder::Temporary(None) } else { Folder::Kept(&args.fig) };
+    let hooks = StudyFolder { fig: &args.fig, manifest: true };
+    let folder = if temporary { Folder::Temporary(None) } else { Folder::Kept(&hooks) };
     let opened = |done: usize, log: &Path| {
         found.set(done);
         progress.restart_at(done);
@@ -88,8 +86,6 @@ pub fn run(args: Args) -> CliResult {
     report(&summary, args.json, &args.scenario)
 }
 
-pub use stiction_fit::with_lab_intervals;
-
 impl Args {
     /// The engine's request of these flags, for `shard` (K, M).
     pub fn request(&self, shard: (usize, usize)) -> StudyRequest {
@@ -115,7 +111,6 @@ impl Args {
 /// files no stiction run listed are refused unless --force; a new study over a finished or
 /// unfinished one needs --resume (finish it) or --force (start again: its files are removed).
 fn prepare_folder(dir: &Path, args: &Args) -> CliResult {
-    use stiction_study::log::LOG_NAME;
     crate::output::check_foreign(dir, &[LOG_NAME], args.force)?;
     if !args.resume && args.force {
         let mut old = crate::output::listed_files(dir)?;
@@ -129,9 +124,4 @@ fn prepare_folder(dir: &Path, args: &Args) -> CliResult {
         }
     }
     Ok(())
-}
-
-/// A rayon pool of `threads` workers (default: one per core), as `stiction study --threads`.
-pub fn study_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Box<dyn std::error::Error>> {
-    thread_pool(threads, &flag)
 }

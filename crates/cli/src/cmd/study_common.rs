@@ -1,5 +1,7 @@
-//! What `stiction study` and design studies (cmd::design) share: the command's arguments, the one
-//! study loop, its progress, and the study folder's summary, report and figures.
+//! What `stiction study` and design studies (cmd::design) share: the command's arguments, the
+//! progress line, the summary's text report and the study folder's figures and manifest (the
+//! command line's part of a study folder; the loop and the folder's data files are the engine's,
+//! `stiction_engine::study_folder`).
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -7,11 +9,11 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
-use stiction_engine::study::{LogOutcome, run_log};
+use stiction_engine::design::RankBy;
+use stiction_engine::scenario::ReferenceSpec;
+use stiction_engine::study::{FigureData, InputShare, LOG_NAME, REASONS, Spread, StudySummary, digits};
+use stiction_engine::study_folder::FolderHooks;
 use stiction_plot::{Chart, Series};
-use stiction_study::design::RankBy;
-use stiction_study::summary::FigureData;
-use stiction_study::{Study, StudySummary};
 
 use crate::figargs::{FigureArgs, reference};
 use crate::output::{CliResult, print_json};
@@ -192,80 +194,6 @@ impl Progress {
     }
 }
 
-/// Where a study's outputs go.
-pub(crate) enum Folder<'a> {
-    /// A temporary folder: only the log, summarised at the end (the caller removes the folder);
-    /// with a buffer, the samples' CSV (samples.csv) is written into it.
-    Temporary(Option<&'a mut Vec<u8>>),
-    /// A kept study folder: study.json, samples.csv, sensitivity.csv, figures (these figure
-    /// settings) and the manifest, written when the study is complete.
-    Kept(&'a FigureArgs),
-}
-
-/// How [`run_study`] ended.
-pub(crate) enum Outcome {
-    /// Every sample of the shard is in the log: its summary and, in a kept folder, the files
-    /// listed in its manifest (the log first).
-    Finished {
-        /// The summary, computed from the log alone.
-        summary: Box<StudySummary>,
-        /// The files of the folder (empty for a temporary one).
-        files: Vec<String>,
-    },
-    /// Stopped by `interrupt`: this many samples of the shard are in the log.
-    Interrupted {
-        /// Samples of the shard in the log.
-        logged: usize,
-    },
-}
-
-/// The one study loop, shared by `stiction study`, design studies and the Python binding: opens
-/// (or with `resume` reopens) the sample log in `dir`, removes a kept folder's manifest while it
-/// runs, tells `opened` how many samples the log already holds, runs the shard's remaining samples
-/// on `pool` into the log (`progress(n)`: samples of the shard in the log), and summarises the
-/// complete log (a kept folder gets its files and manifest). An `interrupt` stops it early with
-/// what it logged.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn run_study(
-    study: &Study,
-    dir: &Path,
-    resume: bool,
-    folder: Folder,
-    pool: &rayon::ThreadPool,
-    opened: &dyn Fn(usize, &Path),
-    progress: &(dyn Fn(usize) + Sync),
-    interrupt: &std::sync::atomic::AtomicBool,
-) -> Result<Outcome, Box<dyn std::error::Error>> {
-    // A manifest says the folder is complete; while the study runs again it is not (removed once
-    // the log is open).
-    let kept = matches!(folder, Folder::Kept(_));
-    let on_open = |done: usize, path: &Path| -> Result<(), Box<dyn std::error::Error>> {
-        let manifest = dir.join(crate::output::MANIFEST);
-        if kept && manifest.exists() {
-            std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
-        }
-        opened(done, path);
-        Ok(())
-    };
-    if let LogOutcome::Interrupted { logged } = run_log(study, dir, resume, pool, &on_open, progress, interrupt)? {
-        return Ok(Outcome::Interrupted { logged });
-    }
-    match folder {
-        Folder::Temporary(csv) => {
-            let (summary, _) = stiction_study::summary::summarize(&dir.join(stiction_study::log::LOG_NAME), csv)?;
-            Ok(Outcome::Finished { summary: Box::new(summary), files: Vec::new() })
-        }
-        Folder::Kept(fig) => {
-            let (summary, written) =
-                finish_folder(dir, fig).map_err(|e| stiction_study::StudyError::Log(e.to_string()))?;
-            let mut files = vec![stiction_study::log::LOG_NAME.to_string()];
-            files.extend(written);
-            crate::output::write_manifest(dir, "study", &files)?;
-            Ok(Outcome::Finished { summary: Box::new(summary), files })
-        }
-    }
-}
-
 /// What an interrupted study kept and how to finish it (the command line again, with --resume).
 pub(crate) fn interrupted(logged: usize, total: usize, dir: &Path, temporary: bool) -> crate::output::Interrupted {
     if temporary {
@@ -291,24 +219,46 @@ pub(crate) fn interrupted(logged: usize, total: usize, dir: &Path, temporary: bo
     words.retain(|w| w != "--force");
     crate::output::Interrupted(format!(
         "interrupted: {logged} of {total} samples are in {}; finish the study with:\n  {}",
-        dir.join(stiction_study::log::LOG_NAME).display(),
+        dir.join(LOG_NAME).display(),
         words.join(" ")
     ))
 }
 
-/// Writes study.json, samples.csv, sensitivity.csv and the figures of the study whose complete
-/// log is in `dir` (shared with `stiction merge`).
-/// Returns the summary and the names of the files written.
-pub(crate) fn finish_folder(
-    dir: &Path,
-    figargs: &FigureArgs,
-) -> Result<(StudySummary, Vec<String>), Box<dyn std::error::Error>> {
-    let (summary, fig) = stiction_study::summary::finalize(dir)?;
-    let mut files = vec!["study.json".to_string(), "samples.csv".into()];
-    write_sensitivity_csv(&summary, dir)?;
-    files.push("sensitivity.csv".into());
-    files.extend(write_figures(&summary, &fig, dir, figargs)?);
-    Ok((summary, files))
+/// The command line's part of a study folder the engine writes: its figures (drawn here) and,
+/// for a folder written in place (`manifest`), its manifest.json: removed while the study runs
+/// (the folder is not complete), written with the folder's files at the end.
+pub(crate) struct StudyFolder<'a> {
+    /// Figure size and font.
+    pub fig: &'a FigureArgs,
+    /// Whether the folder's manifest is this command's to keep (a staged `merge` folder's is
+    /// the output set's).
+    pub manifest: bool,
+}
+
+impl FolderHooks for StudyFolder<'_> {
+    fn opened(&self, dir: &Path) -> CliResult {
+        let manifest = dir.join(crate::output::MANIFEST);
+        if self.manifest && manifest.exists() {
+            std::fs::remove_file(&manifest).map_err(|e| format!("cannot remove {}: {e}", manifest.display()))?;
+        }
+        Ok(())
+    }
+
+    fn figures(
+        &self,
+        dir: &Path,
+        summary: &StudySummary,
+        fig: &FigureData,
+    ) -> Result<Vec<String>, Box<dyn std::error::Error>> {
+        write_figures(summary, fig, dir, self.fig)
+    }
+
+    fn finished(&self, dir: &Path, files: &[String]) -> CliResult {
+        if self.manifest {
+            crate::output::write_manifest(dir, "study", files)?;
+        }
+        Ok(())
+    }
 }
 
 /// Prints the summary (or JSON).
@@ -326,9 +276,8 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
     );
     // Only the digits the sample size supports: the mean to its standard error's leading digit,
     // the percentiles to that of their order-statistic intervals (half-width / 1.96).
-    let show = |name: &str, s: &Option<stiction_study::Spread>, scale: f64, unit: &str| match s {
+    let show = |name: &str, s: &Option<Spread>, scale: f64, unit: &str| match s {
         Some(s) => {
-            use stiction_study::summary::digits;
             let q_se = |ci: Option<[f64; 2]>| ci.map(|[a, b]| (b - a) * scale / 3.92);
             let q = |v: f64, ci: Option<[f64; 2]>| digits(v * scale, q_se(ci));
             let se = Some(s.mean_se * scale).filter(|x| *x > 0.0);
@@ -348,9 +297,8 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
     show("mu_e,a", &summary.mu_apparent, 1.0, "");
     show("F_a0", &summary.apparent_adhesion_force_n, 1e6, " uN");
     {
-        use stiction_study::summary::digits;
         // A median to the digit its order-statistic interval allows.
-        let median = |x: &Option<stiction_study::Spread>, scale: f64| {
+        let median = |x: &Option<Spread>, scale: f64| {
             x.as_ref()
                 .map_or("-".to_string(), |s| digits(s.median * scale, s.median_ci.map(|[a, b]| (b - a) / 3.92 * scale)))
         };
@@ -386,7 +334,7 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
             summary.failed
         );
         for (code, n) in &summary.reasons {
-            let what = stiction_study::summary::REASONS.iter().find(|r| r.0 == code).map_or("", |r| r.1);
+            let what = REASONS.iter().find(|r| r.0 == code).map_or("", |r| r.1);
             crate::outln!("    {n:>8}  {code}: {what}");
         }
     }
@@ -401,7 +349,7 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
         let f = |x: Option<f64>, ci: Option<[f64; 2]>| match (x, ci) {
             (Some(v), Some([a, b])) => {
                 let se = Some((b - a) / 3.92).filter(|e| *e > 0.0).map(|e| e.max(0.005));
-                let d = stiction_study::summary::digits;
+                let d = digits;
                 format!("{} [{}, {}]", d(v, se), d(a, se), d(b, se))
             }
             (Some(v), None) => format!("{v:.2}"),
@@ -430,52 +378,6 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
         }
         t.print("    ");
     }
-    Ok(())
-}
-
-fn write_sensitivity_csv(summary: &StudySummary, dir: &Path) -> CliResult {
-    let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
-    w.write_record([
-        "input",
-        "mu_first_order_sobol",
-        "fa0_first_order_sobol",
-        "mu_spearman_rho",
-        "fa0_spearman_rho",
-        "mu_first_order_ci_low",
-        "mu_first_order_ci_high",
-        "fa0_first_order_ci_low",
-        "fa0_first_order_ci_high",
-        "mu_total_order_sobol",
-        "mu_total_order_ci_low",
-        "mu_total_order_ci_high",
-        "fa0_total_order_sobol",
-        "fa0_total_order_ci_low",
-        "fa0_total_order_ci_high",
-    ])?;
-    let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
-    let lo = |c: Option<[f64; 2]>| f(c.map(|c| c[0]));
-    let hi = |c: Option<[f64; 2]>| f(c.map(|c| c[1]));
-    for r in &summary.sensitivity.inputs {
-        w.write_record([
-            r.input.clone(),
-            f(r.mu_first_order),
-            f(r.fa0_first_order),
-            f(r.mu_spearman),
-            f(r.fa0_spearman),
-            lo(r.mu_first_order_ci),
-            hi(r.mu_first_order_ci),
-            lo(r.fa0_first_order_ci),
-            hi(r.fa0_first_order_ci),
-            f(r.mu_total_order),
-            lo(r.mu_total_order_ci),
-            hi(r.mu_total_order_ci),
-            f(r.fa0_total_order),
-            lo(r.fa0_total_order_ci),
-            hi(r.fa0_total_order_ci),
-        ])?;
-    }
-    let bytes = w.into_inner().map_err(|e| e.to_string())?;
-    stiction_units::io::write_atomic(&dir.join("sensitivity.csv"), &bytes)?;
     Ok(())
 }
 
@@ -521,7 +423,7 @@ fn cdf_points(fig: &FigureData) -> Vec<(f64, f64)> {
     pts
 }
 
-fn cdf_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>) -> Chart {
+fn cdf_chart(fig: &FigureData, r: Option<&ReferenceSpec>) -> Chart {
     let mut chart = Chart::new(
         format!("Spread of the apparent friction coefficient over {} virtual meters", fig.mu_sorted.len()),
         "apparent friction coefficient μ_e,a (eq. 10)",
@@ -540,7 +442,7 @@ fn cdf_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>) -> 
     chart
 }
 
-fn scatter_chart(fig: &FigureData, r: Option<&stiction_scenario::ReferenceSpec>) -> Chart {
+fn scatter_chart(fig: &FigureData, r: Option<&ReferenceSpec>) -> Chart {
     let pts: Vec<(f64, f64)> = fig.scatter.iter().map(|&(f, m)| (f * 1e6, m)).collect();
     let mut chart = Chart::new(
         format!("μ_e,a against F_a0 over {} virtual meters", pts.len()),
@@ -605,7 +507,7 @@ fn sensitivity_chart(summary: &StudySummary) -> Chart {
         }
     };
     let names: Vec<String> = rows.iter().map(|r| short(&r.input)).collect();
-    type Pick = dyn Fn(&stiction_study::sensitivity::InputShare) -> (Option<f64>, Option<[f64; 2]>);
+    type Pick = dyn Fn(&InputShare) -> (Option<f64>, Option<[f64; 2]>);
     // One series of markers per index (at the input's number, offset), drawn over its 95 % bootstrap
     // intervals: a vertical segment from the interval's low to its high end (the intervals are
     // not symmetric about the estimate), named like its index's markers (the legend lists each

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use stiction_scenario::Scenario;
+use stiction_engine::scenario::Scenario;
 
 use crate::output::{CliResult, print_json, print_table};
 

@@ -2,18 +2,16 @@
 
 use std::path::PathBuf;
 
-use stiction_plot::{Chart, ImageMap, Series};
-use stiction_surface::{Radii, Surface};
-use stiction_topography::{
-    ChannelSelector, HeightMap, MapInfo, Nayak, PreparationReport, PsdWindow, Summits, list_channels, radial_psd,
-    read_file_channel,
+use stiction_engine::ScenarioSource;
+use stiction_engine::topography::{
+    self, ChannelSelector, HeightMap, MapInfo, MetaSource, Nayak, PreparationReport, Summits, TopographyOutput,
+    summit_file_bytes,
 };
+use stiction_plot::{Chart, ImageMap, Series};
 use stiction_units::io::write_atomic;
 
 use super::map_args::MapArgs;
 use crate::output::{CliResult, OutputSet, print_json, print_table};
-use stiction_engine::ScenarioSource;
-use stiction_engine::topography::{self, TopographyOutput};
 
 /// Read a measured height map (AFM, optical profiler): level it, filter it, find its summits
 /// (8-neighbour maxima, curvature -(z_xx + z_yy)/2) and print the statistics beside Nayak's
@@ -73,7 +71,7 @@ pub fn run(args: Args) -> CliResult {
     if args.channels {
         return print_channels(&args);
     }
-    let (raw, info) = read_file_channel(&args.file, args.map.format, args.channel.as_ref(), &args.map.metadata())?;
+    let (raw, info) = topography::read(&args.file, args.map.format, args.channel.as_ref(), &args.map.metadata())?;
     if let Some(path) = &args.summits {
         crate::output::check_output_flag("--summits", path)?;
     }
@@ -105,7 +103,7 @@ pub fn run(args: Args) -> CliResult {
 
 /// `--channels`: the file's channels, as a table or JSON.
 fn print_channels(args: &Args) -> CliResult {
-    let (format, list) = list_channels(&args.file, args.map.format, &args.map.metadata())?;
+    let (format, list) = topography::channels(&args.file, args.map.format, &args.map.metadata())?;
     let default = list.iter().find(|c| c.is_height).map(|c| c.index);
     if args.json {
         return print_json(&topography::ChannelList {
@@ -144,11 +142,11 @@ fn channel_text(info: &MapInfo) -> String {
     }
 }
 
-fn source_text(s: stiction_topography::MetaSource) -> &'static str {
+fn source_text(s: MetaSource) -> &'static str {
     match s {
-        stiction_topography::MetaSource::File => "the file",
-        stiction_topography::MetaSource::Given => "the flags",
-        stiction_topography::MetaSource::FileAndGiven => "the file (the flag agrees)",
+        MetaSource::File => "the file",
+        MetaSource::Given => "the flags",
+        MetaSource::FileAndGiven => "the file (the flag agrees)",
     }
 }
 
@@ -243,22 +241,6 @@ fn print_table_of(o: &TopographyOutput) {
     );
 }
 
-/// Summits as the CSV scenarios read (x_m, y_m, height_m, radius_m over the map's area), or with
-/// `npy` the N x 4 float64 array of `stiction surface --npy`.
-fn summit_file_bytes(map: &HeightMap, s: &Summits, npy: bool) -> Result<Vec<u8>, Box<dyn std::error::Error>> {
-    let (lx, ly) = (map.length_x_m(), map.length_y_m());
-    let xs = s.ix.iter().map(|&i| ((f64::from(i) + 0.5) * map.dx_m()) as f32).collect();
-    let ys = s.iy.iter().map(|&i| ((f64::from(i) + 0.5) * map.dy_m()) as f32).collect();
-    let radii = (0..s.len()).map(|i| s.radius_m(i)).collect();
-    let surface = Surface::new(lx, ly, xs, ys, s.height_m.clone(), Radii::PerSummit(radii))?;
-    if npy {
-        return Ok(surface.to_npy_bytes());
-    }
-    let mut bytes = Vec::new();
-    surface.write_csv(&mut bytes)?;
-    Ok(bytes)
-}
-
 /// Histogram (lower edge, upper edge, count) of `v` in `bins` equal bins over [lo, hi].
 fn histogram(v: &[f64], lo: f64, hi: f64, bins: usize) -> Vec<(f64, f64, usize)> {
     let w = (hi - lo) / bins as f64;
@@ -320,7 +302,7 @@ fn figures(
     set.add_map_figure("height_map", &height_map)?;
 
     // PSD with the cut-offs.
-    let psd = radial_psd(map, PsdWindow::Hann);
+    let psd = topography::psd(map);
     let pts: Vec<(f64, f64)> = psd.f_per_m.iter().zip(&psd.psd_m4).map(|(f, p)| (f * 1e-6, *p)).collect();
     let mut chart = Chart::new(
         "Radially averaged PSD of the height map (Hann window)",
