@@ -12,7 +12,7 @@ use crate::scenario_source::ScenarioSource;
 
 // The fit's types that a front end names or prints: the measured data and the report (what
 // `fit --json` prints).
-pub use stiction_fit::{Dataset, FitReport};
+pub use stiction_fit::{Dataset, FitReport, StructureFitReport};
 
 /// Where the measured voltages come from.
 #[derive(Clone, Debug)]
@@ -125,7 +125,7 @@ pub fn structure_fit(
     scenario: &Scenario,
     json: &serde_json::Value,
     names: &dyn Fn(&str) -> String,
-) -> Result<stiction_fit::StructureFitReport, Error> {
+) -> Result<StructureFitReport, Error> {
     let odd: Vec<String> = [
         ("models", req.models != DEFAULT_MODELS),
         ("free", req.free != DEFAULT_FREE),

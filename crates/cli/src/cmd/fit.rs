@@ -202,7 +202,7 @@ fn tangential_axis(tangential: &str) -> &'static str {
 
 /// A structure fit's figure: the measured points' friction against load through the parts, and
 /// the eq. 10 line when it is determined.
-fn structure_fit_chart(r: &stiction_fit::StructureFitReport) -> Chart {
+fn structure_fit_chart(r: &fit::StructureFitReport) -> Chart {
     let file = Path::new(&r.data).file_name().map_or_else(|| r.data.clone(), |n| n.to_string_lossy().into_owned());
     let normal = if r.normal_column == "normal_load_n" {
         "normal load L as measured (µN)"

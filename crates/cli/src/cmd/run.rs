@@ -83,23 +83,47 @@ fn print_summary(o: &RunOutput, reference: Option<&ReferenceSpec>, calibration_r
     if !o.description.is_empty() {
         crate::outln!("  {}", o.description);
     }
-    crate::outln!(
-        "  contact model: {}, F_spring = {:.3} uN, a_clamp = {:.4e} N/V^2, a_pull = {:.4e} N/V^2 \
-         (`stiction scenario FILE --explain` says where each comes from)",
-        r.contact_model,
-        r.spring_force_n * 1e6,
-        r.reduction.a_clamp_n_per_v2,
-        r.reduction.a_pull_n_per_v2
-    );
+    match &r.structure {
+        None => crate::outln!(
+            "  contact model: {}, F_spring = {:.3} uN, a_clamp = {:.4e} N/V^2, a_pull = {:.4e} N/V^2 \
+             (`stiction scenario FILE --explain` says where each comes from)",
+            r.contact_model,
+            r.spring_force_n * 1e6,
+            r.reduction.a_clamp_n_per_v2,
+            r.reduction.a_pull_n_per_v2
+        ),
+        Some(st) => crate::outln!(
+            "  contact model: {}; normal {}: a_n = {:.4e} N/V^2, F_0 = {:.3} uN; tangential {}: {} \
+             (`stiction scenario FILE --explain` says where each comes from)",
+            r.contact_model,
+            st.normal.replace('_', " "),
+            st.normal_conversion_factor_n_per_v2,
+            st.normal_spring_force_n * 1e6,
+            st.tangential.replace('_', " "),
+            match (st.tangential_conversion_factor_n_per_v2, st.tangential_stiffness_n_per_m) {
+                (Some(a), _) => format!("a_t = {a:.4e} N/V^2"),
+                (None, Some(k)) => format!("k = {k:.4} N/m"),
+                (None, None) => String::new(),
+            }
+        ),
+    }
     if let Some(h) = &r.environment {
         print_humidity(r, h);
     }
     crate::outln!();
+    // A structure's columns say what its parts apply: the normal voltage, and the tangential
+    // comb's voltage (or, for a released spring, the displacement that sticks).
+    let spring = r.structure.as_ref().is_some_and(|st| st.tangential == "released_spring");
+    let (c1, c3, c4) = match (&r.structure, spring) {
+        (None, _) => ("V_clamp (V)", "V_pull (V)", "V_pull^2 (V^2)"),
+        (Some(_), false) => ("V_n (V)", "V_t (V)", "V_t^2 (V^2)"),
+        (Some(_), true) => ("V_n (V)", "x stuck (um)", "-"),
+    };
     let mut t = crate::output::TextTable::new(&[
-        "V_clamp (V)",
+        c1,
         "L (uN)",
-        "V_pull (V)",
-        "V_pull^2 (V^2)",
+        c3,
+        c4,
         "F_f (uN)",
         "A_r (um^2)",
         "N",
@@ -113,7 +137,7 @@ fn print_summary(o: &RunOutput, reference: Option<&ReferenceSpec>, calibration_r
         t.row(vec![
             format!("{:.2}", p.v_clamp),
             format!("{:.4}", p.load_n * 1e6),
-            opt(p.v_pull, 1.0, 2),
+            if spring { opt(p.displacement_m, 1e6, 4) } else { opt(p.v_pull, 1.0, 2) },
             opt(p.v_pull_sq, 1.0, 1),
             opt(p.friction_n, 1e6, 4),
             format!("{:.5}", p.real_area_m2 * 1e12),
