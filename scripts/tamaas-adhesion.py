@@ -18,11 +18,15 @@ Usage (Tamaas and NumPy in a venv, a test-time reference like mpmath):
     python3 -m venv /tmp/tamaas-venv && /tmp/tamaas-venv/bin/pip install tamaas==2.9.0 numpy
     cargo build --release -p stiction-bem --example adhesive_path
     /tmp/tamaas-venv/bin/python scripts/tamaas-adhesion.py --case 128:0.1:12:12 --out data/tamaas-adhesion
-    (--case N:SLOPE:W:POINTS, repeatable; --tol 1e-6; --threads 1; --refine K: also a stiction
-    path with K times the points, for the step convergence)
+    (--case N:SLOPE:W:POINTS[:RANGE_UM], repeatable, the range 0.3 um by default; --tol 1e-6;
+    --threads 1; --refine K: also a stiction path with K times the points, for the step
+    convergence; --only tamaas|stiction: run one side, Tamaas's states kept in
+    OUT/tamaas-<case>.json and reused by a later run of the other side; --max-iter: Tamaas's
+    cap per state)
 
-Writes OUT/adhesion-N-SLOPE-W-POINTS.csv (one row per state, both codes) and prints a summary
-(pull-off, median and largest differences, times) as JSON on stdout.
+Writes OUT/adhesion-N-SLOPE-W-POINTS[-rRANGE].csv (one row per state, both codes) and prints a
+summary (pull-off, median and largest differences, iterations, times, the surface's rms
+curvature and the Maugis parameter of a sphere of that curvature's radius) as JSON on stdout.
 """
 
 import argparse
@@ -30,6 +34,7 @@ import csv
 import json
 import os
 import re
+import resource
 import subprocess
 import sys
 import tempfile
@@ -47,16 +52,17 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "adhesive_path")
 
 
-def run_stiction(n, slope, w, points, tol, threads, heights_path=""):
-    args = [EXAMPLE, str(n), repr(slope), str(points), repr(tol), repr(w)]
-    if heights_path:
-        args.append(heights_path)
+def run_stiction(n, slope, w, points, tol, threads, heights_path="", range_m=RANGE_M, mode="solve"):
+    args = [EXAMPLE, str(n), repr(slope), str(points), repr(tol), repr(w), heights_path or "-", repr(range_m), mode]
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     out = subprocess.run(args, env=env, capture_output=True, text=True, check=True)
     wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
     states = [json.loads(line) for line in out.stdout.splitlines()]
-    return states, wall, out.stderr.strip()
+    return states, wall, out.stderr.strip() + f"; CPU (user + system) {cpu:.3f} s"
 
 
 class CaptureStderr:
@@ -83,31 +89,41 @@ def last_iteration(log):
     return max(int(r) for r in rows) if rows else -1
 
 
-def energy(p, u, gap, w):
-    sigma0 = w / RANGE_M
+def energy(p, u, gap, w, range_m):
+    sigma0 = w / range_m
     u0 = u - u.mean()
-    return 0.5 * np.mean(p * u0) - sigma0 * np.mean(np.maximum(RANGE_M - gap, 0.0))
+    return 0.5 * np.mean(p * u0) - sigma0 * np.mean(np.maximum(range_m - gap, 0.0))
 
 
-def run_tamaas(h, gaps, w, tol):
+def rms_curvature(h):
+    """Spectral rms of the mean curvature (Laplacian / 2) of the periodic heights, 1/m."""
+    n = h.shape[0]
+    q = 2 * np.pi * np.fft.fftfreq(n, CELL_M / n)
+    q2 = q[:, None] ** 2 + q[None, :] ** 2
+    lap = np.real(np.fft.ifft2(-q2 * np.fft.fft2(h)))
+    return float(np.sqrt(np.mean((0.5 * lap) ** 2)))
+
+
+def run_tamaas(h, gaps, w, tol, range_m, max_iter):
     n = h.shape[0]
     tm.set_log_level(tm.LogLevel.info)
     model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [CELL_M, CELL_M], [n, n])
     model.E = E_STAR_PA
     model.nu = 0.0
     solver = tm.PolonskyKeerRey(model, h, tol, tm.PolonskyKeerRey.gap, tm.PolonskyKeerRey.gap)
-    solver.max_iter = MAX_ITER
+    solver.max_iter = max_iter
     adhesion = tm.MaugisAdhesionFunctional(h)
-    adhesion.parameters = {"rho": RANGE_M, "surface_energy": w}
+    adhesion.parameters = {"rho": range_m, "surface_energy": w}
     solver.addFunctionalTerm(adhesion)
-    states, solve_s = [], 0.0
+    states, solve_s, cpu_s = [], 0.0, 0.0
     for branch, g in gaps:
         # Tamaas writes its iteration log to the standard error (file descriptor 2).
         with CaptureStderr() as log:
-            t0 = time.perf_counter()
+            t0, c0 = time.perf_counter(), time.process_time()
             err = solver.solve(g)
-            dt = time.perf_counter() - t0
+            dt, dc = time.perf_counter() - t0, time.process_time() - c0
         solve_s += dt
+        cpu_s += dc
         gap = np.array(model["gap"])
         p = np.array(model.traction)
         u = np.array(model.displacement)
@@ -117,29 +133,53 @@ def run_tamaas(h, gaps, w, tol):
                 "mean_gap_m": float(gap.mean()),
                 "mean_pressure_pa": float(p.mean()),
                 "repulsive_fraction": float(np.mean(gap == 0.0)),
-                "cohesive_fraction": float(np.mean(gap < RANGE_M)),
-                "energy_j_per_m2": float(energy(p, u, gap, w)),
+                "cohesive_fraction": float(np.mean(gap < range_m)),
+                "energy_j_per_m2": float(energy(p, u, gap, w, range_m)),
                 "iterations": last_iteration(log.text),
                 "seconds": dt,
+                "cpu_seconds": dc,
                 "error": float(err),
             }
         )
     return states, solve_s
 
 
+def maugis(sigma0, w, radius):
+    """Maugis parameter lambda = 2 sigma0 (R D^2/(pi w))^(1/3), D = 3/(4 E*), of a sphere of radius R."""
+    d = 0.75 / E_STAR_PA
+    return float(2 * sigma0 * (radius * d * d / (np.pi * w)) ** (1 / 3))
+
+
 def rel(a, b, floor):
     return abs(a - b) / max(abs(b), floor)
 
 
-def case(n, slope, w, points, tol, threads, refine, out_dir):
+def case_name(n, slope, w, points, range_m):
+    tail = "" if range_m == RANGE_M else f"-r{range_m * 1e6:g}"
+    return f"{n}-{slope}-{w}-{points}{tail}"
+
+
+def case(n, slope, w, points, range_m, tol, threads, refine, out_dir, only, max_iter):
+    stem = case_name(n, slope, w, points, range_m)
+    cache = os.path.join(out_dir, f"tamaas-{stem}.json")
     with tempfile.TemporaryDirectory() as d:
         hp = os.path.join(d, "h.bin")
-        st, st_wall, st_log = run_stiction(n, slope, w, points, tol, threads, hp)
+        path, _, _ = run_stiction(n, slope, w, points, tol, threads, hp, range_m, "path")
         h = np.fromfile(hp, "<f8").reshape(n, n)
-    gaps = [(s["branch"], s["mean_gap_m"]) for s in st]
-
-
-    tam, tam_s = run_tamaas(h, gaps, w, tol)
+    gaps = [(s["branch"], s["mean_gap_m"]) for s in path]
+    if only != "stiction":
+        tam, tam_s = run_tamaas(h, gaps, w, tol, range_m, max_iter)
+        os.makedirs(out_dir, exist_ok=True)
+        with open(cache, "w") as f:
+            json.dump({"case": stem, "tol": tol, "max_iter": max_iter, "solve_s": tam_s, "states": tam}, f, indent=0)
+        if only == "tamaas":
+            return {"case": stem, "tamaas_solve_s": tam_s, "tamaas_iterations": sum(t["iterations"] for t in tam)}
+    else:
+        with open(cache) as f:
+            c = json.load(f)
+        tam, tam_s = c["states"], c["solve_s"]
+        assert len(tam) == len(gaps) and all(abs(t["mean_gap_m"] / g - 1) < 1e-6 for t, (_, g) in zip(tam, gaps))
+    st, st_wall, st_log = run_stiction(n, slope, w, points, tol, threads, "", range_m)
     rows = []
     for i, (a, b) in enumerate(zip(st, tam)):
         rows.append(
@@ -162,13 +202,13 @@ def case(n, slope, w, points, tol, threads, refine, out_dir):
             }
         )
     os.makedirs(out_dir, exist_ok=True)
-    name = f"adhesion-{n}-{slope}-{w}-{points}.csv"
+    name = f"adhesion-{stem}.csv"
     with open(os.path.join(out_dir, name), "w", newline="") as f:
         wr = csv.DictWriter(f, fieldnames=list(rows[0].keys()), lineterminator="\n")
         wr.writeheader()
         for r in rows:
             wr.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in r.items()})
-    sigma0 = w / RANGE_M
+    sigma0 = w / range_m
     dp = [rel(r["stiction_mean_pressure_pa"], r["tamaas_mean_pressure_pa"], 0.01 * sigma0) for r in rows]
     da = [
         rel(r["stiction_repulsive_fraction"], r["tamaas_repulsive_fraction"], 1.0 / (n * n))
@@ -197,9 +237,13 @@ def case(n, slope, w, points, tol, threads, refine, out_dir):
         "stiction_log": st_log,
         "tamaas_solve_s": tam_s,
         "threads": threads,
+        "range_m": range_m,
+        "rms_curvature_per_m": rms_curvature(h),
+        "maugis_parameter_at_rms_curvature": maugis(sigma0, w, 1.0 / rms_curvature(h)),
+        "tamaas_unconverged_states": sum(1 for t in tam if t["error"] > tol),
     }
     if refine > 1:
-        fine, fine_wall, _ = run_stiction(n, slope, w, refine * (points - 1) + 1, tol, threads)
+        fine, fine_wall, _ = run_stiction(n, slope, w, refine * (points - 1) + 1, tol, threads, "", range_m)
         summary["pull_off_stiction_refined_pa"] = min(
             s["mean_pressure_pa"] for s in fine if s["branch"] == "retraction"
         )
@@ -213,11 +257,17 @@ def main():
     ap.add_argument("--tol", type=float, default=1e-6)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--refine", type=int, default=0)
+    ap.add_argument("--only", choices=["tamaas", "stiction"], default=None)
+    ap.add_argument("--max-iter", type=int, default=MAX_ITER)
     ap.add_argument("--out", default=os.path.join(ROOT, "data", "tamaas-adhesion"))
     a = ap.parse_args()
     for c in a.case:
-        n, slope, w, points = c.split(":")
-        s = case(int(n), float(slope), float(w), int(points), a.tol, a.threads, a.refine, a.out)
+        parts = c.split(":")
+        n, slope, w, points = parts[:4]
+        range_m = float(parts[4]) * 1e-6 if len(parts) > 4 else RANGE_M
+        s = case(
+            int(n), float(slope), float(w), int(points), range_m, a.tol, a.threads, a.refine, a.out, a.only, a.max_iter
+        )
         print(json.dumps(s), flush=True)
 
 

@@ -1,12 +1,13 @@
 //! An adhesive approach and retraction under mean-gap control on a self-affine surface (the case
 //! of `scripts/tamaas-adhesion.py`), timed, with a checksum of every state's bytes:
 //!
-//! `cargo run --release -p stiction-bem --example adhesive_path -- N SLOPE POINTS [TOL] [W] [HEIGHTS.bin]`
+//! `cargo run --release -p stiction-bem --example adhesive_path -- N SLOPE POINTS [TOL] [W] [HEIGHTS.bin] [RANGE] [solve|path]`
 //!
 //! `N` grid points a side (cell 100 um), `SLOPE` the spectral rms slope, `POINTS` mean gaps each
-//! way, `TOL` the tolerance (1e-6), `W` the work of adhesion (12 J/m^2; range 0.3 um, E* 1 GPa).
-//! With `HEIGHTS.bin` the heights are written there (f64 little-endian, row-major) for the
-//! Tamaas side. One line of JSON per state on stdout; the time and checksum on stderr.
+//! way, `TOL` the tolerance (1e-6), `W` the work of adhesion (12 J/m^2; E* 1 GPa), `RANGE` the
+//! Dugdale range (0.3e-6 m). With `HEIGHTS.bin` (`-` for none) the heights are written there
+//! (f64 little-endian, row-major) for the Tamaas side. One line of JSON per state on stdout; the
+//! time and checksum on stderr. `path`: only the imposed mean gaps, one line each, no solve.
 
 use std::io::Write;
 use std::time::Instant;
@@ -16,7 +17,7 @@ use stiction_bem::{BemSolver, ContactSolution, Dugdale, Grid, SolverOptions, syn
 const CELL_M: f64 = 100e-6;
 /// Composite modulus, Pa.
 const E_STAR_PA: f64 = 1e9;
-/// Dugdale range, m.
+/// Default Dugdale range, m.
 const RANGE_M: f64 = 0.3e-6;
 
 /// The self-affine surface of the comparison: H = 0.8, roll-off L/4, short cut-off 4 dx, seed 1,
@@ -46,7 +47,9 @@ fn main() {
     let tol = arg(4, 1e-6);
     let w = arg(5, 12.0);
     let (g, h) = surface(n, slope);
-    if let Some(path) = a.get(6) {
+    let range_m = arg(7, RANGE_M);
+    let only_path = a.get(8).is_some_and(|m| m == "path");
+    if let Some(path) = a.get(6).filter(|p| p.as_str() != "-") {
         let bytes: Vec<u8> = h.iter().flat_map(|v| v.to_le_bytes()).collect();
         std::fs::write(path, bytes).expect("write heights");
     }
@@ -54,9 +57,9 @@ fn main() {
     let top = h.iter().copied().fold(f64::NEG_INFINITY, f64::max) - mean;
     // Mean gaps from just within reach of the highest point (top + 0.9 range) down to a tenth
     // of the top, and back.
-    let (hi, lo) = (top + 0.9 * RANGE_M, 0.1 * top);
+    let (hi, lo) = (top + 0.9 * range_m, 0.1 * top);
     let gaps: Vec<f64> = (0..points).map(|i| hi + (lo - hi) * i as f64 / (points - 1) as f64).collect();
-    let law = Dugdale::from_work_and_range(w, RANGE_M).expect("law");
+    let law = Dugdale::from_work_and_range(w, range_m).expect("law");
     let opts = SolverOptions { tolerance: tol, ..Default::default() };
     let t0 = Instant::now();
     let mut s = BemSolver::new(n, n, g.dx_m, g.dy_m, &h, E_STAR_PA).expect("solver");
@@ -66,6 +69,12 @@ fn main() {
     let out = std::io::stdout();
     let mut out = out.lock();
     let path = gaps.iter().map(|&g| ("approach", g)).chain(gaps.iter().rev().skip(1).map(|&g| ("retraction", g)));
+    if only_path {
+        for (branch, gap) in path {
+            writeln!(out, "{{\"branch\":\"{branch}\",\"mean_gap_m\":{gap:e}}}").expect("stdout");
+        }
+        return;
+    }
     for (branch, gap) in path {
         let st = s.solve_adhesive_mean_gap(gap, &law, &opts, state.as_ref()).expect("solve");
         fnv(&mut hash, &st.pressure_pa);
@@ -73,7 +82,7 @@ fn main() {
         iterations += st.iterations;
         // The Dugdale potential phi(g) = -(w/rho) max(rho - g, 0), averaged.
         let adhesive =
-            -law.stress_pa * st.gap_m.iter().map(|g| (RANGE_M - g).max(0.0)).sum::<f64>() / n as f64 / n as f64;
+            -law.stress_pa * st.gap_m.iter().map(|g| (range_m - g).max(0.0)).sum::<f64>() / n as f64 / n as f64;
         writeln!(
             out,
             "{{\"branch\":\"{branch}\",\"mean_gap_m\":{:e},\"mean_pressure_pa\":{:e},\"repulsive_fraction\":{:e},\"cohesive_fraction\":{:e},\"iterations\":{},\"zone_updates\":{},\"elastic_energy_j_per_m2\":{:e},\"adhesive_energy_j_per_m2\":{:e}}}",

@@ -7,19 +7,19 @@ use serde::Serialize;
 
 use crate::error::{BemError, check_positive};
 
-/// Largest grid, in points (4096 x 4096): about 1.5 GB of solver state at
+/// Largest grid, in points (4096 x 4096): about 1.3 GB of solver state at
 /// [`BYTES_PER_POINT`].
 pub const MAX_POINTS: usize = 1 << 24;
 
-/// Bytes of solver state per grid point during a non-adhesive solve: persistent, the heights,
-/// one real FFT work field, the two real multipliers (`(nx/2+1) ny` values each, ~4 bytes per
-/// point each) and the two complex half spectra (~8 bytes per point each) = 40 bytes; per solve,
-/// the unknown, the data, the residual, `A x`, the direction and its image (6 x 8) = 48 bytes; in
-/// all 88 bytes. The returned solution adds its pressure and gap fields and contact flags
-/// (17 bytes); an adhesive solve adds the zone and the shifted data (+9 bytes). Measured: 110 MB
-/// maximum resident for the 1024 x 1024 timing example (105 bytes per point, with the example's
-/// own copy of the heights and the solution).
-pub const BYTES_PER_POINT: usize = 88;
+/// Bytes of solver state per grid point during a non-adhesive solve: persistent, the heights
+/// (8 bytes), the two real multipliers (`(nx/2+1) ny` values each, ~4 bytes per point each) and
+/// the two complex half spectra (~8 bytes per point each) = 32 bytes (the FFTs' other work
+/// buffers are per row or column and per thread); per solve, the unknown, the data, the residual,
+/// `A x`, the direction and its image (6 x 8) = 48 bytes; in all 80 bytes. The returned solution
+/// adds its pressure and gap fields and contact flags (17 bytes); an adhesive solve adds the zone
+/// and the shifted data (+9 bytes). Measured: 110 MB maximum resident for the 1024 x 1024 timing
+/// example (105 bytes per point, with the example's own copy of the heights and the solution).
+pub const BYTES_PER_POINT: usize = 80;
 
 /// Block length of the deterministic sums.
 pub(super) const SUM_BLOCK: usize = 8192;

@@ -45,7 +45,14 @@
 //! `Z = {g < h0}` the problem is the non-adhesive one with the known tension added
 //! (`h -> h + sigma0 K[1_Z]`); the zone is updated from the new gap and the solve repeated until it
 //! does not change (an active-set fixed point on the zone, warm-started, under mean-gap control so
-//! that a retraction can follow the curve past the load minimum to pull-off).
+//! that a retraction can follow the curve past the load minimum to pull-off). The solves between
+//! zone updates are inexact (100 times the tolerance, at most 1e-4); the state returned is that of
+//! a solve to the tolerance whose zone is the zone it was solved with.
+//!
+//! # Hardness cap
+//! Perfectly plastic pixels: the compressive traction bounded by the hardness `H` (Pa), with or
+//! without the Dugdale zone (`BemSolver::solve_load_plastic`, `BemSolver::plastic_at_load` with
+//! `SolverOptions::hardness_pa`; with adhesion the net traction `p_c - sigma0 <= H`).
 //!
 //! # Determinism
 //! Sums are taken over fixed blocks of the grid and added in order, and the FFTs transform rows and

@@ -25,7 +25,7 @@ use serde::Serialize;
 
 use crate::error::{BemError, check_positive};
 use crate::grid::{SUM_BLOCK, block_sum, block_sum2, in_pool};
-use crate::solver::{BemSolver, ContactSolution, Operator, SolverOptions};
+use crate::solver::{BemSolver, ContactSolution, Dugdale, Operator, SolverOptions};
 
 /// A contact state with the pressure capped at the hardness.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -55,6 +55,10 @@ enum MeanFix {
     /// Points in contact shifted by `lambda` (Pa) and clamped to `[0, cap]`: when the points at
     /// the cap alone carry more than the target (a step that saturated too many).
     Shift(f64),
+    /// Every point shifted by `lambda` (Pa) and clamped to `[0, cap]` (the Euclidean projection
+    /// on `{0 <= x <= cap, mean(x) = target}`): when the contact points, all at the cap, carry
+    /// less than the target (a step that saturated and released too many near full plasticity).
+    Lift(f64),
 }
 
 impl MeanFix {
@@ -74,6 +78,7 @@ impl MeanFix {
                     0.0
                 }
             }
+            MeanFix::Lift(l) => (v + l).clamp(0.0, cap),
         }
     }
 }
@@ -94,7 +99,11 @@ fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> {
         return None;
     }
     if capped >= target * n || free_sum <= 0.0 {
-        let mean_at = |l: f64| block_sum(x.len(), |rg| rg.map(|i| MeanFix::Shift(l).apply(x[i], cap)).sum()) / n;
+        // The contact points alone reach the target when they are all at the cap; if they do
+        // not (the free ones are none and the capped ones too few), every point is lifted.
+        let kind: fn(f64) -> MeanFix =
+            if capped >= target * n || free_sum > 0.0 { MeanFix::Shift } else { MeanFix::Lift };
+        let mean_at = |l: f64| block_sum(x.len(), |rg| rg.map(|i| kind(l).apply(x[i], cap)).sum()) / n;
         let (mut lo, mut hi) = (-cap, cap);
         for _ in 0..SHIFT_STEPS {
             let mid = 0.5 * (lo + hi);
@@ -104,7 +113,7 @@ fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> {
                 hi = mid;
             }
         }
-        return Some(MeanFix::Shift(0.5 * (lo + hi)));
+        return Some(kind(0.5 * (lo + hi)));
     }
     let mut f = (target * n - capped) / free_sum;
     for _ in 0..MAX_SCALE_STEPS {
@@ -150,7 +159,135 @@ impl BemSolver {
                 expected: "a mean pressure below the hardness (at the hardness the whole face flows)",
             });
         }
-        in_pool(|| self.solve_load_plastic_on_worker(mean_pressure_pa, hardness_pa, opts, warm))
+        let start = warm.map(|w| w.solution.pressure_pa.as_slice());
+        in_pool(|| self.solve_load_plastic_on_worker(mean_pressure_pa, hardness_pa, opts, start))
+    }
+
+    /// Contact at the external mean pressure `target_pa` (Pa, > 0, below the hardness; the net
+    /// of contact pressure and adhesive tension) with the compressive traction capped at
+    /// `opts.hardness_pa` (perfectly plastic pixels), with the Dugdale law `law` (`None`: no
+    /// adhesion, then [`Self::solve_load_plastic`]) on the loading branch. Load control, either
+    /// Green's function: the capped counterpart of [`Self::adhesive_at_load`].
+    ///
+    /// With adhesion the net traction a contact pixel transmits is capped, `p_c - sigma0 <= H`
+    /// (every contact pixel is in the cohesive zone), so the contact pressure is capped at
+    /// `H + sigma0`. For a fixed zone `Z` the problem is the capped one on the heights
+    /// `h + sigma0 K[1_Z]` with the contacts carrying `mean(p_c) = target + sigma0 |Z|/N`; the zone
+    /// is updated from the gap and the capped solve repeated, warm-started, until it does not
+    /// change. Started from the non-adhesive capped state at the load, or from `warm` (a lower
+    /// load's state on the same path: its zone is the start), the zone grows to the first fixed
+    /// point above it (the loading branch, as [`Self::adhesive_at_load`]). The solution's
+    /// `pressure_pa` is the net traction (`<= H`), `plastic_fraction` the points at `H`.
+    ///
+    /// Errors: no `opts.hardness_pa` or a bad one, a target at or above it, bad law values (all
+    /// naming the field); no convergence within `opts.max_iterations` per solve or
+    /// `opts.max_zone_updates` updates; the path's work budget ([`BemError::WorkBudget`]).
+    pub fn plastic_at_load(
+        &mut self,
+        target_pa: f64,
+        law: Option<&Dugdale>,
+        opts: &SolverOptions,
+        warm: Option<&PlasticSolution>,
+    ) -> Result<PlasticSolution, BemError> {
+        opts.validate()?;
+        let hardness = opts.hardness_pa.ok_or(BemError::Value {
+            name: "hardness_pa",
+            value: f64::NAN,
+            expected: "a hardness (SolverOptions::hardness_pa) for a capped solve",
+        })?;
+        check_positive("target_pa", target_pa, "a finite mean pressure > 0 (Pa)")?;
+        if target_pa >= hardness {
+            return Err(BemError::Value {
+                name: "target_pa",
+                value: target_pa,
+                expected: "a mean pressure below the hardness (at the hardness the whole face flows)",
+            });
+        }
+        let Some(law) = law else {
+            return self.solve_load_plastic(target_pa, hardness, opts, warm);
+        };
+        check_positive("stress_pa", law.stress_pa, "a finite Dugdale stress > 0 (Pa)")?;
+        check_positive("range_m", law.range_m, "a finite range > 0 (m)")?;
+        let base = self.heights.clone();
+        let result = in_pool(|| self.plastic_adhesive_on_worker(&base, target_pa, hardness, law, opts, warm));
+        // The heights were shifted by the zone's displacement: put them back whatever happened.
+        self.set_heights(&base)?;
+        result
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn plastic_adhesive_on_worker(
+        &mut self,
+        base: &[f64],
+        target: f64,
+        hardness: f64,
+        law: &Dugdale,
+        opts: &SolverOptions,
+        warm: Option<&PlasticSolution>,
+    ) -> Result<PlasticSolution, BemError> {
+        let n = base.len();
+        let sigma0 = law.stress_pa;
+        let cap = hardness + sigma0;
+        let mut iterations = 0;
+        let (mut contact_pressure, mut zone): (Vec<f64>, Vec<bool>) = match warm {
+            Some(w) if w.solution.gap_m.len() == n && w.solution.mean_pressure_pa <= target => {
+                let z: Vec<bool> = w.solution.gap_m.iter().map(|&g| g < law.range_m).collect();
+                let pc = w
+                    .solution
+                    .pressure_pa
+                    .iter()
+                    .zip(&z)
+                    .map(|(p, &inz)| if inz { p + sigma0 } else { *p }.clamp(0.0, cap))
+                    .collect();
+                (pc, z)
+            }
+            _ => {
+                let dry = self.solve_load_plastic_on_worker(target, hardness, opts, None)?;
+                iterations = dry.solution.iterations;
+                let z = dry.solution.gap_m.iter().map(|&g| g < law.range_m).collect();
+                (dry.solution.pressure_pa, z)
+            }
+        };
+        for update in 1..=opts.max_zone_updates {
+            let tension: Vec<f64> = zone.iter().map(|&z| if z { sigma0 } else { 0.0 }).collect();
+            let nz = zone.iter().filter(|&&z| z).count();
+            let u = self.half.displacement(&tension);
+            let shifted: Vec<f64> = base.iter().zip(&u).map(|(h, u)| h + u).collect();
+            self.set_heights(&shifted)?;
+            let carried = target + sigma0 * nz as f64 / n as f64;
+            let s = self.solve_load_plastic_on_worker(carried, cap, opts, Some(&contact_pressure))?;
+            iterations += s.solution.iterations;
+            if iterations > crate::error::PATH_WORK_FACTOR * opts.max_iterations {
+                return Err(BemError::WorkBudget {
+                    what: "Dugdale zone growth under load control with a hardness cap",
+                    iterations,
+                    target_pa: target,
+                    stress_pa: sigma0,
+                    range_m: law.range_m,
+                });
+            }
+            let new_zone: Vec<bool> = s.solution.gap_m.iter().map(|&g| g < law.range_m).collect();
+            if new_zone == zone {
+                let PlasticSolution { solution: sol, plastic_fraction, plastic_area_m2, max_plastic_depth_m, .. } = s;
+                let pressure: Vec<f64> = sol.pressure_pa.iter().zip(&tension).map(|(p, t)| p - t).collect();
+                let solution = self.finish(pressure, sol.gap_m, sol.contact, nz, iterations, update, sol.residual);
+                return Ok(PlasticSolution {
+                    solution,
+                    hardness_pa: hardness,
+                    plastic_fraction,
+                    plastic_area_m2,
+                    max_plastic_depth_m,
+                });
+            }
+            contact_pressure = s.solution.pressure_pa;
+            zone = new_zone;
+        }
+        Err(BemError::NoConvergence {
+            what: "Dugdale cohesive-zone update under load control with a hardness cap",
+            iterations: opts.max_zone_updates,
+            residual: f64::NAN,
+            tolerance: 0.0,
+        })
     }
 
     fn solve_load_plastic_on_worker(
@@ -158,13 +295,11 @@ impl BemSolver {
         target: f64,
         cap: f64,
         opts: &SolverOptions,
-        warm: Option<&PlasticSolution>,
+        start: Option<&[f64]>,
     ) -> Result<PlasticSolution, BemError> {
         let n = self.heights.len();
-        let mut x: Vec<f64> = match warm {
-            Some(w) if w.solution.pressure_pa.len() == n && w.solution.mean_pressure_pa > 0.0 => {
-                w.solution.pressure_pa.iter().map(|p| p.clamp(0.0, cap)).collect()
-            }
+        let mut x: Vec<f64> = match start {
+            Some(w) if w.len() == n && w.iter().any(|&p| p > 0.0) => w.iter().map(|p| p.clamp(0.0, cap)).collect(),
             _ => vec![target; n],
         };
         let fix = restore_mean(&x, cap, target).ok_or(BemError::Value {

@@ -161,11 +161,14 @@ pub struct SolverOptions {
     pub max_iterations: usize,
     /// Cap on the cohesive-zone updates of an adhesive solve; default 500.
     pub max_zone_updates: usize,
+    /// Hardness `H` (Pa) at which the compressive traction is capped (perfectly plastic pixels),
+    /// read by [`BemSolver::plastic_at_load`]; `None` (the default): elastic.
+    pub hardness_pa: Option<f64>,
 }
 
 impl Default for SolverOptions {
     fn default() -> Self {
-        SolverOptions { tolerance: 1e-8, max_iterations: 10_000, max_zone_updates: 500 }
+        SolverOptions { tolerance: 1e-8, max_iterations: 10_000, max_zone_updates: 500, hardness_pa: None }
     }
 }
 
@@ -180,6 +183,9 @@ impl SolverOptions {
         }
         if self.max_iterations == 0 || self.max_zone_updates == 0 {
             return Err(BemError::Value { name: "max_iterations", value: 0.0, expected: "iteration caps >= 1" });
+        }
+        if let Some(h) = self.hardness_pa {
+            check_positive("hardness_pa", h, "a finite hardness > 0 (Pa)")?;
         }
         Ok(())
     }
@@ -804,12 +810,21 @@ impl BemSolver {
             |gap: &[f64]| -> Vec<bool> { laws.iter().flat_map(|l| gap.iter().map(move |&g| g < l.range_m)).collect() };
         let mut zone = zones_of(&gap);
         let mut iterations = 0;
+        // The zones are updated from inexact solves ([`zone_tolerance`]) while they change, then
+        // confirmed by a solve to the tolerance: a state is returned only when the zones of the
+        // converged gap are the zones it was solved with.
+        let loose = SolverOptions { tolerance: zone_tolerance(opts.tolerance), ..*opts };
+        let mut tight = loose.tolerance <= opts.tolerance;
         for update in 1..=opts.max_zone_updates {
             let b = self.data_for_gap(Some((&zone, laws)));
-            let (g, pc, it, res) = self.gap_solve(&b, mean_gap_m, opts, Some(&gap))?;
+            let (g, pc, it, res) = self.gap_solve(&b, mean_gap_m, if tight { opts } else { &loose }, Some(&gap))?;
             iterations += it;
             gap = g;
             let new_zone = zones_of(&gap);
+            if new_zone == zone && !tight {
+                tight = true;
+                continue;
+            }
             if new_zone == zone {
                 let p: Vec<f64> = (0..n)
                     .map(|i| {
@@ -833,6 +848,15 @@ impl BemSolver {
             tolerance: 0.0,
         })
     }
+}
+
+/// Tolerance of the inexact solves between cohesive-zone updates for the caller's `tolerance`:
+/// 100 times it, at most 1e-4 (the last solve, whose zones do not change, is to the tolerance).
+/// At 1e-3 the zones of the inexact gaps send some states of a rough path into other equilibria
+/// (up to 93 pixels of contact on the 128^2 comparison path); at 1e-4 they are the same
+/// equilibria to 2 pixels, with 40 % fewer iterations.
+fn zone_tolerance(tolerance: f64) -> f64 {
+    (100.0 * tolerance).min(1e-4).max(tolerance)
 }
 
 /// A retraction under mean-gap control with cohesive laws, and its work ([`BemSolver::work_of_separation`]).

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::BemError;
 use crate::grid::{BYTES_PER_POINT, MAX_POINTS};
 
-/// Default of `max_points`: 2^22 points (about 370 MB of solver state at [`BYTES_PER_POINT`], a
+/// Default of `max_points`: 2^22 points (about 335 MB of solver state at [`BYTES_PER_POINT`], a
 /// few seconds per solve at the tolerance 1e-6).
 pub const DEFAULT_MAX_POINTS: u64 = 1 << 22;
 
@@ -44,7 +44,7 @@ pub struct BemSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub points: Option<u64>,
     /// Largest grid the model accepts, in points (default 4 194 304 = 2^22; at most 2^24):
-    /// checked before the solver allocates (about 88 bytes per point).
+    /// checked before the solver allocates (about 80 bytes per point).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_points: Option<u64>,
     /// Relative tolerance of the constrained conjugate gradient (default 1e-6).

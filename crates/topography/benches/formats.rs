@@ -6,8 +6,17 @@
 //!   `formats/plu_float32_4096` (Sensofar, 64 MiB): `read_file` (detection, header, decoding into a map of
 //!   float64 metres, the checks of every height);
 //! * `formats/fs_read_*`: `std::fs::read` of the same file;
+//! * `formats/write_f64_4096`, `formats/write_f64_huge_pages_4096`: only writing a new vector of
+//!   4096^2 float64 (128 MiB, four times an int16 file's samples), in 4 KiB pages and with huge
+//!   pages asked for (`stiction_units::io::advise_huge_pages`): the floor of any reader that hands
+//!   over float64;
 //! * `formats/fs_read_then_widen_int16_4096`: `std::fs::read` and each int16 sample widened into a
-//!   new float64 vector, the floor of a reader that hands over float64 (four times the bytes).
+//!   new float64 vector (the whole-file route without header or checks).
+//!
+//! The baseline, "a plain read", is `std::fs::read` of the same file, which is in the page cache
+//! (each file is read once before it is timed): a new vector of the file's size, filled by the
+//! kernel's copy from the page cache. `read_file` is the whole read of a map as the command line
+//! does it (`stiction topography FILE` calls `read_file_channel`).
 //!
 //! Run: `cargo bench -p stiction-topography --bench formats`.
 
@@ -70,8 +79,25 @@ fn bench(c: &mut Criterion) {
         g.bench_function(name, |b| b.iter(|| read_file(black_box(&path), None, &meta).unwrap().0.nx()));
         g.bench_function(format!("fs_read_{name}"), |b| b.iter(|| std::fs::read(black_box(&path)).unwrap().len()));
         if name.starts_with("nanoscope") {
-            // The floor of any reader that hands over float64: read the bytes, then widen every
-            // int16 sample into a new 128 MiB vector (no header, no checks).
+            // The floors of any reader that hands over float64: only writing a new 128 MiB vector
+            // of N x N values (no file), in 4 KiB pages and with huge pages asked for; and the
+            // whole-file route of before: read the bytes, then widen every int16 sample into a new
+            // vector (no header, no checks).
+            g.bench_function("write_f64_4096", |b| {
+                b.iter(|| {
+                    let mut v: Vec<f64> = Vec::with_capacity(N * N);
+                    v.extend((0..N * N).map(|k| k as f64));
+                    black_box(v).len()
+                })
+            });
+            g.bench_function("write_f64_huge_pages_4096", |b| {
+                b.iter(|| {
+                    let mut v: Vec<f64> = Vec::with_capacity(N * N);
+                    stiction_units::io::advise_huge_pages(v.spare_capacity_mut());
+                    v.extend((0..N * N).map(|k| k as f64));
+                    black_box(v).len()
+                })
+            });
             g.bench_function("fs_read_then_widen_int16_4096", |b| {
                 b.iter(|| {
                     let bytes = std::fs::read(black_box(&path)).unwrap();

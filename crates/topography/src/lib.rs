@@ -41,7 +41,7 @@ pub use read::{
     ArrayLayout, BINARY_INPUT_LIMIT_BYTES, BorrowedHeights, GSF_MAX_HEADER_BYTES, MAX_HEIGHT_M, MAX_PIXEL_SIZE_M,
     MAX_UNIT_M, MIN_PIXEL_SIZE_M, MIN_UNIT_M, MapFormat, MapInfo, MapMetadata, MetaSource, NPY_MAX_HEADER_BYTES,
     NpyDtype, TEXT_INPUT_LIMIT_BYTES, list_channels, parse_length_unit, read_array, read_file, read_file_channel,
-    read_gsf, read_instrument, read_npy, read_text_grid, read_xyz, resolve_format,
+    read_gsf, read_instrument, read_instrument_in_parts, read_npy, read_text_grid, read_xyz, resolve_format,
 };
 pub use spec::{GeneratedMapSpec, HeightMapSpec, Patch, PatchSummits, choose_patch, patch_summits};
 pub use stats::{

@@ -17,7 +17,8 @@ use serde::Serialize;
 use stiction_units::text::{MAX_LINE_BYTES, check_line_bytes, check_lines, excerpt};
 use stiction_units::{Dimension, parse_quantity};
 
-use crate::formats::{ChannelChoice, ChannelInfo, ChannelSelector};
+use crate::formats::parts::{ByteSource, HEADER_PREFIX_BYTES, HeightTally, check_channel, decode_channel, raster_span};
+use crate::formats::{Channel, ChannelChoice, ChannelInfo, ChannelSelector};
 use crate::map::check_grid_size;
 use crate::{HeightMap, MAX_PIXELS, TopographyError};
 
@@ -170,6 +171,33 @@ fn finish_scaled(
     mut heights: Vec<f64>,
     in_metres: bool,
 ) -> Result<(HeightMap, MapInfo), TopographyError> {
+    let resolved = resolve_meta(origin, file_dx, file_dy, file_unit, meta)?;
+    if resolved.unit != 1.0 && !in_metres {
+        for h in &mut heights {
+            *h *= resolved.unit;
+        }
+    }
+    let mut tally = HeightTally::default();
+    tally.add(&heights);
+    build(origin, format, nx, ny, &resolved, heights, tally)
+}
+
+/// The pixel sizes and the height unit, from the file or `meta`, checked.
+struct Resolved {
+    dx: f64,
+    dy: f64,
+    pixel_from: MetaSource,
+    unit: f64,
+    unit_from: MetaSource,
+}
+
+fn resolve_meta(
+    origin: &str,
+    file_dx: Option<f64>,
+    file_dy: Option<f64>,
+    file_unit: Option<f64>,
+    meta: &MapMetadata,
+) -> Result<Resolved, TopographyError> {
     let (dx, src_x) = resolve(origin, file_dx, meta.pixel_size_x_m, "pixel size", PIXEL_HOW)?;
     let given_dy = meta.pixel_size_y_m.or(meta.pixel_size_x_m);
     let (dy, _) = resolve(origin, file_dy.or(file_dx), given_dy, "pixel size along y", PIXEL_HOW)?;
@@ -190,38 +218,42 @@ fn finish_scaled(
             format!("a unit in [{MIN_UNIT_M:e}, {MAX_UNIT_M:e}] m (from {origin})"),
         ));
     }
-    let mut missing = 0;
-    if unit != 1.0 && !in_metres {
-        for h in &mut heights {
-            *h *= unit;
-        }
-    }
-    // One branch-free pass (it vectorises): the count of NaN and the largest |h| (NaN ignored).
-    let (nan, largest) =
-        heights.iter().fold((0usize, 0.0f64), |(n, m), h| (n + usize::from(h.is_nan()), m.max(h.abs())));
-    missing += nan;
-    if largest > MAX_HEIGHT_M {
-        let h = heights.iter().find(|h| h.abs() > MAX_HEIGHT_M).copied().unwrap_or(largest);
+    Ok(Resolved { dx, dy, pixel_from: src_x, unit, unit_from: src_u })
+}
+
+/// The map of heights in metres whose tally (NaN count, largest |h|) is `tally`: refused when a
+/// height is beyond [`MAX_HEIGHT_M`] or every pixel is missing.
+fn build(
+    origin: &str,
+    format: MapFormat,
+    nx: usize,
+    ny: usize,
+    resolved: &Resolved,
+    heights: Vec<f64>,
+    tally: HeightTally,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
+    if tally.largest > MAX_HEIGHT_M {
+        let h = heights.iter().find(|h| h.abs() > MAX_HEIGHT_M).copied().unwrap_or(tally.largest);
         return Err(TopographyError::format(
             origin,
             0,
             format!("a height of {h:e} m (in SI units) is beyond the limit of {MAX_HEIGHT_M} m for a height map"),
         ));
     }
-    if missing == heights.len() {
+    if tally.nan == heights.len() {
         return Err(TopographyError::format(origin, 0, "every pixel is missing (NaN)"));
     }
-    // Every height was checked above (finite and within MAX_HEIGHT_M, or NaN).
-    let map = HeightMap::from_checked_heights(nx, ny, dx, dy, heights)
+    // Every height was tallied (finite and within MAX_HEIGHT_M, or NaN).
+    let map = HeightMap::from_checked_heights(nx, ny, resolved.dx, resolved.dy, heights)
         .map_err(|e| TopographyError::format(origin, 0, e.to_string()))?;
     Ok((
         map,
         MapInfo {
             format,
-            pixel_size_from: src_x,
-            height_unit_from: src_u,
-            height_unit_m: unit,
-            missing_pixels: missing,
+            pixel_size_from: resolved.pixel_from,
+            height_unit_from: resolved.unit_from,
+            height_unit_m: resolved.unit,
+            missing_pixels: tally.nan,
             channel: None,
         },
     ))
@@ -272,7 +304,18 @@ pub fn read_file_channel(
     let origin = path.display().to_string();
     let claim = format.or_else(|| MapFormat::from_extension(path)).unwrap_or(MapFormat::Text);
     let limit = if claim.has_magic() { BINARY_INPUT_LIMIT_BYTES } else { TEXT_INPUT_LIMIT_BYTES };
-    let bytes = stiction_units::io::read_input(path, limit)?;
+    let file = stiction_units::io::open_input(path, limit)?;
+    let size = file.size_bytes();
+    // A large file is read in parts (an instrument file's header, then its channel's samples
+    // straight into the map); what that route does not read, the whole-file route below reads.
+    let bytes = if size > 2 * HEADER_PREFIX_BYTES as u64 && size <= BINARY_INPUT_LIMIT_BYTES {
+        match read_in_parts(&file, HEADER_PREFIX_BYTES, |b| resolve_format(path, format, b), channel, meta, &origin)? {
+            Parts::Read(result) => return result,
+            Parts::Whole(bytes) => bytes,
+        }
+    } else {
+        file.read_all()?
+    };
     let format = resolve_format(path, format, &bytes)?;
     if format.has_magic() && bytes.len() as u64 > BINARY_INPUT_LIMIT_BYTES {
         return Err(stiction_units::io::FileError::TooLarge {
@@ -338,22 +381,110 @@ pub fn read_instrument(
 ) -> Result<(HeightMap, MapInfo), TopographyError> {
     let list = crate::formats::channels(format, bytes, origin)?;
     let (ch, choice) = crate::formats::choose(&list, channel, origin)?;
+    read_channel(ch, choice, bytes, format, origin, meta)
+}
+
+/// Reads a channel's values from `src` (the file's bytes, or the file) into the map.
+fn read_channel<S: ByteSource + ?Sized>(
+    ch: &Channel,
+    choice: ChannelChoice,
+    src: &S,
+    format: MapFormat,
+    origin: &str,
+    meta: &MapMetadata,
+) -> Result<(HeightMap, MapInfo), TopographyError> {
     let i = &ch.info;
     // A unit the file states is the unit (a given one must agree): the values are scaled to metres
-    // while they are decoded, in one pass.
+    // while they are decoded, in one pass; so is a unit given for a file that states none.
     let file_unit = i.height_unit_m;
     if let (Some(f), Some(_)) = (file_unit, meta.height_unit_m) {
         resolve(origin, Some(f), meta.height_unit_m, "height unit", UNIT_HOW)?;
     }
-    let values = crate::formats::decode(ch, bytes, origin, file_unit.unwrap_or(1.0))?;
+    check_channel(ch, src.size_bytes(), origin)?;
     let (dx, dy) = match i.size_m {
         Some((a, b)) => (Some(a / i.nx as f64), Some(b / i.ny as f64)),
         None => (None, None),
     };
-    let (map, mut info) =
-        finish_scaled(origin, format, i.nx, i.ny, dx, dy, file_unit, meta, values, file_unit.is_some())?;
+    let resolved = resolve_meta(origin, dx, dy, file_unit, meta)?;
+    let post = if file_unit.is_some() { 1.0 } else { resolved.unit };
+    let (values, tally) = decode_channel(ch, src, origin, file_unit.unwrap_or(1.0), post)?;
+    let (map, mut info) = build(origin, format, i.nx, i.ny, &resolved, values, tally)?;
     info.channel = Some(choice);
     Ok((map, info))
+}
+
+/// What [`read_in_parts`] did: read the channel (the map, or the error reading it gave), or read
+/// the whole file for the whole-file route.
+enum Parts {
+    Read(Result<(HeightMap, MapInfo), TopographyError>),
+    Whole(Vec<u8>),
+}
+
+/// Reads an instrument file's channel in parts (see the module `formats::parts`): the first
+/// `prefix` bytes into a buffer of the file's size (the rest of it untouched, zero), the format
+/// (`detect`) and the channel's samples `R` found there; then every byte outside `R` and the
+/// channel found again, which must give the same `R`; then `R` decoded from `src` into the map.
+/// Whenever a step does not give a raster channel, the rest of the file is read
+/// ([`Parts::Whole`]) for the whole-file route, which decides (and words any error).
+fn read_in_parts<S: ByteSource + ?Sized>(
+    src: &S,
+    prefix: usize,
+    detect: impl Fn(&[u8]) -> Result<MapFormat, TopographyError>,
+    channel: Option<&ChannelSelector>,
+    meta: &MapMetadata,
+    origin: &str,
+) -> Result<Parts, TopographyError> {
+    let size = src.size_bytes();
+    // Zeroed on demand: the pages of this buffer that no read below fills are never touched.
+    let mut bytes = vec![0u8; size];
+    let prefix = prefix.min(size);
+    src.read_at(0, &mut bytes[..prefix])?;
+    let find = |bytes: &[u8]| -> Option<(MapFormat, Channel, ChannelChoice, (usize, usize))> {
+        let format = detect(bytes).ok().filter(|&f| crate::formats::listed_without_samples(f))?;
+        let list = crate::formats::channels(format, bytes, origin).ok()?;
+        let (ch, choice) = crate::formats::choose(&list, channel, origin).ok()?;
+        Some((format, ch.clone(), choice, raster_span(ch, size)?))
+    };
+    let fill = |bytes: &mut Vec<u8>, a: usize, b: usize| -> Result<(), TopographyError> {
+        let a = a.max(prefix);
+        if b > a { src.read_at(a, &mut bytes[a..b]) } else { Ok(()) }
+    };
+    let Some((_, _, _, (a, b))) = find(&bytes) else {
+        fill(&mut bytes, prefix, size)?;
+        return Ok(Parts::Whole(bytes));
+    };
+    fill(&mut bytes, prefix, a)?;
+    fill(&mut bytes, b, size)?;
+    match find(&bytes) {
+        Some((format, ch, choice, span)) if span == (a, b) => {
+            drop(bytes);
+            Ok(Parts::Read(read_channel(&ch, choice, src, format, origin, meta)))
+        }
+        _ => {
+            fill(&mut bytes, a, b)?;
+            Ok(Parts::Whole(bytes))
+        }
+    }
+}
+
+/// [`read_instrument`] by the route [`read_file_channel`] takes for a large file (the header
+/// from the first `prefix` bytes, then the channel's samples decoded in parts); the same result,
+/// bit for bit; with whether the samples were read in parts (else the whole bytes were read and
+/// [`read_instrument`] read them). For the tests that hold the two routes equal.
+#[doc(hidden)]
+pub fn read_instrument_in_parts(
+    bytes: &[u8],
+    prefix: usize,
+    format: MapFormat,
+    origin: &str,
+    channel: Option<&ChannelSelector>,
+    meta: &MapMetadata,
+) -> (Result<(HeightMap, MapInfo), TopographyError>, bool) {
+    match read_in_parts(bytes, prefix, |_| Ok(format), channel, meta, origin) {
+        Err(e) => (Err(e), false),
+        Ok(Parts::Read(result)) => (result, true),
+        Ok(Parts::Whole(all)) => (read_instrument(&all, format, origin, channel, meta), false),
+    }
 }
 
 /// The channels of a height-map file (format as [`read_file_channel`] finds it). A file without

@@ -25,8 +25,9 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::{Duration, Instant};
 
 use stiction_topography::{
-    ChannelSelector, HeightMap, Levelling, MapFormat, MapMetadata, NpyDtype, Preparation, TopographyError, detect,
-    find_summits, prepare, read_gsf, read_instrument, read_npy, read_text_grid, read_xyz, statistics,
+    ChannelSelector, HeightMap, Levelling, MapFormat, MapInfo, MapMetadata, NpyDtype, Preparation, TopographyError,
+    detect, find_summits, prepare, read_gsf, read_instrument, read_instrument_in_parts, read_npy, read_text_grid,
+    read_xyz, statistics,
 };
 
 #[path = "support/synth.rs"]
@@ -999,6 +1000,18 @@ struct Counts {
     refused: usize,
 }
 
+/// A read's result as comparable text: the bits of every height, grid, pixel sizes, metadata; or
+/// the error.
+fn fingerprint(r: &Result<(HeightMap, MapInfo), TopographyError>) -> String {
+    match r {
+        Ok((m, info)) => {
+            let bits: Vec<u64> = m.heights_m().iter().map(|h| h.to_bits()).collect();
+            format!("{} {} {} {} {bits:?} {info:?}", m.nx(), m.ny(), m.dx_m(), m.dy_m())
+        }
+        Err(e) => format!("error: {e}"),
+    }
+}
+
 fn check_error(e: &TopographyError, case: &str) {
     if std::env::var("FUZZ_SHOW").is_ok() {
         eprintln!("{case}: {e}");
@@ -1033,7 +1046,13 @@ fn run_format(name: &str, make: fn(&mut Rng) -> Vec<u8>, seed: u64) -> Counts {
                         4 => Some(ChannelSelector::Name(if case % 8 == 1 { SECRET.into() } else { "Phase".into() })),
                         _ => None,
                     };
-                    read_instrument(&bytes, format, ORIGIN, sel.as_ref(), &m)
+                    let read = read_instrument(&bytes, format, ORIGIN, sel.as_ref(), &m);
+                    // The route in parts (the header from a prefix, the samples decoded from the
+                    // source) gives the same bits or the same error.
+                    let prefix = [16, 300, 4096][case % 3];
+                    let (parts, _) = read_instrument_in_parts(&bytes, prefix, format, ORIGIN, sel.as_ref(), &m);
+                    assert_eq!(fingerprint(&parts), fingerprint(&read), "{label}: read in parts, prefix {prefix}");
+                    read
                 }
                 "text" | "xyz" => {
                     // The text readers take what `read_input_text` gives: UTF-8 without a BOM.

@@ -158,6 +158,132 @@ pub fn read_input(path: &Path, limit_bytes: u64) -> Result<Vec<u8>, FileError> {
     Ok(bytes)
 }
 
+/// An input file opened for reading in parts ([`open_input`]): a regular file whose size, checked
+/// against the limit on the opened handle, bounds every read. A reader that needs only some of a
+/// large file (a header, then one channel's samples straight into their final buffer) reads those
+/// parts, never more than the size it was opened with, even if the file grows meanwhile.
+#[derive(Debug)]
+pub struct InputFile {
+    file: std::fs::File,
+    path: PathBuf,
+    size_bytes: u64,
+}
+
+/// Opens an input file to be read in parts: the same rules as [`read_input`] (a regular file, at
+/// most `limit_bytes`, recorded as an input of this process so no output replaces it), the type
+/// and size taken from the opened handle.
+pub fn open_input(path: &Path, limit_bytes: u64) -> Result<InputFile, FileError> {
+    check_input(path, limit_bytes)?;
+    let file = std::fs::File::open(path).map_err(|source| FileError::Open { path: path.to_path_buf(), source })?;
+    let meta = file.metadata().map_err(|source| FileError::Open { path: path.to_path_buf(), source })?;
+    if !meta.file_type().is_file() {
+        return Err(FileError::NotRegular { path: path.to_path_buf(), kind: kind_of(&meta.file_type()) });
+    }
+    if meta.len() > limit_bytes {
+        return Err(FileError::TooLarge { path: path.to_path_buf(), size_bytes: meta.len(), limit_bytes });
+    }
+    record_input(path, &meta);
+    Ok(InputFile { file, path: path.to_path_buf(), size_bytes: meta.len() })
+}
+
+impl InputFile {
+    /// The file's size when it was opened, bytes: no read goes past it.
+    pub fn size_bytes(&self) -> u64 {
+        self.size_bytes
+    }
+
+    /// The path the file was opened by.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Fills `buf` with the file's bytes from `offset`. A part beyond the size the file was opened
+    /// with is refused before any read; a file that shrank meanwhile is an error, never zeros.
+    pub fn read_at(&self, offset: u64, buf: &mut [u8]) -> Result<(), FileError> {
+        let io_err = |source| FileError::Io { path: self.path.clone(), action: "read", source };
+        if offset.checked_add(buf.len() as u64).is_none_or(|end| end > self.size_bytes) {
+            return Err(io_err(std::io::Error::new(
+                std::io::ErrorKind::UnexpectedEof,
+                format!("{} bytes from byte {offset} lie past its size of {} bytes", buf.len(), self.size_bytes),
+            )));
+        }
+        read_exact_at(&self.file, offset, buf).map_err(|e| {
+            if e.kind() == std::io::ErrorKind::UnexpectedEof {
+                io_err(std::io::Error::new(e.kind(), "the file became shorter while it was read"))
+            } else {
+                io_err(e)
+            }
+        })
+    }
+
+    /// The whole file (its size when opened), as [`read_input`] gives it.
+    pub fn read_all(&self) -> Result<Vec<u8>, FileError> {
+        use std::io::Seek;
+        let io_err = |source| FileError::Io { path: self.path.clone(), action: "read", source };
+        let mut file = &self.file;
+        file.seek(std::io::SeekFrom::Start(0)).map_err(io_err)?;
+        let mut bytes = Vec::with_capacity(self.size_bytes as usize);
+        file.take(self.size_bytes).read_to_end(&mut bytes).map_err(io_err)?;
+        if bytes.len() as u64 != self.size_bytes {
+            return Err(io_err(std::io::Error::new(
+                std::io::ErrorKind::UnexpectedEof,
+                "the file became shorter while it was read",
+            )));
+        }
+        Ok(bytes)
+    }
+}
+
+/// Smallest buffer [`advise_huge_pages`] asks huge pages for: 4 MiB (two huge pages), so that a
+/// small buffer never splits the heap's mappings.
+pub const HUGE_PAGE_ADVICE_MIN_BYTES: usize = 4 << 20;
+
+/// Asks the kernel to back `buf` with transparent huge pages (Linux `madvise(MADV_HUGEPAGE)` on the
+/// whole 4 KiB pages inside it), before it is first written: a fresh 128 MiB buffer is then faulted
+/// in 2 MiB pages instead of 32,768 pages of 4 KiB, which is most of the cost of filling it
+/// (docs/performance.md, "Instrument files"). A hint only: the contents are never changed, and
+/// where the kernel refuses (no transparent huge pages, a region that is not anonymous memory) or
+/// on another system nothing happens. Buffers under [`HUGE_PAGE_ADVICE_MIN_BYTES`] are left alone.
+pub fn advise_huge_pages<T>(buf: &mut [T]) {
+    let bytes = std::mem::size_of_val(buf);
+    if bytes < HUGE_PAGE_ADVICE_MIN_BYTES {
+        return;
+    }
+    #[cfg(target_os = "linux")]
+    {
+        const PAGE: usize = 4096;
+        let start = buf.as_mut_ptr() as usize;
+        let (first, end) = (start.next_multiple_of(PAGE), (start + bytes) & !(PAGE - 1));
+        if end > first {
+            madvise_huge_pages(first, end - first);
+        }
+    }
+}
+
+/// `madvise(first, len, MADV_HUGEPAGE)`, its result ignored (a hint).
+#[cfg(target_os = "linux")]
+#[allow(unsafe_code)]
+fn madvise_huge_pages(first: usize, len: usize) {
+    // SAFETY: `first..first + len` are whole pages inside one live buffer that the caller holds
+    // by `&mut` (so no other code uses it meanwhile). MADV_HUGEPAGE only sets how the kernel backs
+    // those pages: it never unmaps them, changes their protection or changes a byte of their
+    // contents (unlike MADV_DONTNEED or MADV_FREE), so no Rust reference to them is invalidated.
+    // An address range that is not anonymous memory gives EINVAL, which is ignored.
+    let _ = unsafe { libc::madvise(first as *mut libc::c_void, len, libc::MADV_HUGEPAGE) };
+}
+
+#[cfg(unix)]
+fn read_exact_at(file: &std::fs::File, offset: u64, buf: &mut [u8]) -> std::io::Result<()> {
+    std::os::unix::fs::FileExt::read_exact_at(file, buf, offset)
+}
+
+#[cfg(not(unix))]
+fn read_exact_at(mut file: &std::fs::File, offset: u64, buf: &mut [u8]) -> std::io::Result<()> {
+    use std::io::Seek;
+    file.seek(std::io::SeekFrom::Start(offset))?;
+    file.read_exact(buf)
+}
+
 /// Reads a whole input file as UTF-8 text (a leading byte-order mark is removed).
 pub fn read_input_text(path: &Path, limit_bytes: u64) -> Result<String, FileError> {
     let bytes = read_input(path, limit_bytes)?;
@@ -290,6 +416,53 @@ mod tests {
         let _ = std::fs::remove_dir_all(&d);
         std::fs::create_dir_all(&d).unwrap();
         d
+    }
+
+    #[test]
+    fn an_input_read_in_parts_is_bounded_by_its_size_when_opened() {
+        let d = tmpdir("parts");
+        let p = d.join("in.bin");
+        std::fs::write(&p, b"0123456789").unwrap();
+        // The rules of read_input: a regular file within the limit, recorded as an input.
+        assert!(matches!(open_input(&p, 9), Err(FileError::TooLarge { size_bytes: 10, limit_bytes: 9, .. })));
+        assert!(matches!(open_input(&d, 100), Err(FileError::NotRegular { .. })));
+        #[cfg(unix)]
+        assert!(matches!(open_input(Path::new("/dev/zero"), 100), Err(FileError::NotRegular { .. })));
+        let f = open_input(&p, 10).unwrap();
+        assert_eq!(f.size_bytes(), 10);
+        assert!(input_at(&p).is_some());
+        let mut buf = [0u8; 4];
+        f.read_at(3, &mut buf).unwrap();
+        assert_eq!(&buf, b"3456");
+        f.read_at(6, &mut buf).unwrap();
+        assert_eq!(&buf, b"6789");
+        // Past the size it was opened with: refused before a read, even after the file grows.
+        std::fs::write(&p, b"0123456789abcdef").unwrap();
+        assert!(matches!(f.read_at(7, &mut buf), Err(FileError::Io { .. })));
+        assert!(matches!(f.read_at(u64::MAX, &mut buf), Err(FileError::Io { .. })));
+        assert_eq!(f.read_all().unwrap(), b"0123456789");
+        // A file that shrank while read: an error, never zeros.
+        std::fs::write(&p, b"01").unwrap();
+        let e = f.read_at(4, &mut buf).unwrap_err();
+        assert!(e.to_string().contains("shorter"), "{e}");
+        assert!(f.read_all().unwrap_err().to_string().contains("shorter"));
+    }
+
+    #[test]
+    fn huge_page_advice_changes_no_value() {
+        // 8 MiB written, advised (as a buffer already in use would be), then read back; and the
+        // spare capacity of a new vector advised before it is filled, as the readers do.
+        let n = (8 << 20) / 8;
+        let mut v: Vec<f64> = (0..n).map(|k| k as f64 * 0.5).collect();
+        advise_huge_pages(&mut v);
+        assert!(v.iter().enumerate().all(|(k, &x)| x == k as f64 * 0.5));
+        let mut w: Vec<u64> = Vec::with_capacity(n);
+        advise_huge_pages(w.spare_capacity_mut());
+        w.extend(0..n as u64);
+        assert!(w.iter().enumerate().all(|(k, &x)| x == k as u64));
+        let mut small = vec![1u8; 100];
+        advise_huge_pages(&mut small);
+        assert_eq!(small, vec![1u8; 100]);
     }
 
     #[test]

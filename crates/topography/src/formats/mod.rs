@@ -18,6 +18,7 @@ pub(crate) mod nc;
 pub(crate) mod nid;
 pub(crate) mod opd;
 pub(crate) mod park;
+pub(crate) mod parts;
 pub(crate) mod plu;
 pub(crate) mod sdf;
 pub(crate) mod sur;
@@ -27,8 +28,8 @@ pub mod x3p;
 use serde::Serialize;
 use stiction_units::text::excerpt;
 
+use crate::TopographyError;
 use crate::map_format::MapFormat;
-use crate::{MAX_PIXELS, TopographyError};
 
 /// One channel of a file as listed by `stiction topography FILE --channels`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -319,95 +320,12 @@ pub(crate) fn choose<'a>(
     Ok((ch, choice))
 }
 
-/// The channel's values in its unit times `unit` (1, or the metres per unit to have metres in one
-/// pass), row-major (`iy * nx + ix`), NaN where missing.
-pub(crate) fn decode(ch: &Channel, bytes: &[u8], origin: &str, unit: f64) -> Result<Vec<f64>, TopographyError> {
-    let (nx, ny) = (ch.info.nx, ch.info.ny);
-    let n = nx.checked_mul(ny).filter(|&n| n as u64 <= MAX_PIXELS).ok_or_else(|| TopographyError::TooLarge {
-        origin: origin.into(),
-        nx: nx as u64,
-        ny: ny as u64,
-        limit: MAX_PIXELS,
-    })?;
-    let r = match &ch.values {
-        Values::Parsed(v) => {
-            return if v.len() == n {
-                Ok(v.iter().map(|x| x * unit).collect())
-            } else {
-                Err(TopographyError::format(origin, 0, format!("{} values, expected {nx} x {ny}", v.len())))
-            };
-        }
-        Values::Raster(r) => r,
-    };
-    let size = r.sample.bytes();
-    let stride = r.row_bytes.unwrap_or(nx * size).max(nx * size);
-    // The last row ends `nx x size` bytes after its start.
-    let span = if n == 0 { Some(0) } else { stride.checked_mul(ny - 1).and_then(|b| b.checked_add(nx * size)) };
-    let end = span.and_then(|b| b.checked_add(r.offset));
-    let data = match end {
-        Some(e) if e <= bytes.len() => &bytes[r.offset..e],
-        _ => {
-            return Err(TopographyError::format(
-                origin,
-                0,
-                format!(
-                    "channel {} needs {nx} x {ny} x {size} bytes from byte {}, but the file has {} bytes",
-                    ch.info.index,
-                    r.offset,
-                    bytes.len()
-                ),
-            ));
-        }
-    };
-    let mut out = Vec::with_capacity(n);
-    for iy in 0..ny {
-        let row = if r.flip_y { ny - 1 - iy } else { iy };
-        let line = &data[row * stride..row * stride + nx * size];
-        let start = out.len();
-        convert_row(line, r, (r.scale * unit, r.shift * unit), &mut out);
-        if r.flip_x {
-            out[start..].reverse();
-        }
-    }
-    Ok(out)
-}
-
-/// Appends one row of samples as values: a tight loop per sample type and byte order (the
-/// branch on the missing-value marker only where the format has one).
-fn convert<const N: usize, T: Into<f64>>(
-    line: &[u8],
-    out: &mut Vec<f64>,
-    from: fn([u8; N]) -> T,
-    (scale, shift): (f64, f64),
-    invalid: Option<Missing>,
-) {
-    let it = line.chunks_exact(N).map(|c| from(c.try_into().unwrap_or([0; N])).into());
-    match invalid {
-        Some(Missing::Equal(inv)) => out.extend(it.map(|v: f64| if v == inv { f64::NAN } else { v * scale + shift })),
-        Some(Missing::AtLeast(inv)) => out.extend(it.map(|v: f64| if v >= inv { f64::NAN } else { v * scale + shift })),
-        None => out.extend(it.map(|v: f64| v * scale + shift)),
-    }
-}
-
-fn convert_row(line: &[u8], r: &Raster, scale: (f64, f64), out: &mut Vec<f64>) {
-    let inv = r.invalid;
-    let be = r.big_endian;
-    match r.sample {
-        Sample::I8 => convert(line, out, i8::from_le_bytes, scale, inv),
-        Sample::U8 => convert(line, out, u8::from_le_bytes, scale, inv),
-        Sample::I16 if be => convert(line, out, i16::from_be_bytes, scale, inv),
-        Sample::I16 => convert(line, out, i16::from_le_bytes, scale, inv),
-        Sample::U16 if be => convert(line, out, u16::from_be_bytes, scale, inv),
-        Sample::U16 => convert(line, out, u16::from_le_bytes, scale, inv),
-        Sample::I32 if be => convert(line, out, i32::from_be_bytes, scale, inv),
-        Sample::I32 => convert(line, out, i32::from_le_bytes, scale, inv),
-        Sample::U32 if be => convert(line, out, u32::from_be_bytes, scale, inv),
-        Sample::U32 => convert(line, out, u32::from_le_bytes, scale, inv),
-        Sample::F32 if be => convert(line, out, f32::from_be_bytes, scale, inv),
-        Sample::F32 => convert(line, out, f32::from_le_bytes, scale, inv),
-        Sample::F64 if be => convert(line, out, f64::from_be_bytes, scale, inv),
-        Sample::F64 => convert(line, out, f64::from_le_bytes, scale, inv),
-    }
+/// Whether the channels of a `format` file are listed from bytes other than their samples, so
+/// that the route in parts ([`parts`]) may read them. Not WSxM: its samples start after the line
+/// end that follows `[Header end]`, whatever bytes come there, and an int16 image's scale is the
+/// Z amplitude over the samples' range; a WSxM file is read whole.
+pub(crate) fn listed_without_samples(format: MapFormat) -> bool {
+    format != MapFormat::Wsxm
 }
 
 /// Whether a channel name reads as a height channel.
