@@ -62,6 +62,17 @@ take fit/fit-vpull2.png fit-vpull2.png
 take fit/fit-friction-load.png fit-friction-load.png
 take fit/fit-residuals.png fit-residuals.png
 
+# Test structures built from parts: the comb tester's Fig. 5 and 7, the plate's Fig. 7 (release
+# protocol: no pull voltage, so no Fig. 5) and a fit of (synthetic) release thresholds.
+s run scenarios/comb-sidewall.json --out "$TMP/comb" $FIG
+take comb/fig5.png structure-comb-fig5.png
+take comb/fig7.png structure-comb-fig7.png
+s run scenarios/plate-released-spring.json --out "$TMP/plate" $FIG
+take plate/fig7.png structure-plate-fig7.png
+s fit data/structure-thresholds-synthetic/release.csv --scenario scenarios/plate-released-spring.json \
+    --out "$TMP/fit-structure" $FIG
+take fit-structure/fit-friction-load.png structure-fit-friction-load.png
+
 # Gap-closing actuators against measured hardware.
 s actuator scenarios/gca-rauf2022.json --validate data/gca-pullin-release/measured.csv --out "$TMP/gca" $FIG
 take gca/validation.png actuator-validation.png

@@ -107,3 +107,46 @@ fn too_many_distinct_clamp_voltages_is_refused() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("6000 distinct clamp voltages") && err.contains("at most 5000"), "{err}");
 }
+
+/// `stiction fit` with a `structure` scenario: a threshold file's bad cell exits 2 naming the line
+/// and column, contact-model flags and `--synthesize` are refused naming them, a file whose
+/// columns do not fit the parts is refused naming both, a row past the normal comb's side pull-in
+/// is listed with its reason instead of a load, and `--out` writes the report and its figure.
+#[test]
+fn structure_thresholds_are_fitted_or_refused_by_name() {
+    let dir = temp_dir("fit-structure");
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "v_normal_v,displacement_m\n0.9,2e-7\n1.1,x\n").unwrap();
+    let plate = "scenarios/plate-released-spring.json";
+    let out = stiction(&["fit", bad.to_str().unwrap(), "--scenario", plate]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("line 3") && err.contains("`displacement_m`"), "{err}");
+    let good = dir.join("comb.csv");
+    std::fs::write(&good, "v_normal_v,v_tangential_v\n30,20\n40,25\n50,29.5\n60,33\n85,40\n").unwrap();
+    let g = good.to_str().unwrap();
+    for flags in [&["--models", "gw-dmt"][..], &["--free", "s,R"], &["--surfaces", "3"]] {
+        let mut args = vec!["fit", g, "--scenario", "scenarios/comb-sidewall.json"];
+        args.extend_from_slice(flags);
+        let out = stiction(&args);
+        assert_eq!(out.status.code(), Some(2), "{flags:?}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains(flags[0]), "{flags:?}");
+    }
+    let out = stiction(&["fit", g, "--scenario", plate]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("v_tangential_v"));
+    let out = stiction(&["fit", "--scenario", plate, "--synthesize", dir.join("s.csv").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--synthesize"));
+    let v = stiction_json(&["fit", g, "--scenario", "scenarios/comb-sidewall.json", "--json"]);
+    assert_eq!(v["rows_used"], 4, "{v}");
+    let side = &v["rows_rejected"][0];
+    assert!(side["line"] == 6 && side["reason"].as_str().unwrap().contains("side pull-in"), "{v}");
+    assert!(v["points"].as_array().unwrap().iter().all(|p| p["line"] != 6));
+    let out_dir = dir.join("out");
+    let out = stiction(&["fit", g, "--scenario", "scenarios/comb-sidewall.json", "--out", out_dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for f in ["report.json", "fit-friction-load.svg", "fit-friction-load.png", "fit-friction-load.csv"] {
+        assert!(out_dir.join(f).is_file(), "{f}");
+    }
+}

@@ -345,7 +345,8 @@ pub struct LateralCombSpec {
     #[schemars(with = "stiction_units::QuantityInput")]
     pub engagement: f64,
     /// Fringing factor `alpha` on the drive force (default 1).
-    #[serde(default = "one")]
+    #[serde(default = "one", deserialize_with = "stiction_units::de::dimensionless_positive")]
+    #[schemars(with = "stiction_units::QuantityInput")]
     pub fringing_factor: f64,
     /// Suspension stiffness along the drive `k_x`.
     #[serde(deserialize_with = "stiction_units::de::stiffness_positive")]

@@ -12,7 +12,7 @@ use crate::scenario_source::ScenarioSource;
 
 // The fit's types that a front end names or prints: the measured data and the report (what
 // `fit --json` prints).
-pub use stiction_fit::{Dataset, FitReport};
+pub use stiction_fit::{Dataset, FitReport, StructureFitReport};
 
 /// Where the measured voltages come from.
 #[derive(Clone, Debug)]
@@ -97,10 +97,67 @@ pub fn analyse(
     Ok(stiction_fit::analyse(data, scenario, json, base, &req.options()?)?)
 }
 
+/// The default free parameters and surfaces of a fit (what a structure's fit, eq. 10 only, takes).
+pub const DEFAULT_FREE: &str = "s";
+/// The default number of surface realisations of the explicit ensemble.
+pub const DEFAULT_SURFACES: usize = 100;
+
+/// Reads a structure's measured thresholds (relative paths from the scenario's folder do not
+/// apply: a structure's scenario has no `measured` section).
+pub fn read_thresholds(data: &FitData) -> Result<stiction_fit::ThresholdData, Error> {
+    Ok(match data {
+        FitData::File(p) => stiction_fit::read_thresholds(p)?,
+        FitData::Text { bytes, name } => stiction_fit::parse_thresholds(bytes, name)?,
+        FitData::Scenario => {
+            return Err("missing DATA.csv: a structure's measured thresholds are given as a file (columns \
+                        v_normal_v or normal_load_n, and v_tangential_v, displacement_m or tangential_load_n)"
+                .into());
+        }
+    })
+}
+
+/// The fit of a structure's measured thresholds (eq. 10 on the forces its parts imply, with the
+/// regression's and the parts' calibration intervals). The contact-model options (`models`,
+/// `free`, `surfaces`) fit a paper meter's voltages: given for a structure they are refused,
+/// naming them (`names` gives the front end's name of each: the CLI's flag, Python's argument).
+pub fn structure_fit(
+    req: &FitRequest,
+    scenario: &Scenario,
+    json: &serde_json::Value,
+    names: &dyn Fn(&str) -> String,
+) -> Result<StructureFitReport, Error> {
+    let odd: Vec<String> = [
+        ("models", req.models != DEFAULT_MODELS),
+        ("free", req.free != DEFAULT_FREE),
+        ("surfaces", req.surfaces != DEFAULT_SURFACES),
+    ]
+    .iter()
+    .filter(|(_, given)| *given)
+    .map(|(n, _)| names(n))
+    .collect();
+    if !odd.is_empty() {
+        return Err(format!(
+            "{} fit contact models to a paper meter's voltages; a `structure`'s fit is eq. 10 on the forces its \
+             parts imply: leave {} out",
+            odd.join(", "),
+            if odd.len() > 1 { "them" } else { "it" }
+        )
+        .into());
+    }
+    let data = read_thresholds(&req.data)?;
+    Ok(stiction_fit::analyse_structure(&data, scenario, json, req.draws, req.seed)?)
+}
+
 /// What `fit [DATA] --scenario S --json` prints for the scenario `source` (a file or a tree
-/// built in memory, with its overrides). Every number checked finite.
+/// built in memory, with its overrides). Every number checked finite. A scenario with a
+/// `structure` is fitted by [`structure_fit`] (Python's argument names in its refusals).
 pub fn fit_json(req: &FitRequest, source: &ScenarioSource) -> Result<serde_json::Value, Error> {
     let scenario = source.parse(&[])?;
+    if scenario.structure.is_some() {
+        let json = source.json(&[])?;
+        let report = structure_fit(req, &scenario, &json, &|n| format!("`{n}`"))?;
+        return Ok(crate::json::finite_value(&report)?);
+    }
     check_spring(&scenario, &source.name())?;
     let json = source.json(&[])?;
     let data = read_data(&req.data, &scenario, &source.base)?;
@@ -121,6 +178,11 @@ pub fn synthesize(
     seed: u64,
     command: &str,
 ) -> Result<(String, usize), Error> {
+    if scenario.structure.is_some() {
+        return Err("--synthesize runs the paper's meter (`actuators` and `meter`); this scenario describes a \
+                    `structure`: run it (`stiction run`) for its thresholds"
+            .into());
+    }
     let meter = scenario.meter.as_ref().ok_or("the scenario has no `meter` section")?;
     let voltages = meter.clamp_voltages.voltages();
     let rows = synth::from_meter(scenario, base, &voltages, repeats, noise_v, seed)?;

@@ -31,6 +31,7 @@ pub mod mle;
 pub mod models;
 pub mod scal;
 pub mod stats;
+pub mod structure;
 pub mod synth;
 
 pub use eq10::{CalibrationSource, Eq10Fit, Eq10Point, Estimate, VarianceShares};
@@ -40,6 +41,8 @@ pub use models::{ModelContext, ModelKind};
 pub use stiction_meter::measured::{
     Dataset, Rejected, Row, VoltageCsvError, parse_measured_voltages, read_measured_voltages, select_rows,
 };
+pub use stiction_meter::structure_measured::{ThresholdData, parse_thresholds, read_thresholds};
+pub use structure::StructureFitReport;
 
 /// Settings of a fit.
 #[derive(Debug, Clone)]
@@ -457,6 +460,29 @@ pub fn analyse(
     })
 }
 
+/// Fits eq. 10 to a structure's measured thresholds ([`structure::analyse`]) after checking the
+/// counts against the limits of every fit: `draws` calibration draws (1 to [`MAX_DRAWS`]) and at
+/// most [`MAX_FIT_ROWS`] rows.
+pub fn analyse_structure(
+    data: &ThresholdData,
+    scenario: &Scenario,
+    json: &Value,
+    draws: usize,
+    seed: u64,
+) -> Result<StructureFitReport, FitError> {
+    if draws == 0 || draws > MAX_DRAWS {
+        return Err(FitError::Setting(format!("calibration draws {draws}: expected 1 to {MAX_DRAWS}")));
+    }
+    if data.rows.len() > MAX_FIT_ROWS {
+        return Err(FitError::TooFewRows(format!(
+            "{}: {} rows; `stiction fit` takes at most {MAX_FIT_ROWS} rows",
+            data.source,
+            data.rows.len()
+        )));
+    }
+    structure::analyse(data, scenario, json, draws, seed)
+}
+
 /// The first number of a model fit that is not finite, by name (None: all are finite).
 pub fn non_finite(f: &ModelFit) -> Option<&'static str> {
     let bad = |x: f64| !x.is_finite();
@@ -574,20 +600,42 @@ pub fn shear_strength_for_eq10_slope(
 /// draws per experiment). Every front end prepares its studies through this, so the same scenario
 /// gives the same samples.
 pub fn with_lab_intervals(study: stiction_study::Study) -> Result<stiction_study::Study, stiction_study::StudyError> {
-    let sources = calibration_sources(study.scenario_json(), &study.reduction())
-        .map_err(|e| stiction_study::StudyError::Setting(e.to_string()))?;
-    let intervals = move |slips: &[(f64, f64)], reduction: &stiction_meter::Reduction, seed: u64| {
-        let points: Vec<Eq10Point> =
-            slips.iter().map(|&(v_clamp_v, v_pull_v)| Eq10Point { v_clamp_v, v_pull_v, v_pull_sd_v: None }).collect();
-        match eq10::interval_widths(&points, reduction, &sources, eq10::LAB_WIDTH_DRAWS, seed) {
-            Ok(w) => stiction_study::FitIntervals {
-                mu_ci95_width: w.mu,
-                mu_ci95_width_with_calibration: w.mu_with_calibration,
-                fa0_ci95_width_n: w.fa0_n,
-                fa0_ci95_width_with_calibration_n: w.fa0_with_calibration_n,
-            },
-            Err(_) => stiction_study::FitIntervals::default(),
-        }
+    let setting = |e: String| stiction_study::StudyError::Setting(e);
+    let sources = calibration_sources(study.scenario_json(), &study.reduction()).map_err(|e| setting(e.to_string()))?;
+    // A release protocol's intervals come from its readings through the nominal parts
+    // ([`structure::release_interval_widths`]), with the uncertain quantities under `structure`.
+    let structure = match &study.nominal().structure {
+        Some(spec) => Some(
+            stiction_meter::structure::StructureDevice::from_spec(spec)
+                .map_err(|e| setting(format!("structure: {e}")))?,
+        ),
+        None => None,
     };
+    let json = study.scenario_json().clone();
+    let to_widths = |w: eq10::IntervalWidths| stiction_study::FitIntervals {
+        mu_ci95_width: w.mu,
+        mu_ci95_width_with_calibration: w.mu_with_calibration,
+        fa0_ci95_width_n: w.fa0_n,
+        fa0_ci95_width_with_calibration_n: w.fa0_with_calibration_n,
+    };
+    let intervals =
+        move |slips: stiction_study::Slips<'_>, reduction: &stiction_meter::Reduction, seed: u64| match slips {
+            stiction_study::Slips::Voltages(slips) => {
+                let points: Vec<Eq10Point> = slips
+                    .iter()
+                    .map(|&(v_clamp_v, v_pull_v)| Eq10Point { v_clamp_v, v_pull_v, v_pull_sd_v: None })
+                    .collect();
+                eq10::interval_widths(&points, reduction, &sources, eq10::LAB_WIDTH_DRAWS, seed)
+                    .map(to_widths)
+                    .unwrap_or_default()
+            }
+            stiction_study::Slips::Release(readings) => structure
+                .as_ref()
+                .and_then(|device| {
+                    structure::release_interval_widths(readings, device, &json, eq10::LAB_WIDTH_DRAWS, seed).ok()
+                })
+                .map(to_widths)
+                .unwrap_or_default(),
+        };
     Ok(study.with_intervals(std::sync::Arc::new(intervals), eq10::LAB_WIDTH_DRAWS))
 }

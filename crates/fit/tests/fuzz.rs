@@ -154,3 +154,80 @@ fn mutated_voltage_csvs_give_finite_results_or_bounded_errors() {
     assert_eq!(fitted + read_errors + fit_errors, cases);
     assert!(fitted > 0 && read_errors > 0, "the mutations must reach both the reader's errors and the fit");
 }
+
+/// The structure-threshold CSV of `stiction fit` with a `structure` scenario, fuzzed the same way,
+/// against each bundled structure with the columns of each of its protocols (release: plate
+/// voltage and displacement; comb ramp: normal and tangential comb voltages; lowered normal load:
+/// tangential and normal loads at slip), a `device` column, both normal columns and hostile cells.
+/// Every case ends in a report whose numbers are finite (or null with a reason) or in an error that
+/// names the file and is bounded in length.
+#[test]
+fn mutated_structure_thresholds_give_finite_results_or_bounded_errors() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let files = [
+        (
+            "plate-released-spring.json",
+            "# release\nv_normal_v,displacement_m\n0.5,3e-8\n0.7,1.1e-7\n0.9,2.2e-7\n1.1,3.5e-7\n1.3,5e-7\n",
+        ),
+        ("comb-sidewall.json", "v_normal_v,v_tangential_v\n30,20.1\n40,24\n50,27.9\n60,31.2\n70,34\n"),
+        (
+            "pad-uniform-pressure.json",
+            "tangential_load_n,normal_load_n\n1e-6,2e-6\n2e-6,5e-6\n3e-6,8e-6\n4e-6,1.1e-5\n",
+        ),
+    ];
+    let extra = [
+        "v_normal_v,normal_load_n,displacement_m",
+        "v_normal_v,displacement_m,device",
+        "displacement_m",
+        "v_normal,displacement",
+        "v_tangential_v,v_normal_v",
+        "normal_load_n;tangential_load_n",
+    ];
+    let cases: u64 = std::env::var("STICTION_FIT_FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(300);
+    let (mut read_errors, mut fit_errors, mut fitted) = (0u64, 0u64, 0u64);
+    for case in 0..cases {
+        let mut rng = ChaCha8Rng::seed_from_u64(0x57C + case);
+        let (name, base) = files[(case % files.len() as u64) as usize];
+        let path = root.join("scenarios").join(name);
+        let scenario = Scenario::load(&path, &[]).unwrap();
+        let json = Scenario::load_json(&path, &[]).unwrap();
+        let mut text = mutate(base, &mut rng);
+        if rng.random_bool(0.15) {
+            let h = extra[rng.random_range(0..extra.len())];
+            text = text.replacen(text.lines().find(|l| l.contains('_')).unwrap_or(""), h, 1);
+        }
+        let outcome = std::panic::catch_unwind(|| match stiction_fit::parse_thresholds(text.as_bytes(), "fuzz.csv") {
+            Err(e) => Err((true, e.to_string())),
+            Ok(data) => {
+                stiction_fit::analyse_structure(&data, &scenario, &json, 20, 1).map_err(|e| (false, e.to_string()))
+            }
+        });
+        match outcome {
+            Err(_) => panic!("structure case {case} (seed {:#x}, {name}) panicked", 0x57C + case),
+            Ok(Err((reading, message))) => {
+                assert!(message.len() <= 2000, "case {case}: error of {} bytes", message.len());
+                assert!(!message.contains(&"9".repeat(200)), "case {case}: the error echoes a long cell");
+                if reading {
+                    assert!(message.contains("fuzz.csv"), "case {case}: the error names no file: {message}");
+                    read_errors += 1
+                } else {
+                    fit_errors += 1
+                }
+            }
+            Ok(Ok(report)) => {
+                if let Some(at) = common::non_finite_in_debug(&format!("{report:?}")) {
+                    panic!("structure case {case}: a non-finite number in the report: ...{at}");
+                }
+                if report.mu_apparent.value.is_none() {
+                    assert!(report.mu_apparent.value_note.is_some(), "case {case}: a null without a reason");
+                }
+                fitted += 1;
+            }
+        }
+    }
+    eprintln!(
+        "{cases} structure cases: {fitted} fitted, {read_errors} refused by the reader, {fit_errors} refused by the fit"
+    );
+    assert_eq!(fitted + read_errors + fit_errors, cases);
+    assert!(fitted > 0 && read_errors > 0, "the mutations must reach both the reader's errors and the fit");
+}

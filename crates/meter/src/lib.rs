@@ -24,6 +24,7 @@ pub mod invariants;
 pub mod measured;
 pub mod slip;
 pub mod structure;
+pub mod structure_measured;
 pub use contact_model::{BemContact, BemShoe, ContactModel, ContactState};
 pub use error::MeterError;
 pub use slip::SlipPath;
@@ -249,6 +250,9 @@ pub struct Meter {
     pull: Option<GapClosingActuator>,
     /// A structure built from parts (scenario `structure`), run instead of the clamp and pull.
     structure: Option<structure::StructureDevice>,
+    /// The nominal parts a lab reduces a structure's readings with, when they differ from the
+    /// device's own (a Monte Carlo sample); None: the device's own.
+    lab_structure: Option<structure::StructureDevice>,
     contact_travel_m: f64,
     spring_force_n: Option<f64>,
     material: MaterialSpec,
@@ -286,6 +290,7 @@ impl Meter {
             clamp: Some(clamp),
             pull: Some(pull),
             structure: None,
+            lab_structure: None,
             contact_travel_m,
             spring_force_n: protocol.spring_force,
             material,
@@ -334,6 +339,7 @@ impl Meter {
             clamp: None,
             pull: None,
             structure: Some(device),
+            lab_structure: None,
             contact_travel_m: 0.0,
             spring_force_n: protocol.spring_force,
             material,
@@ -381,6 +387,13 @@ impl Meter {
         self.reduction = Some(reduction);
     }
 
+    /// A structure's readings reduced with these (nominal) parts instead of the device's own, as
+    /// the lab reduces them: `load_n` and `friction_n` from the lab's parts, `true_load_n` and
+    /// `true_friction_n` from the device's (a Monte Carlo sample whose parts were drawn).
+    pub fn set_lab_structure(&mut self, parts: structure::StructureDevice) {
+        self.lab_structure = Some(parts);
+    }
+
     /// Follows the shuttle after slip with this path (default: the rapier rigid body).
     pub fn set_slip_path(&mut self, path: SlipPath) {
         self.slip_path = path;
@@ -412,7 +425,10 @@ impl Meter {
                 apparent_area_m2: self.apparent_area_m2,
                 humid: self.humidity.is_some(),
             };
-            let points = run.run(voltages, progress)?;
+            let mut points = run.run(voltages, progress)?;
+            if let Some(lab) = &self.lab_structure {
+                structure::reduce_as_the_lab(&mut points, lab);
+            }
             let mut result =
                 structure::result(self.contact.name(), points, device, self.apparent_area_m2, self.humidity.clone());
             if let Some(r) = self.reduction {

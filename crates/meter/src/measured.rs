@@ -124,57 +124,21 @@ fn is_voltage_name_without_unit(name: &str) -> bool {
 /// Parses the bytes of a measured-voltage CSV; `source` names it in errors. One pass with the `csv`
 /// crate: linear in the size.
 pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, VoltageCsvError> {
-    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    let table = CsvText::new(bytes);
     let empty = |message: String| VoltageCsvError::Data { file: source.into(), line: 1, column: None, message };
-    if bytes.iter().all(|b| b.is_ascii_whitespace()) {
+    if table.is_blank() {
         return Err(empty(format!(
             "the file is empty; expected a header line with the columns `v_clamp_v,v_pull_v` (optional {:?})",
             &ACCEPTED_COLUMNS[2..]
         )));
     }
-    // Comment lines (`#` first) are blanked in a copy, byte for byte, so that the byte offsets the
-    // csv crate reports still map to the file's lines (its own line counter skips comments).
-    let mut owned = bytes.to_vec();
-    let mut start = 0;
-    while start < owned.len() {
-        let end = owned[start..].iter().position(|&b| b == b'\n').map_or(owned.len(), |k| start + k);
-        if owned[start] == b'#' {
-            owned[start..end].fill(b' ');
-        }
-        start = end + 1;
-    }
-    let bytes = &owned[..];
-    let separator = detect_separator(bytes);
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .delimiter(separator)
-        .trim(csv::Trim::All)
-        .flexible(true)
-        .from_reader(bytes);
+    let separator = table.separator;
+    let mut reader = table.reader();
     let mut record = csv::ByteRecord::new();
-    // The csv crate's own line counter skips comment lines, so lines come from byte offsets.
-    let newlines: Vec<usize> = bytes.iter().enumerate().filter(|(_, b)| **b == b'\n').map(|(i, _)| i).collect();
-    // A record's offset may point at the end of the previous line's CRLF: skip line ends first.
-    let line_at = |byte: u64| {
-        let mut b = byte as usize;
-        while b < owned.len() && (owned[b] == b'\n' || owned[b] == b'\r') {
-            b += 1;
-        }
-        1 + newlines.partition_point(|&i| i < b) as u64
+    let line_of = |r: &csv::ByteRecord| table.line_of(r);
+    let Some(header_line) = table.header(&mut reader, &mut record, source)? else {
+        return Err(empty("only comments or blank lines; expected a header `v_clamp_v,v_pull_v`".into()));
     };
-    let line_of = |r: &csv::ByteRecord| r.position().map_or(0, |p| line_at(p.byte()));
-    // The header: the first record that is not blank.
-    let header_line;
-    loop {
-        let more = reader.read_byte_record(&mut record).map_err(|e| csv_error(source, &e))?;
-        if !more {
-            return Err(empty("only comments or blank lines; expected a header `v_clamp_v,v_pull_v`".into()));
-        }
-        if !(record.len() == 1 && record[0].is_empty()) {
-            header_line = line_of(&record);
-            break;
-        }
-    }
     let header_err =
         |message: String| VoltageCsvError::Data { file: source.into(), line: header_line, column: None, message };
     let names: Vec<String> =
@@ -208,7 +172,7 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
         )));
     };
     let (isd, idev) = (col[2], col[3]);
-    let mut rows = Vec::with_capacity(newlines.len().min(MAX_MEASURED_ROWS));
+    let mut rows = Vec::with_capacity(table.line_count().min(MAX_MEASURED_ROWS));
     while reader.read_byte_record(&mut record).map_err(|e| csv_error(source, &e))? {
         if record.len() == 1 && record[0].is_empty() {
             continue;
@@ -275,6 +239,89 @@ pub fn parse_measured_voltages(bytes: &[u8], source: &str) -> Result<Dataset, Vo
     Ok(Dataset { source: source.into(), rows, has_sd: isd.is_some(), has_device: idev.is_some() })
 }
 
+/// The text of a CSV as the readers of measured data take it: a UTF-8 byte-order mark dropped,
+/// `#` comment lines blanked byte for byte (so the byte offsets the csv crate reports still map to
+/// the file's lines; its own line counter skips comments), the separator detected
+/// ([`detect_separator`]). Shared by the measured-voltage reader and the structure-threshold reader
+/// ([`crate::structure_measured`]).
+pub(crate) struct CsvText {
+    owned: Vec<u8>,
+    newlines: Vec<usize>,
+    blank: bool,
+    /// The field separator.
+    pub separator: u8,
+}
+
+impl CsvText {
+    /// Prepares `bytes`.
+    pub fn new(bytes: &[u8]) -> CsvText {
+        let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+        let blank = bytes.iter().all(|b| b.is_ascii_whitespace());
+        let mut owned = bytes.to_vec();
+        let mut start = 0;
+        while start < owned.len() {
+            let end = owned[start..].iter().position(|&b| b == b'\n').map_or(owned.len(), |k| start + k);
+            if owned[start] == b'#' {
+                owned[start..end].fill(b' ');
+            }
+            start = end + 1;
+        }
+        let separator = detect_separator(&owned);
+        let newlines = owned.iter().enumerate().filter(|(_, b)| **b == b'\n').map(|(i, _)| i).collect();
+        CsvText { owned, newlines, blank, separator }
+    }
+
+    /// Whether the file holds only blanks (before comments are blanked).
+    pub fn is_blank(&self) -> bool {
+        self.blank
+    }
+
+    /// The number of line ends (a bound on the rows).
+    pub fn line_count(&self) -> usize {
+        self.newlines.len()
+    }
+
+    /// A csv reader over the text: no headers, the detected separator, fields trimmed, rows of
+    /// any length.
+    pub fn reader(&self) -> csv::Reader<&[u8]> {
+        csv::ReaderBuilder::new()
+            .has_headers(false)
+            .delimiter(self.separator)
+            .trim(csv::Trim::All)
+            .flexible(true)
+            .from_reader(&self.owned[..])
+    }
+
+    /// The 1-based line of a record (from its byte offset; a record's offset may point at the end
+    /// of the previous line's CRLF, so line ends are skipped first).
+    pub fn line_of(&self, r: &csv::ByteRecord) -> u64 {
+        let Some(p) = r.position() else { return 0 };
+        let mut b = p.byte() as usize;
+        while b < self.owned.len() && (self.owned[b] == b'\n' || self.owned[b] == b'\r') {
+            b += 1;
+        }
+        1 + self.newlines.partition_point(|&i| i < b) as u64
+    }
+
+    /// Reads up to the header, the first record that is not blank, into `record`: its line, or
+    /// None when the file has only comments or blank lines.
+    pub fn header(
+        &self,
+        reader: &mut csv::Reader<&[u8]>,
+        record: &mut csv::ByteRecord,
+        source: &str,
+    ) -> Result<Option<u64>, VoltageCsvError> {
+        loop {
+            if !reader.read_byte_record(record).map_err(|e| csv_error(source, &e))? {
+                return Ok(None);
+            }
+            if !(record.len() == 1 && record[0].is_empty()) {
+                return Ok(Some(self.line_of(record)));
+            }
+        }
+    }
+}
+
 /// The field separator of the file: the one of comma, semicolon and tab that occurs in the first
 /// line that is not blank (comment lines are blank by then); comma when the line has a comma or
 /// none of them.
@@ -292,7 +339,7 @@ fn detect_separator(bytes: &[u8]) -> u8 {
     }
 }
 
-fn separator_name(sep: u8) -> &'static str {
+pub(crate) fn separator_name(sep: u8) -> &'static str {
     match sep {
         b';' => "semicolon `;`",
         b'\t' => "tab",
@@ -300,7 +347,7 @@ fn separator_name(sep: u8) -> &'static str {
     }
 }
 
-fn csv_error(source: &str, e: &csv::Error) -> VoltageCsvError {
+pub(crate) fn csv_error(source: &str, e: &csv::Error) -> VoltageCsvError {
     let line = e.position().map(|p| p.line()).unwrap_or(0);
     VoltageCsvError::Data {
         file: source.into(),
@@ -419,7 +466,7 @@ impl Meter {
 
 /// The header's names as an error quotes them: at most four, each a short sanitised excerpt, never
 /// a whole line of a file that is not a voltage CSV (`/etc/passwd`'s first line).
-fn header_excerpt(names: &[String]) -> String {
+pub(crate) fn header_excerpt(names: &[String]) -> String {
     let shown: Vec<String> = names.iter().take(4).map(|n| stiction_units::text::excerpt(n)).collect();
     let more = names.len().saturating_sub(4);
     if more > 0 { format!("[{}, and {more} more]", shown.join(", ")) } else { format!("[{}]", shown.join(", ")) }

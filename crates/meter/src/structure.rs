@@ -99,6 +99,7 @@ pub enum TangentialPart {
 }
 
 /// The structure's parts and protocol, as the meter runs them.
+#[derive(Clone)]
 pub struct StructureDevice {
     /// The scenario's section.
     pub spec: StructureSpec,
@@ -181,6 +182,12 @@ pub fn lab_coefficient(spec: &LabReductionSpec, pairs: &[(f64, f64)], eq10: &fit
     let mean_sd = |r: &[f64]| -> (Option<f64>, Option<f64>, Option<String>, Option<String>) {
         if r.is_empty() {
             let why = "no point with a load above zero and a slip".to_string();
+            return (None, None, Some(why.clone()), Some(why));
+        }
+        let mean_ok = r.iter().sum::<f64>().is_finite() && r.iter().map(|x| x * x).sum::<f64>().is_finite();
+        if r.iter().any(|x| !x.is_finite()) || !mean_ok {
+            let why = "a ratio of friction to load, or their sum, is not a finite number (a load too close to zero)"
+                .to_string();
             return (None, None, Some(why.clone()), Some(why));
         }
         let n = r.len() as f64;
@@ -610,6 +617,24 @@ impl StructureRun<'_> {
         let capacity = slip_threshold_n(self.material, slip, &state);
         self.fill_state(&mut point, &state, capacity);
         Ok(Ok(point))
+    }
+}
+
+/// Reduces the readings of `points` (the normal voltage, the tangential comb's voltage at slip or
+/// the displacement that sticks) with the `lab`'s nominal parts, as the laboratory does: `load_n =
+/// a_n V^2 - F_0` and `friction_n = a_t V_t^2` or `k x` with its parts, while `true_load_n` and
+/// `true_friction_n` keep the forces the device's own parts applied.
+pub fn reduce_as_the_lab(points: &mut [MeterPoint], lab: &StructureDevice) {
+    let (a_n, f0) = (lab.normal.conversion_factor_n_per_v2(), lab.normal.spring_force_n());
+    for p in points.iter_mut() {
+        p.load_n = a_n * p.v_clamp * p.v_clamp - f0;
+        if p.friction_n.is_none() {
+            continue;
+        }
+        p.friction_n = match lab.tangential {
+            TangentialPart::Comb(c) => p.v_pull.map(|v| c.conversion_factor_n_per_v2() * v * v),
+            TangentialPart::Spring(s) => p.displacement_m.map(|x| s.stiffness_n_per_m * x),
+        };
     }
 }
 

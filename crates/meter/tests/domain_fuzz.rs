@@ -73,6 +73,14 @@ fn scenarios() -> Vec<(String, Value)> {
             }
             out.push((format!("{name} + ethanol"), given));
         }
+        // The comb tester once more with the lowered-normal protocol, so that every protocol of a
+        // structure is fuzzed (ramp and release are the bundled ones').
+        if name == "comb-sidewall.json" {
+            let mut lowered = v.clone();
+            lowered["structure"]["protocol"] =
+                serde_json::json!({"kind": "lower_normal", "tangential_voltages": ["20 V", "30 V"]});
+            out.push((format!("{name} + lower_normal"), lowered));
+        }
         out.push((name, v));
     }
     out

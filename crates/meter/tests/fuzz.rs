@@ -149,6 +149,14 @@ fn scenarios() -> Vec<(String, String)> {
         .filter(|p| p.extension().is_some_and(|e| e == "json"))
         .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read_to_string(&p).unwrap()))
         .collect();
+    // The comb tester with the lowered-normal protocol too, so that every protocol of a structure
+    // is mutated (ramp and release are the bundled ones').
+    if let Some((_, text)) = out.iter().find(|(n, _)| n == "comb-sidewall.json") {
+        let mut v: Value = serde_json::from_str(text).unwrap();
+        v["structure"]["protocol"] =
+            serde_json::json!({"kind": "lower_normal", "tangential_voltages": ["20 V", "30 V"]});
+        out.push(("comb-sidewall-lower-normal.json".into(), serde_json::to_string_pretty(&v).unwrap()));
+    }
     out.sort();
     out
 }

@@ -284,3 +284,74 @@ fn the_paper_meter_reports_the_lab_reduction_it_is_given() {
     assert!(lab.coefficient.unwrap() > mu);
     assert!((lab.coefficient.unwrap() - closed).abs() < 0.02 * closed, "{} vs {closed}", lab.coefficient.unwrap());
 }
+
+fn bundled(name: &str) -> Value {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios").join(name);
+    serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
+/// One device per scenario: the paper's `actuators` or `meter` beside a `structure` (even an empty
+/// `"actuators": {}`, which used to be accepted and ignored) is refused naming both fields; and a
+/// normal comb driven at or past its side pull-in voltage at the wall (80.3 V on the bundled comb
+/// tester: `V_s^2 = k_y g^3 / (2 N eps0 t (x0 + x_c))` with 100 N/m, 2 um, 100 fingers, 10 um,
+/// 5 um + 2 um) is refused naming `structure.normal_voltages`, instead of printing a point whose
+/// load `a_n V^2 - F_0` the comb does not apply.
+#[test]
+fn a_structure_refuses_the_paper_sections_and_voltages_past_side_pull_in() {
+    for (field, value) in [("actuators", json!({})), ("meter", json!({"clamp_voltages": ["25 V"]}))] {
+        let mut v = bundled("comb-sidewall.json");
+        v[field] = value;
+        let e = Scenario::from_value(v, Path::new("c.json")).unwrap_err().to_string();
+        assert!(e.contains(&format!("`{field}`")) && e.contains("beside `structure`"), "{e}");
+    }
+    let v_side = (100.0 * 8e-18 / (2.0 * 100.0 * EPS0 * 10e-6 * 7e-6)).sqrt();
+    assert!((v_side - 80.3).abs() < 0.05, "{v_side}");
+    let mut v = bundled("comb-sidewall.json");
+    v["structure"]["normal_voltages"] = json!(["30 V", "80.4 V"]);
+    let e = Scenario::from_value(v, Path::new("c.json")).unwrap_err().to_string();
+    assert!(e.contains("structure.normal_voltages") && e.contains("side pull-in") && e.contains("80.3"), "{e}");
+    let mut v = bundled("comb-sidewall.json");
+    v["structure"]["normal_voltages"] = json!(["30 V", "80.2 V"]);
+    Scenario::from_value(v, Path::new("c.json")).unwrap();
+}
+
+/// A Monte Carlo sample whose released spring is 10 % stiffer than its nominal value (the
+/// resonance mass drawn 10 % high, `k = m (2 pi f)^2`) sticks at displacements about 1/1.1 of the
+/// nominal device's; the lab reduces them with its nominal k, so its mu_e,a is the device's own
+/// divided by 1.1 (to the 5 nm displacement step, 1 %), while `true_friction_n` keeps `k' x`.
+#[test]
+fn a_structure_sample_is_reduced_with_the_lab_s_nominal_parts() {
+    let nominal = bundled("plate-released-spring.json");
+    let mut drawn = nominal.clone();
+    drawn["structure"]["tangential"]["resonance"]["mass"] = json!("13.2 ng");
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios");
+    let scen = |v: &Value| Scenario::from_value(v.clone(), &base.join("p.json")).unwrap();
+    let own = Meter::from_scenario(&scen(&drawn), &base).unwrap().run(&mut |_, _| {}).unwrap();
+    let mut m = Meter::from_scenario(&scen(&drawn), &base).unwrap();
+    let lab_parts =
+        stiction_meter::structure::StructureDevice::from_spec(scen(&nominal).structure.as_ref().unwrap()).unwrap();
+    m.set_lab_structure(lab_parts);
+    let lab = m.run(&mut |_, _| {}).unwrap();
+    let (mu_own, mu_lab) = (own.mu_apparent.unwrap(), lab.mu_apparent.unwrap());
+    assert!((mu_lab * 1.1 / mu_own - 1.0).abs() < 0.01, "lab {mu_lab}, device {mu_own}");
+    for (p, q) in lab.points.iter().zip(&own.points) {
+        assert_eq!(p.true_friction_n, q.friction_n);
+        if let (Some(f), Some(t)) = (p.friction_n, p.true_friction_n) {
+            assert!((t / f - 1.1).abs() < 1e-12, "{f} {t}");
+        }
+    }
+}
+
+/// The lab's friction over load with a load too close to zero to divide by (5e-324 N: the ratio
+/// is infinite) is null with the reason, never `inf` (the structure-threshold fuzzer's find).
+#[test]
+fn friction_over_load_of_a_vanishing_load_is_null_with_a_reason() {
+    use stiction_meter::structure::lab_coefficient;
+    use stiction_scenario::structure::LabReductionSpec;
+    let pairs = [(5e-324, 1e-6), (2e-6, 2e-6), (3e-6, 2.5e-6)];
+    let eq10 = stiction_meter::fit::eq10(&pairs);
+    let c = lab_coefficient(&LabReductionSpec::FrictionOverLoad, &pairs, &eq10);
+    assert!(c.coefficient.is_none() && c.coefficient_reason.as_deref().unwrap().contains("not a finite"), "{c:?}");
+    let ok = lab_coefficient(&LabReductionSpec::FrictionOverLoad, &pairs[1..], &eq10);
+    assert!((ok.coefficient.unwrap() - (1.0 + 2.5 / 3.0) / 2.0).abs() < 1e-12);
+}

@@ -116,6 +116,23 @@ impl Scenario {
         if value.get("material").and_then(|m| m.get("relative_humidity")).is_some() {
             return Err(field("material.relative_humidity".into(), RELATIVE_HUMIDITY_MESSAGE.into()));
         }
+        // One device per scenario: a `structure` built from parts has its own actuators and
+        // protocol, so the paper's sections beside it (even empty: `"actuators": {}`) are refused
+        // by name rather than ignored.
+        if value.get("structure").is_some() {
+            for name in ["actuators", "meter"] {
+                if value.get(name).is_some() {
+                    return Err(field(
+                        name.into(),
+                        format!(
+                            "given beside `structure`: a scenario describes one device, a `structure` built from \
+                             parts (its `normal` and `tangential` parts are its actuators, its `protocol` its \
+                             meter) or the paper's `actuators` and `meter`; drop `{name}` or `structure`"
+                        ),
+                    ));
+                }
+            }
+        }
         let source_json = value.clone();
         let mut scenario: Scenario = serde_path_to_error::deserialize(value).map_err(|e| {
             let p = e.path().to_string();

@@ -150,7 +150,23 @@ impl StructureSpec {
     pub(crate) fn validate(&self) -> Result<(), (String, String)> {
         match &self.normal {
             NormalActuatorSpec::LateralComb(c) => {
-                c.comb.to_model().map_err(|e| ("normal".to_string(), e.to_string()))?;
+                let comb = c.comb.to_model().map_err(|e| ("normal".to_string(), e.to_string()))?;
+                // At and above its side pull-in voltage the comb's fingers snap sideways: no load
+                // a_n V^2 - F_0 is applied there, so such a voltage is no point of the experiment.
+                if let Some(v_side) = comb.side_pull_in_voltage_at_v(c.contact_travel) {
+                    let top = self.normal_voltages.voltages().into_iter().fold(f64::NEG_INFINITY, f64::max);
+                    if top >= v_side {
+                        return Err((
+                            "normal_voltages".into(),
+                            format!(
+                                "{top} V reaches the normal comb's side pull-in voltage at the wall, {v_side:.3} V \
+                                 (from structure.normal.comb.lateral_stiffness and its fingers): its fingers snap \
+                                 sideways there and no load a_n V^2 - F_0 is applied; keep the normal voltages below \
+                                 it (or stiffen the suspension laterally)"
+                            ),
+                        ));
+                    }
+                }
             }
             NormalActuatorSpec::PlateElectrode(p) => {
                 p.to_model().map_err(|e| ("normal".to_string(), e.to_string()))?;

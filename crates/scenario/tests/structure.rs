@@ -50,7 +50,7 @@ fn misfits_are_refused_naming_the_field() {
     v["meter"] = load("tas2000.json")["meter"].clone();
     v["actuators"] = load("tas2000.json")["actuators"].clone();
     let e = refuse(v);
-    assert!(e.contains("`structure`") && e.contains("not both"), "{e}");
+    assert!(e.contains("at `actuators`") && e.contains("beside `structure`") && e.contains("one device"), "{e}");
 
     let mut v = load("pad-uniform-pressure.json");
     v["structure"]["geometry"] = serde_json::json!({"kind": "dimples", "count": 3, "radius": "2 um"});

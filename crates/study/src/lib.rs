@@ -126,7 +126,19 @@ impl StudyConfig {
 /// clamp voltages in contact, the reduction the lab used, and a seed for its calibration Monte
 /// Carlo, the widths of its intervals. The study crate sits below the fit crate, so the command
 /// line gives the fit crate's eq. 10 here ([`Study::with_intervals`]).
-pub type IntervalFn = dyn Fn(&[(f64, f64)], &Reduction, u64) -> FitIntervals + Send + Sync;
+pub type IntervalFn = dyn Fn(Slips<'_>, &Reduction, u64) -> FitIntervals + Send + Sync;
+
+/// The readings of one experiment that the lab's intervals are computed from.
+#[derive(Debug, Clone, Copy)]
+pub enum Slips<'a> {
+    /// `(V_clamp, V_pull)` at each slip, V: the paper's meter, and a structure's normal and
+    /// tangential comb voltages (ramp and lowered-normal protocols).
+    Voltages(&'a [(f64, f64)]),
+    /// The release protocol's `(normal voltage V, largest displacement that sticks m)` at each
+    /// point of the eq. 10 fit: the lab's forces are `a_n V^2 - F_0` and `k x` with the nominal
+    /// parts.
+    Release(&'a [(f64, f64)]),
+}
 
 /// The interface's own friction coefficient of one device (the friction the meter sets out to
 /// measure): at each clamp voltage k in contact with a true clamp load `L_k > 0`,
@@ -283,6 +295,11 @@ impl Study {
         &self.base
     }
 
+    /// The nominal scenario (its uncertain quantities at their values).
+    pub fn nominal(&self) -> &Scenario {
+        &self.nominal
+    }
+
     /// The nominal reduction the lab uses.
     pub fn reduction(&self) -> Reduction {
         self.reduction
@@ -361,6 +378,11 @@ impl Study {
             };
             let mut m = Meter::from_scenario(&scenario, &self.base_dir).map_err(|e| e.to_string())?;
             m.set_reduction(reduction);
+            // A structure's readings are reduced with the nominal parts, as the lab reduces them.
+            if let Some(spec) = &self.nominal.structure {
+                let parts = stiction_meter::structure::StructureDevice::from_spec(spec).map_err(|e| e.to_string())?;
+                m.set_lab_structure(parts);
+            }
             m.set_slip_path(self.config.slip_path);
             m.run(&mut |_, _| {}).map_err(|e| e.to_string()).map(|r| (r, reduction))
         })();
@@ -371,10 +393,29 @@ impl Study {
                 if r.mu_apparent.is_some()
                     && let Some((f, _)) = &self.intervals
                 {
-                    let slips: Vec<(f64, f64)> =
-                        r.points.iter().filter(|p| p.in_contact).filter_map(|p| Some((p.v_clamp, p.v_pull?))).collect();
+                    let release = scenario.structure.as_ref().is_some_and(|st| {
+                        matches!(st.protocol, stiction_scenario::structure::ProtocolSpec::Release { .. })
+                    });
+                    let seed = interval_seed(self.config.seed, i);
+                    let w = if release {
+                        // The points of the eq. 10 fit (stiction_meter::structure::reduce).
+                        let readings: Vec<(f64, f64)> = r
+                            .points
+                            .iter()
+                            .filter(|p| p.load_n > 0.0 && p.reason.is_none())
+                            .filter_map(|p| Some((p.v_clamp, p.displacement_m?)))
+                            .collect();
+                        f(Slips::Release(&readings), &reduction, seed)
+                    } else {
+                        let slips: Vec<(f64, f64)> = r
+                            .points
+                            .iter()
+                            .filter(|p| p.in_contact)
+                            .filter_map(|p| Some((p.v_clamp, p.v_pull?)))
+                            .collect();
+                        f(Slips::Voltages(&slips), &reduction, seed)
+                    };
                     let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
-                    let w = f(&slips, &reduction, interval_seed(self.config.seed, i));
                     out.intervals = FitIntervals {
                         mu_ci95_width: finite(w.mu_ci95_width),
                         mu_ci95_width_with_calibration: finite(w.mu_ci95_width_with_calibration),

@@ -70,8 +70,11 @@ pub struct Args {
 /// Runs the subcommand.
 pub fn run(args: Args) -> CliResult {
     let scenario = Scenario::load(&args.scenario, &args.sets)?;
-    fit::check_spring(&scenario, &args.scenario.display().to_string())?;
     let json = Scenario::load_json(&args.scenario, &args.sets)?;
+    if scenario.structure.is_some() && args.synthesize.is_none() {
+        return run_structure(&args, &scenario, &json);
+    }
+    fit::check_spring(&scenario, &args.scenario.display().to_string())?;
     let base = args.scenario.parent().map(PathBuf::from).unwrap_or_default();
     if let Some(out) = &args.synthesize {
         // DATA is not read when synthesizing, but it is this command's input all the same.
@@ -105,6 +108,139 @@ pub fn run(args: Args) -> CliResult {
         );
     }
     Ok(())
+}
+
+/// `fit` of a structure's measured thresholds: eq. 10 on the forces its parts imply.
+fn run_structure(args: &Args, scenario: &Scenario, json: &serde_json::Value) -> CliResult {
+    let req = args.request();
+    let outputs = match &args.out {
+        Some(dir) => Some(OutputSet::begin(dir, "fit", args.force)?),
+        None => None,
+    };
+    let report = fit::structure_fit(&req, scenario, json, &|n| format!("--{n}"))?;
+    if let Some(mut set) = outputs {
+        set.add_bytes("report.json", crate::output::json_text(&report)?.as_bytes())?;
+        set.add_figure("fit-friction-load", &args.fig.apply(structure_fit_chart(&report))?)?;
+        set.commit()?;
+    }
+    if args.json {
+        return print_json(&report);
+    }
+    let r = &report;
+    crate::outln!(
+        "data: {} ({} rows used, {} rejected; columns {} and {})",
+        r.data,
+        r.rows_used,
+        r.rows_rejected.len(),
+        r.normal_column,
+        r.tangential_column
+    );
+    for rej in r.rows_rejected.iter().take(10) {
+        crate::outln!("  rejected line {}: {}", rej.line, rej.reason);
+    }
+    crate::outln!(
+        "\neq. 10 on the forces the structure's parts imply ({} + {}):",
+        r.structure.normal,
+        r.structure.tangential
+    );
+    let (mu, fa) = (&r.mu_apparent, &r.apparent_adhesion_force_n);
+    match mu.value {
+        Some(v) => crate::outln!(
+            "  mu_e,a = {v:.3} +/- {} (regression), 95 %: {} regression, {} with calibration",
+            num(mu.stderr, 1.0),
+            ci(mu.ci95, 1.0),
+            ci(mu.ci95_with_calibration, 1.0)
+        ),
+        None => crate::outln!("  mu_e,a = n/a: {}", mu.value_note.as_deref().unwrap_or("not determined")),
+    }
+    match fa.value {
+        Some(v) => crate::outln!(
+            "  F_a0   = {:.3} uN +/- {} (regression), 95 %: {} uN regression (Fieller), {} uN with calibration",
+            v * 1e6,
+            num(fa.stderr, 1e6),
+            ci(fa.ci95, 1e6),
+            ci(fa.ci95_with_calibration, 1e6)
+        ),
+        None => crate::outln!("  F_a0   = n/a: {}", fa.value_note.as_deref().unwrap_or("not determined")),
+    }
+    if let Some(note) = &r.calibration.note {
+        crate::outln!("  calibration: {note}");
+    }
+    let lab = &r.lab_coefficient;
+    match lab.coefficient {
+        Some(c) => crate::outln!("  the lab's reduction ({}): {c:.3} over {} points", lab.kind, lab.points),
+        None => crate::outln!(
+            "  the lab's reduction ({}): n/a: {}",
+            lab.kind,
+            lab.coefficient_reason.as_deref().unwrap_or("")
+        ),
+    }
+    if let Some(note) = &r.resolution_note {
+        crate::outln!("  {note}");
+    }
+    if let Some(dir) = &args.out {
+        crate::outln!("\nwrote {}/report.json, fit-friction-load (.svg, .png, .csv), manifest.json", dir.display());
+    }
+    Ok(())
+}
+
+/// What the structure's normal part applies, for axis labels.
+fn normal_axis(normal: &str) -> &'static str {
+    match normal {
+        "plate_electrode" => "normal load L from the plate voltage, a_n V_n² − F_0 (µN)",
+        _ => "normal load L from the normal comb voltage, a_n V_n² − F_0 (µN)",
+    }
+}
+
+/// What the structure's tangential part applies, for axis labels.
+fn tangential_axis(tangential: &str) -> &'static str {
+    match tangential {
+        "released_spring" => "friction F_f = k x, released displacement that sticks (µN)",
+        _ => "friction F_f = a_t V_t², tangential comb voltage at slip (µN)",
+    }
+}
+
+/// A structure fit's figure: the measured points' friction against load through the parts, and
+/// the eq. 10 line when it is determined.
+fn structure_fit_chart(r: &fit::StructureFitReport) -> Chart {
+    let file = Path::new(&r.data).file_name().map_or_else(|| r.data.clone(), |n| n.to_string_lossy().into_owned());
+    let normal = if r.normal_column == "normal_load_n" {
+        "normal load L as measured (µN)"
+    } else {
+        normal_axis(r.structure.normal)
+    };
+    let tangential = if r.tangential_column == "tangential_load_n" {
+        "friction F_f, tangential load at slip as measured (µN)"
+    } else {
+        tangential_axis(r.structure.tangential)
+    };
+    let pts: Vec<(f64, f64)> = r.points.iter().map(|p| (p.load_n * 1e6, p.friction_n * 1e6)).collect();
+    let (l0, l1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+    let mut chart = Chart::new(
+        format!(
+            "Friction against load: {file}; normal: {}, tangential: {} ({} protocol)",
+            r.structure.normal.replace('_', " "),
+            r.structure.tangential.replace('_', " "),
+            r.structure.protocol.replace('_', " ")
+        ),
+        normal,
+        tangential,
+    )
+    .keys("load_un", "friction_un");
+    if let (Some(mu), Some(fa0)) = (r.mu_apparent.value, r.apparent_adhesion_force_n.value) {
+        let fa0 = fa0 * 1e6;
+        let start = -fa0.max(-l0.min(0.0));
+        chart = chart.with(
+            Series::dashed(
+                format!("eq. 10 fit: μ_e,a = {mu:.3}, F_a0 = {fa0:.2} µN"),
+                vec![(start, mu * (fa0 + start)), (l1, mu * (fa0 + l1))],
+            )
+            .with_color(0),
+        );
+    }
+    chart = chart.with(Series::markers("measured threshold", pts).with_color(0));
+    chart.legend = stiction_plot::LegendPosition::LowerRight;
+    chart
 }
 
 /// The measured-voltage file: DATA, else the scenario's `measured.voltages_csv`.

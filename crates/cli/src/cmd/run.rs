@@ -83,23 +83,47 @@ fn print_summary(o: &RunOutput, reference: Option<&ReferenceSpec>, calibration_r
     if !o.description.is_empty() {
         crate::outln!("  {}", o.description);
     }
-    crate::outln!(
-        "  contact model: {}, F_spring = {:.3} uN, a_clamp = {:.4e} N/V^2, a_pull = {:.4e} N/V^2 \
-         (`stiction scenario FILE --explain` says where each comes from)",
-        r.contact_model,
-        r.spring_force_n * 1e6,
-        r.reduction.a_clamp_n_per_v2,
-        r.reduction.a_pull_n_per_v2
-    );
+    match &r.structure {
+        None => crate::outln!(
+            "  contact model: {}, F_spring = {:.3} uN, a_clamp = {:.4e} N/V^2, a_pull = {:.4e} N/V^2 \
+             (`stiction scenario FILE --explain` says where each comes from)",
+            r.contact_model,
+            r.spring_force_n * 1e6,
+            r.reduction.a_clamp_n_per_v2,
+            r.reduction.a_pull_n_per_v2
+        ),
+        Some(st) => crate::outln!(
+            "  contact model: {}; normal {}: a_n = {:.4e} N/V^2, F_0 = {:.3} uN; tangential {}: {} \
+             (`stiction scenario FILE --explain` says where each comes from)",
+            r.contact_model,
+            st.normal.replace('_', " "),
+            st.normal_conversion_factor_n_per_v2,
+            st.normal_spring_force_n * 1e6,
+            st.tangential.replace('_', " "),
+            match (st.tangential_conversion_factor_n_per_v2, st.tangential_stiffness_n_per_m) {
+                (Some(a), _) => format!("a_t = {a:.4e} N/V^2"),
+                (None, Some(k)) => format!("k = {k:.4} N/m"),
+                (None, None) => String::new(),
+            }
+        ),
+    }
     if let Some(h) = &r.environment {
         print_humidity(r, h);
     }
     crate::outln!();
+    // A structure's columns say what its parts apply: the normal voltage, and the tangential
+    // comb's voltage (or, for a released spring, the displacement that sticks).
+    let spring = r.structure.as_ref().is_some_and(|st| st.tangential == "released_spring");
+    let (c1, c3, c4) = match (&r.structure, spring) {
+        (None, _) => ("V_clamp (V)", "V_pull (V)", "V_pull^2 (V^2)"),
+        (Some(_), false) => ("V_n (V)", "V_t (V)", "V_t^2 (V^2)"),
+        (Some(_), true) => ("V_n (V)", "x stuck (um)", "-"),
+    };
     let mut t = crate::output::TextTable::new(&[
-        "V_clamp (V)",
+        c1,
         "L (uN)",
-        "V_pull (V)",
-        "V_pull^2 (V^2)",
+        c3,
+        c4,
         "F_f (uN)",
         "A_r (um^2)",
         "N",
@@ -113,7 +137,7 @@ fn print_summary(o: &RunOutput, reference: Option<&ReferenceSpec>, calibration_r
         t.row(vec![
             format!("{:.2}", p.v_clamp),
             format!("{:.4}", p.load_n * 1e6),
-            opt(p.v_pull, 1.0, 2),
+            if spring { opt(p.displacement_m, 1e6, 4) } else { opt(p.v_pull, 1.0, 2) },
             opt(p.v_pull_sq, 1.0, 1),
             opt(p.friction_n, 1e6, 4),
             format!("{:.5}", p.real_area_m2 * 1e12),
@@ -358,6 +382,70 @@ fn what(r: &MeterResult, measured: Option<&str>) -> String {
     }
 }
 
+/// What the figures call the forces and voltages of a run: the paper's clamp and pull arrays, or
+/// what a structure's parts apply (a normal comb or plate voltage, a tangential comb voltage or a
+/// released displacement).
+struct Labels {
+    v_normal_sq: &'static str,
+    v_tangential: &'static str,
+    v_tangential_sq: &'static str,
+    reduction: [&'static str; 4],
+    load: &'static str,
+    friction: &'static str,
+    points: &'static str,
+    points_note: &'static str,
+}
+
+impl Labels {
+    fn of(r: &MeterResult) -> Labels {
+        let Some(st) = &r.structure else {
+            return Labels {
+                v_normal_sq: "clamp voltage squared V_clamp² (V²)",
+                v_tangential: "pull voltage",
+                v_tangential_sq: "pull voltage squared at slip V_pull² (V²)",
+                reduction: ["L = a_clamp V_clamp² − F_spring, F_f = a_pull V_pull²", "a_clamp", "a_pull", "F_spring"],
+                load: "clamp load L (µN)",
+                friction: "friction force F_f (µN)",
+                points: "shoe clamped anew at each load",
+                points_note: "Meter points: the shoe comes down anew at each clamp voltage (meter.reclamp).",
+            };
+        };
+        let plate = st.normal == "plate_electrode";
+        let spring = st.tangential == "released_spring";
+        let lowered = st.protocol == "lower_normal";
+        Labels {
+            v_normal_sq: if plate {
+                "plate voltage squared V_n² (V²)"
+            } else {
+                "normal comb voltage squared V_n² (V²)"
+            },
+            v_tangential: "tangential comb voltage",
+            v_tangential_sq: if lowered {
+                "tangential comb voltage squared, held V_t² (V²)"
+            } else {
+                "tangential comb voltage squared at slip V_t² (V²)"
+            },
+            reduction: ["L = a_n V_n² − F_0, F_f = a_t V_t²", "a_n", "a_t", "F_0"],
+            load: match (plate, lowered) {
+                (true, _) => "normal load from the plate voltage, L = a_n V_n² − F_0 (µN)",
+                (false, false) => "normal load from the normal comb voltage, L = a_n V_n² − F_0 (µN)",
+                (false, true) => "normal load at slip from the normal comb voltage, L = a_n V_n² − F_0 (µN)",
+            },
+            friction: if spring {
+                "friction F_f = k x, the largest released displacement that sticks (µN)"
+            } else {
+                "friction F_f = a_t V_t², tangential comb force at slip (µN)"
+            },
+            points: if lowered { "normal load lowered, contact kept" } else { "contact made anew at each load" },
+            points_note: if lowered {
+                "Points: at each tangential comb voltage the normal voltage is lowered with the contact kept until slip."
+            } else {
+                "Points: the structure is brought into contact anew at each normal voltage."
+            },
+        }
+    }
+}
+
 /// Fig. 5: V_pull^2 at slip against V_clamp^2, with the paper's own analysis (discrete N = 3,
 /// eq. 12) turned back into voltages through the same conversion: V_pull^2 = F_f(L) / a_pull,
 /// L = a_clamp V_clamp^2 - F_spring; with measured data, the measured slips and their eq. 10 line
@@ -383,16 +471,21 @@ fn fig5_chart(
         // A released spring (a `structure`) has no pull voltage: no curve in pull voltages.
         .filter(|_| red.a_pull_n_per_v2 > 0.0)
         .collect();
+    let labels = Labels::of(r);
     let mut chart = Chart::new(
-        format!("Fig. 5: pull voltage at slip, {}", what(r, measured)),
-        "clamp voltage squared V_clamp² (V²)",
-        "pull voltage squared at slip V_pull² (V²)",
+        format!("Fig. 5: {} at slip, {}", labels.v_tangential, what(r, measured)),
+        labels.v_normal_sq,
+        labels.v_tangential_sq,
     )
     .keys("v_clamp_squared_v2", "v_pull_squared_v2")
     .with_note(format!(
-        "L = a_clamp V_clamp² − F_spring, F_f = a_pull V_pull² (nominal a_clamp = {} N/V², a_pull = {} N/V², F_spring = {} µN)",
+        "{} (nominal {} = {} N/V², {} = {} N/V², {} = {} µN)",
+        labels.reduction[0],
+        labels.reduction[1],
         crate::format::sig3(red.a_clamp_n_per_v2),
+        labels.reduction[2],
         crate::format::sig3(red.a_pull_n_per_v2),
+        labels.reduction[3],
         crate::format::sig3(red.spring_force_n * 1e6)
     ))
     .with(Series::dashed("paper's analysis: discrete N = 3 (eq. 12)", discrete).with_color(1));
@@ -462,18 +555,16 @@ fn fig7_chart(
     }
     let meas: Vec<(f64, f64)> =
         r.points.iter().filter_map(|p| p.friction_n.map(|f| (p.load_n * 1e6, f * 1e6))).collect();
+    let labels = Labels::of(r);
     let mut chart = Chart::new(
         format!("Fig. 7: static friction against load, {}", what(r, measured)),
-        "clamp load L (µN)",
-        "friction force F_f (µN)",
+        labels.load,
+        labels.friction,
     )
     .keys("load_un", "friction_un")
-    .with(
-        Series::markers(format!("virtual meter ({}), shoe clamped anew at each load", r.contact_model), meas)
-            .with_color(0),
-    );
-    let mut notes = vec!["Meter points: the shoe comes down anew at each clamp voltage (meter.reclamp).".to_string()];
-    let mut caption = "points: shoe clamped anew at each load".to_string();
+    .with(Series::markers(format!("virtual meter ({}), {}", r.contact_model, labels.points), meas).with_color(0));
+    let mut notes = vec![labels.points_note.to_string()];
+    let mut caption = format!("points: {}", labels.points);
     // The contact model's own curve s A_r(L), from its pull-off where it has one.
     if let Some(pts) = loading_curve_un(meter, max_load) {
         chart.series.push(Series::line("explicit solver, one loading path from pull-off", pts).with_color(1));

@@ -649,6 +649,11 @@ def fit(
     data: a CSV path (columns v_clamp_v, v_pull_v [, v_pull_sd_v, device]); or the columns as
     arrays: a dict (or pandas DataFrame) with keys v_clamp_v and v_pull_v (V) and optionally
     v_pull_sd_v (V) and device; or None for the scenario's ``measured.voltages_csv``.
+    For a scenario with a ``structure`` (docs/fit.md, "Test structures built from parts") the data
+    are its measured thresholds: one normal column (v_normal_v in V or normal_load_n in N) and one
+    tangential column (v_tangential_v in V, displacement_m in m or tangential_load_n in N), as a
+    path or a dict of arrays; the result is eq. 10 on the forces the parts imply, the keys of
+    ``stiction fit --json`` for it (models, free and surfaces are refused there).
     scenario: the device's scenario: a file, a ``Scenario``, or a dict shaped as the file (its
     relative paths, such as ``measured.voltages_csv``, read from the current directory). models: "discrete-n1,gw-dmt,explicit,..."; free: "s",
     "s,R", "s,R,F_spring"; surfaces: realisations of the explicit ensemble; draws: calibration
@@ -670,15 +675,23 @@ def fit(
     return Result(_stiction.fit_json(scenario, data_csv=_voltage_csv(data), data_name="<data>", **options))
 
 
+# The columns of a structure's measured thresholds (stiction_meter::structure_measured).
+_THRESHOLD_COLUMNS = ("v_normal_v", "normal_load_n", "v_tangential_v", "displacement_m", "tangential_load_n")
+
+
 def _voltage_csv(data) -> str:
-    """Columns of measured voltages as the CSV text the command line reads (floats as ``repr``,
-    which reads back to the same float)."""
+    """Columns of measured voltages (or of a structure's thresholds) as the CSV text the command
+    line reads (floats as ``repr``, which reads back to the same float); the reader checks which
+    columns a structure takes, with the command line's messages."""
     try:
         names = [k for k in ("v_clamp_v", "v_pull_v", "v_pull_sd_v", "device") if k in data]
+        thresholds = [k for k in _THRESHOLD_COLUMNS if k in data]
     except TypeError:
         raise StictionError("data: expected a CSV path or a dict of arrays with v_clamp_v and v_pull_v") from None
+    if thresholds and not names:
+        names = thresholds
     for k in ("v_clamp_v", "v_pull_v"):
-        if k not in names:
+        if k not in names and not thresholds:
             raise StictionError(f"data: no column {k!r} (expected v_clamp_v, v_pull_v [, v_pull_sd_v, device])")
     # The rows counted before any is converted (the CSV text is some 40 bytes a row): at most the
     # command line's limit of rows.

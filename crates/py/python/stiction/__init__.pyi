@@ -167,7 +167,8 @@ def fit(
     draws: Optional[int] = None,
     seed: Optional[int] = None,
 ) -> Result:
-    """Fit measured voltages (V): eq. 10 and the shear strength s (Pa) per contact model."""
+    """Fit measured voltages (V): eq. 10 and the shear strength s (Pa) per contact model; for a
+    scenario with a `structure`, its measured thresholds: eq. 10 on the forces its parts imply."""
 
 def humidity(
     scenario: PathOrScenario,
