@@ -352,3 +352,17 @@ fn sensitivity_indices_agree_with_the_linear_share_of_the_samples() {
     assert!(spring["fa0_first_order"].as_f64().unwrap() > 0.3, "{spring}");
     assert!(row("actuators.pull.conversion_factor")["mu_spearman"].as_f64().unwrap() < -0.2);
 }
+
+#[test]
+fn identical_samples_print_their_mean_without_rounding_noise() {
+    // scenarios/plate-released-spring.json uses the GW model with no uncertain input, so every
+    // sample gives the same mu_e,a and F_a0 (to the last bits): the table must print them to 3
+    // digits with "+/- 0", not to the 15 digits a rounding-level standard error would ask for
+    // (it printed "mean 0.604649846079699 +/- 0.000000000000000 uN").
+    let r = stiction(&["study", "scenarios/plate-released-spring.json", "--samples", "4", "--threads", "1", "--quiet"]);
+    let out = String::from_utf8_lossy(&r.stdout);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let fa0 = out.lines().find(|l| l.trim_start().starts_with("F_a0")).expect("an F_a0 line");
+    assert!(fa0.contains("mean 0.605 +/- 0 uN"), "{fa0}");
+    assert!(!out.contains("0.0000000"), "{out}");
+}

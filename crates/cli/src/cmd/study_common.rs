@@ -280,7 +280,9 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
         Some(s) => {
             let q_se = |ci: Option<[f64; 2]>| ci.map(|[a, b]| (b - a) * scale / 3.92);
             let q = |v: f64, ci: Option<[f64; 2]>| digits(v * scale, q_se(ci));
-            let se = Some(s.mean_se * scale).filter(|x| *x > 0.0);
+            // A standard error at rounding level (samples that agree to the last bits, as a
+            // deterministic model gives) is no spread: shown as 0, the mean to 3 digits.
+            let se = Some(s.mean_se * scale).filter(|x| *x > 1e-12 * (s.mean * scale).abs());
             crate::outln!(
                 "  {name:<28} mean {} +/- {}{unit} (Monte Carlo s.e.) sd {}{unit}  median {}{unit}  5-95 %: {}..{}{unit}  (n = {})",
                 digits(s.mean * scale, se),
