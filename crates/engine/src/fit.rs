@@ -12,7 +12,7 @@ use crate::scenario_source::ScenarioSource;
 
 // The fit's types that a front end names or prints: the measured data and the report (what
 // `fit --json` prints).
-pub use stiction_fit::{Dataset, FitReport, StructureFitReport};
+pub use stiction_fit::{Dataset, Estimate, FitReport, StructureFitReport};
 
 /// Where the measured voltages come from.
 #[derive(Clone, Debug)]

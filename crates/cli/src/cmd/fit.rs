@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use stiction_engine::fit::{self, Dataset, FitData, FitReport, FitRequest};
+use stiction_engine::fit::{self, Dataset, Estimate, FitData, FitReport, FitRequest};
 use stiction_engine::scenario::Scenario;
 use stiction_plot::{Chart, Series};
 use stiction_units::io::write_atomic;
@@ -144,25 +144,7 @@ fn run_structure(args: &Args, scenario: &Scenario, json: &serde_json::Value) -> 
         r.structure.tangential
     );
     let (mu, fa) = (&r.mu_apparent, &r.apparent_adhesion_force_n);
-    match mu.value {
-        Some(v) => crate::outln!(
-            "  mu_e,a = {v:.3} +/- {} (regression), 95 %: {} regression, {} with calibration",
-            num(mu.stderr, 1.0),
-            ci(mu.ci95, 1.0),
-            ci(mu.ci95_with_calibration, 1.0)
-        ),
-        None => crate::outln!("  mu_e,a = n/a: {}", mu.value_note.as_deref().unwrap_or("not determined")),
-    }
-    match fa.value {
-        Some(v) => crate::outln!(
-            "  F_a0   = {:.3} uN +/- {} (regression), 95 %: {} uN regression (Fieller), {} uN with calibration",
-            v * 1e6,
-            num(fa.stderr, 1e6),
-            ci(fa.ci95, 1e6),
-            ci(fa.ci95_with_calibration, 1e6)
-        ),
-        None => crate::outln!("  F_a0   = n/a: {}", fa.value_note.as_deref().unwrap_or("not determined")),
-    }
+    print_eq10_estimates(mu, fa);
     if let Some(note) = &r.calibration.note {
         crate::outln!("  calibration: {note}");
     }
@@ -281,6 +263,30 @@ fn synthesize(args: &Args, scenario: &Scenario, base: &Path, out: &Path) -> CliR
     Ok(())
 }
 
+/// The two lines of eq. 10's estimates (mu_e,a, and F_a0 in uN) with their regression and
+/// calibrated 95 % intervals, or the reason each is not determined.
+fn print_eq10_estimates(mu: &Estimate, fa: &Estimate) {
+    match mu.value {
+        Some(v) => crate::outln!(
+            "  mu_e,a = {v:.3} +/- {} (regression), 95 %: {} regression, {} with calibration",
+            num(mu.stderr, 1.0),
+            ci(mu.ci95, 1.0),
+            ci(mu.ci95_with_calibration, 1.0)
+        ),
+        None => crate::outln!("  mu_e,a = n/a: {}", mu.value_note.as_deref().unwrap_or("not determined")),
+    }
+    match fa.value {
+        Some(v) => crate::outln!(
+            "  F_a0   = {:.3} uN +/- {} (regression), 95 %: {} uN regression (Fieller), {} uN with calibration",
+            v * 1e6,
+            num(fa.stderr, 1e6),
+            ci(fa.ci95, 1e6),
+            ci(fa.ci95_with_calibration, 1e6)
+        ),
+        None => crate::outln!("  F_a0   = n/a: {}", fa.value_note.as_deref().unwrap_or("not determined")),
+    }
+}
+
 fn num(v: Option<f64>, scale: f64) -> String {
     v.map_or("n/a".into(), |x| format!("{:.3}", x * scale))
 }
@@ -299,26 +305,7 @@ fn print_summary(r: &FitReport) {
     }
     let (mu, fa) = (&r.mu_apparent, &r.apparent_adhesion_force_n);
     crate::outln!("\neq. 10 (nominal a_clamp, a_pull, F_spring; {}):", "weighted by the noise of V_pull^2");
-    match mu.value {
-        Some(v) => crate::outln!(
-            "  mu_e,a = {:.3} +/- {} (regression), 95 %: {} regression, {} with calibration",
-            v,
-            num(mu.stderr, 1.0),
-            ci(mu.ci95, 1.0),
-            ci(mu.ci95_with_calibration, 1.0)
-        ),
-        None => crate::outln!("  mu_e,a = n/a: {}", mu.value_note.as_deref().unwrap_or("not determined")),
-    }
-    match fa.value {
-        Some(v) => crate::outln!(
-            "  F_a0   = {:.3} uN +/- {} (regression), 95 %: {} uN regression (Fieller), {} uN with calibration",
-            v * 1e6,
-            num(fa.stderr, 1e6),
-            ci(fa.ci95, 1e6),
-            ci(fa.ci95_with_calibration, 1e6)
-        ),
-        None => crate::outln!("  F_a0   = n/a: {}", fa.value_note.as_deref().unwrap_or("not determined")),
-    }
+    print_eq10_estimates(mu, fa);
     let shares = |m: &BTreeMap<String, f64>| {
         if m.is_empty() {
             return "n/a".to_string();
