@@ -1,7 +1,9 @@
 //! `gw`: Greenwood-Williamson with DMT adhesion in normalized form (eq. 5-9), stable branch.
 
 use serde::{Deserialize, Serialize};
-use stiction_contact::gw::GwModel;
+
+// The model [`model`] returns (its pull-off, for a front end that solves many loads).
+pub use stiction_contact::gw::GwModel;
 
 use crate::Error;
 

@@ -1,5 +1,8 @@
 //! A scenario as the commands read it, from a file or built in memory.
 
+// The error of reading, overriding and parsing a scenario, which the constructors return.
+pub use stiction_scenario::ScenarioError;
+
 /// A scenario as the commands read it: its JSON tree as written (before any override), the
 /// `--set PATH=VALUE` overrides in order, the name errors and results give it (the file's path,
 /// or "<scenario>" for one built in memory) and the folder its relative paths (surface CSVs,

@@ -13,8 +13,8 @@ use crate::scenario_source::ScenarioSource;
 // how it was read (format, channel, metadata and where each came from), its preparation, its
 // summits, Nayak's predictions and its spectrum.
 pub use stiction_topography::{
-    ChannelSelector, HeightMap, Levelling, MapFormat, MapInfo, MapMetadata, MetaSource, Nayak, Preparation,
-    PreparationReport, Psd, Summits, parse_length_unit,
+    ArrayLayout, BorrowedHeights, ChannelSelector, HeightMap, Levelling, MapFormat, MapInfo, MapMetadata,
+    MapMetadataRead, MetaSource, Nayak, Preparation, PreparationReport, Psd, Summits, parse_length_unit,
 };
 
 /// GW parameters of the map and the adhesion parameter.
@@ -164,6 +164,30 @@ pub fn read(
     meta: &MapMetadata,
 ) -> Result<(HeightMap, MapInfo), Error> {
     Ok(stiction_topography::read_file_channel(path, format, channel, meta)?)
+}
+
+/// A height map held in memory (a front end's array, `heights` with its `layout`: strides in
+/// elements, negative ones included) read as [`read`] reads a file, named `origin` in errors, with
+/// `meta` for the pixel size and height unit.
+pub fn read_array(
+    heights: BorrowedHeights<'_>,
+    layout: ArrayLayout,
+    origin: &str,
+    meta: &MapMetadata,
+) -> Result<(HeightMap, MapInfo), Error> {
+    Ok(stiction_topography::read_array(heights, layout, origin, meta)?)
+}
+
+/// The height map `path` as [`read`] reads it, as its heights in metres (row-major, NaN where
+/// missing) and what was read: format, size, pixel size, channel and the file's other channels
+/// (Python's `read_map`).
+pub fn read_with_metadata(
+    path: &Path,
+    format: Option<MapFormat>,
+    channel: Option<&ChannelSelector>,
+    meta: &MapMetadata,
+) -> Result<(Vec<f64>, MapMetadataRead), Error> {
+    Ok(stiction_topography::read_map_with_metadata(path, format, channel, meta)?)
 }
 
 /// The channels of the height-map file `path` (`stiction topography --channels`): the format

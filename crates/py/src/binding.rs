@@ -12,9 +12,10 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use stiction_engine::ScenarioSource;
-use stiction_scenario::Scenario;
-use stiction_study::{Calibration, Study, StudyConfig};
-use stiction_topography::{
+use stiction_engine::scenario::Scenario;
+use stiction_engine::scenario_source::ScenarioError;
+use stiction_engine::study::StudyRequest;
+use stiction_engine::topography::{
     ArrayLayout, BorrowedHeights, HeightMap, Levelling, MapInfo, MapMetadata, Preparation, parse_length_unit,
     read_array,
 };
@@ -278,7 +279,7 @@ impl PyScenario {
     }
 
     /// The scenario as the commands read it: the file (read now) or the text, with the overrides.
-    fn source(&self) -> Result<ScenarioSource, stiction_scenario::ScenarioError> {
+    fn source(&self) -> Result<ScenarioSource, ScenarioError> {
         match &self.path {
             Some(p) => ScenarioSource::file(p, &self.sets),
             None => ScenarioSource::text(
@@ -291,7 +292,7 @@ impl PyScenario {
     }
 
     /// Parses and validates, as the command line does.
-    fn parse(&self) -> Result<Scenario, stiction_scenario::ScenarioError> {
+    fn parse(&self) -> Result<Scenario, ScenarioError> {
         self.source()?.parse(&[])
     }
 
@@ -724,23 +725,14 @@ pub(crate) fn study_json<'py>(
         Some(t) => Some(count("threads", t, 1, max_threads, "worker threads; None: one per core")? as usize),
         None => None,
     };
-    let config = StudyConfig {
-        calibration: Calibration::Nominal,
-        slip_path: stiction_meter::SlipPath::Light,
-        samples,
-        seed,
-        vary_surface: !fixed_surface,
-        shard_index: 0,
-        shard_count: 1,
-    };
-    config.validate().map_err(|e| named(e.to_string()))?;
+    // The command line's study request (nominal calibration, light slip path, one shard).
+    let config = StudyRequest { samples, seed, fixed_surface, threads, ..StudyRequest::default() }
+        .config()
+        .map_err(|e| named(e.to_string()))?;
     let pool =
         stiction_engine::study::thread_pool(threads, &|f: &str| f.to_string()).map_err(|e| named(e.to_string()))?;
     let source = PyScenario::source_of(scenario)?;
-    let value = source.json(&[]).map_err(err)?;
-    let study = Study::prepare_value(value, &source.origin, &source.base, &config)
-        .and_then(stiction_fit::with_lab_intervals)
-        .map_err(err)?;
+    let study = stiction_engine::study::prepare_source(&source, &config).map_err(err)?;
     let progress = Progress::new(progress);
     let report = progress.clone();
     let out = interruptible(py, move |interrupt| {

@@ -1,11 +1,11 @@
 //! `read_map(path, ...)`: a height-map file (any format stiction reads) as a NumPy array with its
-//! metadata. The logic is `stiction_topography::read_map_with_metadata`; this file only converts.
+//! metadata. The logic is `stiction_engine::topography::read_with_metadata`; this file only converts.
 
 use std::path::PathBuf;
 
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use stiction_topography::{ChannelSelector, MapFormat, MapMetadata, parse_length_unit, read_map_with_metadata};
+use stiction_engine::topography::{ChannelSelector, MapFormat, MapMetadata, parse_length_unit, read_with_metadata};
 
 /// The error of the argument `name` given as `value` (StictionError, as every other bad input).
 fn arg_error<'a>(name: &'a str, value: &'a str) -> impl Fn(String) -> PyErr + 'a {
@@ -40,8 +40,8 @@ pub(crate) fn _read_map<'py>(
         .transpose()?;
     let meta = MapMetadata { pixel_size_x_m: pixel_size_m, height_unit_m, ..Default::default() };
     let (heights, m) = py
-        .detach(|| read_map_with_metadata(&path, format, channel.as_ref(), &meta))
-        .map_err(|e| crate::binding::StictionError::new_err(e.to_string()))?;
+        .detach(|| read_with_metadata(&path, format, channel.as_ref(), &meta).map_err(|e| e.to_string()))
+        .map_err(crate::binding::StictionError::new_err)?;
     let json = serde_json::to_string(&m).map_err(crate::binding::err)?;
     let array = PyArray1::from_vec(py, heights).reshape([m.ny, m.nx])?;
     Ok((array.into_any(), json))

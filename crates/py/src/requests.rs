@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use stiction_topography::{Levelling, MapMetadata, Preparation, parse_length_unit};
+use stiction_engine::topography::{Levelling, MapMetadata, Preparation, parse_length_unit};
 use stiction_units::{Constraint, Dimension, parse_quantity_checked};
 
 use crate::binding::{
@@ -454,7 +454,7 @@ pub(crate) fn gw_arrays<'py>(
         }
     })?;
     let theta = theta.filter(|t| !t.is_infinite());
-    let model = stiction_contact::gw::GwModel::new(theta).map_err(err)?;
+    let model = stiction_engine::gw::model(theta).map_err(err)?;
     let solve = || {
         load_star
             .iter()
@@ -463,7 +463,7 @@ pub(crate) fn gw_arrays<'py>(
                 if !l.is_finite() {
                     return Err(format!("load_star[{i}] = {l}: expected a finite normalized load"));
                 }
-                model.solve(l).map_err(|e| format!("load_star[{i}] = {l}: {e}"))
+                stiction_engine::gw::state(&model, l).map_err(|e| format!("load_star[{i}] = {l}: {e}"))
             })
             .collect::<Result<Vec<_>, String>>()
     };
@@ -471,7 +471,7 @@ pub(crate) fn gw_arrays<'py>(
     let states = if load_star.len() < 64 { solve() } else { py.detach(solve) };
     let states = states.map_err(err)?;
     let d = PyDict::new(py);
-    let col = |f: &dyn Fn(&stiction_contact::gw::GwState) -> f64| states.iter().map(f).collect::<Vec<f64>>();
+    let col = |f: &dyn Fn(&stiction_engine::gw::GwOutput) -> f64| states.iter().map(f).collect::<Vec<f64>>();
     d.set_item("l_star", PyArray1::from_vec(py, col(&|s| s.l_star)))?;
     d.set_item("h", PyArray1::from_vec(py, col(&|s| s.h)))?;
     d.set_item("n_star", PyArray1::from_vec(py, col(&|s| s.n_star)))?;
@@ -509,8 +509,7 @@ pub(crate) fn discrete_json<'py>(
     equilibrium_spacing: Option<&Bound<'_, PyAny>>,
     target_slope: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_contact::single::AdhesionLaw;
-    use stiction_engine::discrete::{DEFAULT_EQUILIBRIUM_SPACING_M, DiscreteRequest};
+    use stiction_engine::discrete::{AdhesionLaw, DEFAULT_EQUILIBRIUM_SPACING_M, DiscreteRequest};
     use stiction_engine::limits::{DEFAULT_MAX_SWEEP_STEPS, check_sweep_len};
     // The counts first: contacts as the command line's --contacts (u32), the loads (one CLI
     // call each) at most those of one sweep, counted before they are read.
