@@ -87,8 +87,9 @@ pub struct BemHumidity {
     /// The relative humidities, fractions in [0, 1), 1 to `limits::MAX_RH` of them (None: no
     /// humidity run).
     pub rh: Option<Vec<f64>>,
-    /// Temperature text ("25 C", "298.15 K", a bare number in kelvin).
-    pub temperature: String,
+    /// Temperature, K, in the domain of `environment.temperature` (the water correlations);
+    /// a front end parses its text with [`humidity::parse_temperature`].
+    pub temperature_k: f64,
     /// Contact angle of water on both faces, rad.
     pub contact_angle_rad: f64,
     /// Mean-gap step of the retraction, m (default a twentieth of the shortest range).
@@ -622,12 +623,13 @@ pub mod humidity {
     use super::{BemRequest, SurfaceSource};
     use crate::Error;
 
-    /// `--temperature`: "25 C", "298.15 K" or a bare number in kelvin, in the domain of the water
-    /// correlations: the one rule of the scenario's `environment.temperature`
-    /// (`stiction_scenario::parse_temperature_k`).
-    pub fn parse_temperature(text: &str) -> Result<f64, String> {
+    /// A front end's temperature text ("25 C", "298.15 K" or a bare number in kelvin) in K, in
+    /// the domain of the water correlations: the one rule of the scenario's
+    /// `environment.temperature` (`stiction_scenario::parse_temperature_k`); `name` (the flag
+    /// `--temperature`, the argument `temperature`) names the text in errors.
+    pub fn parse_temperature(text: &str, name: &str) -> Result<f64, String> {
         stiction_scenario::parse_temperature_k(&serde_json::Value::String(text.to_string()))
-            .map_err(|e| format!("--temperature: {e}"))
+            .map_err(|e| format!("{name}: {e}"))
     }
 
     /// One humidity.
@@ -688,7 +690,9 @@ pub mod humidity {
         let h = &args.humidity;
         let rhs = h.rh.clone().unwrap_or_default();
         crate::rh::check_rh_values(&rhs)?;
-        let temperature_k = parse_temperature(&h.temperature)?;
+        let temperature_k = h.temperature_k;
+        crate::check::domain_value("environment.temperature", "--temperature", temperature_k)
+            .map_err(|e| format!("--temperature: {e}"))?;
         let angle = h.contact_angle_rad;
         if !(0.0..=std::f64::consts::PI).contains(&angle) {
             return Err(format!("--contact-angle {angle} rad: expected 0 to 180 deg").into());

@@ -89,7 +89,7 @@ mod tests {
             range_m: None,
             humidity: BemHumidity {
                 rh: None,
-                temperature: "25 C".into(),
+                temperature_k: 298.15,
                 contact_angle_rad: 0.0,
                 rh_step_m: None,
                 min_kelvin_radius_m: None,
@@ -133,6 +133,25 @@ mod tests {
         check_pressures_len("pressure", BEM_MAX_PATH_STEPS).unwrap();
         assert!(check_pressures_len("pressure", BEM_MAX_PATH_STEPS + 1).unwrap_err().starts_with("pressure: "));
         assert_eq!(BEM_MAX_GRID_SIDE, crate::bem::MAX_SIDE);
+    }
+
+    /// A typed temperature outside the domain of `environment.temperature` (liquid water,
+    /// 273.16 K to the critical point 647.096 K) is refused by the engine, named as the flag.
+    #[test]
+    fn a_typed_temperature_is_checked_against_its_domain() {
+        let humid = |t: f64| {
+            let mut req = request(16);
+            req.humidity.rh = Some(vec![0.3]);
+            req.humidity.temperature_k = t;
+            bem_json(&req, BemSurface::Generated, None).map(|_| ()).map_err(|e| e.to_string())
+        };
+        for t in [273.15, 700.0, f64::NAN] {
+            let e = humid(t).unwrap_err();
+            assert!(e.starts_with("--temperature: ") && e.contains("is outside"), "{e}");
+        }
+        let e = crate::bem::humidity::parse_temperature("500 C", "temperature").unwrap_err();
+        assert!(e.starts_with("temperature: 773.15 K is outside"), "{e}");
+        assert_eq!(crate::bem::humidity::parse_temperature("25 C", "temperature"), Ok(298.15));
     }
 
     /// The sweep limit of a front end's vector of loads is a sweep text's: the same count refused

@@ -297,7 +297,11 @@ pub(crate) fn bem_json<'py>(
                 (None, Some(text)) => Some(stiction_engine::rh::parse_rh_as(&text, "rh").map_err(err)?),
                 (None, None) => None,
             },
-            temperature: kw.text("temperature")?.unwrap_or_else(|| "25 C".into()),
+            temperature_k: stiction_engine::bem::humidity::parse_temperature(
+                &kw.text("temperature")?.unwrap_or_else(|| "25 C".into()),
+                "temperature",
+            )
+            .map_err(err)?,
             contact_angle_rad: kw.quantity("contact_angle", Dimension::Angle, Constraint::NonNegative)?.unwrap_or(0.0),
             rh_step_m: length("rh_step")?,
             min_kelvin_radius_m: length("min_kelvin_radius")?,

@@ -199,7 +199,7 @@ impl Args {
             range_m: self.range,
             humidity: BemHumidity {
                 rh: h.rh.as_deref().map(parse_rh).transpose()?,
-                temperature: h.temperature.clone(),
+                temperature_k: humidity::parse_temperature(&h.temperature, "--temperature")?,
                 contact_angle_rad: h.contact_angle,
                 rh_step_m: h.rh_step,
                 min_kelvin_radius_m: h.min_kelvin_radius,
