@@ -6,7 +6,7 @@ use stiction_contact::explicit::{ExplicitSolver, Sweep};
 use stiction_contact::single::Branch;
 use stiction_meter::{ContactModel, build_contact_model};
 use stiction_scenario::{ContactModel as ModelKind, ContactSpec, MaterialSpec};
-use stiction_units::{Constraint, Dimension, parse_quantity_checked};
+use stiction_units::Dimension;
 
 use crate::Error;
 use crate::check::Names;
@@ -80,36 +80,6 @@ impl ContactRequest {
 
 /// Default of `--max-sweep-steps`: a million equilibria take minutes and their rows about 100 MB.
 pub const DEFAULT_MAX_SWEEP_STEPS: usize = 1_000_000;
-
-/// Parses FROM:TO:STEPS into the loads, N; at most `max_steps` steps (checked before allocating).
-pub fn parse_sweep(text: &str, max_steps: usize) -> Result<Vec<f64>, String> {
-    let parts: Vec<&str> = text.split(':').collect();
-    if parts.len() != 3 {
-        return Err(format!("--sweep {text:?}: expected FROM:TO:STEPS, like \"0uN:10uN:21\""));
-    }
-    let f = |s: &str, what: &str| {
-        let v = parse_quantity_checked(s, Dimension::Force, Constraint::Finite)
-            .map_err(|e| format!("--sweep {what}: {e}"))?;
-        stiction_scenario::domain::check_value("load", "load", v)
-            .map_err(|e| format!("--sweep {what}: {}", e.message))?;
-        Ok::<f64, String>(v)
-    };
-    let (from, to) = (f(parts[0], "FROM")?, f(parts[1], "TO")?);
-    let steps: usize = parts[2]
-        .trim()
-        .parse()
-        .ok()
-        .filter(|n| *n >= 2)
-        .ok_or_else(|| format!("--sweep STEPS {:?}: expected a whole number >= 2", parts[2]))?;
-    if steps > max_steps {
-        return Err(format!(
-            "--sweep STEPS {steps}: more than the limit of {max_steps} steps (one equilibrium solve and about 100 \
-             bytes of output each: {:.1e} bytes); raise it with --max-sweep-steps if you mean it",
-            steps as f64 * 100.0
-        ));
-    }
-    Ok((0..steps).map(|i| from + (to - from) * i as f64 / (steps - 1) as f64).collect())
-}
 
 /// The explicit solver of the scenario `source` with the request's mode and contacts applied: the
 /// solver, the scenario's contact settings and its material.

@@ -26,7 +26,7 @@ pub const MAX_RH: usize = 1000;
 
 /// A front end's vector of `len` loads for one sweep (Python's `contact(load=[...])`, named
 /// `name`), checked against `max` before any load is solved: the limit and the reason of
-/// `--sweep STEPS` (`parse_sweep`), with the front end's `advice` ("raise it with
+/// `--sweep STEPS` (`range::LoadRange::parse`), with the front end's `advice` ("raise it with
 /// max_sweep_steps=N if you mean it").
 pub fn check_sweep_len(name: &str, len: usize, max: usize, advice: &str) -> Result<(), String> {
     if len == 0 {
@@ -155,12 +155,13 @@ mod tests {
     }
 
     /// The sweep limit of a front end's vector of loads is a sweep text's: the same count refused
-    /// by `parse_sweep` is refused here, one less taken.
+    /// by `LoadRange::parse` is refused here, one less taken.
     #[test]
     fn the_sweep_limit_of_a_vector_is_the_sweeps() {
         let max = 10;
-        assert!(crate::contact::parse_sweep("0uN:1uN:11", max).is_err());
-        assert!(crate::contact::parse_sweep("0uN:1uN:10", max).is_ok());
+        use crate::range::LoadRange;
+        assert!(LoadRange::parse("0uN:1uN:11", "--sweep", max, "").is_err());
+        assert_eq!(LoadRange::parse("0uN:1uN:10", "--sweep", max, "").unwrap().values_n().len(), 10);
         let e = check_sweep_len("load", 11, max, "raise it with max_sweep_steps=N").unwrap_err();
         assert!(e.starts_with("load: 11 loads") && e.contains("max_sweep_steps="), "{e}");
         check_sweep_len("load", 10, max, "").unwrap();

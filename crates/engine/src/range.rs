@@ -103,6 +103,58 @@ impl GapRange {
     }
 }
 
+/// A sweep of normal loads (`contact --sweep`), each solved from the previous equilibrium; a
+/// front end hands the engine its loads ([`LoadRange::values_n`], `ContactRequest::loads_n`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoadRange {
+    /// First load, N (compressive positive), in the domain of `load`.
+    pub from_n: f64,
+    /// Last load, N, in the domain of `load`.
+    pub to_n: f64,
+    /// Number of loads, >= 2.
+    pub steps: usize,
+}
+
+impl LoadRange {
+    /// Parses FROM:TO:STEPS ("0uN:10uN:21"): loads in the domain of `load`, 2 to `max_steps`
+    /// steps (checked before any load is made); `name` (a flag or an argument) names the text in
+    /// errors, and `advice` says how to raise the limit ("raise it with --max-sweep-steps if you
+    /// mean it").
+    pub fn parse(text: &str, name: &str, max_steps: usize, advice: &str) -> Result<LoadRange, String> {
+        let parts: Vec<&str> = text.split(':').collect();
+        if parts.len() != 3 {
+            return Err(format!("{name} {text:?}: expected FROM:TO:STEPS, like \"0uN:10uN:21\""));
+        }
+        let f = |s: &str, what: &str| {
+            let v = parse_quantity_checked(s, Dimension::Force, Constraint::Finite)
+                .map_err(|e| format!("{name} {what}: {e}"))?;
+            stiction_scenario::domain::check_value("load", "load", v)
+                .map_err(|e| format!("{name} {what}: {}", e.message))?;
+            Ok::<f64, String>(v)
+        };
+        let (from_n, to_n) = (f(parts[0], "FROM")?, f(parts[1], "TO")?);
+        let steps: usize = parts[2]
+            .trim()
+            .parse()
+            .ok()
+            .filter(|n| *n >= 2)
+            .ok_or_else(|| format!("{name} STEPS {:?}: expected a whole number >= 2", parts[2]))?;
+        if steps > max_steps {
+            return Err(format!(
+                "{name} STEPS {steps}: more than the limit of {max_steps} steps (one equilibrium solve and about 100 \
+                 bytes of output each: {:.1e} bytes); {advice}",
+                steps as f64 * 100.0
+            ));
+        }
+        Ok(LoadRange { from_n, to_n, steps })
+    }
+
+    /// The loads, N, evenly spaced from `from_n` to `to_n`.
+    pub fn values_n(&self) -> Vec<f64> {
+        path_values(self.from_n, self.to_n, self.steps)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -124,6 +176,23 @@ mod tests {
             assert!(((w[1] - w[0]) / (-19e-9 / 3.0) - 1.0).abs() < 1e-12, "evenly spaced: {v:?}");
         }
         assert_eq!(GapRange::parse("5nm:9nm:1", "gap_sweep").unwrap().values_m(), vec![5e-9]);
+    }
+
+    #[test]
+    fn a_load_sweep_is_its_ends_and_evenly_spaced_loads_named_as_given() {
+        // 0, 5, 10 uN: the middle one the mean of the ends (1e-12 relative: one unit conversion).
+        let r = LoadRange::parse("0uN:10uN:3", "--sweep", 10, "").unwrap();
+        assert_eq!(r.steps, 3);
+        let v = r.values_n();
+        assert!(v[0] == 0.0 && (v[1] / 5e-6 - 1.0).abs() < 1e-12 && (v[2] / 10e-6 - 1.0).abs() < 1e-12, "{v:?}");
+        let e = LoadRange::parse("0uN:10uN", "sweep", 10, "").unwrap_err();
+        assert_eq!(e, "sweep \"0uN:10uN\": expected FROM:TO:STEPS, like \"0uN:10uN:21\"");
+        let e = LoadRange::parse("0uN:10uN:1", "--sweep", 10, "").unwrap_err();
+        assert_eq!(e, "--sweep STEPS \"1\": expected a whole number >= 2");
+        let e = LoadRange::parse("0uN:1m:3", "sweep", 10, "").unwrap_err();
+        assert!(e.starts_with("sweep TO: "), "{e}");
+        let e = LoadRange::parse("0uN:1uN:11", "sweep", 10, "raise it with max_sweep_steps=N").unwrap_err();
+        assert!(e.starts_with("sweep STEPS 11: more than the limit of 10") && e.ends_with("max_sweep_steps=N"), "{e}");
     }
 
     #[test]

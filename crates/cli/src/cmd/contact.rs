@@ -71,7 +71,8 @@ pub struct Args {
     pub sets: Vec<String>,
 }
 
-pub use stiction_engine::contact::{DEFAULT_MAX_SWEEP_STEPS, parse_sweep};
+pub use stiction_engine::contact::DEFAULT_MAX_SWEEP_STEPS;
+use stiction_engine::range::LoadRange;
 
 impl Args {
     /// The engine's request of these flags (`--sweep` parsed into its loads).
@@ -82,7 +83,18 @@ impl Args {
                 Model::Bem => stiction_engine::contact::Model::Bem,
             },
             load_n: self.load,
-            loads_n: self.sweep.as_deref().map(|s| parse_sweep(s, self.max_sweep_steps)).transpose()?,
+            loads_n: match &self.sweep {
+                Some(text) => Some(
+                    LoadRange::parse(
+                        text,
+                        "--sweep",
+                        self.max_sweep_steps,
+                        "raise it with --max-sweep-steps if you mean it",
+                    )?
+                    .values_n(),
+                ),
+                None => None,
+            },
             mode: self.mode.map(|m| match m {
                 Mode::Tilt => EngineMode::Tilt,
                 Mode::Flat => EngineMode::Flat,
