@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use stiction_fit::{FitOptions, Free, ModelKind, read_measured_voltages, synth};
+use stiction_fit::{FitOptions, read_measured_voltages, synth};
 use stiction_scenario::Scenario;
 
 use crate::Error;
@@ -13,6 +13,8 @@ use crate::scenario_source::ScenarioSource;
 // The fit's types that a front end names or prints: the measured data and the report (what
 // `fit --json` prints).
 pub use stiction_fit::{Dataset, Estimate, FitReport, StructureFitReport};
+/// A contact model to fit and the free parameters besides s (the request's typed lists).
+pub use stiction_fit::{Free, ModelKind};
 
 /// Where the measured voltages come from.
 #[derive(Clone, Debug)]
@@ -35,10 +37,11 @@ pub enum FitData {
 pub struct FitRequest {
     /// The measured voltages.
     pub data: FitData,
-    /// Models to fit, comma-separated: discrete-nN, gw-dmt, explicit, explicit-ensemble.
-    pub models: String,
-    /// Free parameters: s, optionally R and F_spring ("s,R,F_spring").
-    pub free: String,
+    /// Models to fit (discrete-nN, gw-dmt, explicit, explicit-ensemble), parsed by the front end
+    /// from its own text with [`parse_models`], each once, at least one.
+    pub models: Vec<ModelKind>,
+    /// Free parameters besides s (R, F_spring), parsed with [`parse_free`].
+    pub free: Free,
     /// Surface realisations of the explicit ensemble (its band), 1 to
     /// `stiction_fit::models::MAX_SURFACES`.
     pub surfaces: usize,
@@ -48,15 +51,34 @@ pub struct FitRequest {
     pub seed: u64,
 }
 
-/// The default models of a fit.
+/// The default models of a fit, as a front end writes them (`ModelKind::defaults()`).
 pub const DEFAULT_MODELS: &str = "discrete-n1,discrete-n2,discrete-n3,gw-dmt,explicit,explicit-ensemble";
 
+/// A front end's comma-separated model list ("discrete-n3,gw-dmt"); `name` (the flag
+/// `--models`, the argument `models`) names it in errors.
+pub fn parse_models(text: &str, name: &str) -> Result<Vec<ModelKind>, String> {
+    ModelKind::parse_list(text, name).map_err(|e| e.to_string())
+}
+
+/// A front end's list of free parameters ("s,R,F_spring"; s always); `name` (the flag
+/// `--free`, the argument `free`) names it in errors.
+pub fn parse_free(text: &str, name: &str) -> Result<Free, String> {
+    Free::parse(text, name).map_err(|e| e.to_string())
+}
+
 impl FitRequest {
-    /// The fit's options (models and free parameters parsed).
+    /// The fit's options. The model list is checked here too (a request built without
+    /// [`parse_models`]): at least one model, none twice.
     pub fn options(&self) -> Result<FitOptions, Error> {
+        if self.models.is_empty() {
+            return Err("models: the list is empty".into());
+        }
+        if let Some((i, m)) = self.models.iter().enumerate().find(|(i, m)| self.models[..*i].contains(m)) {
+            return Err(format!("models[{i}]: `{}` is listed twice", m.name()).into());
+        }
         Ok(FitOptions {
-            models: ModelKind::parse_list(&self.models)?,
-            free: Free::parse(&self.free)?,
+            models: self.models.clone(),
+            free: self.free,
             surfaces: self.surfaces,
             calibration_draws: self.draws,
             seed: self.seed,
@@ -127,8 +149,8 @@ pub fn structure_fit(
     names: &dyn Fn(&str) -> String,
 ) -> Result<StructureFitReport, Error> {
     let odd: Vec<String> = [
-        ("models", req.models != DEFAULT_MODELS),
-        ("free", req.free != DEFAULT_FREE),
+        ("models", req.models != ModelKind::defaults()),
+        ("free", req.free != Free::default()),
         ("surfaces", req.surfaces != DEFAULT_SURFACES),
     ]
     .iter()
@@ -200,4 +222,28 @@ pub fn synthesize(
         seed,
     );
     Ok((synth::to_csv(&rows, &comment)?, rows.len()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn request(models: Vec<ModelKind>) -> FitRequest {
+        FitRequest { data: FitData::Scenario, models, free: Free::default(), surfaces: 1, draws: 1, seed: 1 }
+    }
+
+    #[test]
+    fn model_and_free_lists_are_parsed_naming_the_front_ends_field() {
+        assert_eq!(parse_models(DEFAULT_MODELS, "--models").unwrap(), ModelKind::defaults());
+        let e = parse_models("gw-dmt,bogus", "models").unwrap_err();
+        assert!(e.starts_with("models: unknown model `bogus`"), "{e}");
+        assert_eq!(parse_models("gw,gw-dmt", "--models").unwrap_err(), "--models: `gw-dmt` is listed twice");
+        assert_eq!(parse_free("s,R", "free").unwrap(), Free { radius: true, spring: false });
+        assert!(parse_free("R", "--free").unwrap_err().starts_with("--free: the list must contain s"));
+        // A typed list built without the parser is checked by the engine.
+        assert!(request(vec![]).options().is_err());
+        let e = request(vec![ModelKind::Gw, ModelKind::Gw]).options().unwrap_err().to_string();
+        assert_eq!(e, "models[1]: `gw-dmt` is listed twice");
+        assert_eq!(request(ModelKind::defaults()).options().unwrap().models, ModelKind::defaults());
+    }
 }

@@ -38,7 +38,7 @@ fn fits(c: &mut Criterion) {
     }
     let opts = FitOptions {
         models: vec![ModelKind::Discrete(3)],
-        free: stiction_fit::Free::parse("s,R,F_spring").unwrap(),
+        free: stiction_fit::Free::parse("s,R,F_spring", "--free").unwrap(),
         ..FitOptions::default()
     };
     g.bench_function("discrete_n3_free_s_r_fspring", |b| {

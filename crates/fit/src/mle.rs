@@ -68,8 +68,9 @@ pub struct Free {
 }
 
 impl Free {
-    /// Parses `--free s[,R,F_spring]`.
-    pub fn parse(list: &str) -> Result<Free, FitError> {
+    /// Parses a list `s[,R,F_spring]`; `name` (the flag `--free`, the argument `free`) names
+    /// it in errors.
+    pub fn parse(list: &str, name: &str) -> Result<Free, FitError> {
         let mut f = Free::default();
         let mut has_s = false;
         for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
@@ -79,15 +80,15 @@ impl Free {
                 "F_spring" | "f_spring" => f.spring = true,
                 other => {
                     return Err(FitError::Setting(format!(
-                        "--free: unknown parameter `{other}`; expected s, R, F_spring (s is always free)"
+                        "{name}: unknown parameter `{other}`; expected s, R, F_spring (s is always free)"
                     )));
                 }
             }
         }
         if !has_s {
-            return Err(FitError::Setting(
-                "--free: the list must contain s (the shear strength is always fitted)".into(),
-            ));
+            return Err(FitError::Setting(format!(
+                "{name}: the list must contain s (the shear strength is always fitted)"
+            )));
         }
         Ok(f)
     }

@@ -49,8 +49,9 @@ impl ModelKind {
         }
     }
 
-    /// Parses a comma-separated list (`discrete-n1,discrete-n2,discrete-n3,gw-dmt,explicit,explicit-ensemble`).
-    pub fn parse_list(list: &str) -> Result<Vec<ModelKind>, FitError> {
+    /// Parses a comma-separated list (`discrete-n1,discrete-n2,discrete-n3,gw-dmt,explicit,explicit-ensemble`);
+    /// `name` (the flag `--models`, the argument `models`) names it in errors.
+    pub fn parse_list(list: &str, name: &str) -> Result<Vec<ModelKind>, FitError> {
         let mut out = Vec::new();
         for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
             let kind = match item {
@@ -61,18 +62,18 @@ impl ModelKind {
                     Some(n) if (1..=1000).contains(&n) => ModelKind::Discrete(n),
                     _ => {
                         return Err(FitError::Setting(format!(
-                            "--models: unknown model `{other}`; expected a comma-separated list of discrete-nN (N = 1..1000), gw-dmt, explicit, explicit-ensemble"
+                            "{name}: unknown model `{other}`; expected a comma-separated list of discrete-nN (N = 1..1000), gw-dmt, explicit, explicit-ensemble"
                         )));
                     }
                 },
             };
             if out.contains(&kind) {
-                return Err(FitError::Setting(format!("--models: `{item}` is listed twice")));
+                return Err(FitError::Setting(format!("{name}: `{item}` is listed twice")));
             }
             out.push(kind);
         }
         if out.is_empty() {
-            return Err(FitError::Setting("--models: the list is empty".into()));
+            return Err(FitError::Setting(format!("{name}: the list is empty")));
         }
         Ok(out)
     }

@@ -159,7 +159,7 @@ fn free_spring_force_is_recovered() {
     let ctx = ModelContext::new(&sc.0, &sc.2).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let rows = synth::from_model(&ctx, ModelKind::Discrete(3), 1.4e9, &volts(), 3, 0.2, &mut rng).unwrap();
-    let opts = FitOptions { free: Free::parse("s,F_spring").unwrap(), ..cheap(&[ModelKind::Discrete(3)]) };
+    let opts = FitOptions { free: Free::parse("s,F_spring", "--free").unwrap(), ..cheap(&[ModelKind::Discrete(3)]) };
     let r = fit_rows(&rows, &sc, &opts);
     let m = &r.models[0];
     let f = m.spring_force_n.as_ref().unwrap().value;

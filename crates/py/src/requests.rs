@@ -419,7 +419,7 @@ pub(crate) fn fit_json<'py>(
     draws: Option<usize>,
     seed: Option<u64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use stiction_engine::fit::{DEFAULT_MODELS, FitData, FitRequest};
+    use stiction_engine::fit::{FitData, FitRequest, Free, ModelKind, parse_free, parse_models};
     let source = PyScenario::source_of(scenario)?;
     let data = match (data_path, data_csv) {
         (Some(p), _) => FitData::File(p),
@@ -430,8 +430,14 @@ pub(crate) fn fit_json<'py>(
     };
     let req = FitRequest {
         data,
-        models: models.unwrap_or_else(|| DEFAULT_MODELS.into()),
-        free: free.unwrap_or_else(|| "s".into()),
+        models: match models {
+            Some(text) => parse_models(&text, "models").map_err(err)?,
+            None => ModelKind::defaults(),
+        },
+        free: match free {
+            Some(text) => parse_free(&text, "free").map_err(err)?,
+            None => Free::default(),
+        },
         surfaces: surfaces.unwrap_or(100),
         draws: draws.unwrap_or(4000),
         seed: seed.unwrap_or(1),

@@ -84,7 +84,7 @@ pub fn run(args: Args) -> CliResult {
         crate::output::check_output_flag("--synthesize", out)?;
         return synthesize(&args, &scenario, &base, out);
     }
-    let req = args.request();
+    let req = args.request()?;
     let data = fit::read_data(&req.data, &scenario, &base)?;
     // Check the output folder before the work, so a refusal comes at once.
     let outputs = match &args.out {
@@ -112,7 +112,7 @@ pub fn run(args: Args) -> CliResult {
 
 /// `fit` of a structure's measured thresholds: eq. 10 on the forces its parts imply.
 fn run_structure(args: &Args, scenario: &Scenario, json: &serde_json::Value) -> CliResult {
-    let req = args.request();
+    let req = args.request()?;
     let outputs = match &args.out {
         Some(dir) => Some(OutputSet::begin(dir, "fit", args.force)?),
         None => None,
@@ -228,15 +228,15 @@ fn structure_fit_chart(r: &fit::StructureFitReport) -> Chart {
 /// The measured-voltage file: DATA, else the scenario's `measured.voltages_csv`.
 impl Args {
     /// The engine's request of these flags.
-    pub fn request(&self) -> FitRequest {
-        FitRequest {
+    pub fn request(&self) -> Result<FitRequest, String> {
+        Ok(FitRequest {
             data: self.data.clone().map_or(FitData::Scenario, FitData::File),
-            models: self.models.clone(),
-            free: self.free.clone(),
+            models: fit::parse_models(&self.models, "--models")?,
+            free: fit::parse_free(&self.free, "--free")?,
             surfaces: self.surfaces,
             draws: self.draws,
             seed: self.seed,
-        }
+        })
     }
 }
 
