@@ -13,7 +13,7 @@ use stiction_study::log::LogWriter;
 pub use stiction_meter::SlipPath;
 pub use stiction_study::log::LOG_NAME;
 pub use stiction_study::sensitivity::InputShare;
-pub use stiction_study::summary::{FigureData, REASONS, digits};
+pub use stiction_study::summary::{FigureData, REASONS, digits, usable_se};
 pub use stiction_study::{Calibration, MAX_THREADS, Spread, Study, StudyConfig, StudySummary};
 
 use crate::Error;

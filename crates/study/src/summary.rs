@@ -119,11 +119,18 @@ pub fn quantile_interval(sorted: &[f64], p: f64) -> Option<[f64; 2]> {
     (l >= 1.0 && u <= n).then(|| [sorted[l as usize - 1], sorted[u as usize - 1]])
 }
 
+/// The standard error `se` of `value` if it says anything: finite and above rounding level
+/// (1e-12 |value|; samples that agree to their last bits, as a deterministic model gives, have no
+/// spread to show).
+pub fn usable_se(value: f64, se: Option<f64>) -> Option<f64> {
+    se.filter(|s| s.is_finite() && *s > 1e-12 * value.abs())
+}
+
 /// `value` with only the digits its standard error `se` supports: rounded to the decimal of the
 /// standard error's leading digit (0.7712 with se 0.0055 -> "0.771"), in plain notation. Without a
-/// usable standard error, 3 significant digits.
+/// usable standard error ([`usable_se`]), 3 significant digits.
 pub fn digits(value: f64, se: Option<f64>) -> String {
-    match se.filter(|s| s.is_finite() && *s > 0.0) {
+    match usable_se(value, se) {
         Some(s) if value.is_finite() => {
             let decimals = (-s.log10().floor()).max(0.0) as usize;
             let decimals = decimals.min(15);
@@ -434,6 +441,11 @@ mod tests {
         assert_eq!(digits(0.7712, Some(0.03)), "0.77");
         assert_eq!(digits(1234.5, Some(20.0)), "1230");
         assert_eq!(digits(0.7712, None), "0.771");
+        // a standard error at rounding level (identical samples) is none: 3 significant digits,
+        // not the 15 decimals a 1e-22 se would ask for
+        assert_eq!(digits(6.046498460797e-7 * 1e6, Some(1e-19)), "0.605");
+        assert_eq!(usable_se(0.605, Some(1e-19)), None);
+        assert_eq!(usable_se(0.0, Some(1e-19)), Some(1e-19));
     }
 
     /// Coverage of the order-statistic intervals of the 5th, 50th and 95th percentiles of U(0, 1)

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressStyle};
 use stiction_engine::design::RankBy;
 use stiction_engine::scenario::ReferenceSpec;
-use stiction_engine::study::{FigureData, InputShare, LOG_NAME, REASONS, Spread, StudySummary, digits};
+use stiction_engine::study::{FigureData, InputShare, LOG_NAME, REASONS, Spread, StudySummary, digits, usable_se};
 use stiction_engine::study_folder::FolderHooks;
 use stiction_plot::{Chart, Series};
 
@@ -280,9 +280,8 @@ pub(crate) fn report(summary: &StudySummary, json: bool, scenario: &Path) -> Cli
         Some(s) => {
             let q_se = |ci: Option<[f64; 2]>| ci.map(|[a, b]| (b - a) * scale / 3.92);
             let q = |v: f64, ci: Option<[f64; 2]>| digits(v * scale, q_se(ci));
-            // A standard error at rounding level (samples that agree to the last bits, as a
-            // deterministic model gives) is no spread: shown as 0, the mean to 3 digits.
-            let se = Some(s.mean_se * scale).filter(|x| *x > 1e-12 * (s.mean * scale).abs());
+            // A standard error at rounding level is no spread: "+/- 0", the mean to 3 digits.
+            let se = usable_se(s.mean * scale, Some(s.mean_se * scale));
             crate::outln!(
                 "  {name:<28} mean {} +/- {}{unit} (Monte Carlo s.e.) sd {}{unit}  median {}{unit}  5-95 %: {}..{}{unit}  (n = {})",
                 digits(s.mean * scale, se),
