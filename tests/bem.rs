@@ -537,3 +537,117 @@ fn bem_hardness_cap_finite_patch_and_tilt() {
     assert!(num(p, "tilt_x_rad").is_finite() && num(p, "tilt_y_rad").is_finite() && num(p, "pose_solves") >= 1.0);
     assert!((num(p, "mean_pressure_pa") / 10e6 - 1.0).abs() < 1e-9);
 }
+
+/// `contact --model bem` reports the shoe it solves: the finite patch by default (or the periodic
+/// cell), the hardness cap with its plastic area, the tilting face with its tilts. With the cap the
+/// net traction lies within [-sigma0, H] (the hardness caps what the wall carries, the Dugdale
+/// tension adds sigma0 to the contact pressure in the zone), so the largest contact pressure is at
+/// most H + sigma0 (H without adhesion), and the plastic area lies within the real area. A load
+/// where the tilting shoe finds no balance is null with its reason and the sweep goes on.
+#[test]
+fn contact_model_bem_reports_its_shoe_cap_and_tilt() {
+    let contact = |extra: &[&str]| {
+        let mut a = vec!["contact", "scenarios/tas2000-bem.json", "--model", "bem"];
+        a.extend_from_slice(extra);
+        stiction(&a)
+    };
+    let text = |o: std::process::Output| {
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let default = text(contact(&["--load", "2uN"]));
+    assert!(default.contains("a finite patch on the wall, flat shoe"), "{default}");
+    let cell = text(contact(&["--load", "2uN", "--set", "contact.bem.boundary=\"periodic\""]));
+    assert!(cell.contains("one periodic cell"), "{cell}");
+    let h = 0.2e9;
+    for law in [None, Some("contact.law=\"hertz\"")] {
+        let mut args = vec!["--sweep", "1uN:3uN:2", "--set", "contact.bem.plastic=true"];
+        args.extend(["--set", "material.hardness=\"0.2 GPa\""]);
+        if let Some(l) = law {
+            args.extend(["--set", l]);
+        }
+        let t = text(contact(&args));
+        assert!(t.contains("capped at the hardness 200 MPa") && t.contains("A_p (um^2)"), "{t}");
+        args.push("--json");
+        let out = contact(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(num(&v, "hardness_pa"), h);
+        let sigma0 = v["dugdale"].get("stress_pa").and_then(|s| s.as_f64()).unwrap_or(0.0);
+        assert_eq!(sigma0 == 0.0, law.is_some());
+        for p in v["points"].as_array().unwrap() {
+            let (a, a_p) = (num(p, "real_area_m2"), num(p, "plastic_area_m2"));
+            assert!(a_p > 0.0 && a_p <= a, "{p}");
+            assert!(num(p, "max_pressure_pa") <= (h + sigma0) * (1.0 + 1e-9), "{p}");
+        }
+    }
+    let elastic =
+        stiction_json(&["contact", "scenarios/tas2000-bem.json", "--model", "bem", "--load", "2uN", "--json"]);
+    assert!(elastic.get("hardness_pa").is_none() && elastic["points"][0].get("plastic_area_m2").is_none());
+    // The tilting face: each load has its tilts, or no state and a reason (never both).
+    let v = stiction_json(&[
+        "contact",
+        "scenarios/tas2000-bem.json",
+        "--model",
+        "bem",
+        "--sweep",
+        "1uN:4uN:4",
+        "--set",
+        "contact.bem.tilt=true",
+        "--json",
+    ]);
+    assert_eq!(v["tilt"], true);
+    let pts = v["points"].as_array().unwrap();
+    assert_eq!(pts.len(), 4);
+    let mut solved = 0;
+    for p in pts {
+        match p.get("error") {
+            Some(e) => {
+                assert!(e.as_str().unwrap().contains("tilting shoe"), "{p}");
+                assert!(p.get("real_area_m2").is_none() && p.get("tilt_x_rad").is_none(), "{p}");
+            }
+            None => {
+                solved += 1;
+                assert!(num(p, "tilt_x_rad").abs() < 0.05 && num(p, "tilt_y_rad").abs() < 0.05, "{p}");
+                assert!(num(p, "real_area_m2") > 0.0, "{p}");
+            }
+        }
+    }
+    assert!(solved >= 2, "{v}");
+}
+
+/// `run`'s results.csv carries the plastic area of the hardness cap, the same numbers as
+/// results.json (empty for an elastic point).
+#[test]
+fn run_results_csv_has_the_plastic_area() {
+    let dir = temp_dir("bem-plastic-run");
+    let out = stiction(&[
+        "run",
+        "scenarios/tas2000-bem.json",
+        "--set",
+        "contact.bem.plastic=true",
+        "--set",
+        "material.hardness=\"0.2 GPa\"",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
+    let csv = std::fs::read_to_string(dir.join("results.csv")).unwrap();
+    let mut lines = csv.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = head.iter().position(|c| *c == "plastic_area_m2").expect("plastic_area_m2 column");
+    let mut plastic = 0;
+    for (line, p) in lines.zip(json["points"].as_array().unwrap()) {
+        let cell = line.split(',').nth(col).unwrap();
+        match p.get("plastic_area_m2").and_then(|v| v.as_f64()) {
+            Some(a) => {
+                assert_eq!(cell.parse::<f64>().unwrap(), a, "{line}");
+                plastic += usize::from(a > 0.0);
+            }
+            None => assert_eq!(cell, "", "{line}"),
+        }
+    }
+    assert!(plastic > 0, "{csv}");
+}

@@ -1,13 +1,14 @@
 //! An adhesive approach and retraction under mean-gap control on a self-affine surface (the case
 //! of `scripts/tamaas-adhesion.py`), timed, with a checksum of every state's bytes:
 //!
-//! `cargo run --release -p stiction-bem --example adhesive_path -- N SLOPE POINTS [TOL] [W] [HEIGHTS.bin] [RANGE] [solve|path]`
+//! `cargo run --release -p stiction-bem --example adhesive_path -- N SLOPE POINTS [TOL] [W] [HEIGHTS.bin] [RANGE] [solve|path|approach|approach-path]`
 //!
 //! `N` grid points a side (cell 100 um), `SLOPE` the spectral rms slope, `POINTS` mean gaps each
 //! way, `TOL` the tolerance (1e-6), `W` the work of adhesion (12 J/m^2; E* 1 GPa), `RANGE` the
 //! Dugdale range (0.3e-6 m). With `HEIGHTS.bin` (`-` for none) the heights are written there
 //! (f64 little-endian, row-major) for the Tamaas side. One line of JSON per state on stdout; the
 //! time and checksum on stderr. `path`: only the imposed mean gaps, one line each, no solve.
+//! `approach` and `approach-path`: the same for the loading branch alone (no retraction).
 
 use std::io::Write;
 use std::time::Instant;
@@ -48,7 +49,9 @@ fn main() {
     let w = arg(5, 12.0);
     let (g, h) = surface(n, slope);
     let range_m = arg(7, RANGE_M);
-    let only_path = a.get(8).is_some_and(|m| m == "path");
+    let mode = a.get(8).map(String::as_str).unwrap_or("solve");
+    let only_path = mode.ends_with("path");
+    let with_retraction = !mode.starts_with("approach");
     if let Some(path) = a.get(6).filter(|p| p.as_str() != "-") {
         let bytes: Vec<u8> = h.iter().flat_map(|v| v.to_le_bytes()).collect();
         std::fs::write(path, bytes).expect("write heights");
@@ -68,7 +71,9 @@ fn main() {
     let mut iterations = 0;
     let out = std::io::stdout();
     let mut out = out.lock();
-    let path = gaps.iter().map(|&g| ("approach", g)).chain(gaps.iter().rev().skip(1).map(|&g| ("retraction", g)));
+    let back = if with_retraction { points.saturating_sub(1) } else { 0 };
+    let path =
+        gaps.iter().map(|&g| ("approach", g)).chain(gaps.iter().rev().skip(1).take(back).map(|&g| ("retraction", g)));
     if only_path {
         for (branch, gap) in path {
             writeln!(out, "{{\"branch\":\"{branch}\",\"mean_gap_m\":{gap:e}}}").expect("stdout");

@@ -27,7 +27,9 @@
 //! (or after [`MAX_POSE_SOLVES`] solves) a pose whose centre of pressure lies within one pixel of
 //! the clamp point (`|M|/F <= max(dx, dy)`) is returned as the balance the grid resolves, and
 //! anything further is a non-convergence error. Tilts are small angles; above [`MAX_TILT_RAD`]
-//! the shoe is said to tip over (as in the explicit solver).
+//! the shoe is said to tip over (as in the explicit solver). The iteration starts from the
+//! previous pose, then from the flat face, then (adhesive) from the dry balance with the Dugdale
+//! stress switched on in steps; the first balance found is returned.
 
 use crate::BemError;
 use crate::grid::block_sum;
@@ -178,7 +180,34 @@ impl BemSolver {
     ) -> Result<TiltedShoe, BemError> {
         crate::error::check_positive("target_pa", target_pa, "a finite mean pressure > 0 (Pa)")?;
         let base = self.heights_m().to_vec();
-        let result = self.tilting_inner(&base, target_pa, law, opts, warm);
+        // The balance is looked for from the previous pose, then (if that fails) from the flat
+        // face, then, for an adhesive shoe, from the dry shoe's balance at the same load with the
+        // adhesion switched on in steps (a quarter, a half, all of the Dugdale stress, each pose
+        // continued from the last): from a flat face the cohesive zone of a first summit can pull
+        // the face over by whole pixels from pose to pose, while the dry balance puts the face on
+        // the summits that carry the load. The first balance found is returned.
+        let mut result = self.tilting_inner(&base, target_pa, law, opts, warm);
+        if result.is_err() && warm.is_some() {
+            self.set_heights(&base)?;
+            result = self.tilting_inner(&base, target_pa, law, opts, None);
+        }
+        if let (Err(_), Some(l)) = (&result, law) {
+            self.set_heights(&base)?;
+            let mut start = self.tilting_inner(&base, target_pa, None, opts, None).ok();
+            for f in [0.25, 0.5] {
+                let weak = Dugdale { stress_pa: f * l.stress_pa, range_m: l.range_m };
+                self.set_heights(&base)?;
+                if let Ok(s) = self.tilting_inner(&base, target_pa, Some(&weak), opts, start.as_ref()) {
+                    start = Some(s);
+                }
+            }
+            if start.is_some() {
+                self.set_heights(&base)?;
+                if let Ok(s) = self.tilting_inner(&base, target_pa, law, opts, start.as_ref()) {
+                    result = Ok(s);
+                }
+            }
+        }
         self.set_heights(&base)?;
         result
     }

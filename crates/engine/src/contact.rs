@@ -162,11 +162,24 @@ pub fn contact_json(req: &ContactRequest, source: &ScenarioSource, names: &Names
     Ok(crate::json::finite_value(&contact(req, source, detail, names)?.output)?)
 }
 
-/// One load of the boundary-element model.
+/// One load of the boundary-element model: its state, or why the model found none.
 #[allow(missing_docs)]
 #[derive(serde::Serialize)]
 pub struct BemPoint {
     pub load_n: f64,
+    /// The contact state (absent when the model found no state at this load).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub state: Option<BemState>,
+    /// Why the model found no state at this load (e.g. a tilting shoe that does not balance);
+    /// the sweep goes on from the last state it found.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// The contact state of one load of the boundary-element model.
+#[allow(missing_docs)]
+#[derive(serde::Serialize)]
+pub struct BemState {
     pub real_area_m2: f64,
     pub contact_fraction: f64,
     pub patches: usize,
@@ -177,6 +190,15 @@ pub struct BemPoint {
     /// s A_r with the material's shear strength, N.
     pub friction_capacity_n: f64,
     pub max_pressure_pa: f64,
+    /// The shoe's tilts (dw/dx, dw/dy), rad: written when the shoe tilts (`contact.bem.tilt`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tilt_x_rad: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tilt_y_rad: Option<f64>,
+    /// With the hardness cap (`contact.bem.plastic`): the part of the real area at the hardness,
+    /// m^2 (within [0, real_area_m2]); absent for an elastic model.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plastic_area_m2: Option<f64>,
     pub iterations: usize,
 }
 
@@ -186,6 +208,13 @@ pub struct BemPoint {
 pub struct BemRun {
     pub model: &'static str,
     pub grid: stiction_bem::Grid,
+    /// The shoe face: a finite patch on the wall ("non_periodic") or one periodic cell.
+    pub boundary: stiction_bem::Boundary,
+    /// Whether the shoe tilts until the moments balance (`contact.bem.tilt`).
+    pub tilt: bool,
+    /// The hardness the contact pressure is capped at (`contact.bem.plastic`), Pa; absent: elastic.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hardness_pa: Option<f64>,
     /// Block factors (x, y) from the map's pixels to the grid.
     pub coarsening: (usize, usize),
     pub e_star_pa: f64,
@@ -228,28 +257,48 @@ pub fn bem_run(req: &ContactRequest, source: &ScenarioSource, names: &Names) -> 
         .into());
     }
     let grid = bem.grid();
-    let stress = bem.law().map_or(0.0, |l| l.stress_pa);
     let mut points = Vec::with_capacity(loads.len());
+    let shoe = bem.shoe();
     for &load in &loads {
-        let s = bem.solve(load)?;
-        let max_pressure_pa =
-            s.pressure_pa.iter().zip(&s.contact).filter(|(_, c)| **c).map(|(p, _)| p + stress).fold(0.0, f64::max);
+        let pose = match bem.solve_full(load) {
+            Ok(pose) => pose,
+            // A load without a state is null with its reason, as in the meter; the sweep goes on.
+            Err(stiction_meter::MeterError::Contact(why)) => {
+                points.push(BemPoint { load_n: load, state: None, error: Some(why) });
+                continue;
+            }
+            Err(e) => return Err(e.into()),
+        };
+        let state = bem.state_of(load, &pose);
+        // Patches are at most the grid's points.
+        let at = format!("a load of {}", stiction_units::format_quantity(load, Dimension::Force));
+        stiction_meter::invariants::check_state_at(&state, grid.area_m2(), grid.len() as f64, &at)?;
+        let s = &pose.0;
         points.push(BemPoint {
             load_n: s.load_n(&grid),
-            real_area_m2: s.contact_area_m2,
-            contact_fraction: s.contact_fraction,
-            patches: s.patches,
-            mean_gap_m: s.mean_gap_m,
-            adhesive_load_n: stress * s.cohesive_fraction * grid.area_m2(),
-            cohesive_fraction: s.cohesive_fraction,
-            friction_capacity_n: s.friction_n(material.shear_strength),
-            max_pressure_pa,
-            iterations: s.iterations,
+            state: Some(BemState {
+                real_area_m2: s.contact_area_m2,
+                contact_fraction: s.contact_fraction,
+                patches: s.patches,
+                mean_gap_m: s.mean_gap_m,
+                adhesive_load_n: state.adhesive_load_n,
+                cohesive_fraction: s.cohesive_fraction,
+                friction_capacity_n: s.friction_n(material.shear_strength),
+                max_pressure_pa: state.max_pressure_pa,
+                tilt_x_rad: shoe.tilting.then_some(state.tilt_x_rad),
+                tilt_y_rad: shoe.tilting.then_some(state.tilt_y_rad),
+                plastic_area_m2: state.plastic_area_m2,
+                iterations: s.iterations,
+            }),
+            error: None,
         });
     }
     Ok(BemRun {
         model: "bem",
         grid,
+        boundary: shoe.boundary,
+        tilt: shoe.tilting,
+        hardness_pa: shoe.hardness_pa,
         coarsening: bem.coarsening,
         e_star_pa: 0.75 / material.compliance_per_pa(),
         dugdale: bem.law(),

@@ -186,7 +186,7 @@ pub struct BemContact {
 }
 
 /// A solved state, the shoe's tilts (rad) and, with the hardness cap, the plastic area (m^2).
-type Pose = (stiction_bem::ContactSolution, (f64, f64), Option<f64>);
+pub type Pose = (stiction_bem::ContactSolution, (f64, f64), Option<f64>);
 
 /// The shoe of a [`BemContact`]: its Green's function and whether it tilts.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -281,8 +281,14 @@ impl BemContact {
         self.hardness_pa
     }
 
-    /// The solution, the tilts and, with the hardness cap, the plastic area `A_p` (m^2).
-    fn solve_full(&mut self, load_n: f64) -> Result<Pose, MeterError> {
+    /// The shoe: boundary, whether it tilts, the hardness cap.
+    pub fn shoe(&self) -> BemShoe {
+        BemShoe { boundary: self.solver.boundary(), tilting: self.tilting, hardness_pa: self.hardness_pa }
+    }
+
+    /// The solution, the tilts `(dw/dx, dw/dy)` (rad; zero for a flat shoe) and, with the hardness
+    /// cap, the plastic area `A_p` (m^2; None for an elastic model).
+    pub fn solve_full(&mut self, load_n: f64) -> Result<Pose, MeterError> {
         if !(load_n.is_finite() && load_n > 0.0) {
             return Err(MeterError::Contact(format!(
                 "bem: load {load_n:e} N: the loading branch needs a compressive load > 0 (below, the shoe is not in \
@@ -337,22 +343,29 @@ impl BemContact {
     /// area), contact patches as "contacts", adhesive load = the Dugdale tension over the cohesive
     /// zone (the contact pressure carries `L` plus it), largest contact pressure.
     pub fn state_at_load(&mut self, load_n: f64) -> Result<ContactState, MeterError> {
-        let (s, (tilt_x_rad, tilt_y_rad), plastic_area_m2) = self.solve_full(load_n)?;
+        let pose = self.solve_full(load_n)?;
+        Ok(self.state_of(load_n, &pose))
+    }
+
+    /// The contact state of a solved `pose` at external load `load_n` (N), as
+    /// [`Self::state_at_load`].
+    pub fn state_of(&self, load_n: f64, pose: &Pose) -> ContactState {
+        let (s, (tilt_x_rad, tilt_y_rad), plastic_area_m2) = pose;
         let stress = self.law.map_or(0.0, |l| l.stress_pa);
         // Net traction p = p_c - sigma0 in the zone: the contact pressure is p + sigma0 there.
         let max_pressure_pa =
             s.pressure_pa.iter().zip(&s.contact).filter(|(_, c)| **c).map(|(p, _)| p + stress).fold(0.0, f64::max);
         let adhesive_load_n = stress * s.cohesive_fraction * self.grid.area_m2();
-        Ok(ContactState {
+        ContactState {
             load_n,
             real_area_m2: s.contact_area_m2,
             contacts: s.patches as f64,
             adhesive_load_n,
             capillary_load_n: 0.0,
-            tilt_x_rad,
-            tilt_y_rad,
+            tilt_x_rad: *tilt_x_rad,
+            tilt_y_rad: *tilt_y_rad,
             max_pressure_pa,
-            plastic_area_m2,
-        })
+            plastic_area_m2: *plastic_area_m2,
+        }
     }
 }

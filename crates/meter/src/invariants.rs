@@ -27,17 +27,23 @@ pub const AREA_INPUTS: &str = "surface.summit_radius, surface.summit_density, su
      material.compliance (or youngs_modulus), material.work_of_adhesion, environment.relative_humidity and the clamp \
      load (actuators.clamp, meter.clamp_voltages)";
 
-fn broken(what: String, v_clamp: f64) -> MeterError {
+fn broken(what: String, at: &str) -> MeterError {
     MeterError::Invariant(format!(
-        "the contact model's result at V_clamp = {} V breaks a physical invariant: {what}; the inputs lie outside \
-         what the model describes (check {AREA_INPUTS})",
-        stiction_scenario::domain::short(v_clamp)
+        "the contact model's result at {at} breaks a physical invariant: {what}; the inputs lie outside what the \
+         model describes (check {AREA_INPUTS})"
     ))
 }
 
 /// Checks a contact state against the invariants of the module documentation; `apparent_area_m2`
-/// is A_a, `summits` the number of summits the model holds.
+/// is A_a, `summits` the number of summits the model holds, `v_clamp` (V) the clamp voltage the
+/// error names.
 pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_clamp: f64) -> Result<(), MeterError> {
+    let at = format!("V_clamp = {} V", stiction_scenario::domain::short(v_clamp));
+    check_state_at(state, apparent_area_m2, summits, &at)
+}
+
+/// As [`check_state`], the error naming the point as `at` (e.g. "a load of 1e-6 N").
+pub fn check_state_at(state: &ContactState, apparent_area_m2: f64, summits: f64, at: &str) -> Result<(), MeterError> {
     let short = stiction_scenario::domain::short;
     let values = [
         ("real area", state.real_area_m2),
@@ -49,7 +55,7 @@ pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_
         ("tilt", state.tilt_y_rad),
     ];
     if let Some((name, v)) = values.iter().find(|(_, v)| !v.is_finite()) {
-        return Err(broken(format!("the {name} is {v}, not a finite number"), v_clamp));
+        return Err(broken(format!("the {name} is {v}, not a finite number"), at));
     }
     if state.real_area_m2 < 0.0 || state.real_area_m2 > apparent_area_m2 * (1.0 + RELATIVE_SLACK) {
         return Err(broken(
@@ -59,13 +65,13 @@ pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_
                 short(state.real_area_m2 / apparent_area_m2),
                 short(apparent_area_m2)
             ),
-            v_clamp,
+            at,
         ));
     }
     if state.contacts < 0.0 || state.contacts > summits * (1.0 + RELATIVE_SLACK) {
         return Err(broken(
             format!("{} summits in contact of the {} the surface holds", short(state.contacts), short(summits)),
-            v_clamp,
+            at,
         ));
     }
     let scale = state.load_n.abs().max(state.adhesive_load_n.abs()) * RELATIVE_SLACK;
@@ -78,7 +84,7 @@ pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_
                 short(state.load_n),
                 short(state.adhesive_load_n)
             ),
-            v_clamp,
+            at,
         ));
     }
     if state.capillary_load_n < -scale || state.capillary_load_n > state.adhesive_load_n + scale {
@@ -88,7 +94,7 @@ pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_
                 short(state.capillary_load_n),
                 short(state.adhesive_load_n)
             ),
-            v_clamp,
+            at,
         ));
     }
     if let Some(a_p) = state.plastic_area_m2
@@ -101,11 +107,11 @@ pub fn check_state(state: &ContactState, apparent_area_m2: f64, summits: f64, v_
                 short(a_p),
                 short(state.real_area_m2)
             ),
-            v_clamp,
+            at,
         ));
     }
     if state.max_pressure_pa < 0.0 {
-        return Err(broken(format!("a largest pressure of {} Pa", short(state.max_pressure_pa)), v_clamp));
+        return Err(broken(format!("a largest pressure of {} Pa", short(state.max_pressure_pa)), at));
     }
     Ok(())
 }

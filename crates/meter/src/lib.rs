@@ -25,7 +25,7 @@ pub mod measured;
 pub mod slip;
 pub mod structure;
 pub mod structure_measured;
-pub use contact_model::{BemContact, BemShoe, ContactModel, ContactState};
+pub use contact_model::{BemContact, BemShoe, ContactModel, ContactState, Pose};
 pub use error::MeterError;
 pub use slip::SlipPath;
 use stiction_contact::explicit;

@@ -244,33 +244,44 @@ fn rows(eq: &Equilibrium, hardness: f64) -> Vec<(&'static str, String)> {
 /// branch).
 fn print_bem(out: &BemRun) {
     let grid = out.grid;
+    let face = match out.boundary {
+        stiction_engine::bem::Boundary::Periodic => "one periodic cell",
+        stiction_engine::bem::Boundary::NonPeriodic => "a finite patch on the wall",
+    };
     crate::outln!(
-        "Boundary-element contact on the shoe patch: {} x {} points of {:.4} nm x {:.4} nm (periodic cell = the patch), {}",
+        "Boundary-element contact on the shoe patch: {} x {} points of {:.4} nm x {:.4} nm ({face}{}), {}{}",
         grid.nx,
         grid.ny,
         grid.dx_m * 1e9,
         grid.dy_m * 1e9,
+        if out.tilt { ", tilting shoe" } else { ", flat shoe" },
         out.dugdale.map_or("no adhesion".into(), |l| format!(
             "Dugdale adhesion {} over {} (loading branch)",
             q(l.stress_pa, Dimension::Pressure),
             q(l.range_m, Dimension::Length)
-        ))
+        )),
+        out.hardness_pa
+            .map_or(String::new(), |h| format!(", pressure capped at the hardness {}", q(h, Dimension::Pressure)))
     );
-    crate::outln!(
+    let mut head = format!(
         "  {:>10} {:>12} {:>10} {:>8} {:>12} {:>11} {:>11} {:>9}",
-        "L (uN)",
-        "A_r (um^2)",
-        "A_r/A_0",
-        "patches",
-        "gap (nm)",
-        "F_adh (uN)",
-        "F_cap (uN)",
-        "q0 (GPa)"
+        "L (uN)", "A_r (um^2)", "A_r/A_0", "patches", "gap (nm)", "F_adh (uN)", "F_cap (uN)", "q0 (GPa)"
     );
-    for p in &out.points {
-        crate::outln!(
+    if out.tilt {
+        head += &format!(" {:>13} {:>13}", "tilt x (urad)", "tilt y (urad)");
+    }
+    if out.hardness_pa.is_some() {
+        head += &format!(" {:>12}", "A_p (um^2)");
+    }
+    crate::outln!("{head}");
+    for point in &out.points {
+        let Some(p) = &point.state else {
+            crate::outln!("  {:>10.4} no state: {}", point.load_n * 1e6, point.error.as_deref().unwrap_or("-"));
+            continue;
+        };
+        let mut line = format!(
             "  {:>10.4} {:>12.5e} {:>10.3e} {:>8} {:>12.4} {:>11.4} {:>11.4} {:>9.3}",
-            p.load_n * 1e6,
+            point.load_n * 1e6,
             p.real_area_m2 * 1e12,
             p.contact_fraction,
             p.patches,
@@ -279,5 +290,12 @@ fn print_bem(out: &BemRun) {
             p.friction_capacity_n * 1e6,
             p.max_pressure_pa * 1e-9
         );
+        if let (Some(x), Some(y)) = (p.tilt_x_rad, p.tilt_y_rad) {
+            line += &format!(" {:>13.4} {:>13.4}", x * 1e6, y * 1e6);
+        }
+        if let Some(a_p) = p.plastic_area_m2 {
+            line += &format!(" {:>12.5e}", a_p * 1e12);
+        }
+        crate::outln!("{line}");
     }
 }
