@@ -41,9 +41,11 @@ use crate::grid::{Grid, MAX_POINTS, SUM_BLOCK};
 pub const MAX_POINTS_NON_PERIODIC: usize = MAX_POINTS / 4;
 
 /// Bytes per grid point that the padded operator adds to [`crate::BYTES_PER_POINT`]: the padded
-/// real work field (4 points x 8 bytes), the two padded complex half spectra (2 x 2 x 16 bytes)
-/// and the real multiplier (2 x 8 bytes) = 112 bytes per point of the patch.
-pub const PADDED_BYTES_PER_POINT: usize = 112;
+/// real work field (4 points x 8 bytes), the two padded complex half spectra (2 x 2 x 16 bytes),
+/// the real multiplier (2 x 8 bytes) and the real-space influence coefficients at the patch's
+/// offsets (8 bytes, for the solves on a set of points, [`crate::restricted`]) = 120 bytes per
+/// point of the patch.
+pub const PADDED_BYTES_PER_POINT: usize = 120;
 
 /// Which Green's function a [`crate::HalfSpace`] uses (scenario `contact.bem.boundary`:
 /// "non_periodic" or "periodic").
@@ -82,6 +84,10 @@ pub(crate) struct Padded {
     rows: Vec<Complex<f64>>,
     spec: Vec<Complex<f64>>,
     work: Vec<f64>,
+    /// The influence coefficients `K(i dx, j dy)` (m/Pa) at the offsets `0 <= i < nx`,
+    /// `0 <= j < ny` (row-major, `j nx + i`); `K` is even in both, so this is every offset
+    /// between two points of the patch.
+    table: Vec<f64>,
 }
 
 impl std::fmt::Debug for Padded {
@@ -107,6 +113,7 @@ impl Padded {
                 *k = c * love_coefficient(offset(i, nx) * grid.dx_m, y, a, b);
             }
         });
+        let table: Vec<f64> = (0..ny).flat_map(|j| kernel[j * mx..j * mx + nx].iter().copied()).collect();
         let n = fft.spectrum_len();
         let mut rows = vec![Complex::default(); n];
         let mut spec = vec![Complex::default(); n];
@@ -115,7 +122,12 @@ impl Padded {
         // rounding); the inverse transform is unnormalised, hence 1/(4 nx ny).
         let norm = 1.0 / (mx * my) as f64;
         let multiplier = spec.iter().map(|s| s.re * norm).collect();
-        Padded { nx, ny, fft, multiplier, rows, spec, work: vec![0.0; mx * my] }
+        Padded { nx, ny, fft, multiplier, rows, spec, work: vec![0.0; mx * my], table }
+    }
+
+    /// The influence coefficient of the offset `(di, dj)` pixels (m/Pa), `|di| < nx`, `|dj| < ny`.
+    pub(crate) fn table(&self) -> &[f64] {
+        &self.table
     }
 
     /// `out = K[input]` on the patch: the traction is padded with zeros, convolved, and the

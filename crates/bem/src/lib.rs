@@ -66,6 +66,7 @@ mod grid;
 pub mod loading;
 pub mod patches;
 mod plastic;
+pub mod restricted;
 pub mod shoe;
 mod solver;
 pub mod spec;
@@ -77,5 +78,7 @@ pub use grid::{BYTES_PER_POINT, Grid, MAX_POINTS};
 pub use loading::LoadingPath;
 pub use plastic::PlasticSolution;
 pub use shoe::TiltedShoe;
-pub use solver::{BemSolver, ContactSolution, Dugdale, HalfSpace, MAX_SEPARATION_STEPS, Separation, SolverOptions};
+pub use solver::{
+    BemSolver, ContactSolution, Dugdale, HalfSpace, MAX_SEPARATION_STEPS, Restriction, Separation, SolverOptions,
+};
 pub use spec::BemSpec;

@@ -87,6 +87,14 @@ impl BemSolver {
         crate::error::check_positive("target_pa", target_pa, "a finite mean pressure > 0 (Pa)")?;
         crate::error::check_positive("stress_pa", law.stress_pa, "a finite Dugdale stress > 0 (Pa)")?;
         crate::error::check_positive("range_m", law.range_m, "a finite range > 0 (m)")?;
+        opts.validate()?;
+        let n = self.heights_m().len();
+        let warm = warm.filter(|w| w.gap_m.len() == n && w.mean_pressure_pa <= target_pa * (1.0 + SAME_LOAD_SLACK));
+        // On the finite patch: first on a set of candidate points, verified on the whole grid
+        // ([`crate::restricted`]); else the zone iteration below on the whole grid.
+        if let Some(s) = self.restricted_at_load(target_pa, Some(law), opts, warm) {
+            return Ok(s);
+        }
         let base = self.heights_m().to_vec();
         let result = self.adhesive_at_load_inner(&base, target_pa, law, opts, warm);
         // The heights were shifted by the zone's displacement: put them back whatever happened.

@@ -94,6 +94,12 @@ impl HalfSpace {
         self.e_star_pa
     }
 
+    /// The non-periodic influence coefficients at the patch's offsets ([`Padded::table`]); `None`
+    /// on the periodic cell.
+    pub(crate) fn influence_table(&self) -> Option<&[f64]> {
+        self.padded.as_ref().map(|p| p.table())
+    }
+
     pub(crate) fn apply(&mut self, op: Operator, input: &[f64], out: &mut [f64]) {
         if let (Some(p), Operator::Compliance) = (self.padded.as_mut(), op) {
             p.compliance(input, out);
@@ -164,11 +170,22 @@ pub struct SolverOptions {
     /// Hardness `H` (Pa) at which the compressive traction is capped (perfectly plastic pixels),
     /// read by [`BemSolver::plastic_at_load`]; `None` (the default): elastic.
     pub hardness_pa: Option<f64>,
+    /// Whether the load-controlled solves on the finite patch ([`BemSolver::solve_load`],
+    /// [`BemSolver::adhesive_at_load`] on [`Boundary::NonPeriodic`]) first solve on a set of
+    /// candidate points with the influence matrix and verify the result on the whole grid
+    /// ([`crate::restricted`]); default true. False: every solve iterates on the whole grid.
+    pub restricted: bool,
 }
 
 impl Default for SolverOptions {
     fn default() -> Self {
-        SolverOptions { tolerance: 1e-8, max_iterations: 10_000, max_zone_updates: 500, hardness_pa: None }
+        SolverOptions {
+            tolerance: 1e-8,
+            max_iterations: 10_000,
+            max_zone_updates: 500,
+            hardness_pa: None,
+            restricted: true,
+        }
     }
 }
 
@@ -270,6 +287,22 @@ pub struct ContactSolution {
     pub zone_updates: usize,
     /// Final complementarity residual.
     pub residual: f64,
+    /// The candidate set of a solve on a set of points, verified on the whole grid
+    /// ([`crate::restricted`]); `None` when the solve iterated on the whole grid.
+    #[serde(skip)]
+    pub restriction: Option<Restriction>,
+}
+
+/// How a solve on a set of candidate points went ([`crate::restricted`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Restriction {
+    /// Points in the first candidate set.
+    pub initial_points: usize,
+    /// Points in the final set (the one the returned state was solved and verified on).
+    pub points: usize,
+    /// Whole-grid checks of the complementarity conditions off the set (one per verified
+    /// solve, one more per check that found a point to add).
+    pub checks: usize,
 }
 
 /// Load `mean_pressure_pa * A0` and friction helpers.
@@ -297,10 +330,14 @@ pub struct BemSolver {
 }
 
 /// Output of the constrained conjugate gradient.
-pub(super) struct CgOut {
-    complementary: Vec<f64>,
-    iterations: usize,
-    residual: f64,
+pub(crate) struct CgOut {
+    /// The complementary field `r - mean_{x>0} r`.
+    pub(crate) complementary: Vec<f64>,
+    /// `mean_{x>0} r`: the Lagrange multiplier of the mean (minus the rigid approach under load
+    /// control).
+    pub(crate) multiplier: f64,
+    pub(crate) iterations: usize,
+    pub(crate) residual: f64,
 }
 
 impl BemSolver {
@@ -427,188 +464,9 @@ impl BemSolver {
         scale: f64,
         opts: &SolverOptions,
     ) -> Result<CgOut, BemError> {
-        in_pool(|| self.constrained_cg_on_worker(op, b, x, target, scale, opts))
-    }
-
-    /// [`Self::constrained_cg`] on a pool worker. Each iteration is seven parallel passes over
-    /// the grid besides its convolution's five (the direction is built in the convolution's first
-    /// pass); the block sums are those of [`block_sum`], so the bytes do not depend on the
-    /// thread count.
-    fn constrained_cg_on_worker(
-        &mut self,
-        op: Operator,
-        b: &[f64],
-        x: &mut [f64],
-        target: f64,
-        scale: f64,
-        opts: &SolverOptions,
-    ) -> Result<CgOut, BemError> {
         let n = x.len();
-        let scale = if scale > 0.0 { scale } else { 1.0 };
-        let mut r = vec![0.0; n];
-        let mut ax = vec![0.0; n];
-        let mut t = vec![0.0; n];
-        let mut w = vec![0.0; n];
-        let mut g_old = 1.0;
-        let mut delta = 0.0;
-        let mut residual = f64::INFINITY;
-        // `ax = A x` is updated from `A t` when a step moves no point on or off the bound (one
-        // convolution per iteration), and recomputed after a projection or release, every
-        // REFRESH iterations and before accepting convergence (two convolutions).
-        const REFRESH: usize = 50;
-        self.half.apply(op, x, &mut ax);
-        let mut exact = true;
-        let mut it = 0;
-        while it < opts.max_iterations {
-            if !exact && it % REFRESH == 0 {
-                self.half.apply(op, x, &mut ax);
-                exact = true;
-            }
-            // r = A x - b, and the count and sum of r on the active set S = {x > 0}.
-            let parts: Vec<(f64, f64)> = {
-                let (xs, ax) = (&*x, &ax);
-                r.par_chunks_mut(SUM_BLOCK)
-                    .enumerate()
-                    .map(|(k, rc)| {
-                        let o = k * SUM_BLOCK;
-                        for (j, r) in rc.iter_mut().enumerate() {
-                            *r = ax[o + j] - b[o + j];
-                        }
-                        (0..rc.len()).filter(|&j| xs[o + j] > 0.0).fold((0.0, 0.0), |a, j| (a.0 + 1.0, a.1 + rc[j]))
-                    })
-                    .collect()
-            };
-            let (ns, sum_rs) = parts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-            if ns == 0.0 {
-                return Err(BemError::NoConvergence {
-                    what: "constrained CG (empty active set)",
-                    iterations: it,
-                    residual,
-                    tolerance: opts.tolerance,
-                });
-            }
-            let rbar = sum_rs / ns;
-            // r -= mean_S r; the residual's two sums and the squared norm of r on S.
-            let parts: Vec<(f64, f64, f64)> = {
-                let xs = &*x;
-                r.par_chunks_mut(SUM_BLOCK)
-                    .enumerate()
-                    .map(|(k, rc)| {
-                        let o = k * SUM_BLOCK;
-                        rc.iter_mut().for_each(|r| *r -= rbar);
-                        let (sx, sv) = (0..rc.len()).fold((0.0, 0.0), |a, j| {
-                            let xi = xs[o + j];
-                            if xi > 0.0 {
-                                (a.0 + xi, a.1 + xi * rc[j].abs())
-                            } else {
-                                (a.0, a.1 + (-rc[j]).max(0.0) * target)
-                            }
-                        });
-                        let g: f64 = (0..rc.len()).filter(|&j| xs[o + j] > 0.0).map(|j| rc[j] * rc[j]).sum();
-                        (sx, sv, g)
-                    })
-                    .collect()
-            };
-            let (sum_x, sum_viol) = parts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
-            residual = sum_viol / (sum_x * scale);
-            if residual < opts.tolerance {
-                if exact {
-                    return Ok(CgOut { complementary: r, iterations: it, residual });
-                }
-                self.half.apply(op, x, &mut ax);
-                exact = true;
-                continue;
-            }
-            let g: f64 = parts.iter().map(|p| p.2).sum();
-            let beta = delta * g / g_old;
-            // t = r + beta t on S, 0 elsewhere, built in the convolution's first pass; w = A t.
-            {
-                let (xs, rs) = (&*x, &r);
-                self.half.apply_prepared(
-                    op,
-                    &mut t,
-                    |o, tc| {
-                        for (j, t) in tc.iter_mut().enumerate() {
-                            let i = o + j;
-                            *t = if xs[i] > 0.0 { rs[i] + beta * *t } else { 0.0 };
-                        }
-                    },
-                    &mut w,
-                );
-            }
-            g_old = g;
-            let sum_w = block_sum(n, |rg| rg.filter(|&i| x[i] > 0.0).map(|i| w[i]).sum());
-            let wbar = sum_w / ns;
-            let (num, den) = block_sum2(n, |rg| {
-                rg.filter(|&i| x[i] > 0.0).fold((0.0, 0.0), |a, i| (a.0 + r[i] * t[i], a.1 + (w[i] - wbar) * t[i]))
-            });
-            if den <= 0.0 || !den.is_finite() {
-                return Err(BemError::NoConvergence {
-                    what: "constrained CG (no descent)",
-                    iterations: it,
-                    residual,
-                    tolerance: opts.tolerance,
-                });
-            }
-            let tau = num / den;
-            // Step on the active set, project on x >= 0, and release the points that overlap
-            // (x = 0 with a negative complementary field); in the same pass, count the points
-            // the step put on the bound and sum x.
-            let parts: Vec<(usize, f64, f64)> = x
-                .par_chunks_mut(SUM_BLOCK)
-                .zip(t.par_chunks(SUM_BLOCK))
-                .zip(r.par_chunks(SUM_BLOCK))
-                .map(|((x, t), r)| {
-                    let mut k = 0;
-                    for ((x, t), r) in x.iter_mut().zip(t).zip(r) {
-                        if *x > 0.0 {
-                            *x = (*x - tau * t).max(0.0);
-                        } else if *r < 0.0 {
-                            *x = -tau * r;
-                            k += 1;
-                        }
-                    }
-                    let bound = x.iter().zip(t).filter(|&(x, t)| *t != 0.0 && *x == 0.0).count() as f64;
-                    let sum: f64 = x.iter().sum();
-                    (k, bound, sum)
-                })
-                .collect();
-            let n_overlap: usize = parts.iter().map(|p| p.0).sum();
-            delta = if n_overlap == 0 { 1.0 } else { 0.0 };
-            let n_bound: f64 = parts.iter().map(|p| p.1).sum();
-            let mean = parts.iter().map(|p| p.2).sum::<f64>() / n as f64;
-            if mean.is_nan() || mean <= 0.0 {
-                return Err(BemError::NoConvergence {
-                    what: "constrained CG (all points released)",
-                    iterations: it,
-                    residual,
-                    tolerance: opts.tolerance,
-                });
-            }
-            let f = target / mean;
-            it += 1;
-            if n_overlap == 0 && n_bound == 0.0 {
-                x.par_chunks_mut(SUM_BLOCK).zip(ax.par_chunks_mut(SUM_BLOCK)).zip(w.par_chunks(SUM_BLOCK)).for_each(
-                    |((x, a), w)| {
-                        for ((x, a), w) in x.iter_mut().zip(a).zip(w) {
-                            *x *= f;
-                            *a = f * (*a - tau * w);
-                        }
-                    },
-                );
-                exact = false;
-            } else {
-                x.par_chunks_mut(SUM_BLOCK).for_each(|x| x.iter_mut().for_each(|x| *x *= f));
-                self.half.apply(op, x, &mut ax);
-                exact = true;
-            }
-        }
-        Err(BemError::NoConvergence {
-            what: "constrained conjugate gradient",
-            iterations: opts.max_iterations,
-            residual,
-            tolerance: opts.tolerance,
-        })
+        let mut a = GridOperator { half: &mut self.half, op };
+        in_pool(|| constrained_cg(&mut a, b, x, target, n, scale, opts))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -622,6 +480,24 @@ impl BemSolver {
         zone_updates: usize,
         residual: f64,
     ) -> ContactSolution {
+        self.finish_with(pressure_pa, gap_m, contact, cohesive_points, iterations, zone_updates, residual, None, None)
+    }
+
+    /// [`Self::finish`] with the displacement `u = K[pressure_pa]` already computed (for the
+    /// elastic energy) and the candidate set of a restricted solve.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn finish_with(
+        &mut self,
+        pressure_pa: Vec<f64>,
+        gap_m: Vec<f64>,
+        contact: Vec<bool>,
+        cohesive_points: usize,
+        iterations: usize,
+        zone_updates: usize,
+        residual: f64,
+        displacement_m: Option<&[f64]>,
+        restriction: Option<Restriction>,
+    ) -> ContactSolution {
         let grid = self.half.grid;
         let n = grid.len() as f64;
         let mean_pressure_pa = block_sum(pressure_pa.len(), |r| pressure_pa[r].iter().sum()) / n;
@@ -632,7 +508,10 @@ impl BemSolver {
             Boundary::Periodic => patches::count_patches(&contact, grid.nx, grid.ny),
             Boundary::NonPeriodic => patches::count_patches_bounded(&contact, grid.nx, grid.ny),
         };
-        let elastic_energy_j_per_m2 = self.half.elastic_energy_j_per_m2(&pressure_pa);
+        let elastic_energy_j_per_m2 = match displacement_m {
+            Some(u) => 0.5 * block_sum(u.len(), |r| r.map(|i| pressure_pa[i] * u[i]).sum()) / u.len() as f64,
+            None => self.half.elastic_energy_j_per_m2(&pressure_pa),
+        };
         ContactSolution {
             pressure_pa,
             gap_m,
@@ -647,6 +526,7 @@ impl BemSolver {
             iterations,
             zone_updates,
             residual,
+            restriction,
         }
     }
 
@@ -660,6 +540,10 @@ impl BemSolver {
     ) -> Result<ContactSolution, BemError> {
         opts.validate()?;
         check_positive("mean_pressure_pa", mean_pressure_pa, "a finite mean pressure > 0 (Pa)")?;
+        // On the finite patch: first on a set of candidate points, verified on the whole grid.
+        if let Some(s) = self.restricted_at_load(mean_pressure_pa, None, opts, warm) {
+            return Ok(s);
+        }
         let n = self.heights.len();
         let mut p = match warm {
             Some(s) if s.pressure_pa.len() == n && s.mean_pressure_pa > 0.0 => {
@@ -848,6 +732,214 @@ impl BemSolver {
             tolerance: 0.0,
         })
     }
+}
+
+/// A linear operator of the constrained conjugate gradient ([`constrained_cg`]): the half-space's
+/// on the whole grid ([`GridOperator`]), or its influence matrix on a set of points
+/// ([`crate::restricted`]).
+pub(crate) trait CgOperator {
+    /// `out = A[input]`.
+    fn apply(&mut self, input: &[f64], out: &mut [f64]);
+    /// `out = A[field]` after `prepare(offset, block)` has rewritten `field` block by block.
+    fn apply_prepared<P: Fn(usize, &mut [f64]) + Sync>(&mut self, field: &mut [f64], prepare: P, out: &mut [f64]);
+}
+
+/// The half-space's operator `op` on the whole grid.
+pub(crate) struct GridOperator<'a> {
+    pub(crate) half: &'a mut HalfSpace,
+    pub(crate) op: Operator,
+}
+
+impl CgOperator for GridOperator<'_> {
+    fn apply(&mut self, input: &[f64], out: &mut [f64]) {
+        self.half.apply(self.op, input, out);
+    }
+    fn apply_prepared<P: Fn(usize, &mut [f64]) + Sync>(&mut self, field: &mut [f64], prepare: P, out: &mut [f64]) {
+        self.half.apply_prepared(self.op, field, prepare, out);
+    }
+}
+
+/// The constrained conjugate gradient on `x >= 0` with `sum(x)/n_mean = target` for the operator
+/// `a` and data `b` (residual `r = A x - b`, complementary field `r - mean_{x>0} r`); on the whole
+/// grid `n_mean` is the number of points, on a set of them ([`crate::restricted`]) the grid's, so
+/// that the mean and the residual are the whole grid's with `x = 0` off the set. Each iteration is
+/// seven parallel passes over `x` besides its convolution's five (the direction is built in the
+/// convolution's first pass); the block sums are those of [`block_sum`], so the bytes do not
+/// depend on the thread count. Call it on a pool worker ([`in_pool`]).
+pub(crate) fn constrained_cg<A: CgOperator>(
+    a: &mut A,
+    b: &[f64],
+    x: &mut [f64],
+    target: f64,
+    n_mean: usize,
+    scale: f64,
+    opts: &SolverOptions,
+) -> Result<CgOut, BemError> {
+    let n = x.len();
+    let scale = if scale > 0.0 { scale } else { 1.0 };
+    let mut r = vec![0.0; n];
+    let mut ax = vec![0.0; n];
+    let mut t = vec![0.0; n];
+    let mut w = vec![0.0; n];
+    let mut g_old = 1.0;
+    let mut delta = 0.0;
+    let mut residual = f64::INFINITY;
+    // `ax = A x` is updated from `A t` when a step moves no point on or off the bound (one
+    // convolution per iteration), and recomputed after a projection or release, every
+    // REFRESH iterations and before accepting convergence (two convolutions).
+    const REFRESH: usize = 50;
+    a.apply(x, &mut ax);
+    let mut exact = true;
+    let mut it = 0;
+    while it < opts.max_iterations {
+        if !exact && it % REFRESH == 0 {
+            a.apply(x, &mut ax);
+            exact = true;
+        }
+        // r = A x - b, and the count and sum of r on the active set S = {x > 0}.
+        let parts: Vec<(f64, f64)> = {
+            let (xs, ax) = (&*x, &ax);
+            r.par_chunks_mut(SUM_BLOCK)
+                .enumerate()
+                .map(|(k, rc)| {
+                    let o = k * SUM_BLOCK;
+                    for (j, r) in rc.iter_mut().enumerate() {
+                        *r = ax[o + j] - b[o + j];
+                    }
+                    (0..rc.len()).filter(|&j| xs[o + j] > 0.0).fold((0.0, 0.0), |a, j| (a.0 + 1.0, a.1 + rc[j]))
+                })
+                .collect()
+        };
+        let (ns, sum_rs) = parts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+        if ns == 0.0 {
+            return Err(BemError::NoConvergence {
+                what: "constrained CG (empty active set)",
+                iterations: it,
+                residual,
+                tolerance: opts.tolerance,
+            });
+        }
+        let rbar = sum_rs / ns;
+        // r -= mean_S r; the residual's two sums and the squared norm of r on S.
+        let parts: Vec<(f64, f64, f64)> = {
+            let xs = &*x;
+            r.par_chunks_mut(SUM_BLOCK)
+                .enumerate()
+                .map(|(k, rc)| {
+                    let o = k * SUM_BLOCK;
+                    rc.iter_mut().for_each(|r| *r -= rbar);
+                    let (sx, sv) = (0..rc.len()).fold((0.0, 0.0), |a, j| {
+                        let xi = xs[o + j];
+                        if xi > 0.0 {
+                            (a.0 + xi, a.1 + xi * rc[j].abs())
+                        } else {
+                            (a.0, a.1 + (-rc[j]).max(0.0) * target)
+                        }
+                    });
+                    let g: f64 = (0..rc.len()).filter(|&j| xs[o + j] > 0.0).map(|j| rc[j] * rc[j]).sum();
+                    (sx, sv, g)
+                })
+                .collect()
+        };
+        let (sum_x, sum_viol) = parts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+        residual = sum_viol / (sum_x * scale);
+        if residual < opts.tolerance {
+            if exact {
+                return Ok(CgOut { complementary: r, multiplier: rbar, iterations: it, residual });
+            }
+            a.apply(x, &mut ax);
+            exact = true;
+            continue;
+        }
+        let g: f64 = parts.iter().map(|p| p.2).sum();
+        let beta = delta * g / g_old;
+        // t = r + beta t on S, 0 elsewhere, built in the convolution's first pass; w = A t.
+        {
+            let (xs, rs) = (&*x, &r);
+            a.apply_prepared(
+                &mut t,
+                |o, tc| {
+                    for (j, t) in tc.iter_mut().enumerate() {
+                        let i = o + j;
+                        *t = if xs[i] > 0.0 { rs[i] + beta * *t } else { 0.0 };
+                    }
+                },
+                &mut w,
+            );
+        }
+        g_old = g;
+        let sum_w = block_sum(n, |rg| rg.filter(|&i| x[i] > 0.0).map(|i| w[i]).sum());
+        let wbar = sum_w / ns;
+        let (num, den) = block_sum2(n, |rg| {
+            rg.filter(|&i| x[i] > 0.0).fold((0.0, 0.0), |a, i| (a.0 + r[i] * t[i], a.1 + (w[i] - wbar) * t[i]))
+        });
+        if den <= 0.0 || !den.is_finite() {
+            return Err(BemError::NoConvergence {
+                what: "constrained CG (no descent)",
+                iterations: it,
+                residual,
+                tolerance: opts.tolerance,
+            });
+        }
+        let tau = num / den;
+        // Step on the active set, project on x >= 0, and release the points that overlap
+        // (x = 0 with a negative complementary field); in the same pass, count the points
+        // the step put on the bound and sum x.
+        let parts: Vec<(usize, f64, f64)> = x
+            .par_chunks_mut(SUM_BLOCK)
+            .zip(t.par_chunks(SUM_BLOCK))
+            .zip(r.par_chunks(SUM_BLOCK))
+            .map(|((x, t), r)| {
+                let mut k = 0;
+                for ((x, t), r) in x.iter_mut().zip(t).zip(r) {
+                    if *x > 0.0 {
+                        *x = (*x - tau * t).max(0.0);
+                    } else if *r < 0.0 {
+                        *x = -tau * r;
+                        k += 1;
+                    }
+                }
+                let bound = x.iter().zip(t).filter(|&(x, t)| *t != 0.0 && *x == 0.0).count() as f64;
+                let sum: f64 = x.iter().sum();
+                (k, bound, sum)
+            })
+            .collect();
+        let n_overlap: usize = parts.iter().map(|p| p.0).sum();
+        delta = if n_overlap == 0 { 1.0 } else { 0.0 };
+        let n_bound: f64 = parts.iter().map(|p| p.1).sum();
+        let mean = parts.iter().map(|p| p.2).sum::<f64>() / n_mean as f64;
+        if mean.is_nan() || mean <= 0.0 {
+            return Err(BemError::NoConvergence {
+                what: "constrained CG (all points released)",
+                iterations: it,
+                residual,
+                tolerance: opts.tolerance,
+            });
+        }
+        let f = target / mean;
+        it += 1;
+        if n_overlap == 0 && n_bound == 0.0 {
+            x.par_chunks_mut(SUM_BLOCK).zip(ax.par_chunks_mut(SUM_BLOCK)).zip(w.par_chunks(SUM_BLOCK)).for_each(
+                |((x, a), w)| {
+                    for ((x, a), w) in x.iter_mut().zip(a).zip(w) {
+                        *x *= f;
+                        *a = f * (*a - tau * w);
+                    }
+                },
+            );
+            exact = false;
+        } else {
+            x.par_chunks_mut(SUM_BLOCK).for_each(|x| x.iter_mut().for_each(|x| *x *= f));
+            a.apply(x, &mut ax);
+            exact = true;
+        }
+    }
+    Err(BemError::NoConvergence {
+        what: "constrained conjugate gradient",
+        iterations: opts.max_iterations,
+        residual,
+        tolerance: opts.tolerance,
+    })
 }
 
 /// Tolerance of the inexact solves between cohesive-zone updates for the caller's `tolerance`:
