@@ -188,8 +188,60 @@ impl Fft2 {
         self.multiply_and_back(m, rows, spec, out);
     }
 
+    /// The convolution of a field that vanishes outside its first `ny_in` rows and `nx_in`
+    /// columns, given there (`input`, row-major `ny_in x nx_in`), read back on the same sub-grid
+    /// (`out`, the same layout): the zero-padded operator of [`crate::green`]. Equal to
+    /// [`Fft2::convolve`] of the padded field read on the sub-grid; the rows that are zero are not
+    /// transformed forward, nor the rows outside the sub-grid back.
+    #[allow(clippy::too_many_arguments)]
+    pub fn convolve_sub(
+        &self,
+        input: &[f64],
+        nx_in: usize,
+        ny_in: usize,
+        m: &[f64],
+        rows: &mut [Complex<f64>],
+        spec: &mut [Complex<f64>],
+        out: &mut [f64],
+    ) {
+        let (nx, nxc) = (self.nx, self.nxc);
+        debug_assert!(nx_in <= nx && ny_in <= self.ny && input.len() == nx_in * ny_in && out.len() == input.len());
+        let r2c = &self.r2c;
+        let rb = Self::per_task(nx);
+        rows.par_chunks_mut(nxc * rb).enumerate().for_each_init(
+            || (r2c.make_scratch_vec(), vec![0.0; nx]),
+            |(scratch, row), (blk, rout)| {
+                for (k, b) in rout.chunks_mut(nxc).enumerate() {
+                    let j = blk * rb + k;
+                    if j < ny_in {
+                        row[..nx_in].copy_from_slice(&input[j * nx_in..(j + 1) * nx_in]);
+                        row[nx_in..].fill(0.0);
+                        r2c.process_with_scratch(row, b, scratch).expect("row r2c lengths");
+                    } else {
+                        b.fill(Complex::default());
+                    }
+                }
+            },
+        );
+        self.multiply_and_back_sub(m, rows, spec, out, nx_in, ny_in);
+    }
+
     /// The rest of a convolution from the rows' spectra in `rows`.
     fn multiply_and_back(&self, m: &[f64], rows: &mut [Complex<f64>], spec: &mut [Complex<f64>], out: &mut [f64]) {
+        self.multiply_and_back_sub(m, rows, spec, out, self.nx, self.ny);
+    }
+
+    /// [`Self::multiply_and_back`] read back on the first `ny_out` rows and `nx_out` columns
+    /// (`out` row-major `ny_out x nx_out`).
+    fn multiply_and_back_sub(
+        &self,
+        m: &[f64],
+        rows: &mut [Complex<f64>],
+        spec: &mut [Complex<f64>],
+        out: &mut [f64],
+        nx_out: usize,
+        ny_out: usize,
+    ) {
         let (nx, ny, nxc) = (self.nx, self.ny, self.nxc);
         debug_assert_eq!(m.len(), nxc * ny);
         transpose(rows, spec, ny, nxc);
@@ -211,20 +263,36 @@ impl Fft2 {
         let c2r = &self.c2r;
         let even = nx.is_multiple_of(2);
         let rb = Self::per_task(nx);
-        rows.par_chunks_mut(nxc * rb).zip(out.par_chunks_mut(nx * rb)).for_each_init(
-            || c2r.make_scratch_vec(),
-            |scratch, (rin, rout)| {
-                for (a, b) in rin.chunks_mut(nxc).zip(rout.chunks_mut(nx)) {
-                    // The multipliers are real and even, so these imaginary parts are rounding
-                    // noise of a real field; clear them as the real transform requires.
-                    a[0].im = 0.0;
-                    if even {
-                        a[nxc - 1].im = 0.0;
+        // The multipliers are real and even, so the imaginary parts cleared here are rounding
+        // noise of a real field; the real transform requires them to be zero.
+        if nx_out == nx {
+            rows[..nxc * ny_out].par_chunks_mut(nxc * rb).zip(out.par_chunks_mut(nx * rb)).for_each_init(
+                || c2r.make_scratch_vec(),
+                |scratch, (rin, rout)| {
+                    for (a, b) in rin.chunks_mut(nxc).zip(rout.chunks_mut(nx)) {
+                        a[0].im = 0.0;
+                        if even {
+                            a[nxc - 1].im = 0.0;
+                        }
+                        c2r.process_with_scratch(a, b, scratch).expect("row c2r lengths");
                     }
-                    c2r.process_with_scratch(a, b, scratch).expect("row c2r lengths");
-                }
-            },
-        );
+                },
+            );
+        } else {
+            rows[..nxc * ny_out].par_chunks_mut(nxc * rb).zip(out.par_chunks_mut(nx_out * rb)).for_each_init(
+                || (c2r.make_scratch_vec(), vec![0.0; nx]),
+                |(scratch, row), (rin, rout)| {
+                    for (a, b) in rin.chunks_mut(nxc).zip(rout.chunks_mut(nx_out)) {
+                        a[0].im = 0.0;
+                        if even {
+                            a[nxc - 1].im = 0.0;
+                        }
+                        c2r.process_with_scratch(a, row, scratch).expect("row c2r lengths");
+                        b.copy_from_slice(&row[..nx_out]);
+                    }
+                },
+            );
+        }
     }
 }
 

@@ -34,18 +34,19 @@ use rayon::prelude::*;
 use realfft::num_complex::Complex;
 
 use crate::fft::Fft2;
-use crate::grid::{Grid, MAX_POINTS, SUM_BLOCK};
+use std::sync::Arc;
+
+use crate::grid::{Grid, MAX_POINTS};
 
 /// Largest non-periodic grid, in points: a quarter of [`MAX_POINTS`], since the operator works on
 /// the grid padded to four times its size.
 pub const MAX_POINTS_NON_PERIODIC: usize = MAX_POINTS / 4;
 
-/// Bytes per grid point that the padded operator adds to [`crate::BYTES_PER_POINT`]: the padded
-/// real work field (4 points x 8 bytes), the two padded complex half spectra (2 x 2 x 16 bytes),
-/// the real multiplier (2 x 8 bytes) and the real-space influence coefficients at the patch's
-/// offsets (8 bytes, for the solves on a set of points, [`crate::restricted`]) = 120 bytes per
-/// point of the patch.
-pub const PADDED_BYTES_PER_POINT: usize = 120;
+/// Bytes per grid point that the padded operator adds to [`crate::BYTES_PER_POINT`]: the two
+/// padded complex half spectra (2 x 2 x 16 bytes), the real multiplier (2 x 8 bytes) and the
+/// real-space influence coefficients at the patch's offsets (8 bytes, for the solves on a set of
+/// points, [`crate::restricted`]) = 88 bytes per point of the patch.
+pub const PADDED_BYTES_PER_POINT: usize = 88;
 
 /// Which Green's function a [`crate::HalfSpace`] uses (scenario `contact.bem.boundary`:
 /// "non_periodic" or "periodic").
@@ -69,25 +70,42 @@ pub fn love_coefficient(x: f64, y: f64, a: f64, b: f64) -> f64 {
     let term =
         |c: f64, num: f64, den: f64| if c == 0.0 || num <= 0.0 || den <= 0.0 { 0.0 } else { c * (num / den).ln() };
     let (xp, xm, yp, ym) = (x + a, x - a, y + b, y - b);
-    term(xp, yp + r(xp, yp), ym + r(xp, ym))
-        + term(yp, xp + r(xp, yp), xm + r(xm, yp))
-        + term(xm, ym + r(xm, ym), yp + r(xm, yp))
-        + term(ym, xm + r(xm, ym), xp + r(xp, ym))
+    let (rpp, rpm, rmp, rmm) = (r(xp, yp), r(xp, ym), r(xm, yp), r(xm, ym));
+    term(xp, yp + rpp, ym + rpm)
+        + term(yp, xp + rpp, xm + rmp)
+        + term(xm, ym + rmm, yp + rmp)
+        + term(ym, xm + rmm, xp + rpm)
 }
+
+/// The padded operator's data for one grid and modulus: the multiplier (the kernel's spectrum)
+/// and the influence coefficients at the patch's offsets.
+struct Kernel {
+    /// `(nx, ny, dx, dy, E*)`, the floats by their bits.
+    key: (usize, usize, u64, u64, u64),
+    multiplier: Vec<f64>,
+    /// The influence coefficients `K(i dx, j dy)` (m/Pa) at the offsets `0 <= i < nx`,
+    /// `0 <= j < ny` (row-major, `j nx + i`); `K` is even in both, so this is every offset
+    /// between two points of the patch.
+    table: Vec<f64>,
+}
+
+/// Largest patch (points) whose kernel is kept for the next operator of the same grid and modulus
+/// ([`LAST_KERNEL`]): 2^18 points, 6 MB.
+const KEPT_POINTS: usize = 1 << 18;
+
+/// The last kernel built of at most [`KEPT_POINTS`] points: a study builds the same shoe's
+/// operator once per experiment, and the kernel (Love's coefficients and their FFT) is a function
+/// of the grid and the modulus only, so it is built once.
+static LAST_KERNEL: std::sync::Mutex<Option<Arc<Kernel>>> = std::sync::Mutex::new(None);
 
 /// The zero-padded compliance operator on an `nx x ny` patch.
 pub(crate) struct Padded {
     nx: usize,
     ny: usize,
     fft: Fft2,
-    multiplier: Vec<f64>,
+    kernel: Arc<Kernel>,
     rows: Vec<Complex<f64>>,
     spec: Vec<Complex<f64>>,
-    work: Vec<f64>,
-    /// The influence coefficients `K(i dx, j dy)` (m/Pa) at the offsets `0 <= i < nx`,
-    /// `0 <= j < ny` (row-major, `j nx + i`); `K` is even in both, so this is every offset
-    /// between two points of the patch.
-    table: Vec<f64>,
 }
 
 impl std::fmt::Debug for Padded {
@@ -96,24 +114,31 @@ impl std::fmt::Debug for Padded {
     }
 }
 
-impl Padded {
-    /// The operator of `grid` (already checked against [`MAX_POINTS_NON_PERIODIC`]) for `E*` (Pa).
-    pub(crate) fn new(grid: Grid, e_star_pa: f64) -> Self {
+impl Kernel {
+    /// The kernel of `grid` for `E*` (Pa), planned with `fft` (the doubled grid's).
+    fn new(grid: Grid, e_star_pa: f64, fft: &Fft2, key: (usize, usize, u64, u64, u64)) -> Self {
         let (nx, ny) = (grid.nx, grid.ny);
         let (mx, my) = (2 * nx, 2 * ny);
-        let fft = Fft2::new(mx, my);
         let (a, b) = (0.5 * grid.dx_m, 0.5 * grid.dy_m);
         let c = 1.0 / (std::f64::consts::PI * e_star_pa);
-        // Kernel on the doubled grid, offsets wrapped: index i <-> offset i (i <= nx) or i - 2nx.
-        let offset = |i: usize, n: usize| if i <= n { i as f64 } else { i as f64 - 2.0 * n as f64 };
-        let mut kernel = vec![0.0; mx * my];
-        kernel.par_chunks_mut(mx).enumerate().for_each(|(j, row)| {
-            let y = offset(j, ny) * grid.dy_m;
+        // The coefficients at the offsets 0..=nx, 0..=ny (K is even in x and in y).
+        let mut quarter = vec![0.0; (nx + 1) * (ny + 1)];
+        quarter.par_chunks_mut(nx + 1).enumerate().for_each(|(j, row)| {
+            let y = j as f64 * grid.dy_m;
             for (i, k) in row.iter_mut().enumerate() {
-                *k = c * love_coefficient(offset(i, nx) * grid.dx_m, y, a, b);
+                *k = c * love_coefficient(i as f64 * grid.dx_m, y, a, b);
             }
         });
-        let table: Vec<f64> = (0..ny).flat_map(|j| kernel[j * mx..j * mx + nx].iter().copied()).collect();
+        // Kernel on the doubled grid, offsets wrapped: index i <-> offset i (i <= nx) or i - 2nx.
+        let offset = |i: usize, n: usize| if i <= n { i } else { 2 * n - i };
+        let mut kernel = vec![0.0; mx * my];
+        kernel.par_chunks_mut(mx).enumerate().for_each(|(j, row)| {
+            let q = &quarter[offset(j, ny) * (nx + 1)..(offset(j, ny) + 1) * (nx + 1)];
+            for (i, k) in row.iter_mut().enumerate() {
+                *k = q[offset(i, nx)];
+            }
+        });
+        let table: Vec<f64> = (0..ny).flat_map(|j| quarter[j * (nx + 1)..j * (nx + 1) + nx].iter().copied()).collect();
         let n = fft.spectrum_len();
         let mut rows = vec![Complex::default(); n];
         let mut spec = vec![Complex::default(); n];
@@ -122,34 +147,41 @@ impl Padded {
         // rounding); the inverse transform is unnormalised, hence 1/(4 nx ny).
         let norm = 1.0 / (mx * my) as f64;
         let multiplier = spec.iter().map(|s| s.re * norm).collect();
-        Padded { nx, ny, fft, multiplier, rows, spec, work: vec![0.0; mx * my], table }
+        Kernel { key, multiplier, table }
+    }
+}
+
+impl Padded {
+    /// The operator of `grid` (already checked against [`MAX_POINTS_NON_PERIODIC`]) for `E*` (Pa).
+    pub(crate) fn new(grid: Grid, e_star_pa: f64) -> Self {
+        let (nx, ny) = (grid.nx, grid.ny);
+        let fft = Fft2::new(2 * nx, 2 * ny);
+        let key = (nx, ny, grid.dx_m.to_bits(), grid.dy_m.to_bits(), e_star_pa.to_bits());
+        // A poisoned lock (a panic elsewhere while it was held) only loses the reuse.
+        let kept = LAST_KERNEL.lock().ok().and_then(|k| k.as_ref().filter(|k| k.key == key).cloned());
+        let kernel = kept.unwrap_or_else(|| {
+            let k = Arc::new(Kernel::new(grid, e_star_pa, &fft, key));
+            if grid.len() <= KEPT_POINTS
+                && let Ok(mut last) = LAST_KERNEL.lock()
+            {
+                *last = Some(k.clone());
+            }
+            k
+        });
+        let n = fft.spectrum_len();
+        Padded { nx, ny, fft, kernel, rows: vec![Complex::default(); n], spec: vec![Complex::default(); n] }
     }
 
-    /// The influence coefficient of the offset `(di, dj)` pixels (m/Pa), `|di| < nx`, `|dj| < ny`.
+    /// The influence coefficients at the offsets `(i, j)`, `0 <= i < nx`, `0 <= j < ny` (m/Pa,
+    /// row-major `j nx + i`): every offset between two points of the patch (`K` is even).
     pub(crate) fn table(&self) -> &[f64] {
-        &self.table
+        &self.kernel.table
     }
 
-    /// `out = K[input]` on the patch: the traction is padded with zeros, convolved, and the
-    /// displacement read back on the patch.
+    /// `out = K[input]` on the patch: the traction padded with zeros, convolved, and the
+    /// displacement read back on the patch ([`Fft2::convolve_sub`]).
     pub(crate) fn compliance(&mut self, input: &[f64], out: &mut [f64]) {
-        let (nx, mx) = (self.nx, 2 * self.nx);
-        self.work.par_chunks_mut(mx).enumerate().for_each(|(j, row)| {
-            if j < self.ny {
-                row[..nx].copy_from_slice(&input[j * nx..(j + 1) * nx]);
-                row[nx..].fill(0.0);
-            } else {
-                row.fill(0.0);
-            }
-        });
-        self.fft.forward(&mut self.work, &mut self.rows, &mut self.spec);
-        self.spec.par_chunks_mut(SUM_BLOCK).zip(self.multiplier.par_chunks(SUM_BLOCK)).for_each(|(s, m)| {
-            for (s, m) in s.iter_mut().zip(m) {
-                *s *= *m;
-            }
-        });
-        self.fft.inverse(&mut self.spec, &mut self.rows, &mut self.work);
-        out.par_chunks_mut(nx).enumerate().for_each(|(j, o)| o.copy_from_slice(&self.work[j * mx..j * mx + nx]));
+        self.fft.convolve_sub(input, self.nx, self.ny, &self.kernel.multiplier, &mut self.rows, &mut self.spec, out);
     }
 }
 

@@ -329,6 +329,16 @@ pub struct BemSolver {
     stiff_rms: f64,
 }
 
+/// The rms of `E*|q| h/2` (Pa), the scale of the dual (mean-gap) residual, on the periodic cell;
+/// 0 on the finite patch, where the dual solves are refused ([`BemSolver::require_periodic`]).
+fn stiffness_rms(half: &mut HalfSpace, heights_m: &[f64]) -> f64 {
+    if half.boundary() == Boundary::NonPeriodic {
+        return 0.0;
+    }
+    let k = half.traction(heights_m);
+    (block_sum(k.len(), |r| k[r].iter().map(|v| v * v).sum()) / k.len() as f64).sqrt()
+}
+
 /// Output of the constrained conjugate gradient.
 pub(crate) struct CgOut {
     /// The complementary field `r - mean_{x>0} r`.
@@ -382,8 +392,7 @@ impl BemSolver {
         let height_max = heights_m.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let height_rms =
             (block_sum(heights_m.len(), |r| heights_m[r].iter().map(|h| (h - height_mean).powi(2)).sum()) / n).sqrt();
-        let k = half.traction(heights_m);
-        let stiff_rms = (block_sum(k.len(), |r| k[r].iter().map(|v| v * v).sum()) / n).sqrt();
+        let stiff_rms = stiffness_rms(&mut half, heights_m);
         Ok(BemSolver { half, heights: heights_m.to_vec(), height_mean, height_max, height_rms, stiff_rms })
     }
 
@@ -408,8 +417,7 @@ impl BemSolver {
         self.height_max = heights_m.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let m = self.height_mean;
         self.height_rms = (block_sum(n, |r| heights_m[r].iter().map(|h| (h - m).powi(2)).sum()) / nf).sqrt();
-        let k = self.half.traction(heights_m);
-        self.stiff_rms = (block_sum(n, |r| k[r].iter().map(|v| v * v).sum()) / nf).sqrt();
+        self.stiff_rms = stiffness_rms(&mut self.half, heights_m);
         Ok(())
     }
 
