@@ -361,8 +361,8 @@ impl BemSolver {
                     } else {
                         let g = u[i] - heights[i] - c;
                         // Without adhesion a point off the set must be open (g >= 0); with it,
-                        // outside the zone (g >= h0).
-                        (g, !(g >= range))
+                        // outside the zone (g >= h0); a NaN gap fails.
+                        (g, g.partial_cmp(&range).is_none_or(|o| o.is_lt()))
                     }
                 })
                 .collect();
