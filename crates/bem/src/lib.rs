@@ -49,6 +49,13 @@
 //! zone updates are inexact (100 times the tolerance, at most 1e-4); the state returned is that of
 //! a solve to the tolerance whose zone is the zone it was solved with.
 //!
+//! # Load control on a set of candidate points
+//! On the finite patch the load-controlled solves ([`BemSolver::solve_load`],
+//! [`BemSolver::adhesive_at_load`]) first solve the same problem on a set of candidate points
+//! with the influence matrix, then check the complementarity conditions on the whole grid with
+//! one padded convolution, growing the set where a point off it is in contact or in the zone
+//! ([`restricted`]); a verified state is a solution of the whole-grid problem.
+//!
 //! # Hardness cap
 //! Perfectly plastic pixels: the compressive traction bounded by the hardness `H` (Pa), with or
 //! without the Dugdale zone (`BemSolver::solve_load_plastic`, `BemSolver::plastic_at_load` with
