@@ -5,7 +5,7 @@
 //! iteration on the whole grid pays for FFTs of the zero-padded field. The same discrete problem
 //! is solved on a set `S` of candidate points, the only ones allowed a traction:
 //!
-//! 1. **The problem on `S`.** The Polonsky-Keer iteration ([`crate::solver::constrained_cg`],
+//! 1. **The problem on `S`.** The Polonsky-Keer iteration (`constrained_cg`,
 //!    the same routine as on the whole grid) with the influence matrix `K_SS` (`|S|^2` Love
 //!    coefficients, [`crate::green`], looked up in a table over the patch's offsets built with the
 //!    padded operator), the unknown zero off `S`, the mean over the whole grid fixed (so the
