@@ -139,21 +139,6 @@ fn bem_bad_flags_exit_2() {
         (vec!["bem", "--grid", "16", "--hardness", "5 MPa", "--sweep", "1MPa:10MPa:2"], "--hardness"),
         (vec!["bem", "--grid", "16", "--hardness", "5 MPa", "--pressure", "5MPa"], "--hardness"),
         (vec!["bem", "--grid", "16", "--hardness", "5 MPa", "--gap-sweep", "1um:0.5um:2"], "--gap-sweep"),
-        (
-            vec![
-                "bem",
-                "--grid",
-                "16",
-                "--boundary",
-                "non-periodic",
-                "--tilt",
-                "--hardness",
-                "50 MPa",
-                "--pressure",
-                "1MPa",
-            ],
-            "--tilt",
-        ),
         (rh(&["0.5", "--boundary", "non-periodic"]), "--boundary"),
         (rh(&["0.5", "--hardness", "1 GPa"]), "--hardness"),
     ] {
@@ -535,6 +520,13 @@ fn bem_hardness_cap_finite_patch_and_tilt() {
     assert_eq!(tilted["tilt"], true);
     let p = &tilted["points"][0];
     assert!(num(p, "tilt_x_rad").is_finite() && num(p, "tilt_y_rad").is_finite() && num(p, "pose_solves") >= 1.0);
+    assert!((num(p, "mean_pressure_pa") / 10e6 - 1.0).abs() < 1e-9);
+    // The tilting face with the cap: each pose capped, the plastic state reported, the load carried.
+    let capped = run(&["--boundary", "non-periodic", "--tilt", "--hardness", "50 MPa", "--pressure", "10 MPa"]);
+    let p = &capped["points"][0];
+    assert!(num(p, "tilt_x_rad").is_finite() && num(p, "tilt_y_rad").is_finite(), "{p}");
+    let (a, a_p) = (num(p, "contact_fraction"), num(p, "plastic_fraction"));
+    assert!(a_p > 0.0 && a_p <= a && a >= 10e6 / 50e6, "{p}");
     assert!((num(p, "mean_pressure_pa") / 10e6 - 1.0).abs() < 1e-9);
 }
 

@@ -52,6 +52,19 @@ pub enum BemError {
         /// What was expected.
         expected: &'static str,
     },
+    /// A tilting shoe spent its work budget ([`PATH_WORK_FACTOR`] times the per-solve iteration
+    /// cap, over every pose of every start) without balancing its moments.
+    #[error(
+        "tilting shoe at the mean pressure {target_pa:e} Pa: no balance within {iterations} conjugate-gradient \
+         iterations over all its poses (the work budget); a coarser grid (contact.bem.pixel_size) or a flat shoe \
+         resolves it"
+    )]
+    TiltWorkBudget {
+        /// Iterations spent.
+        iterations: usize,
+        /// The target mean pressure, Pa.
+        target_pa: f64,
+    },
     /// An adhesive loading path spent its work budget ([`PATH_WORK_FACTOR`] times the per-solve
     /// iteration cap) without reaching the load.
     #[error(

@@ -147,7 +147,7 @@ impl BemSolver {
         mean_pressure_pa: f64,
         hardness_pa: f64,
         opts: &SolverOptions,
-        warm: Option<&PlasticSolution>,
+        warm: Option<&ContactSolution>,
     ) -> Result<PlasticSolution, BemError> {
         opts.validate()?;
         check_positive("hardness_pa", hardness_pa, "a finite hardness > 0 (Pa)")?;
@@ -159,7 +159,7 @@ impl BemSolver {
                 expected: "a mean pressure below the hardness (at the hardness the whole face flows)",
             });
         }
-        let start = warm.map(|w| w.solution.pressure_pa.as_slice());
+        let start = warm.map(|w| w.pressure_pa.as_slice());
         in_pool(|| self.solve_load_plastic_on_worker(mean_pressure_pa, hardness_pa, opts, start))
     }
 
@@ -187,7 +187,7 @@ impl BemSolver {
         target_pa: f64,
         law: Option<&Dugdale>,
         opts: &SolverOptions,
-        warm: Option<&PlasticSolution>,
+        warm: Option<&ContactSolution>,
     ) -> Result<PlasticSolution, BemError> {
         opts.validate()?;
         let hardness = opts.hardness_pa.ok_or(BemError::Value {
@@ -223,17 +223,16 @@ impl BemSolver {
         hardness: f64,
         law: &Dugdale,
         opts: &SolverOptions,
-        warm: Option<&PlasticSolution>,
+        warm: Option<&ContactSolution>,
     ) -> Result<PlasticSolution, BemError> {
         let n = base.len();
         let sigma0 = law.stress_pa;
         let cap = hardness + sigma0;
         let mut iterations = 0;
         let (mut contact_pressure, mut zone): (Vec<f64>, Vec<bool>) = match warm {
-            Some(w) if w.solution.gap_m.len() == n && w.solution.mean_pressure_pa <= target => {
-                let z: Vec<bool> = w.solution.gap_m.iter().map(|&g| g < law.range_m).collect();
+            Some(w) if w.gap_m.len() == n && w.mean_pressure_pa <= target => {
+                let z: Vec<bool> = w.gap_m.iter().map(|&g| g < law.range_m).collect();
                 let pc = w
-                    .solution
                     .pressure_pa
                     .iter()
                     .zip(&z)

@@ -57,6 +57,10 @@ const MAX_BRACKET_STEPS: usize = 8;
 /// adhesive solve: a state solved at the same load carries it to rounding, either side.
 const SAME_LOAD_SLACK: f64 = 1e-9;
 
+/// A solved pose: the state and, with the hardness cap, its plastic fraction, area (m^2) and
+/// largest depth (m).
+type Pose = (ContactSolution, Option<(f64, f64, f64)>);
+
 /// A tilting shoe in equilibrium.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct TiltedShoe {
@@ -70,6 +74,9 @@ pub struct TiltedShoe {
     pub moment_residual_n_m: (f64, f64),
     /// Solves spent (the Jacobian's finite differences included).
     pub solves: usize,
+    /// With the hardness cap (`SolverOptions::hardness_pa`): the fraction of points at the
+    /// hardness, the plastic area (m^2) and the largest plastic depth (m); None: elastic.
+    pub plastic: Option<(f64, f64, f64)>,
 }
 
 impl BemSolver {
@@ -178,7 +185,9 @@ impl BemSolver {
 
     /// The tilting rigid shoe at the external mean pressure `target_pa` (Pa, > 0): approach and
     /// both tilts from the force and moment balances (module docs); `law`: Dugdale adhesion
-    /// ([`Self::adhesive_at_load`]) or none; `warm`: a previous pose on the same path.
+    /// ([`Self::adhesive_at_load`]) or none; with `opts.hardness_pa` each pose is the capped
+    /// solve ([`Self::plastic_at_load`]: the net traction at most the hardness); `warm`: a
+    /// previous pose on the same path.
     pub fn tilting_at_load(
         &mut self,
         target_pa: f64,
@@ -194,24 +203,26 @@ impl BemSolver {
         // continued from the last): from a flat face the cohesive zone of a first summit can pull
         // the face over by whole pixels from pose to pose, while the dry balance puts the face on
         // the summits that carry the load. The first balance found is returned.
-        let mut result = self.tilting_inner(&base, target_pa, law, opts, warm);
+        // One work budget for every start: the conjugate-gradient iterations of all poses.
+        let work = std::cell::Cell::new(0usize);
+        let mut result = self.tilting_inner(&base, target_pa, law, opts, warm, &work);
         if result.is_err() && warm.is_some() {
             self.set_heights(&base)?;
-            result = self.tilting_inner(&base, target_pa, law, opts, None);
+            result = self.tilting_inner(&base, target_pa, law, opts, None, &work);
         }
         if let (Err(_), Some(l)) = (&result, law) {
             self.set_heights(&base)?;
-            let mut start = self.tilting_inner(&base, target_pa, None, opts, None).ok();
+            let mut start = self.tilting_inner(&base, target_pa, None, opts, None, &work).ok();
             for f in [0.25, 0.5] {
                 let weak = Dugdale { stress_pa: f * l.stress_pa, range_m: l.range_m };
                 self.set_heights(&base)?;
-                if let Ok(s) = self.tilting_inner(&base, target_pa, Some(&weak), opts, start.as_ref()) {
+                if let Ok(s) = self.tilting_inner(&base, target_pa, Some(&weak), opts, start.as_ref(), &work) {
                     start = Some(s);
                 }
             }
             if start.is_some() {
                 self.set_heights(&base)?;
-                if let Ok(s) = self.tilting_inner(&base, target_pa, law, opts, start.as_ref()) {
+                if let Ok(s) = self.tilting_inner(&base, target_pa, law, opts, start.as_ref(), &work) {
                     result = Ok(s);
                 }
             }
@@ -227,6 +238,7 @@ impl BemSolver {
         law: Option<&Dugdale>,
         opts: &SolverOptions,
         warm: Option<&TiltedShoe>,
+        work: &std::cell::Cell<usize>,
     ) -> Result<TiltedShoe, BemError> {
         let g = self.grid();
         let (lx, ly) = (g.nx as f64 * g.dx_m, g.ny as f64 * g.dy_m);
@@ -253,12 +265,23 @@ impl BemSolver {
             s.set_heights(&tilted(base, t))?;
             solves.set(solves.get() + 1);
             let prev = prev.filter(|p| p.mean_pressure_pa <= target_pa * (1.0 + SAME_LOAD_SLACK));
-            let sol = match law {
-                None => s.solve_load(target_pa, opts, prev),
-                Some(l) => s.adhesive_at_load(target_pa, l, opts, prev),
-            }?;
+            let (sol, plastic) = match (opts.hardness_pa, law) {
+                // Each capped pose cold: a warm start from another pose's capped state can stall
+                // the capped iteration (as a warm dry start does for the flat shoe).
+                (Some(_), _) => {
+                    let st = s.plastic_at_load(target_pa, law, opts, None)?;
+                    let pl = (st.plastic_fraction, st.plastic_area_m2, st.max_plastic_depth_m);
+                    (st.solution, Some(pl))
+                }
+                (None, None) => (s.solve_load(target_pa, opts, prev)?, None),
+                (None, Some(l)) => (s.adhesive_at_load(target_pa, l, opts, prev)?, None),
+            };
+            work.set(work.get() + sol.iterations);
+            if work.get() > crate::error::PATH_WORK_FACTOR * opts.max_iterations {
+                return Err(BemError::TiltWorkBudget { iterations: work.get(), target_pa });
+            }
             let m = s.moments_n_m(&sol.pressure_pa);
-            Ok::<_, BemError>((sol, (m.0 / scale, m.1 / scale)))
+            Ok::<_, BemError>(((sol, plastic), (m.0 / scale, m.1 / scale)))
         };
         let mut t = warm.map_or((0.0, 0.0), |w| (w.tilt_x_rad, w.tilt_y_rad));
         let (mut sol, mut m) = pose(self, t, warm.map(|w| &w.solution))?;
@@ -276,8 +299,9 @@ impl BemSolver {
             value: target_pa,
             expected: "a load the shoe carries without tipping over (tilt below 0.05 rad)",
         };
-        let done = |sol: ContactSolution, t: (f64, f64), m: (f64, f64), solves: usize| TiltedShoe {
+        let done = |(sol, plastic): Pose, t: (f64, f64), m: (f64, f64), solves: usize| TiltedShoe {
             solution: sol,
+            plastic,
             tilt_x_rad: t.0,
             tilt_y_rad: t.1,
             moment_residual_n_m: (m.0 * scale, m.1 * scale),
@@ -312,8 +336,8 @@ impl BemSolver {
             // tilt that moves the face's edge by a part of the height range (not less: a smaller
             // step sees single pixels enter or leave the contact and the zone, not the slope).
             let eps = (0.1 * step).max(1e-3 * tilt_scale);
-            let (_, mx) = pose(self, (t.0 + eps, t.1), Some(&sol))?;
-            let (_, my) = pose(self, (t.0, t.1 + eps), Some(&sol))?;
+            let (_, mx) = pose(self, (t.0 + eps, t.1), Some(&sol.0))?;
+            let (_, my) = pose(self, (t.0, t.1 + eps), Some(&sol.0))?;
             let j = [[(mx.0 - m.0) / eps, (my.0 - m.0) / eps], [(mx.1 - m.1) / eps, (my.1 - m.1) / eps]];
             let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
             let trace = j[0][0] + j[1][1];
@@ -340,9 +364,9 @@ impl BemSolver {
             let s_max = -b + (b * b - dot(t, t) + MAX_TILT_RAD * MAX_TILT_RAD).max(0.0).sqrt();
             let s0 = s0.min(s_max);
             // Every trial is a candidate; the best (smallest |M|) is kept.
-            let mut best: Option<(f64, ContactSolution, (f64, f64))> = None;
+            let mut best: Option<(f64, Pose, (f64, f64))> = None;
             let mut trial = |this: &mut BemSolver, s: f64| -> Result<(f64, f64), BemError> {
-                let (st, mm) = pose(this, at(s), Some(&sol))?;
+                let (st, mm) = pose(this, at(s), Some(&sol.0))?;
                 let (f, n) = (dot(mm, dir), norm(mm));
                 if best.as_ref().is_none_or(|b| n < norm(b.2)) {
                     best = Some((s, st, mm));

@@ -252,3 +252,45 @@ fn tilted_plane_wall_is_met_by_the_face_at_its_slope() {
         assert_eq!(s.heights_m(), &h[..]);
     }
 }
+
+/// The hardness cap on the tilting shoe, on the tilted-plane wall of
+/// `tilted_plane_wall_is_met_by_the_face_at_its_slope`: the flat punch's pressure is singular at
+/// its edges (Boussinesq), so a hardness of twice the mean pressure caps a rim of edge pixels; the
+/// rim is symmetric about the centre, so there is still no moment and the face meets the wall at
+/// its slope, closed form t = (a, b) (tolerance 1e-3, as there). The capped pose carries the load
+/// (mean 1e-9 relative), no point exceeds the hardness, and the plastic area is reported, within
+/// the contact; with a Dugdale law the net traction is capped the same way.
+#[test]
+fn capped_tilting_shoe_meets_a_tilted_plane_at_its_slope() {
+    let (nx, ny, dx) = (32usize, 24usize, 1e-6);
+    let (a, b) = (2e-3, -1e-3);
+    let h: Vec<f64> = (0..nx * ny)
+        .map(|i| {
+            let (x, y) = centre(i, nx, dx);
+            a * x + b * y
+        })
+        .collect();
+    let mut s = BemSolver::with_boundary(nx, ny, dx, dx, &h, 1e9, Boundary::NonPeriodic).unwrap();
+    let (p, hardness) = (1e6, 2e6);
+    let opts = SolverOptions { tolerance: 1e-6, hardness_pa: Some(hardness), ..Default::default() };
+    let law = Dugdale::from_work_and_range(0.1, 1e-9).unwrap();
+    for dugdale in [None, Some(&law)] {
+        let shoe = s.tilting_at_load(p, dugdale, &opts, None).unwrap();
+        let (fraction, area, _) = shoe.plastic.expect("the capped pose reports its plastic area");
+        eprintln!(
+            "adhesive {}: tilts {:e} {:e} ({} solves), plastic fraction {fraction}",
+            dugdale.is_some(),
+            shoe.tilt_x_rad,
+            shoe.tilt_y_rad,
+            shoe.solves
+        );
+        assert!((shoe.tilt_x_rad / a - 1.0).abs() < 1e-3, "{}", shoe.tilt_x_rad);
+        assert!((shoe.tilt_y_rad / b - 1.0).abs() < 1e-3, "{}", shoe.tilt_y_rad);
+        assert!(fraction > 0.0 && fraction < 1.0, "{fraction}");
+        assert!((area / (fraction * (nx * ny) as f64 * dx * dx) - 1.0).abs() < 1e-12);
+        assert!((shoe.solution.mean_pressure_pa / p - 1.0).abs() < 1e-9, "{}", shoe.solution.mean_pressure_pa);
+        let top = shoe.solution.pressure_pa.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert!(top <= hardness * (1.0 + 1e-12), "{top}");
+        assert_eq!(s.heights_m(), &h[..]);
+    }
+}

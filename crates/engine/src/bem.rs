@@ -383,9 +383,6 @@ pub fn check_shoe_args(args: &BemRequest) -> Result<(), Error> {
                 "--hardness caps the pressure under load control: give --pressure or --sweep, not --gap-sweep".into()
             );
         }
-        if args.tilt {
-            return Err("--hardness cannot be used with --tilt: the hardness cap is solved for a flat face".into());
-        }
         if let Some(p) = args.pressure_pa.filter(|&p| p >= h) {
             return Err(format!(
                 "--pressure {p:e} Pa: with --hardness {h:e} Pa the mean pressure must lie below the hardness (at \
@@ -465,12 +462,15 @@ pub fn solve(
             // loading branch under adhesion), and starts afresh below it.
             let warm = states.last().filter(|s| law.is_none() || s.mean_pressure_pa <= p);
             let (s, pose, pl) = if args.tilt {
+                // With --hardness every pose is the capped solve.
+                let o = SolverOptions { hardness_pa: args.hardness_pa, ..opts };
                 let w = last_tilt.as_ref().filter(|t| t.solution.mean_pressure_pa <= p);
-                let t = solver.tilting_at_load(p, law.as_ref(), &opts, w)?;
+                let t = solver.tilting_at_load(p, law.as_ref(), &o, w)?;
                 let pose = (t.tilt_x_rad, t.tilt_y_rad, t.solves);
                 let s = t.solution.clone();
+                let pl = t.plastic;
                 last_tilt = Some(t);
-                (s, Some(pose), None)
+                (s, Some(pose), pl)
             } else if let Some(h) = args.hardness_pa {
                 // Without adhesion each load cold: a warm start from the previous plastic state
                 // can stall the plastic iteration (seen on a sweep of 1-40 MPa at H = 50 MPa,
@@ -479,7 +479,7 @@ pub fn solve(
                 // the loading branch, continued from the lower load's state.
                 let capped = SolverOptions { hardness_pa: Some(h), ..opts };
                 let w = last_plastic.as_ref().filter(|s| law.is_some() && s.solution.mean_pressure_pa <= p);
-                let st = solver.plastic_at_load(p, law.as_ref(), &capped, w)?;
+                let st = solver.plastic_at_load(p, law.as_ref(), &capped, w.map(|s| &s.solution))?;
                 let pl = (st.plastic_fraction, st.plastic_area_m2, st.max_plastic_depth_m);
                 let s = st.solution.clone();
                 last_plastic = Some(st);

@@ -220,7 +220,8 @@ impl BemContact {
         }
         if shoe.hardness_pa.is_some() && shoe.tilting {
             return Err(MeterError::Scenario(
-                "contact.bem.plastic: the hardness cap is solved for a flat shoe only (not with contact.bem.tilt)"
+                "contact.bem.plastic: the meter's hardness cap is solved for a flat shoe only (not with \
+                 contact.bem.tilt)"
                     .into(),
             ));
         }
@@ -299,14 +300,16 @@ impl BemContact {
         let err = |e: stiction_bem::BemError| MeterError::Contact(format!("bem: {e}"));
         if self.tilting {
             // Continue the path from the last pose while the load rises; start afresh below it.
+            // With the hardness cap every pose is the capped solve.
+            let opts = stiction_bem::SolverOptions { hardness_pa: self.hardness_pa, ..self.options };
             let warm = self.last_tilt.as_ref().filter(|t| t.solution.mean_pressure_pa <= p);
-            let t = self.solver.tilting_at_load(p, self.law.as_ref(), &self.options, warm).map_err(err)?;
-            let out = (t.solution.clone(), (t.tilt_x_rad, t.tilt_y_rad), None);
+            let t = self.solver.tilting_at_load(p, self.law.as_ref(), &opts, warm).map_err(err)?;
+            let out = (t.solution.clone(), (t.tilt_x_rad, t.tilt_y_rad), t.plastic.map(|pl| pl.1));
             self.last_tilt = Some(t);
             return Ok(out);
         }
         if let Some(h) = self.hardness_pa {
-            // The hardness cap (flat shoe: checked in `new`); at a mean pressure at or above the
+            // The hardness cap (a flat shoe; a tilting one caps each pose, above); at a mean pressure at or above the
             // hardness the whole face flows and no state exists (the solver's error). With
             // adhesion the net traction is capped and the zone is grown on the loading branch,
             // continued from the lower load's state; without, each load is solved cold (a warm
@@ -316,7 +319,7 @@ impl BemContact {
             let warm = self.last_plastic.as_ref().filter(|s| self.law.is_some() && s.solution.mean_pressure_pa <= p);
             let st = self
                 .solver
-                .plastic_at_load(p, self.law.as_ref(), &opts, warm)
+                .plastic_at_load(p, self.law.as_ref(), &opts, warm.map(|s| &s.solution))
                 .map_err(|e| MeterError::Contact(format!("bem (hardness cap, material.hardness = {h:e} Pa): {e}")))?;
             let out = (st.solution.clone(), (0.0, 0.0), Some(st.plastic_area_m2));
             self.last_plastic = Some(st);

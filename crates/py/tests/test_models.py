@@ -165,6 +165,8 @@ def test_bem_boundary_tilt_and_hardness_equal_cli(tmp_path, cli_json):
     for cli_flags, kw in [
         (["--hardness", "20 MPa", "--sweep", "1MPa:10MPa:2"], dict(hardness="20 MPa", sweep="1MPa:10MPa:2")),
         (["--boundary", "non-periodic", "--pressure", "5 MPa"], dict(boundary="non_periodic", pressure="5 MPa")),
+        (["--boundary", "non-periodic", "--tilt", "--hardness", "20 MPa", "--pressure", "5 MPa"],
+         dict(boundary="non_periodic", tilt=True, hardness="20 MPa", pressure="5 MPa")),
         (["--boundary", "non-periodic", "--tilt", "--pressure", "5 MPa"],
          dict(boundary="non_periodic", tilt=True, pressure="5 MPa")),
     ]:
