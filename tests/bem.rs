@@ -643,3 +643,67 @@ fn run_results_csv_has_the_plastic_area() {
     }
     assert!(plastic > 0, "{csv}");
 }
+
+/// Hostile pass of `contact --model bem`'s shoe settings: each combination of boundary, tilt,
+/// hardness cap (with extreme hardnesses) and law either prints points that hold the meter's
+/// invariants (the real area within the 20 um x 5 um patch, the plastic area within the real
+/// area, finite tilts below 0.05 rad), or a point's null with its reason, or is refused with exit
+/// status 2 naming a field; never a crash or another status.
+#[test]
+fn contact_model_bem_shoe_settings_hold_their_invariants_or_are_refused() {
+    let patch_m2 = 20e-6 * 5e-6;
+    let sets: &[&[&str]] = &[
+        &["contact.bem.boundary=\"periodic\"", "contact.bem.tilt=true"],
+        &["contact.bem.plastic=true", "contact.bem.tilt=true"],
+        &["contact.bem.plastic=true", "material.hardness=\"1 kPa\""],
+        &["contact.bem.plastic=true", "material.hardness=\"1e30 Pa\""],
+        &["contact.bem.plastic=true", "material.hardness=\"-1 GPa\""],
+        &["contact.bem.plastic=true", "contact.law=\"hertz\"", "material.hardness=\"1 GPa\""],
+        &["contact.bem.tilt=true", "contact.law=\"hertz\""],
+        &["contact.bem.boundary=\"periodic\"", "contact.bem.plastic=true", "material.hardness=\"1 GPa\""],
+        &["contact.bem.boundary=\"sideways\""],
+        &["contact.bem.tilt=\"yes\""],
+    ];
+    let (mut refused, mut printed) = (0, 0);
+    for s in sets {
+        let mut args = vec!["contact", "scenarios/tas2000-bem.json", "--model", "bem", "--sweep", "1uN:3uN:2"];
+        for v in *s {
+            args.extend(["--set", v]);
+        }
+        args.push("--json");
+        let out = stiction(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        match out.status.code() {
+            Some(2) => {
+                refused += 1;
+                assert!(err.contains("contact.") || err.contains("material."), "{s:?}: {err}");
+            }
+            Some(0) => {
+                printed += 1;
+                let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+                for p in v["points"].as_array().unwrap() {
+                    if p.get("error").is_some() {
+                        assert!(p.get("real_area_m2").is_none(), "{s:?}: {p}");
+                        continue;
+                    }
+                    let a = num(p, "real_area_m2");
+                    assert!(a > 0.0 && a <= patch_m2 * (1.0 + 1e-9), "{s:?}: {p}");
+                    if let Some(a_p) = p.get("plastic_area_m2") {
+                        let a_p = a_p.as_f64().unwrap();
+                        assert!((0.0..=a * (1.0 + 1e-9)).contains(&a_p), "{s:?}: {p}");
+                    }
+                    for t in ["tilt_x_rad", "tilt_y_rad"] {
+                        if let Some(t) = p.get(t) {
+                            assert!(t.as_f64().unwrap().abs() < 0.05, "{s:?}: {p}");
+                        }
+                    }
+                }
+            }
+            other => panic!("{s:?}: exit {other:?}: {err}"),
+        }
+    }
+    // The periodic tilt, the meter's cap beside a tilt, the hardnesses outside material.hardness's
+    // domain (1e30 Pa, -1 GPa) and the two bad texts are refused; the others print (1 kPa: each
+    // load a null, its mean pressure above the hardness).
+    assert_eq!((refused, printed), (6, 4));
+}
