@@ -104,19 +104,12 @@ impl Fft2 {
             |scratch, c| col.process_with_scratch(c, scratch),
         );
         transpose(spec, rows, nxc, ny);
-        let c2r = &self.c2r;
-        let even = nx.is_multiple_of(2);
+        let c2r = &*self.c2r;
         rows.par_chunks_mut(nxc * BLOCK).zip(real.par_chunks_mut(nx * BLOCK)).for_each_init(
             || c2r.make_scratch_vec(),
             |scratch, (rin, rout)| {
                 for (a, b) in rin.chunks_mut(nxc).zip(rout.chunks_mut(nx)) {
-                    // The multipliers are real and even, so these imaginary parts are rounding
-                    // noise of a real field; clear them as the real transform requires.
-                    a[0].im = 0.0;
-                    if even {
-                        a[nxc - 1].im = 0.0;
-                    }
-                    c2r.process_with_scratch(a, b, scratch).expect("row c2r lengths");
+                    row_inverse(c2r, a, b, scratch);
                 }
             },
         );
@@ -260,21 +253,14 @@ impl Fft2 {
             },
         );
         transpose(spec, rows, nxc, ny);
-        let c2r = &self.c2r;
-        let even = nx.is_multiple_of(2);
+        let c2r = &*self.c2r;
         let rb = Self::per_task(nx);
-        // The multipliers are real and even, so the imaginary parts cleared here are rounding
-        // noise of a real field; the real transform requires them to be zero.
         if nx_out == nx {
             rows[..nxc * ny_out].par_chunks_mut(nxc * rb).zip(out.par_chunks_mut(nx * rb)).for_each_init(
                 || c2r.make_scratch_vec(),
                 |scratch, (rin, rout)| {
                     for (a, b) in rin.chunks_mut(nxc).zip(rout.chunks_mut(nx)) {
-                        a[0].im = 0.0;
-                        if even {
-                            a[nxc - 1].im = 0.0;
-                        }
-                        c2r.process_with_scratch(a, b, scratch).expect("row c2r lengths");
+                        row_inverse(c2r, a, b, scratch);
                     }
                 },
             );
@@ -283,17 +269,26 @@ impl Fft2 {
                 || (c2r.make_scratch_vec(), vec![0.0; nx]),
                 |(scratch, row), (rin, rout)| {
                     for (a, b) in rin.chunks_mut(nxc).zip(rout.chunks_mut(nx_out)) {
-                        a[0].im = 0.0;
-                        if even {
-                            a[nxc - 1].im = 0.0;
-                        }
-                        c2r.process_with_scratch(a, row, scratch).expect("row c2r lengths");
+                        row_inverse(c2r, a, row, scratch);
                         b.copy_from_slice(&row[..nx_out]);
                     }
                 },
             );
         }
     }
+}
+
+/// One row's inverse real transform of the half spectrum `a` (length `nx/2 + 1`) into `b` (length
+/// `nx`). The multipliers are real and even, so the imaginary parts of the zero and (even `nx`)
+/// Nyquist terms are rounding noise of a real field: they are cleared, as the real transform
+/// requires.
+fn row_inverse(c2r: &dyn ComplexToReal<f64>, a: &mut [Complex<f64>], b: &mut [f64], scratch: &mut [Complex<f64>]) {
+    a[0].im = 0.0;
+    if b.len().is_multiple_of(2) {
+        let last = a.len() - 1;
+        a[last].im = 0.0;
+    }
+    c2r.process_with_scratch(a, b, scratch).expect("row c2r lengths");
 }
 
 /// Transpose `src` (`rows x cols`, row-major) into `dst` (`cols x rows`), in parallel over blocks
