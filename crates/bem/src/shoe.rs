@@ -203,28 +203,26 @@ impl BemSolver {
         // continued from the last): from a flat face the cohesive zone of a first summit can pull
         // the face over by whole pixels from pose to pose, while the dry balance puts the face on
         // the summits that carry the load. The first balance found is returned.
-        // One work budget for every start: the conjugate-gradient iterations of all poses.
+        // One work budget for every start: the conjugate-gradient iterations of all poses. Each
+        // pose sets the heights it is solved on (the tilted `base`), so the starts need no reset
+        // between them; the heights are put back once at the end.
         let work = std::cell::Cell::new(0usize);
         let mut result = self.tilting_inner(&base, target_pa, law, opts, warm, &work);
         if result.is_err() && warm.is_some() {
-            self.set_heights(&base)?;
             result = self.tilting_inner(&base, target_pa, law, opts, None, &work);
         }
         if let (Err(_), Some(l)) = (&result, law) {
-            self.set_heights(&base)?;
             let mut start = self.tilting_inner(&base, target_pa, None, opts, None, &work).ok();
             for f in [0.25, 0.5] {
                 let weak = Dugdale { stress_pa: f * l.stress_pa, range_m: l.range_m };
-                self.set_heights(&base)?;
                 if let Ok(s) = self.tilting_inner(&base, target_pa, Some(&weak), opts, start.as_ref(), &work) {
                     start = Some(s);
                 }
             }
-            if start.is_some() {
-                self.set_heights(&base)?;
-                if let Ok(s) = self.tilting_inner(&base, target_pa, law, opts, start.as_ref(), &work) {
-                    result = Ok(s);
-                }
+            if start.is_some()
+                && let Ok(s) = self.tilting_inner(&base, target_pa, law, opts, start.as_ref(), &work)
+            {
+                result = Ok(s);
             }
         }
         self.set_heights(&base)?;

@@ -13,6 +13,20 @@ fn centre(i: usize, nx: usize, dx: f64) -> (f64, f64) {
     (((i % nx) as f64 + 0.5) * dx, ((i / nx) as f64 + 0.5) * dx)
 }
 
+/// The tilted-plane wall `h = a x + b y` (a = 2e-3, b = -1e-3) on 32 x 24 pixels of 1 um:
+/// `(nx, ny, dx, a, b, heights)`.
+fn tilted_plane() -> (usize, usize, f64, f64, f64, Vec<f64>) {
+    let (nx, ny, dx) = (32usize, 24usize, 1e-6);
+    let (a, b) = (2e-3, -1e-3);
+    let h = (0..nx * ny)
+        .map(|i| {
+            let (x, y) = centre(i, nx, dx);
+            a * x + b * y
+        })
+        .collect();
+    (nx, ny, dx, a, b, h)
+}
+
 /// Paraboloid summits `h_k - r_k^2/(2R)` (the envelope) on an `nx x ny` patch.
 fn summits(nx: usize, ny: usize, dx: f64, radius: f64, tops: &[(f64, f64, f64)]) -> Vec<f64> {
     (0..nx * ny)
@@ -224,14 +238,7 @@ fn merging_contacts_show_what_the_summit_model_misses() {
 /// a Dugdale law beside it the same plane is found (the zone is the whole patch, uniform tension).
 #[test]
 fn tilted_plane_wall_is_met_by_the_face_at_its_slope() {
-    let (nx, ny, dx) = (32usize, 24usize, 1e-6);
-    let (a, b) = (2e-3, -1e-3);
-    let h: Vec<f64> = (0..nx * ny)
-        .map(|i| {
-            let (x, y) = centre(i, nx, dx);
-            a * x + b * y
-        })
-        .collect();
+    let (nx, ny, dx, a, b, h) = tilted_plane();
     let mut s = BemSolver::with_boundary(nx, ny, dx, dx, &h, 1e9, Boundary::NonPeriodic).unwrap();
     let opts = SolverOptions { tolerance: 1e-6, ..Default::default() };
     let p = 1e6;
@@ -262,14 +269,7 @@ fn tilted_plane_wall_is_met_by_the_face_at_its_slope() {
 /// the contact; with a Dugdale law the net traction is capped the same way.
 #[test]
 fn capped_tilting_shoe_meets_a_tilted_plane_at_its_slope() {
-    let (nx, ny, dx) = (32usize, 24usize, 1e-6);
-    let (a, b) = (2e-3, -1e-3);
-    let h: Vec<f64> = (0..nx * ny)
-        .map(|i| {
-            let (x, y) = centre(i, nx, dx);
-            a * x + b * y
-        })
-        .collect();
+    let (nx, ny, dx, a, b, h) = tilted_plane();
     let mut s = BemSolver::with_boundary(nx, ny, dx, dx, &h, 1e9, Boundary::NonPeriodic).unwrap();
     let (p, hardness) = (1e6, 2e6);
     let opts = SolverOptions { tolerance: 1e-6, hardness_pa: Some(hardness), ..Default::default() };
