@@ -52,8 +52,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "adhesive_path")
 
 
-def run_stiction(n, slope, w, points, tol, threads, heights_path="", range_m=RANGE_M, mode="solve"):
-    args = [EXAMPLE, str(n), repr(slope), str(points), repr(tol), repr(w), heights_path or "-", repr(range_m), mode]
+def timed(args, threads):
+    """Runs `args` with RAYON_NUM_THREADS=threads: (completed process, wall s, CPU s = user +
+    system, system s) of the child."""
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
     r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
@@ -61,6 +62,12 @@ def run_stiction(n, slope, w, points, tol, threads, heights_path="", range_m=RAN
     wall = time.perf_counter() - t0
     r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    return out, wall, cpu, r1.ru_stime - r0.ru_stime
+
+
+def run_stiction(n, slope, w, points, tol, threads, heights_path="", range_m=RANGE_M, mode="solve"):
+    args = [EXAMPLE, str(n), repr(slope), str(points), repr(tol), repr(w), heights_path or "-", repr(range_m), mode]
+    out, wall, cpu, _ = timed(args, threads)
     states = [json.loads(line) for line in out.stdout.splitlines()]
     return states, wall, out.stderr.strip() + f"; CPU (user + system) {cpu:.3f} s"
 

@@ -33,8 +33,6 @@ import importlib.util
 import json
 import os
 import re
-import resource
-import subprocess
 import tempfile
 import time
 
@@ -45,17 +43,11 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLES = os.path.join(ROOT, "target", "release", "examples")
 CELL_M = 100e-6
 
-
-def timed(args, threads):
-    env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
-    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    out = subprocess.run(args, env=env, capture_output=True, text=True, check=True)
-    wall = time.perf_counter() - t0
-    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-    sys_s = r1.ru_stime - r0.ru_stime
-    return out, wall, cpu, sys_s
+# The adhesion comparison's helpers (the child-process timing, Tamaas's adhesive path and its log).
+_spec = importlib.util.spec_from_file_location("ta", os.path.join(ROOT, "scripts", "tamaas-adhesion.py"))
+ta = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(ta)
+timed = ta.timed
 
 
 def non_periodic(n, tol):
@@ -75,9 +67,6 @@ def non_periodic(n, tol):
     solver = tm.PolonskyKeerRey(model, np.ascontiguousarray(h), tol)
     solver.setIntegralOperator("dcfft")
     solver.max_iter = 100_000
-    tam = importlib.util.spec_from_file_location("ta", os.path.join(ROOT, "scripts", "tamaas-adhesion.py"))
-    ta = importlib.util.module_from_spec(tam)
-    tam.loader.exec_module(ta)
     tm.set_log_level(tm.LogLevel.info)
     with ta.CaptureStderr() as log:
         t0, c0 = time.perf_counter(), time.process_time()
@@ -100,9 +89,6 @@ def non_periodic(n, tol):
 
 def adhesive(n, slope, points, tol, w, range_m, max_iter):
     exe = os.path.join(EXAMPLES, "adhesive_path")
-    tam = importlib.util.spec_from_file_location("ta", os.path.join(ROOT, "scripts", "tamaas-adhesion.py"))
-    ta = importlib.util.module_from_spec(tam)
-    tam.loader.exec_module(ta)
     base = [exe, str(n), repr(slope), str(points), repr(tol), repr(w)]
     with tempfile.TemporaryDirectory() as d:
         hp = os.path.join(d, "h.bin")
