@@ -456,7 +456,6 @@ pub fn solve(
             .into());
         }
         let mut last_tilt: Option<stiction_bem::TiltedShoe> = None;
-        let mut last_plastic: Option<stiction_bem::PlasticSolution> = None;
         for p in loads {
             // Each state continues the path from the one before while the load rises (the
             // loading branch under adhesion), and starts afresh below it.
@@ -478,12 +477,10 @@ pub fn solve(
                 // 23-48). With adhesion the net traction is capped and the cohesive zone grows on
                 // the loading branch, continued from the lower load's state.
                 let capped = SolverOptions { hardness_pa: Some(h), ..opts };
-                let w = last_plastic.as_ref().filter(|s| law.is_some() && s.solution.mean_pressure_pa <= p);
-                let st = solver.plastic_at_load(p, law.as_ref(), &capped, w.map(|s| &s.solution))?;
+                let w = states.last().filter(|s| law.is_some() && s.mean_pressure_pa <= p);
+                let st = solver.plastic_at_load(p, law.as_ref(), &capped, w)?;
                 let pl = (st.plastic_fraction, st.plastic_area_m2, st.max_plastic_depth_m);
-                let s = st.solution.clone();
-                last_plastic = Some(st);
-                (s, None, Some(pl))
+                (st.solution, None, Some(pl))
             } else if let Some(l) = &law {
                 (solver.adhesive_at_load(p, l, &opts, warm)?, None, None)
             } else {

@@ -180,7 +180,6 @@ pub struct BemContact {
     tilting: bool,
     last_tilt: Option<stiction_bem::TiltedShoe>,
     hardness_pa: Option<f64>,
-    last_plastic: Option<stiction_bem::PlasticSolution>,
     /// Block factors (x, y) that coarsened the map's pixels into the grid.
     pub coarsening: (usize, usize),
 }
@@ -251,7 +250,6 @@ impl BemContact {
             tilting: shoe.tilting,
             last_tilt: None,
             hardness_pa: shoe.hardness_pa,
-            last_plastic: None,
             coarsening,
         })
     }
@@ -316,14 +314,13 @@ impl BemContact {
             // start from the previous plastic state could stall the iteration where the cold
             // solve converges: stiction_engine::bem, the sweep).
             let opts = stiction_bem::SolverOptions { hardness_pa: Some(h), ..self.options };
-            let warm = self.last_plastic.as_ref().filter(|s| self.law.is_some() && s.solution.mean_pressure_pa <= p);
+            let warm = self.last.as_ref().filter(|s| self.law.is_some() && s.mean_pressure_pa <= p);
             let st = self
                 .solver
-                .plastic_at_load(p, self.law.as_ref(), &opts, warm.map(|s| &s.solution))
+                .plastic_at_load(p, self.law.as_ref(), &opts, warm)
                 .map_err(|e| MeterError::Contact(format!("bem (hardness cap, material.hardness = {h:e} Pa): {e}")))?;
-            let out = (st.solution.clone(), (0.0, 0.0), Some(st.plastic_area_m2));
-            self.last_plastic = Some(st);
-            return Ok(out);
+            self.last = Some(st.solution.clone());
+            return Ok((st.solution, (0.0, 0.0), Some(st.plastic_area_m2)));
         }
         let s = match (&self.law, self.solver.boundary()) {
             (None, _) => self.solver.solve_load(p, &self.options, self.last.as_ref()),
