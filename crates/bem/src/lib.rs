@@ -66,6 +66,7 @@
 //! columns independently, so the same input gives the same bytes whatever the thread count.
 
 pub mod asperity;
+mod boxqp;
 pub mod error;
 mod fft;
 pub mod green;

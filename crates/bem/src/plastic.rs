@@ -25,6 +25,7 @@ use serde::Serialize;
 
 use crate::error::{BemError, check_positive};
 use crate::grid::{SUM_BLOCK, block_sum, block_sum2, in_pool};
+use crate::restricted::SetOutcome;
 use crate::solver::{BemSolver, ContactSolution, Dugdale, Operator, SolverOptions};
 
 /// A contact state with the pressure capped at the hardness.
@@ -49,7 +50,7 @@ const MAX_SCALE_STEPS: usize = 100;
 
 /// How the mean pressure is restored after a step ([`restore_mean`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum MeanFix {
+pub(crate) enum MeanFix {
     /// Points below the cap scaled by `f` (clamped at the cap), points at the cap kept.
     Scale(f64),
     /// Points in contact shifted by `lambda` (Pa) and clamped to `[0, cap]`: when the points at
@@ -62,7 +63,7 @@ enum MeanFix {
 }
 
 impl MeanFix {
-    fn apply(self, v: f64, cap: f64) -> f64 {
+    pub(crate) fn apply(self, v: f64, cap: f64) -> f64 {
         match self {
             MeanFix::Scale(f) => {
                 if v < cap {
@@ -90,7 +91,7 @@ const SHIFT_STEPS: usize = 80;
 /// `f` of the points below the cap by Newton's method from below (the mean of `min(f x, cap)`
 /// is concave and piecewise linear in `f`); when the points at the cap alone carry more than the
 /// target, the shift of the contact points by bisection. Deterministic block sums.
-fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> {
+pub(crate) fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> {
     let n = x.len() as f64;
     let (free_sum, capped) = block_sum2(x.len(), |rg| {
         rg.fold((0.0, 0.0), |a, i| if x[i] < cap { (a.0 + x[i], a.1) } else { (a.0, a.1 + cap) })
@@ -159,8 +160,26 @@ impl BemSolver {
                 expected: "a mean pressure below the hardness (at the hardness the whole face flows)",
             });
         }
+        // On the finite patch: first on a set of candidate points, solved exactly and verified
+        // on the whole grid ([`crate::restricted`]).
+        if let Some(s) = self.restricted_at_load(mean_pressure_pa, None, opts, warm, Some(hardness_pa)) {
+            return Ok(self.plastic_outcome(s, hardness_pa));
+        }
         let start = warm.map(|w| w.pressure_pa.as_slice());
         in_pool(|| self.solve_load_plastic_on_worker(mean_pressure_pa, hardness_pa, opts, start))
+    }
+
+    /// The capped state of a solve on a set, with its plastic fraction and area.
+    fn plastic_outcome(&self, s: SetOutcome, hardness_pa: f64) -> PlasticSolution {
+        let grid = self.half.grid();
+        let plastic_fraction = s.plastic_points as f64 / grid.len() as f64;
+        PlasticSolution {
+            solution: s.solution,
+            hardness_pa,
+            plastic_fraction,
+            plastic_area_m2: plastic_fraction * grid.area_m2(),
+            max_plastic_depth_m: s.max_plastic_depth_m,
+        }
     }
 
     /// Contact at the external mean pressure `target_pa` (Pa, > 0, below the hardness; the net
@@ -208,6 +227,11 @@ impl BemSolver {
         };
         check_positive("stress_pa", law.stress_pa, "a finite Dugdale stress > 0 (Pa)")?;
         check_positive("range_m", law.range_m, "a finite range > 0 (m)")?;
+        let n = self.heights.len();
+        let warm = warm.filter(|w| w.gap_m.len() == n && w.mean_pressure_pa <= target_pa);
+        if let Some(s) = self.restricted_at_load(target_pa, Some(law), opts, warm, Some(hardness)) {
+            return Ok(self.plastic_outcome(s, hardness));
+        }
         let base = self.heights.clone();
         let result = in_pool(|| self.plastic_adhesive_on_worker(&base, target_pa, hardness, law, opts, warm));
         // The heights were shifted by the zone's displacement: put them back whatever happened.

@@ -37,8 +37,10 @@
 
 use rayon::prelude::*;
 
+use crate::boxqp;
 use crate::error::{BemError, PATH_WORK_FACTOR};
 use crate::grid::{Grid, SUM_BLOCK, in_pool};
+use crate::plastic::restore_mean;
 use crate::solver::{
     BemSolver, CgOperator, CgOut, ContactSolution, Dugdale, Restriction, SolverOptions, constrained_cg,
 };
@@ -171,11 +173,21 @@ impl SetState {
     }
 }
 
-/// A converged solve on a set: the unknown, its gap on the set, the CG's output.
+/// A converged solve on a set: the unknown, its gap on the set, the CG's output, and with a cap
+/// the points at it and the largest plastic depth (m).
 struct SetSolve {
     pressure: Vec<f64>,
     gap: Vec<f64>,
     out: CgOut,
+    plastic: (usize, f64),
+}
+
+/// A state solved on a set and verified on the whole grid: with a hardness cap, the points at
+/// the cap and the largest plastic depth (m; 0 without plastic points).
+pub(crate) struct SetOutcome {
+    pub(crate) solution: ContactSolution,
+    pub(crate) plastic_points: usize,
+    pub(crate) max_plastic_depth_m: f64,
 }
 
 /// One Polonsky-Keer solve on a set at the mean pressure `target_pa` over the `n` points of the
@@ -212,7 +224,61 @@ fn set_solve(
         other => other?,
     };
     let gap = out.complementary.iter().zip(&p).map(|(g, &x)| if x > 0.0 { 0.0 } else { g.max(0.0) }).collect();
-    Ok(SetSolve { pressure: p, gap, out })
+    Ok(SetSolve { pressure: p, gap, out, plastic: (0, 0.0) })
+}
+
+/// One capped solve on a set (the contact pressure in `[0, cap]`, `cap` in Pa) at the mean
+/// pressure `target_pa` over the `n` points of the grid, solved exactly by the active-set method
+/// of [`crate::boxqp`] from `start` clamped to the cap and brought to the target as the
+/// whole-grid capped iteration brings its start; without a positive value, the total poured on
+/// the highest points at the cap ([`boxqp::fill_highest`]).
+/// `None` when the set cannot carry the target below the cap or the method gives up.
+#[allow(clippy::too_many_arguments)]
+fn capped_set_solve(
+    op: &SetOperator,
+    b: &[f64],
+    start: &[f64],
+    target_pa: f64,
+    n: usize,
+    cap: f64,
+    scale: f64,
+    opts: &SolverOptions,
+) -> Option<SetSolve> {
+    let m = b.len();
+    let total = target_pa * n as f64;
+    let set_mean = total / m as f64;
+    if !set_mean.is_finite() || set_mean >= cap {
+        return None;
+    }
+    let mut x: Vec<f64> = start.iter().map(|p| p.clamp(0.0, cap)).collect();
+    match restore_mean(&x, cap, set_mean) {
+        Some(fix) if x.iter().any(|&v| v > 0.0) => x.iter_mut().for_each(|v| *v = fix.apply(*v, cap)),
+        _ => x = boxqp::fill_highest(b, total, cap),
+    }
+    // A held point is released when its gap has the wrong sign beyond rounding of the heights.
+    let size = b.iter().fold(scale, |a, b| a.max(b.abs()));
+    let out = boxqp::solve_capped(&op.matrix, b, &mut x, total, cap, 1e-9 * size, opts.max_iterations).ok()?;
+    let r = &out.gap;
+    // The residual of the whole-grid capped iteration ([`crate::BemSolver::solve_load_plastic`]).
+    let (sum_x, viol) = x.iter().zip(r).fold((0.0, 0.0), |a, (&xi, &ri)| {
+        if xi <= 0.0 {
+            (a.0, a.1 + (-ri).max(0.0) * target_pa)
+        } else if xi >= cap {
+            (a.0 + xi, a.1 + ri.max(0.0) * cap)
+        } else {
+            (a.0 + xi, a.1 + xi * ri.abs())
+        }
+    });
+    let plastic_points = x.iter().filter(|&&v| v >= cap).count();
+    let depth = x.iter().zip(r).filter(|&(&v, _)| v >= cap).fold(0.0f64, |d, (_, &g)| d.max(-g));
+    let gap = r.iter().zip(&x).map(|(g, &v)| if v > 0.0 { 0.0 } else { g.max(0.0) }).collect();
+    let cg = CgOut {
+        complementary: out.gap.clone(),
+        multiplier: out.multiplier,
+        iterations: out.steps,
+        residual: viol / (sum_x * scale),
+    };
+    Some(SetSolve { pressure: x, gap, out: cg, plastic: (plastic_points, depth) })
 }
 
 impl BemSolver {
@@ -220,6 +286,9 @@ impl BemSolver {
     /// of candidate points and verified on the whole grid (module docs): without `law` the
     /// Polonsky-Keer state of [`Self::solve_load`] (`warm` as there), with it the Dugdale loading
     /// branch of [`Self::adhesive_at_load`] (`warm` as there, already filtered by the caller).
+    /// With `hardness_pa` (Pa) the capped state of [`Self::plastic_at_load`] (each solve on the
+    /// set the exact active-set solve of [`crate::boxqp`]; the contact pressure capped at the
+    /// hardness, plus the Dugdale stress with adhesion).
     /// `None` when the set path does not apply (periodic cell, `opts.restricted` false) or gives
     /// up (a bound reached, a solve failed): the caller solves on the whole grid.
     pub(crate) fn restricted_at_load(
@@ -228,7 +297,8 @@ impl BemSolver {
         law: Option<&Dugdale>,
         opts: &SolverOptions,
         warm: Option<&ContactSolution>,
-    ) -> Option<ContactSolution> {
+        hardness_pa: Option<f64>,
+    ) -> Option<SetOutcome> {
         if !opts.restricted {
             return None;
         }
@@ -272,6 +342,18 @@ impl BemSolver {
             zone: set.iter().map(|&i| zone_start[i]).collect(),
             set,
         };
+        // With the cap the set must be able to carry the load below it: at least twice the
+        // points that carry it at the hardness (the set grows by rings until it does).
+        if let Some(hd) = hardness_pa {
+            while (state.set.len() as f64) * hd < 2.0 * target_pa * n as f64 {
+                let mut grown = vec![false; n];
+                dilate(state.set.iter().copied(), RING_PX, nx, ny, &mut grown);
+                if grown.iter().filter(|&&g| g).count() > cap || grown.iter().all(|&g| g) {
+                    return None;
+                }
+                state.regrid(&grown);
+            }
+        }
         let initial_points = state.set.len();
         // Cold with adhesion: the non-adhesive state at the load is the start (as on the grid).
         let mut dry_first = law.is_some() && start.is_none();
@@ -285,8 +367,13 @@ impl BemSolver {
             let m = state.set.len();
             let h: Vec<f64> = state.set.iter().map(|&i| self.heights[i]).collect();
             let scale = self.height_rms;
+            // One solve on the set: the capped one with the hardness, else the Polonsky-Keer one.
+            let solve = |op: &mut SetOperator, b: &[f64], start: &[f64], target: f64, cap: Option<f64>| match cap {
+                Some(c) => capped_set_solve(op, b, start, target, n, c, scale, opts),
+                None => set_solve(op, b, start, target, n, scale, opts).ok(),
+            };
             if dry_first {
-                let s = set_solve(&mut op, &h, &state.pressure, target_pa, n, scale, opts).ok()?;
+                let s = solve(&mut op, &h, &state.pressure, target_pa, hardness_pa)?;
                 iterations += s.out.iterations;
                 state.zone = s.gap.iter().map(|&g| g < range).collect();
                 state.pressure = s.pressure;
@@ -303,7 +390,7 @@ impl BemSolver {
                 }
                 b.iter_mut().zip(&h).for_each(|(b, h)| *b += h);
                 let carried = target_pa + stress * nz as f64 / n as f64;
-                let s = set_solve(&mut op, &b, &state.pressure, carried, n, scale, opts).ok()?;
+                let s = solve(&mut op, &b, &state.pressure, carried, hardness_pa.map(|h| h + stress))?;
                 iterations += s.out.iterations;
                 updates += 1;
                 if iterations > budget {
@@ -377,7 +464,7 @@ impl BemSolver {
                 let nz = state.zone.iter().filter(|&&z| z).count();
                 let restriction = Restriction { initial_points, points: m, checks };
                 let updates = if law.is_some() { updates } else { 1 };
-                return Some(self.finish_with(
+                let solution = self.finish_with(
                     p_net,
                     gap,
                     contact,
@@ -387,7 +474,8 @@ impl BemSolver {
                     s.out.residual,
                     Some(&u),
                     Some(restriction),
-                ));
+                );
+                return Some(SetOutcome { solution, plastic_points: s.plastic.0, max_plastic_depth_m: s.plastic.1 });
             }
             let mut grown = in_set;
             dilate(violators.into_iter(), RING_PX, nx, ny, &mut grown);

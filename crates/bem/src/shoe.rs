@@ -99,8 +99,8 @@ impl BemSolver {
         let warm = warm.filter(|w| w.gap_m.len() == n && w.mean_pressure_pa <= target_pa * (1.0 + SAME_LOAD_SLACK));
         // On the finite patch: first on a set of candidate points, verified on the whole grid
         // ([`crate::restricted`]); else the zone iteration below on the whole grid.
-        if let Some(s) = self.restricted_at_load(target_pa, Some(law), opts, warm) {
-            return Ok(s);
+        if let Some(s) = self.restricted_at_load(target_pa, Some(law), opts, warm, None) {
+            return Ok(s.solution);
         }
         let base = self.heights_m().to_vec();
         let result = self.adhesive_at_load_inner(&base, target_pa, law, opts, warm);

@@ -9,7 +9,7 @@
 
 use std::f64::consts::PI;
 
-use stiction_bem::{BemSolver, Boundary, ContactSolution, Dugdale, SolverOptions};
+use stiction_bem::{BemError, BemSolver, Boundary, ContactSolution, Dugdale, PlasticSolution, SolverOptions};
 use stiction_contact::single::MaugisCurve;
 
 /// Heights `max_k (h_k - |x - x_k|^2/(2R))` of paraboloid summits at `(x_k, y_k)` (m) on an
@@ -203,4 +203,131 @@ fn a_large_contact_falls_back_to_the_whole_grid() {
     assert!(auto.restriction.is_none(), "{:?}", auto.restriction);
     assert_eq!(auto.pressure_pa, whole.pressure_pa);
     assert_eq!(auto.iterations, whole.iterations);
+}
+
+/// The capped problem on the whole grid (the projected conjugate gradient).
+fn full_capped(
+    s: &mut BemSolver,
+    p: f64,
+    law: Option<&Dugdale>,
+    opts: &SolverOptions,
+) -> Result<PlasticSolution, BemError> {
+    s.plastic_at_load(p, law, &SolverOptions { restricted: false, ..*opts }, None)
+}
+
+/// A capped Hertz sphere on a set (the exact active-set solve of the capped problem) is the
+/// whole-grid capped iteration's state (the same discrete problem): the sphere of
+/// `hertz_sphere_on_a_set_is_the_whole_grid_solution` at the Hertz load of a = 2.25 um
+/// (p0 = 716 MPa) with the hardness at 0.7 p0, and with adhesion at that of a = 1.5 um (so that
+/// the contact and its cohesive zone fit a set; the Dugdale law of w = 0.5 J/m^2, rho = 5 nm:
+/// sigma0 = 100 MPa, the contact pressure capped at H + sigma0). The
+/// set is used; the contact, the points at the cap and the cohesive zone are the whole grid's; the
+/// traction within the bound of the module docs at the whole grid's tolerance 1e-10 (at 1e-8 the
+/// whole grid's state is 2x the bound off, and the set's residual is 1e-17); the load carried to
+/// 1e-12; the plastic points a core inside the contact (at least one, fewer than the contact
+/// points), and the largest traction at most H (a perfectly plastic pixel). At 0.4 p0 (a = 1.5 um)
+/// the whole-grid iteration does not converge in its 10,000 iterations (it stalls at a residual
+/// of 0.08) and the set solves it in 16 steps. In every case the state keeps the rigid-plastic bounds: the load the contact points
+/// carry (`P` plus the zone's tension outside the contact, `sigma0 (N_zone - N_contact) dx^2`)
+/// over H needs at least that many contact points and allows at most that many at the cap.
+#[test]
+fn capped_sphere_on_a_set_is_the_whole_grid_solution() {
+    let (n, l, e_star, radius) = (128usize, 24e-6, 100e9, 200e-6);
+    let dx = l / n as f64;
+    let h = summits(n, dx, radius, &[(0.5 * l, 0.5 * l, 0.0)]);
+    let law = Dugdale::from_work_and_range(0.5, 5e-9).unwrap();
+    let mut s = BemSolver::with_boundary(n, n, dx, dx, &h, e_star, Boundary::NonPeriodic).unwrap();
+    for (ratio, adhesive, a) in [(0.7, false, 2.25e-6f64), (0.7, true, 1.5e-6), (0.4, false, 1.5e-6)] {
+        let p0 = 2.0 * e_star * a / (PI * radius);
+        let p = 4.0 * e_star * a.powi(3) / (3.0 * radius) / (l * l);
+        let hardness = ratio * p0;
+        let law = adhesive.then_some(&law);
+        let opts = SolverOptions { hardness_pa: Some(hardness), tolerance: 1e-10, ..Default::default() };
+        let set = s.plastic_at_load(p, law, &opts, None).unwrap();
+        let r = set.solution.restriction.expect("solved on a set");
+        let contact = set.solution.contact.iter().filter(|&&c| c).count();
+        let plastic = (set.plastic_fraction * (n * n) as f64).round() as usize;
+        let peak = set.solution.pressure_pa.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        // The load the contact points carry: the external one plus the zone's tension outside them.
+        let zone = (set.solution.cohesive_fraction * (n * n) as f64).round();
+        let sigma0 = law.map_or(0.0, |l| l.stress_pa);
+        let carried = p * (l * l) + sigma0 * (zone - contact as f64) * dx * dx;
+        let rigid_plastic = carried / (hardness * dx * dx);
+        eprintln!(
+            "H = {ratio} p0, adhesive {adhesive}: set of {} points, {} steps, residual {:.1e}; contact {contact}, \
+             plastic {plastic} points (P/(H dx^2) = {rigid_plastic:.1}), peak {:.6} H",
+            r.points,
+            set.solution.iterations,
+            set.solution.residual,
+            peak / hardness
+        );
+        assert!((set.solution.mean_pressure_pa / p - 1.0).abs() < 1e-12);
+        assert!(plastic >= 1 && plastic < contact, "plastic {plastic} of {contact}");
+        assert!(peak <= hardness * (1.0 + 1e-12), "peak {peak} above H {hardness}");
+        assert!((plastic as f64) <= rigid_plastic, "at most P/(H dx^2) points at H");
+        assert!((contact as f64) >= rigid_plastic, "at least P/(H dx^2) points in contact");
+        match full_capped(&mut s, p, law, &opts) {
+            Ok(whole) => {
+                assert!(whole.solution.restriction.is_none());
+                let diff = max_abs_diff(&set.solution.pressure_pa, &whole.solution.pressure_pa);
+                let bound = pressure_bound(e_star, opts.tolerance, &h, a);
+                eprintln!(
+                    "  whole grid: {} iterations, |p_set - p_whole| = {diff:.3e} Pa (bound {bound:.2e})",
+                    whole.solution.iterations
+                );
+                assert_eq!(set.solution.contact, whole.solution.contact, "contact points");
+                assert_eq!(set.plastic_fraction, whole.plastic_fraction, "plastic points");
+                assert_eq!(set.solution.cohesive_fraction, whole.solution.cohesive_fraction, "cohesive zone");
+                assert!(diff < bound, "|p_set - p_whole| = {diff:e} Pa, bound {bound:e} Pa");
+            }
+            Err(e) => {
+                eprintln!("  whole grid: {e}");
+                assert!(ratio < 0.5, "the whole grid converges at H = {ratio} p0: {e}");
+            }
+        }
+    }
+    assert_eq!(s.heights_m(), &h[..], "the heights are the sphere's after the solves");
+}
+
+/// The rigid-plastic limit on a few pixels, where the whole-grid capped iteration stalls (E*/H =
+/// 5e4, a contact of 8 pixels). A sphere of R = 10 um on a 64^2 patch of 0.1 um pixels, its top
+/// off the pixel centres by (0.13, 0.31) px so that the pixels' squared distances from it are
+/// 0.11, 0.49, 0.85, 1.23, 1.37, 1.73, 1.75, 2.47, 2.87, ... px^2: the 8th is 0.4 px^2 = 0.2 nm
+/// of height above the 9th, against the elastic deflection of a pixel at the hardness,
+/// `H dx / E*` = 4 pm. At a load of 7.3 H dx^2 the closed form of a rigid-perfectly-plastic
+/// contact (the flat sinks until the pixels it meets carry the load at H: Abbott and Firestone's
+/// bearing area) puts the 7 highest pixels at H and the 8th at 0.3 H, no other pixel in contact.
+/// The set gives exactly that (0.3 H within 1e-9 relative). Also checked: the 7 at the cap have a
+/// plastic depth, and the whole-grid iteration, where it converges, agrees.
+#[test]
+fn a_few_pixel_contact_far_above_the_hardness_is_rigid_plastic() {
+    let (n, dx, e_star, radius, hardness) = (64usize, 0.1e-6, 100e9, 10e-6, 2e6);
+    let l = n as f64 * dx;
+    let top = ((32.0 + 0.5 + 0.13) * dx, (32.0 + 0.5 + 0.31) * dx, 0.0);
+    let h = summits(n, dx, radius, &[top]);
+    let p = 7.3 * hardness * dx * dx / (l * l);
+    let mut s = BemSolver::with_boundary(n, n, dx, dx, &h, e_star, Boundary::NonPeriodic).unwrap();
+    let opts = SolverOptions { hardness_pa: Some(hardness), ..Default::default() };
+    let st = s.plastic_at_load(p, None, &opts, None).unwrap();
+    assert!(st.solution.restriction.is_some(), "solved on a set");
+    let mut order: Vec<usize> = (0..n * n).collect();
+    order.sort_by(|&i, &j| h[j].total_cmp(&h[i]));
+    let pr = &st.solution.pressure_pa;
+    for (rank, &i) in order.iter().enumerate().take(12) {
+        eprintln!("height rank {rank}: p/H = {:.12}", pr[i] / hardness);
+    }
+    for &i in &order[..7] {
+        assert_eq!(pr[i], hardness, "the 7 highest pixels flow at H");
+    }
+    assert!((pr[order[7]] / (0.3 * hardness) - 1.0).abs() < 1e-9, "8th pixel p/H = {}", pr[order[7]] / hardness);
+    assert!(order[8..].iter().all(|&i| pr[i] == 0.0), "no other pixel in contact");
+    assert_eq!((st.plastic_fraction * (n * n) as f64).round(), 7.0);
+    assert!(st.max_plastic_depth_m > 0.0);
+    match full_capped(&mut s, p, None, &opts) {
+        Ok(w) => {
+            eprintln!("whole grid: converged in {} iterations", w.solution.iterations);
+            assert_eq!(w.solution.contact, st.solution.contact);
+        }
+        Err(e) => eprintln!("whole grid: {e}"),
+    }
 }
