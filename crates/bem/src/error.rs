@@ -84,6 +84,19 @@ pub enum BemError {
         /// The Dugdale range, m.
         range_m: f64,
     },
+    /// A capped pose of the tilting shoe was not solved on a set of candidate points (those poses
+    /// are solved on sets, [`crate::restricted`], and on the whole grid only when the contact
+    /// outgrows the largest set).
+    #[error(
+        "tilting shoe with the hardness cap at the mean pressure {target_pa:e} Pa: a pose was not solved on a set of \
+         candidate points (the set solve gave up; the capped tilting shoe is not solved on the whole grid for a \
+         contact that fits a set, where the capped iteration can stall for minutes); a higher hardness, a coarser \
+         grid (contact.bem.pixel_size) or a flat shoe resolves it"
+    )]
+    CappedPoseOffSet {
+        /// The target mean pressure, Pa.
+        target_pa: f64,
+    },
     /// The iteration did not reach the tolerance.
     #[error("{what} did not converge in {iterations} iterations (residual {residual:e}, tolerance {tolerance:e})")]
     NoConvergence {

@@ -25,7 +25,8 @@ use serde::Serialize;
 
 use crate::error::{BemError, check_positive};
 use crate::grid::{SUM_BLOCK, block_sum, block_sum2, in_pool};
-use crate::restricted::SetOutcome;
+use crate::restricted::{SetMiss, SetOutcome};
+use crate::shoe::SAME_LOAD_SLACK;
 use crate::solver::{BemSolver, ContactSolution, Dugdale, Operator, SolverOptions};
 
 /// A contact state with the pressure capped at the hardness.
@@ -44,6 +45,11 @@ pub struct PlasticSolution {
     /// points.
     pub max_plastic_depth_m: f64,
 }
+
+/// Iteration cap of a tilting shoe's capped pose on the whole grid (a contact too large for a
+/// set): such contacts converge in tens to hundreds of iterations (8-27 near full plasticity,
+/// tests/plastic.rs), while a stalled pose would spend the solver's whole cap at every pose.
+pub(crate) const TILT_WHOLE_GRID_ITERATIONS: usize = 1000;
 
 /// Steps of the Newton iteration for the scale of the mean (it ends in a few).
 const MAX_SCALE_STEPS: usize = 100;
@@ -162,7 +168,7 @@ impl BemSolver {
         }
         // On the finite patch: first on a set of candidate points, solved exactly and verified
         // on the whole grid ([`crate::restricted`]).
-        if let Some(s) = self.restricted_at_load(mean_pressure_pa, None, opts, warm, Some(hardness_pa)) {
+        if let Ok(s) = self.restricted_at_load(mean_pressure_pa, None, opts, warm, Some(hardness_pa)) {
             return Ok(self.plastic_outcome(s, hardness_pa));
         }
         let start = warm.map(|w| w.pressure_pa.as_slice());
@@ -208,6 +214,22 @@ impl BemSolver {
         opts: &SolverOptions,
         warm: Option<&ContactSolution>,
     ) -> Result<PlasticSolution, BemError> {
+        self.plastic_at_load_with(target_pa, law, opts, warm, true)
+    }
+
+    /// [`Self::plastic_at_load`]; with `whole_grid` false (the tilting shoe's capped poses) on a
+    /// set of candidate points ([`crate::restricted`]: the exact solve of bounded work), on the
+    /// whole grid only when the contact is too large for a set and then within
+    /// [`TILT_WHOLE_GRID_ITERATIONS`], else [`BemError::CappedPoseOffSet`] (the whole-grid capped
+    /// iteration can stall for minutes per pose on a contact of a few pixels).
+    pub(crate) fn plastic_at_load_with(
+        &mut self,
+        target_pa: f64,
+        law: Option<&Dugdale>,
+        opts: &SolverOptions,
+        warm: Option<&ContactSolution>,
+        whole_grid: bool,
+    ) -> Result<PlasticSolution, BemError> {
         opts.validate()?;
         let hardness = opts.hardness_pa.ok_or(BemError::Value {
             name: "hardness_pa",
@@ -222,18 +244,38 @@ impl BemSolver {
                 expected: "a mean pressure below the hardness (at the hardness the whole face flows)",
             });
         }
-        let Some(law) = law else {
+        if whole_grid && law.is_none() {
             return self.solve_load_plastic(target_pa, hardness, opts, warm);
-        };
-        check_positive("stress_pa", law.stress_pa, "a finite Dugdale stress > 0 (Pa)")?;
-        check_positive("range_m", law.range_m, "a finite range > 0 (m)")?;
-        let n = self.heights.len();
-        let warm = warm.filter(|w| w.gap_m.len() == n && w.mean_pressure_pa <= target_pa);
-        if let Some(s) = self.restricted_at_load(target_pa, Some(law), opts, warm, Some(hardness)) {
-            return Ok(self.plastic_outcome(s, hardness));
         }
+        if let Some(law) = law {
+            check_positive("stress_pa", law.stress_pa, "a finite Dugdale stress > 0 (Pa)")?;
+            check_positive("range_m", law.range_m, "a finite range > 0 (m)")?;
+        }
+        let n = self.heights.len();
+        let warm = match law {
+            Some(_) => warm.filter(|w| w.gap_m.len() == n && w.mean_pressure_pa <= target_pa * (1.0 + SAME_LOAD_SLACK)),
+            None => warm,
+        };
+        let miss = match self.restricted_at_load(target_pa, law, opts, warm, Some(hardness)) {
+            Ok(s) => return Ok(self.plastic_outcome(s, hardness)),
+            Err(miss) => miss,
+        };
+        // A capped pose of the tilting shoe goes to the whole grid only when its contact is too
+        // large for a set (where the capped iteration converges in tens to hundreds of
+        // iterations), and then within [`TILT_WHOLE_GRID_ITERATIONS`].
+        let whole_opts = if whole_grid {
+            *opts
+        } else if miss == SetMiss::TooLarge {
+            SolverOptions { max_iterations: opts.max_iterations.min(TILT_WHOLE_GRID_ITERATIONS), ..*opts }
+        } else {
+            return Err(BemError::CappedPoseOffSet { target_pa });
+        };
+        let Some(law) = law else {
+            let start = warm.map(|w| w.pressure_pa.as_slice());
+            return in_pool(|| self.solve_load_plastic_on_worker(target_pa, hardness, &whole_opts, start));
+        };
         let base = self.heights.clone();
-        let result = in_pool(|| self.plastic_adhesive_on_worker(&base, target_pa, hardness, law, opts, warm));
+        let result = in_pool(|| self.plastic_adhesive_on_worker(&base, target_pa, hardness, law, &whole_opts, warm));
         // The heights were shifted by the zone's displacement: put them back whatever happened.
         self.set_heights(&base)?;
         result
@@ -254,7 +296,7 @@ impl BemSolver {
         let cap = hardness + sigma0;
         let mut iterations = 0;
         let (mut contact_pressure, mut zone): (Vec<f64>, Vec<bool>) = match warm {
-            Some(w) if w.gap_m.len() == n && w.mean_pressure_pa <= target => {
+            Some(w) if w.gap_m.len() == n && w.mean_pressure_pa <= target * (1.0 + SAME_LOAD_SLACK) => {
                 let z: Vec<bool> = w.gap_m.iter().map(|&g| g < law.range_m).collect();
                 let pc = w
                     .pressure_pa

@@ -20,7 +20,12 @@
 //!    gap off `S` and its elastic energy come from that displacement.
 //! 3. **Growth.** The points that fail the check, with a ring of [`RING_PX`] pixels, join `S`,
 //!    and the solve is repeated from the current state. So do, before any check, the neighbours
-//!    of a contact or zone point on the border of `S` (which would likely fail it).
+//!    of a contact or zone point on the border of `S` (which would likely fail it), twice in a
+//!    row at most: then the check is made (its violators say where a contact that keeps reaching
+//!    the border is). When the
+//!    grown set would pass the bound (the set missed the contact: a warm start from another pose
+//!    of a tilting shoe stands elsewhere), `S` starts again, at most [`MAX_RESEEDS`] times, as the
+//!    current contact and zone and the [`COLD_SEEDS`] most violated points, each with the ring.
 //!
 //! `S` starts as the warm state's contact and zone with the ring, or cold as the [`COLD_SEEDS`]
 //! highest points with the ring. The work is bounded: at most [`MAX_ROUNDS`] solves on a set, a set
@@ -54,6 +59,13 @@ pub const MAX_ROUNDS: usize = 16;
 /// Ring, in pixels (a square neighbourhood), added around the seeds of a set and around the
 /// points that join it.
 pub const RING_PX: usize = 2;
+
+/// Consecutive growths of a set whose contact reaches its border before the whole-grid check is
+/// made instead.
+const MAX_TOUCHING_ROUNDS: usize = 2;
+
+/// Most fresh starts of a set that missed the contact (module docs, growth).
+pub const MAX_RESEEDS: usize = 4;
 
 /// Highest points that seed a cold set.
 pub const COLD_SEEDS: usize = 32;
@@ -156,17 +168,16 @@ struct SetState {
 }
 
 impl SetState {
-    /// The state on the set `mark` (a superset of the current one): new points carry nothing.
+    /// The state on the set `mark`: the points of the current set keep their values, new points
+    /// carry nothing, points left out are dropped.
     fn regrid(&mut self, mark: &[bool]) {
         let set: Vec<usize> = (0..mark.len()).filter(|&i| mark[i]).collect();
         let mut pressure = vec![0.0; set.len()];
         let mut zone = vec![false; set.len()];
-        let mut a = 0;
         for (k, &i) in set.iter().enumerate() {
-            if a < self.set.len() && self.set[a] == i {
+            if let Ok(a) = self.set.binary_search(&i) {
                 pressure[k] = self.pressure[a];
                 zone[k] = self.zone[a];
-                a += 1;
             }
         }
         *self = SetState { set, pressure, zone };
@@ -180,6 +191,17 @@ struct SetSolve {
     gap: Vec<f64>,
     out: CgOut,
     plastic: (usize, f64),
+}
+
+/// Why a solve on a set returned no state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SetMiss {
+    /// No set path: the periodic cell, or `SolverOptions::restricted` false.
+    NotApplicable,
+    /// The contact (with its zone and ring) needs more than [`max_set_points`] points.
+    TooLarge,
+    /// A solve on the set failed, or the rounds, fresh starts or work ran out.
+    GaveUp,
 }
 
 /// A state solved on a set and verified on the whole grid: with a hardness cap, the points at
@@ -289,8 +311,9 @@ impl BemSolver {
     /// With `hardness_pa` (Pa) the capped state of [`Self::plastic_at_load`] (each solve on the
     /// set the exact active-set solve of [`crate::boxqp`]; the contact pressure capped at the
     /// hardness, plus the Dugdale stress with adhesion).
-    /// `None` when the set path does not apply (periodic cell, `opts.restricted` false) or gives
-    /// up (a bound reached, a solve failed): the caller solves on the whole grid.
+    /// An error ([`SetMiss`]) when the set path does not apply (periodic cell, `opts.restricted`
+    /// false), the contact outgrows the largest set, or it gives up (a bound reached, a solve
+    /// failed): the caller solves on the whole grid.
     pub(crate) fn restricted_at_load(
         &mut self,
         target_pa: f64,
@@ -298,11 +321,11 @@ impl BemSolver {
         opts: &SolverOptions,
         warm: Option<&ContactSolution>,
         hardness_pa: Option<f64>,
-    ) -> Option<SetOutcome> {
+    ) -> Result<SetOutcome, SetMiss> {
         if !opts.restricted {
-            return None;
+            return Err(SetMiss::NotApplicable);
         }
-        self.half.influence_table()?;
+        self.half.influence_table().ok_or(SetMiss::NotApplicable)?;
         let grid = self.grid();
         let (n, nx, ny) = (grid.len(), grid.nx, grid.ny);
         let cap = max_set_points(grid);
@@ -335,7 +358,7 @@ impl BemSolver {
         }
         let set: Vec<usize> = (0..n).filter(|&i| mark[i]).collect();
         if set.len() > cap {
-            return None;
+            return Err(SetMiss::TooLarge);
         }
         let mut state = SetState {
             pressure: set.iter().map(|&i| start.as_ref().map_or(0.0, |s| s[i])).collect(),
@@ -349,7 +372,7 @@ impl BemSolver {
                 let mut grown = vec![false; n];
                 dilate(state.set.iter().copied(), RING_PX, nx, ny, &mut grown);
                 if grown.iter().filter(|&&g| g).count() > cap || grown.iter().all(|&g| g) {
-                    return None;
+                    return Err(SetMiss::TooLarge);
                 }
                 state.regrid(&grown);
             }
@@ -360,9 +383,11 @@ impl BemSolver {
         let mut iterations = 0usize;
         let mut updates = 0usize;
         let mut checks = 0usize;
+        let mut reseeds = 0usize;
+        let mut touching_rounds = 0usize;
         let budget = PATH_WORK_FACTOR * opts.max_iterations;
         for _round in 0..MAX_ROUNDS {
-            let table = self.half.influence_table()?;
+            let table = self.half.influence_table().ok_or(SetMiss::NotApplicable)?;
             let mut op = SetOperator::new(table, nx, &state.set);
             let m = state.set.len();
             let h: Vec<f64> = state.set.iter().map(|&i| self.heights[i]).collect();
@@ -373,7 +398,7 @@ impl BemSolver {
                 None => set_solve(op, b, start, target, n, scale, opts).ok(),
             };
             if dry_first {
-                let s = solve(&mut op, &h, &state.pressure, target_pa, hardness_pa)?;
+                let s = solve(&mut op, &h, &state.pressure, target_pa, hardness_pa).ok_or(SetMiss::GaveUp)?;
                 iterations += s.out.iterations;
                 state.zone = s.gap.iter().map(|&g| g < range).collect();
                 state.pressure = s.pressure;
@@ -390,11 +415,12 @@ impl BemSolver {
                 }
                 b.iter_mut().zip(&h).for_each(|(b, h)| *b += h);
                 let carried = target_pa + stress * nz as f64 / n as f64;
-                let s = solve(&mut op, &b, &state.pressure, carried, hardness_pa.map(|h| h + stress))?;
+                let s = solve(&mut op, &b, &state.pressure, carried, hardness_pa.map(|h| h + stress))
+                    .ok_or(SetMiss::GaveUp)?;
                 iterations += s.out.iterations;
                 updates += 1;
                 if iterations > budget {
-                    return None;
+                    return Err(SetMiss::GaveUp);
                 }
                 let new_zone: Vec<bool> = s.gap.iter().map(|&g| g < range).collect();
                 let same = new_zone == state.zone;
@@ -405,7 +431,7 @@ impl BemSolver {
                     break;
                 }
             }
-            let s = converged?;
+            let s = converged.ok_or(SetMiss::GaveUp)?;
             // A contact or zone point next to a point off the set: grow before checking.
             let mut border = vec![false; n];
             let in_set = {
@@ -421,15 +447,20 @@ impl BemSolver {
                         .any(|yy| (x.saturating_sub(1)..(x + 2).min(nx)).any(|xx| !in_set[yy * nx + xx]))
                 })
                 .collect();
-            if !touching.is_empty() {
+            // While the contact keeps reaching the border (a set that has to walk to a contact
+            // that moved: a tilting shoe's next pose) the whole-grid check takes over from the
+            // third round, and its violators say where the contact is.
+            if !touching.is_empty() && touching_rounds < MAX_TOUCHING_ROUNDS {
+                touching_rounds += 1;
                 dilate(touching.into_iter(), RING_PX, nx, ny, &mut border);
                 border.iter_mut().zip(&in_set).for_each(|(b, &s)| *b |= s);
                 if border.iter().filter(|&&b| b).count() > cap {
-                    return None;
+                    return Err(SetMiss::TooLarge);
                 }
                 state.regrid(&border);
                 continue;
             }
+            touching_rounds = 0;
             // The check on the whole grid: the net traction's displacement, the gap off the set.
             let mut p_net = vec![0.0; n];
             for (a, &i) in state.set.iter().enumerate() {
@@ -475,15 +506,34 @@ impl BemSolver {
                     Some(&u),
                     Some(restriction),
                 );
-                return Some(SetOutcome { solution, plastic_points: s.plastic.0, max_plastic_depth_m: s.plastic.1 });
+                return Ok(SetOutcome { solution, plastic_points: s.plastic.0, max_plastic_depth_m: s.plastic.1 });
             }
             let mut grown = in_set;
-            dilate(violators.into_iter(), RING_PX, nx, ny, &mut grown);
+            dilate(violators.iter().copied(), RING_PX, nx, ny, &mut grown);
             if grown.iter().filter(|&&g| g).count() > cap {
-                return None;
+                // The set missed the contact (a warm start from another pose of a tilting shoe
+                // stands elsewhere): start again from its contact and zone and the most violated
+                // points, each with the ring.
+                reseeds += 1;
+                if reseeds > MAX_RESEEDS {
+                    return Err(SetMiss::GaveUp);
+                }
+                let mut worst = violators;
+                let k = COLD_SEEDS.min(worst.len());
+                if k < worst.len() {
+                    worst.select_nth_unstable_by(k, |&a, &b| gap_off[a].0.total_cmp(&gap_off[b].0).then(a.cmp(&b)));
+                }
+                let mut seeds = vec![false; n];
+                dilate(worst[..k].iter().copied(), RING_PX, nx, ny, &mut seeds);
+                let active = (0..m).filter(|&a| state.zone[a] || state.pressure[a] > 0.0).map(|a| state.set[a]);
+                dilate(active, RING_PX, nx, ny, &mut seeds);
+                if seeds.iter().filter(|&&g| g).count() > cap {
+                    return Err(SetMiss::TooLarge);
+                }
+                grown = seeds;
             }
             state.regrid(&grown);
         }
-        None
+        Err(SetMiss::GaveUp)
     }
 }

@@ -55,7 +55,7 @@ const MAX_BRACKET_STEPS: usize = 8;
 
 /// Relative slack with which a state counts as below a target load when it warm-starts the
 /// adhesive solve: a state solved at the same load carries it to rounding, either side.
-const SAME_LOAD_SLACK: f64 = 1e-9;
+pub(crate) const SAME_LOAD_SLACK: f64 = 1e-9;
 
 /// A solved pose: the state and, with the hardness cap, its plastic fraction, area (m^2) and
 /// largest depth (m).
@@ -99,7 +99,7 @@ impl BemSolver {
         let warm = warm.filter(|w| w.gap_m.len() == n && w.mean_pressure_pa <= target_pa * (1.0 + SAME_LOAD_SLACK));
         // On the finite patch: first on a set of candidate points, verified on the whole grid
         // ([`crate::restricted`]); else the zone iteration below on the whole grid.
-        if let Some(s) = self.restricted_at_load(target_pa, Some(law), opts, warm, None) {
+        if let Ok(s) = self.restricted_at_load(target_pa, Some(law), opts, warm, None) {
             return Ok(s.solution);
         }
         let base = self.heights_m().to_vec();
@@ -264,10 +264,11 @@ impl BemSolver {
             solves.set(solves.get() + 1);
             let prev = prev.filter(|p| p.mean_pressure_pa <= target_pa * (1.0 + SAME_LOAD_SLACK));
             let (sol, plastic) = match (opts.hardness_pa, law) {
-                // Each capped pose cold: a warm start from another pose's capped state can stall
-                // the capped iteration (as a warm dry start does for the flat shoe).
+                // Capped poses continue from `prev` too, each solved exactly on a set of
+                // candidate points (crate::restricted: bounded work, and a warm start cannot
+                // stall it), on the whole grid only for a contact too large for a set.
                 (Some(_), _) => {
-                    let st = s.plastic_at_load(target_pa, law, opts, None)?;
+                    let st = s.plastic_at_load_with(target_pa, law, opts, prev, false)?;
                     let pl = (st.plastic_fraction, st.plastic_area_m2, st.max_plastic_depth_m);
                     (st.solution, Some(pl))
                 }

@@ -549,7 +549,7 @@ impl BemSolver {
         opts.validate()?;
         check_positive("mean_pressure_pa", mean_pressure_pa, "a finite mean pressure > 0 (Pa)")?;
         // On the finite patch: first on a set of candidate points, verified on the whole grid.
-        if let Some(s) = self.restricted_at_load(mean_pressure_pa, None, opts, warm, None) {
+        if let Ok(s) = self.restricted_at_load(mean_pressure_pa, None, opts, warm, None) {
             return Ok(s.solution);
         }
         let n = self.heights.len();

@@ -106,15 +106,6 @@ impl BemSpec {
                     .into(),
             ));
         }
-        if self.tilt() && self.plastic() {
-            return Err((
-                "plastic".into(),
-                "the meter's hardness cap is solved for a flat shoe only: give `plastic` or `tilt`, not both (the \
-                 capped tilting shoe, `stiction bem --tilt --hardness`, does not converge in bounded time on the \
-                 meter's contacts of a few pixels)"
-                    .into(),
-            ));
-        }
         Ok(())
     }
 

@@ -217,13 +217,6 @@ impl BemContact {
                     .into(),
             ));
         }
-        if shoe.hardness_pa.is_some() && shoe.tilting {
-            return Err(MeterError::Scenario(
-                "contact.bem.plastic: the meter's hardness cap is solved for a flat shoe only (not with \
-                 contact.bem.tilt)"
-                    .into(),
-            ));
-        }
         if let Some(h) = shoe.hardness_pa.filter(|h| !(h.is_finite() && *h > 0.0)) {
             return Err(MeterError::Scenario(format!("material.hardness {h:e} Pa: expected a finite hardness > 0")));
         }
