@@ -32,13 +32,106 @@
 //! repeats and the method ends in finitely many steps (bounded here by `max_steps`).
 //!
 //! Why by hand: the problem's structure (a box and one sum, a feasible warm start from the
-//! previous state, a solution with few free points, at most [`crate::restricted::MAX_SET_POINTS`]
-//! unknowns) makes a dense active-set method with nalgebra's Cholesky exact and cheap, while the
+//! previous state, a solution with few free points, at most 1024 unknowns: the largest set of
+//! candidate points) makes a dense active-set method with nalgebra's Cholesky exact and cheap, while the
 //! quadratic-programming crates (interior-point or ADMM) end at a tolerance on the
 //! complementarity, which is exactly where the projected conjugate gradient of
 //! [`crate::BemSolver::solve_load_plastic`] stalls on contacts of a few pixels.
 
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
+
+use crate::grid::{block_sum, block_sum2};
+
+/// Steps of the Newton iteration for the scale of the mean (it ends in a few).
+const MAX_SCALE_STEPS: usize = 100;
+
+/// How the mean pressure is restored after a step ([`restore_mean`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum MeanFix {
+    /// Points below the cap scaled by `f` (clamped at the cap), points at the cap kept.
+    Scale(f64),
+    /// Points in contact shifted by `lambda` (Pa) and clamped to `[0, cap]`: when the points at
+    /// the cap alone carry more than the target (a step that saturated too many).
+    Shift(f64),
+    /// Every point shifted by `lambda` (Pa) and clamped to `[0, cap]` (the Euclidean projection
+    /// on `{0 <= x <= cap, mean(x) = target}`): when the contact points, all at the cap, carry
+    /// less than the target (a step that saturated and released too many near full plasticity).
+    Lift(f64),
+}
+
+impl MeanFix {
+    pub(crate) fn apply(self, v: f64, cap: f64) -> f64 {
+        match self {
+            MeanFix::Scale(f) => {
+                if v < cap {
+                    (v * f).min(cap)
+                } else {
+                    cap
+                }
+            }
+            MeanFix::Shift(l) => {
+                if v > 0.0 {
+                    (v + l).clamp(0.0, cap)
+                } else {
+                    0.0
+                }
+            }
+            MeanFix::Lift(l) => (v + l).clamp(0.0, cap),
+        }
+    }
+}
+
+/// Bisection steps for the shift (to the last bit of a value below the cap).
+const SHIFT_STEPS: usize = 80;
+
+/// The fix that makes `mean(fix(x)) = target` (x in `[0, cap]`, `0 < target < cap`): the scale
+/// `f` of the points below the cap by Newton's method from below (the mean of `min(f x, cap)`
+/// is concave and piecewise linear in `f`); when the points at the cap alone carry more than the
+/// target, the shift of the contact points by bisection. Deterministic block sums.
+pub(crate) fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> {
+    let n = x.len() as f64;
+    let (free_sum, capped) = block_sum2(x.len(), |rg| {
+        rg.fold((0.0, 0.0), |a, i| if x[i] < cap { (a.0 + x[i], a.1) } else { (a.0, a.1 + cap) })
+    });
+    if !(free_sum + capped).is_finite() || free_sum + capped <= 0.0 {
+        return None;
+    }
+    if capped >= target * n || free_sum <= 0.0 {
+        // The contact points alone reach the target when they are all at the cap; if they do
+        // not (the free ones are none and the capped ones too few), every point is lifted.
+        let kind: fn(f64) -> MeanFix =
+            if capped >= target * n || free_sum > 0.0 { MeanFix::Shift } else { MeanFix::Lift };
+        let mean_at = |l: f64| block_sum(x.len(), |rg| rg.map(|i| kind(l).apply(x[i], cap)).sum()) / n;
+        let (mut lo, mut hi) = (-cap, cap);
+        for _ in 0..SHIFT_STEPS {
+            let mid = 0.5 * (lo + hi);
+            if mean_at(mid) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        return Some(kind(0.5 * (lo + hi)));
+    }
+    let mut f = (target * n - capped) / free_sum;
+    for _ in 0..MAX_SCALE_STEPS {
+        let (value, slope) = block_sum2(x.len(), |rg| {
+            rg.fold((0.0, 0.0), |a, i| {
+                let v = x[i];
+                if v >= cap || f * v >= cap { (a.0 + cap, a.1) } else { (a.0 + f * v, a.1 + v) }
+            })
+        });
+        if slope <= 0.0 {
+            break;
+        }
+        let step = (target * n - value) / slope;
+        if step <= f * 1e-15 {
+            break;
+        }
+        f += step;
+    }
+    Some(MeanFix::Scale(f))
+}
 
 /// Where a point of the set is: free, or held at a bound.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -73,8 +166,9 @@ pub(crate) enum GiveUp {
     Steps,
 }
 
-/// Most free points of an equality-constrained step (its factor holds `|F|^2` values).
-pub(crate) const MAX_FREE: usize = crate::restricted::MAX_SET_POINTS;
+/// Most free points of an equality-constrained step (its factor holds `|F|^2` values): the
+/// largest set of candidate points.
+pub(crate) const MAX_FREE: usize = 1024;
 
 /// `sum_j K_ij x_j - b_i` over the nonzero `x_j` (in ascending `j`), for every `i` of the set.
 fn field(matrix: &[f64], m: usize, b: &[f64], x: &[f64]) -> Vec<f64> {

@@ -43,9 +43,9 @@
 use rayon::prelude::*;
 
 use crate::boxqp;
+use crate::boxqp::restore_mean;
 use crate::error::{BemError, PATH_WORK_FACTOR};
 use crate::grid::{Grid, SUM_BLOCK, in_pool};
-use crate::plastic::restore_mean;
 use crate::solver::{
     BemSolver, CgOperator, CgOut, ContactSolution, Dugdale, Restriction, SolverOptions, constrained_cg,
 };
