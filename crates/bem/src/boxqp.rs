@@ -133,6 +133,25 @@ pub(crate) fn restore_mean(x: &[f64], cap: f64, target: f64) -> Option<MeanFix> 
     Some(MeanFix::Scale(f))
 }
 
+/// The terms of the capped problem's residual for the pressure `x` (Pa) in `[0, cap]` and the
+/// complementary field `r` (m): `sum x` and
+/// `sum_F x |r| + target sum_{x=0} max(-r, 0) + cap sum_{x=cap} max(r, 0)`; the residual is the
+/// second over the first times the heights' scale (deterministic block sums).
+pub(crate) fn capped_violation(x: &[f64], r: &[f64], cap: f64, target: f64) -> (f64, f64) {
+    block_sum2(x.len(), |rg| {
+        rg.fold((0.0, 0.0), |a, i| {
+            let (xi, ri) = (x[i], r[i]);
+            if xi <= 0.0 {
+                (a.0, a.1 + (-ri).max(0.0) * target)
+            } else if xi >= cap {
+                (a.0 + xi, a.1 + ri.max(0.0) * cap)
+            } else {
+                (a.0 + xi, a.1 + xi * ri.abs())
+            }
+        })
+    })
+}
+
 /// Where a point of the set is: free, or held at a bound.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Bound {

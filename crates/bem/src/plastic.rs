@@ -23,7 +23,7 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::boxqp::restore_mean;
+use crate::boxqp::{capped_violation, restore_mean};
 use crate::error::{BemError, check_positive};
 use crate::grid::{SUM_BLOCK, block_sum, block_sum2, in_pool};
 use crate::restricted::{SetMiss, SetOutcome};
@@ -318,18 +318,7 @@ impl BemSolver {
             }
             let rbar = sum_r / nf;
             r.par_iter_mut().for_each(|r| *r -= rbar);
-            let (sum_x, viol) = block_sum2(n, |rg| {
-                rg.fold((0.0, 0.0), |a, i| {
-                    let (xi, ri) = (x[i], r[i]);
-                    if xi <= 0.0 {
-                        (a.0, a.1 + (-ri).max(0.0) * target)
-                    } else if xi >= cap {
-                        (a.0 + xi, a.1 + ri.max(0.0) * cap)
-                    } else {
-                        (a.0 + xi, a.1 + xi * ri.abs())
-                    }
-                })
-            });
+            let (sum_x, viol) = capped_violation(&x, &r, cap, target);
             residual = viol / (sum_x * scale);
             if residual < opts.tolerance {
                 break true;

@@ -22,10 +22,10 @@
 //!    and the solve is repeated from the current state. So do, before any check, the neighbours
 //!    of a contact or zone point on the border of `S` (which would likely fail it), twice in a
 //!    row at most: then the check is made (its violators say where a contact that keeps reaching
-//!    the border is). When the
-//!    grown set would pass the bound (the set missed the contact: a warm start from another pose
-//!    of a tilting shoe stands elsewhere), `S` starts again, at most [`MAX_RESEEDS`] times, as the
-//!    current contact and zone and the [`COLD_SEEDS`] most violated points, each with the ring.
+//!    the border is). When the grown set would pass the bound (the set missed the contact: a warm
+//!    start from another pose of a tilting shoe stands elsewhere), `S` starts again, at most
+//!    [`MAX_RESEEDS`] times, as the current contact and zone and the [`COLD_SEEDS`] most violated
+//!    points, each with the ring.
 //!
 //! `S` starts as the warm state's contact and zone with the ring, or cold as the [`COLD_SEEDS`]
 //! highest points with the ring. The work is bounded: at most [`MAX_ROUNDS`] solves on a set, a set
@@ -282,15 +282,7 @@ fn capped_set_solve(
     let out = boxqp::solve_capped(&op.matrix, b, &mut x, total, cap, 1e-9 * size, opts.max_iterations).ok()?;
     let r = &out.gap;
     // The residual of the whole-grid capped iteration ([`crate::BemSolver::solve_load_plastic`]).
-    let (sum_x, viol) = x.iter().zip(r).fold((0.0, 0.0), |a, (&xi, &ri)| {
-        if xi <= 0.0 {
-            (a.0, a.1 + (-ri).max(0.0) * target_pa)
-        } else if xi >= cap {
-            (a.0 + xi, a.1 + ri.max(0.0) * cap)
-        } else {
-            (a.0 + xi, a.1 + xi * ri.abs())
-        }
-    });
+    let (sum_x, viol) = boxqp::capped_violation(&x, r, cap, target_pa);
     let plastic_points = x.iter().filter(|&&v| v >= cap).count();
     let depth = x.iter().zip(r).filter(|&(&v, _)| v >= cap).fold(0.0f64, |d, (_, &g)| d.max(-g));
     let gap = r.iter().zip(&x).map(|(g, &v)| if v > 0.0 { 0.0 } else { g.max(0.0) }).collect();
