@@ -50,8 +50,9 @@ use crate::solver::{
     BemSolver, CgOperator, CgOut, ContactSolution, Dugdale, Restriction, SolverOptions, constrained_cg,
 };
 
-/// Largest candidate set, points: its influence matrix is 8 MB.
-pub const MAX_SET_POINTS: usize = 1024;
+/// Largest candidate set, points: its influence matrix is 8 MB (the exact capped solve's bound on
+/// its free points, [`crate::boxqp`], is the same number).
+pub const MAX_SET_POINTS: usize = boxqp::MAX_FREE;
 
 /// Most solves on a set (the first and each after the set grew) before the whole grid is solved.
 pub const MAX_ROUNDS: usize = 16;
@@ -385,9 +386,11 @@ impl BemSolver {
             let h: Vec<f64> = state.set.iter().map(|&i| self.heights[i]).collect();
             let scale = self.height_rms;
             // One solve on the set: the capped one with the hardness, else the Polonsky-Keer one.
-            let solve = |op: &mut SetOperator, b: &[f64], start: &[f64], target: f64, cap: Option<f64>| match cap {
-                Some(c) => capped_set_solve(op, b, start, target, n, c, scale, opts),
-                None => set_solve(op, b, start, target, n, scale, opts).ok(),
+            let solve = |op: &mut SetOperator, b: &[f64], start: &[f64], target: f64, pressure_cap: Option<f64>| {
+                match pressure_cap {
+                    Some(c) => capped_set_solve(op, b, start, target, n, c, scale, opts),
+                    None => set_solve(op, b, start, target, n, scale, opts).ok(),
+                }
             };
             if dry_first {
                 let s = solve(&mut op, &h, &state.pressure, target_pa, hardness_pa).ok_or(SetMiss::GaveUp)?;
@@ -431,8 +434,11 @@ impl BemSolver {
                 state.set.iter().for_each(|&i| a[i] = true);
                 a
             };
-            let active = (0..m).filter(|&a| state.zone[a] || state.pressure[a] > 0.0).map(|a| state.set[a]);
+            let active: Vec<usize> =
+                (0..m).filter(|&a| state.zone[a] || state.pressure[a] > 0.0).map(|a| state.set[a]).collect();
             let touching: Vec<usize> = active
+                .iter()
+                .copied()
                 .filter(|&i| {
                     let (x, y) = (i % nx, i / nx);
                     (y.saturating_sub(1)..(y + 2).min(ny))
@@ -517,8 +523,7 @@ impl BemSolver {
                 }
                 let mut seeds = vec![false; n];
                 dilate(worst[..k].iter().copied(), RING_PX, nx, ny, &mut seeds);
-                let active = (0..m).filter(|&a| state.zone[a] || state.pressure[a] > 0.0).map(|a| state.set[a]);
-                dilate(active, RING_PX, nx, ny, &mut seeds);
+                dilate(active.iter().copied(), RING_PX, nx, ny, &mut seeds);
                 if seeds.iter().filter(|&&g| g).count() > cap {
                     return Err(SetMiss::TooLarge);
                 }
